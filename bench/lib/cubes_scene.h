@@ -1,0 +1,37 @@
+// Seeded generator of benchmark and property-test scenes: a closed room lit by one
+// or two ceiling lights, with cubes (some stacked) and tables. Pure function; thread-safe.
+#pragma once
+
+#include <cstdint>
+
+#include "core/scene/scene.h"
+
+namespace penumbra {
+
+struct CubesSceneOptions {
+  int cubes = 15;               // objects standing in the room (cubes and tables)
+  uint64_t seed = 1;
+  double lightScale = 1.0;      // light side factor: 0.2 = a light 5× smaller
+  double stackedFraction = 0.2; // share of cubes resting on another cube's top
+  bool tiltedLight = false;     // tilt the light(s) by 25°, still facing down-ish
+  bool twoLights = false;
+  double thinTables = 0.0;      // share of objects that are tables (slab on 4 legs)
+};
+
+// The room is centred on x = z = 0 with its floor at y = 0; its side grows with
+// sqrt(cubes) so the floor density stays the same from 15 to 5000 objects.
+// Sizes and heights are multiples of 1/64 m, so "resting on" is exact in double:
+// cube bottoms lie exactly at y = 0 or exactly at the top of the cube below.
+// Object ids: "floor", "ceiling", "wall_n", "wall_s", "wall_e", "wall_w",
+// "cube_<i>", "table_<i>"; lights "light" (and "light_2"); materials "white", "clay".
+// Every object is placed with a transform (translate, rotate about y, scale).
+Scene makeCubesScene(const CubesSceneOptions& options);
+
+// Room dimensions used by makeCubesScene (for tests and benchmark reports).
+struct CubesRoom {
+  double side = 0;    // floor is [-side/2, side/2]² in x and z
+  double height = 0;  // ceiling at y = height
+};
+CubesRoom cubesRoom(const CubesSceneOptions& options);
+
+}  // namespace penumbra

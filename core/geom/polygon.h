@@ -1,0 +1,36 @@
+// Planar polygons in 3D as vertex lists (counter-clockwise seen from the front).
+// Free functions only; thread-safe.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "core/geom/plane.h"
+#include "core/geom/vec.h"
+
+namespace penumbra {
+
+using Polygon3 = std::vector<Vec3>;
+
+// Newell's vector: twice the vector area; its direction is the front normal.
+Vec3 newellVector(const Polygon3& polygon);
+double area(const Polygon3& polygon);
+Vec3 centroid(const Polygon3& polygon);  // vertex average
+// Largest distance between two vertices.
+double extent(const Polygon3& polygon);
+
+// The polygon's plane (normal from Newell), or nullopt if its area is ~zero
+// relative to its extent.
+std::optional<Plane> planeOf(const Polygon3& polygon);
+
+// Largest vertex distance from the polygon's plane, relative to its extent.
+double planarityError(const Polygon3& polygon);
+
+// Convex (no reflex corner, no self-overlap) and counter-clockwise about its own
+// Newell normal. Collinear corners are allowed.
+bool isConvex(const Polygon3& polygon);
+
+// Removes vertices that coincide with their predecessor (within eps).
+Polygon3 withoutDuplicateVertices(const Polygon3& polygon, double eps);
+
+}  // namespace penumbra

@@ -1,0 +1,36 @@
+// Lit meshes per receiving face: positions, per-vertex irradiance and class,
+// triangles. Produced by the reference grid and (later) the DM engine; plain data.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/scene/scene.h"
+
+namespace penumbra {
+
+// Visibility of the lights from a point (SCENE_FORMAT.md "class").
+enum class LightClass : uint8_t { Lit, Penumbra, Umbra };
+
+const char* toString(LightClass c);
+
+// Combines the classes of one point over several lights.
+LightClass combine(LightClass a, LightClass b);
+
+struct ReceiverMesh {
+  FaceId face;
+  Vec3 normal{0.0};
+  std::vector<Vec3> positions;
+  std::vector<Vec3> irradiance;  // RGB, W·m⁻², summed over lights
+  std::vector<LightClass> classes;
+  std::vector<std::array<uint32_t, 3>> triangles;  // CCW seen from the front
+};
+
+struct Mesh {
+  std::vector<ReceiverMesh> receivers;
+  size_t vertexCount() const;
+  size_t triangleCount() const;
+};
+
+}  // namespace penumbra

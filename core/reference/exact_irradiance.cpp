@@ -1,0 +1,181 @@
+#include "core/reference/exact_irradiance.h"
+
+#include <cmath>
+
+#include "core/geom/clip.h"
+#include "core/geom/convex2d.h"
+#include "core/geom/plane_frame.h"
+
+namespace penumbra {
+
+namespace {
+
+// One light seen from one point, before the public result is assembled.
+struct LightView {
+  bool applies = false;        // some of the light's emitting front is in front of p
+  Polygon3 front;              // the light clipped to p's front half-space
+  std::vector<Polygon2> pieces;  // visible part, in the light's plane frame
+  bool occluded = false;       // some blocker removed positive area
+  PlaneFrame frame;
+};
+
+LightView viewLight(const Scene& scene, const Vec3& p, const Vec3& n, const Light& light) {
+  LightView view;
+  const Tolerance tol = scene.tolerance();
+  const double eps = tol.length();
+  const auto lightPlane = planeOf(light.polygon);
+  if (!lightPlane) return view;
+  // (a) p must be strictly in front of the emitting side; then keep the part of
+  // the light in p's front half-space.
+  const double pHeight = lightPlane->signedDistance(p);
+  if (!(pHeight > eps)) return view;
+  const Plane receiverPlane = Plane::throughPoint(n, p);
+  view.front = withoutDuplicateVertices(clipFront(light.polygon, receiverPlane, eps), eps);
+  if (view.front.size() < 3) return view;
+  view.applies = true;
+  view.frame = PlaneFrame::onPlane(*lightPlane, centroid(view.front));
+
+  Polygon2 front2;
+  front2.reserve(view.front.size());
+  for (const Vec3& q : view.front) front2.push_back(view.frame.to2D(q));
+  front2 = counterClockwise(std::move(front2));
+
+  // The cone from p over the visible light: its side planes face inwards. The
+  // light is CCW seen from p (p is in front of it), so the inward normal of the
+  // plane through p, a, b is (b - p) × (a - p).
+  std::vector<Plane> cone;
+  cone.reserve(view.front.size() + 2);
+  for (size_t i = 0; i < view.front.size(); ++i) {
+    const Vec3 a = view.front[i] - p, b = view.front[(i + 1) % view.front.size()] - p;
+    const Vec3 inward = glm::cross(b, a);
+    const double length = glm::length(inward);
+    if (!(length > 0)) continue;
+    cone.push_back(Plane{inward / length, -glm::dot(inward / length, p)});
+  }
+  // Blockers lie strictly between p and the light's plane. The near cap keeps
+  // the projection finite (t > 0 below); it only drops points within ~eps/cosθ
+  // of p, and faces that close to p are never blockers (onPlane ≫ eps).
+  cone.push_back(*lightPlane);
+  cone.push_back(Plane{-lightPlane->normal, -lightPlane->offset + pHeight - 2 * eps});
+
+  // (b) Project every face that can block p onto the light's plane from p.
+  std::vector<Polygon2> shadows;
+  const double onPlane = tol.onPlane();
+  for (const Face& face : scene.faces()) {
+    // Only faces p is strictly behind block it (the single-sided rule); a face
+    // whose plane contains p never does.
+    if (!(face.plane.signedDistance(p) < -onPlane)) continue;
+    // Exact rejects: every blocking point lies strictly in front of p's plane
+    // and strictly between p and the light's plane.
+    bool anyAhead = false, anyBetween = false, anyNearSide = false;
+    for (const Vec3& v : face.polygon) {
+      anyAhead |= receiverPlane.signedDistance(v) > 0;
+      const double h = lightPlane->signedDistance(v);
+      anyBetween |= h > 0;
+      anyNearSide |= h < pHeight;
+    }
+    if (!anyAhead || !anyBetween || !anyNearSide) continue;
+
+    Polygon3 blocker = face.polygon;
+    for (const Plane& plane : cone) {
+      blocker = clipFront(blocker, plane, eps);
+      if (blocker.empty()) break;
+    }
+    if (blocker.size() < 3) continue;
+
+    // Central projection from p: x = p + t (q - p) with q on the light's plane
+    // gives h(x) = (1 - t) h(p).
+    Polygon2 shadow;
+    shadow.reserve(blocker.size());
+    for (const Vec3& x : blocker) {
+      const double t = 1.0 - lightPlane->signedDistance(x) / pHeight;
+      shadow.push_back(view.frame.to2D(p + (x - p) / t));
+    }
+    shadow = counterClockwise(std::move(shadow));
+    if (std::abs(signedArea(shadow)) > tol.area()) shadows.push_back(std::move(shadow));
+  }
+
+  // (c) Visible = front-clipped light minus the union of the shadows.
+  view.pieces = subtract(front2, shadows, eps, &view.occluded);
+  std::erase_if(view.pieces, [&](const Polygon2& piece) { return signedArea(piece) <= tol.area(); });
+  return view;
+}
+
+// The public result for one light; `applies` says whether the light's emitting
+// front is at all in front of p (otherwise it contributes nothing).
+LightVisibility lightVisibility(const Scene& scene, const Vec3& p, const Vec3& n,
+                                const Light& light, bool* applies) {
+  const LightView view = viewLight(scene, p, n, light);
+  *applies = view.applies;
+  LightVisibility out;
+  if (!view.applies) return out;
+  // (d) Lambert over the front-clipped light and over each visible piece.
+  out.unoccludedFactor = lambertFactor(p, n, view.front);
+  if (!view.occluded && !view.pieces.empty()) {
+    // Nothing removed: the visible part is the front-clipped light itself (not
+    // its image through the plane frame), so a lit point gets exactly its value.
+    out.visibleFactor = out.unoccludedFactor;
+    out.visiblePieces.push_back(view.front);
+    out.lightClass = LightClass::Lit;
+    return out;
+  }
+  for (const Polygon2& piece : view.pieces) {
+    Polygon3 world;
+    world.reserve(piece.size());
+    for (const Vec2& q : piece) world.push_back(view.frame.to3D(q));
+    out.visibleFactor += lambertFactor(p, n, world);
+    out.visiblePieces.push_back(std::move(world));
+  }
+  out.lightClass = view.pieces.empty() ? LightClass::Umbra
+                   : view.occluded     ? LightClass::Penumbra
+                                       : LightClass::Lit;
+  return out;
+}
+
+}  // namespace
+
+ExactReference::ExactReference(const Scene& scene) : scene_(scene) {}
+
+LightVisibility ExactReference::visibility(const Vec3& p, const Vec3& n, size_t light) const {
+  bool applies = false;
+  return lightVisibility(scene_, p, n, scene_.lights().at(light), &applies);
+}
+
+PointIrradiance ExactReference::evaluate(const Vec3& p, const Vec3& n) const {
+  PointIrradiance out;
+  bool anyLight = false;
+  for (const Light& light : scene_.lights()) {
+    // A light whose front does not face p, or that lies wholly behind p's plane,
+    // contributes nothing and leaves the class alone.
+    bool applies = false;
+    const LightVisibility v = lightVisibility(scene_, p, n, light, &applies);
+    if (!applies) continue;
+    out.irradiance += light.radiance * v.visibleFactor;
+    out.lightClass = anyLight ? combine(out.lightClass, v.lightClass) : v.lightClass;
+    anyLight = true;
+  }
+  // No light in front of p at all: it sees none of any light.
+  if (!anyLight) out.lightClass = LightClass::Umbra;
+  return out;
+}
+
+double lambertFactor(const Vec3& p, const Vec3& n, const Polygon3& polygon) {
+  const size_t count = polygon.size();
+  if (count < 3) return 0;
+  // Contour form: ½ Σ γ_i n·unit(r_i × r_{i+1}); it is negative for a polygon
+  // that p sees counter-clockwise, so orient by the side p is on.
+  const double facing = glm::dot(newellVector(polygon), p - polygon[0]);
+  if (facing == 0) return 0;
+  double sum = 0;
+  for (size_t i = 0; i < count; ++i) {
+    const Vec3 r0 = polygon[i] - p, r1 = polygon[(i + 1) % count] - p;
+    const Vec3 c = glm::cross(r0, r1);
+    const double length = glm::length(c);
+    if (!(length > 0)) continue;
+    const double gamma = std::atan2(length, glm::dot(r0, r1));
+    sum += gamma * glm::dot(n, c) / length;
+  }
+  return (facing > 0 ? -0.5 : 0.5) * sum;
+}
+
+}  // namespace penumbra

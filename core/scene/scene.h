@@ -1,0 +1,119 @@
+// The scene model: lights, materials, objects as authored, and the world-space
+// faces derived from them (stable ids: object index + face index). Owned by one
+// writer (the engine or a loader); const access is thread-safe.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/geom/plane.h"
+#include "core/geom/polygon.h"
+#include "core/geom/tolerance.h"
+#include "core/scene/transform.h"
+
+namespace penumbra {
+
+struct Material {
+  std::string id;
+  Vec3 albedo{0.8};
+};
+
+struct Light {
+  std::string id;
+  Polygon3 polygon;  // convex, planar, counter-clockwise seen from its emitting front
+  Vec3 radiance{0.0};
+
+  Plane plane() const;  // front = emitting side
+  double area() const { return penumbra::area(polygon); }
+};
+
+struct Object {
+  std::string id;
+  std::vector<Vec3> vertices;             // object space
+  std::vector<std::vector<int>> faces;    // indices into vertices, CCW from the front
+  std::string material;                   // empty: default material
+  bool isStatic = false;
+  Transform transform;
+};
+
+struct Camera {
+  enum class Projection { Perspective, Orthographic };
+  Vec3 position{0, 1.5, 6};
+  Vec3 target{0, 1, 0};
+  Vec3 up{0, 1, 0};
+  Projection projection = Projection::Perspective;
+  double fovYDeg = 45;  // perspective: full vertical field of view
+  double height = 2;    // orthographic: full vertical extent
+  double near = 0.1;
+  double far = 100;
+};
+
+struct FaceId {
+  uint32_t object = 0;  // index into Scene::objects()
+  uint32_t face = 0;    // index into that object's faces
+  bool operator==(const FaceId&) const = default;
+  auto operator<=>(const FaceId&) const = default;
+};
+
+struct Face {
+  FaceId id;
+  Polygon3 polygon;  // world space, CCW seen from the front
+  Plane plane;       // front normal
+  double area = 0;
+};
+
+// Where a light lies relative to a face's plane (DESIGN.md "Faces").
+enum class FaceClass { Front, Offending, Back };
+
+struct Bounds {
+  Vec3 min{0.0}, max{0.0};
+  double diagonal() const { return glm::length(max - min); }
+  Vec3 center() const { return 0.5 * (min + max); }
+};
+
+class Scene {
+ public:
+  Scene() = default;
+  // Throws std::invalid_argument if an object names an unknown material or a
+  // face index is out of range; protocol validates before this with key paths.
+  Scene(std::vector<Light> lights, std::vector<Material> materials,
+        std::vector<Object> objects, std::optional<Camera> camera = std::nullopt);
+
+  const std::vector<Light>& lights() const { return lights_; }
+  const std::vector<Material>& materials() const { return materials_; }
+  const std::vector<Object>& objects() const { return objects_; }
+  const std::optional<Camera>& camera() const { return camera_; }
+  // All faces of all objects in world space, ordered by (object, face).
+  const std::vector<Face>& faces() const { return faces_; }
+
+  std::optional<size_t> findObject(std::string_view id) const;
+  std::optional<size_t> findMaterial(std::string_view id) const;
+  // Albedo of a face's object (the default material when it names none).
+  Vec3 albedo(FaceId face) const;
+
+  Bounds bounds() const { return bounds_; }
+  Tolerance tolerance() const { return tolerance_; }
+
+  FaceClass classify(const Face& face, const Light& light) const;
+  // A face receives light if some light is at least partly in front of it.
+  bool receivesLight(const Face& face) const;
+
+  // World-space polygons of one object's faces (winding fixed for mirrors).
+  static std::vector<Polygon3> worldPolygons(const Object& object);
+
+ private:
+  void deriveFaces();
+
+  std::vector<Light> lights_;
+  std::vector<Material> materials_;
+  std::vector<Object> objects_;
+  std::optional<Camera> camera_;
+  std::vector<Face> faces_;
+  Bounds bounds_;
+  Tolerance tolerance_;
+};
+
+}  // namespace penumbra

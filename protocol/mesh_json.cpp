@@ -1,0 +1,127 @@
+#include "protocol/mesh_json.h"
+
+#include <cmath>
+
+#include "core/geom/tolerance.h"
+#include "protocol/json_reader.h"
+#include "protocol/json_text.h"
+
+namespace penumbra::protocol {
+
+namespace {
+
+constexpr const char* kFormat = "penumbra.mesh";
+constexpr int kVersion = 1;
+
+LightClass lightClassFromJson(const Json& value, const std::string& path) {
+  const std::string name = expectString(value, path);
+  for (LightClass c : {LightClass::Lit, LightClass::Penumbra, LightClass::Umbra})
+    if (name == toString(c)) return c;
+  fail(path, "unknown class '" + name + "' (expected lit, penumbra or umbra)");
+}
+
+// An array whose length must match the positions'.
+const Json& perVertexArray(const Json& receiver, const char* key, const std::string& path, size_t count) {
+  const std::string arrayPath = keyPath(path, key);
+  const Json& array = expectArray(requireKey(receiver, key, path), arrayPath);
+  if (array.size() != count)
+    fail(arrayPath, std::string(key) + " has " + std::to_string(array.size()) +
+                        " entries, positions has " + std::to_string(count));
+  return array;
+}
+
+ReceiverMesh receiverFromJson(const Json& value, const std::string& path, const Scene& scene) {
+  expectObject(value, path);
+  ReceiverMesh receiver;
+
+  const std::string objectId = expectString(requireKey(value, "object", path), keyPath(path, "object"));
+  const auto object = scene.findObject(objectId);
+  if (!object) fail(keyPath(path, "object"), "unknown object '" + objectId + "'");
+  receiver.face.object = uint32_t(*object);
+  receiver.face.face = expectIndex(requireKey(value, "face", path), keyPath(path, "face"),
+                                   scene.objects()[*object].faces.size());
+
+  const std::string normalPath = keyPath(path, "normal");
+  receiver.normal = expectVec3(requireKey(value, "normal", path), normalPath);
+  if (!(std::abs(glm::length(receiver.normal) - 1) <= kRelativePlanarity))
+    fail(normalPath, "normal is not of unit length (length " + shortNumber(glm::length(receiver.normal)) + ")");
+
+  const std::string positionsPath = keyPath(path, "positions");
+  const Json& positions = expectArray(requireKey(value, "positions", path), positionsPath);
+  for (size_t i = 0; i < positions.size(); ++i)
+    receiver.positions.push_back(expectVec3(positions[i], indexPath(positionsPath, i)));
+  const size_t count = receiver.positions.size();
+
+  const Json& irradiance = perVertexArray(value, "irradiance", path, count);
+  for (size_t i = 0; i < count; ++i) {
+    const std::string itemPath = indexPath(keyPath(path, "irradiance"), i);
+    const Vec3 e = expectVec3(irradiance[i], itemPath);
+    if (e.x < 0 || e.y < 0 || e.z < 0) fail(itemPath, "irradiance is negative");
+    receiver.irradiance.push_back(e);
+  }
+
+  const Json& classes = perVertexArray(value, "class", path, count);
+  for (size_t i = 0; i < count; ++i)
+    receiver.classes.push_back(lightClassFromJson(classes[i], indexPath(keyPath(path, "class"), i)));
+
+  const std::string trianglesPath = keyPath(path, "triangles");
+  const Json& triangles = expectArray(requireKey(value, "triangles", path), trianglesPath);
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const std::string trianglePath = indexPath(trianglesPath, t);
+    const Json& triangle = expectArray(triangles[t], trianglePath);
+    if (triangle.size() != 3)
+      fail(trianglePath, "a triangle needs 3 indices, has " + std::to_string(triangle.size()));
+    std::array<uint32_t, 3> indices{};
+    for (size_t k = 0; k < 3; ++k) indices[k] = expectIndex(triangle[k], indexPath(trianglePath, k), count);
+    if (indices[0] == indices[1] || indices[1] == indices[2] || indices[0] == indices[2])
+      fail(trianglePath, "triangle repeats a vertex");
+    receiver.triangles.push_back(indices);
+  }
+  return receiver;
+}
+
+}  // namespace
+
+Json meshToJson(const Scene& scene, const Mesh& mesh, const std::string& sceneName) {
+  Json receivers = Json::array();
+  for (const ReceiverMesh& r : mesh.receivers) {
+    const Object& object = scene.objects().at(r.face.object);
+    if (r.face.face >= object.faces.size())
+      throw std::out_of_range("mesh receiver names face " + std::to_string(r.face.face) + " of object '" +
+                              object.id + "', which has " + std::to_string(object.faces.size()));
+    Json positions = Json::array(), irradiance = Json::array(), classes = Json::array(),
+         triangles = Json::array();
+    for (const Vec3& p : r.positions) positions.push_back(toJson(p));
+    for (const Vec3& e : r.irradiance) irradiance.push_back(toJson(e));
+    for (LightClass c : r.classes) classes.push_back(toString(c));
+    for (const auto& t : r.triangles) triangles.push_back(Json::array({t[0], t[1], t[2]}));
+    receivers.push_back(Json{{"object", object.id},
+                             {"face", r.face.face},
+                             {"normal", toJson(r.normal)},
+                             {"positions", std::move(positions)},
+                             {"irradiance", std::move(irradiance)},
+                             {"class", std::move(classes)},
+                             {"triangles", std::move(triangles)}});
+  }
+  return Json{{"format", kFormat}, {"version", kVersion}, {"scene", sceneName}, {"receivers", std::move(receivers)}};
+}
+
+Mesh meshFromJson(const Json& root, const Scene& scene) {
+  expectHeader(root, kFormat, kVersion);
+  expectString(requireKey(root, "scene", ""), "scene");
+  const Json& receivers = expectArray(requireKey(root, "receivers", ""), "receivers");
+  Mesh mesh;
+  for (size_t i = 0; i < receivers.size(); ++i)
+    mesh.receivers.push_back(receiverFromJson(receivers[i], indexPath("receivers", i), scene));
+  return mesh;
+}
+
+void saveMeshFile(const Scene& scene, const Mesh& mesh, const std::string& sceneName, const std::string& path) {
+  writeTextFile(path, meshToJson(scene, mesh, sceneName).dump(-1, ' ', false, Json::error_handler_t::replace) + "\n");
+}
+
+Mesh loadMeshFile(const std::string& path, const Scene& scene) {
+  return meshFromJson(parseJsonText(readTextFile(path, kMaxJsonFileBytes), kMaxJsonFileBytes, kMaxJsonDepth), scene);
+}
+
+}  // namespace penumbra::protocol

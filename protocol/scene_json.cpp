@@ -1,0 +1,315 @@
+#include "protocol/scene_json.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <set>
+
+#include "core/geom/polygon.h"
+#include "core/geom/tolerance.h"
+#include "protocol/json_reader.h"
+#include "protocol/json_text.h"
+
+namespace penumbra::protocol {
+
+namespace {
+
+constexpr const char* kFormat = "penumbra.scene";
+constexpr int kVersion = 1;
+
+// "2.3e-03": planarity errors span many orders of magnitude.
+std::string relativeError(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1e", value);
+  return buffer;
+}
+
+// The checks every face and light polygon must pass, on its own vertices.
+// `what` names the polygon in messages ("face", "light polygon").
+void checkConvexPlanar(const Polygon3& polygon, const std::string& path, const std::string& what) {
+  if (!planeOf(polygon))
+    fail(path, what + " is degenerate (zero area or collinear vertices)");
+  const double offPlane = planarityError(polygon);
+  if (offPlane > kRelativePlanarity)
+    fail(path, what + " is not planar (off by " + relativeError(offPlane) + " of its size)");
+  if (!isConvex(polygon)) fail(path, what + " is not convex");
+}
+
+void checkPolygonSize(size_t count, const std::string& path, const std::string& what) {
+  if (count < 3)
+    fail(path, what + " needs at least 3 vertices, has " + std::to_string(count));
+  if (count > kMaxPolygonVertices)
+    fail(path, what + " has " + std::to_string(count) + " vertices, over the limit of " +
+                   std::to_string(kMaxPolygonVertices));
+}
+
+Light lightFromJson(const Json& value, const std::string& path) {
+  expectObject(value, path);
+  Light light;
+  light.id = expectName(requireKey(value, "id", path), keyPath(path, "id"));
+
+  const std::string polygonPath = keyPath(path, "polygon");
+  const Json& polygon = expectArray(requireKey(value, "polygon", path), polygonPath);
+  checkPolygonSize(polygon.size(), polygonPath, "light polygon");
+  for (size_t i = 0; i < polygon.size(); ++i)
+    light.polygon.push_back(expectVec3(polygon[i], indexPath(polygonPath, i)));
+  checkConvexPlanar(light.polygon, polygonPath, "light polygon");
+
+  const std::string radiancePath = keyPath(path, "radiance");
+  light.radiance = expectVec3(requireKey(value, "radiance", path), radiancePath);
+  for (int c = 0; c < 3; ++c)
+    if (light.radiance[c] < 0) fail(radiancePath, "radiance is negative");
+  return light;
+}
+
+std::vector<Material> materialsFromJson(const Json& value, const std::string& path) {
+  expectObject(value, path);
+  std::vector<Material> materials;
+  for (const auto& [name, body] : value.items()) {
+    const std::string materialPath = keyPath(path, name);
+    if (name.empty()) fail(materialPath, "material name is empty");
+    expectObject(body, materialPath);
+    Material material{name, {}};
+    const std::string albedoPath = keyPath(materialPath, "albedo");
+    material.albedo = expectVec3(requireKey(body, "albedo", materialPath), albedoPath);
+    for (int c = 0; c < 3; ++c)
+      if (material.albedo[c] < 0 || material.albedo[c] > 1)
+        fail(albedoPath, "albedo " + shortNumber(material.albedo[c]) + " is outside [0, 1]");
+    materials.push_back(std::move(material));
+  }
+  return materials;
+}
+
+Camera cameraFromJson(const Json& value, const std::string& path, double sceneSize) {
+  expectObject(value, path);
+  Camera camera;
+  camera.position = expectVec3(requireKey(value, "position", path), keyPath(path, "position"));
+  camera.target = expectVec3(requireKey(value, "target", path), keyPath(path, "target"));
+  if (const Json* up = optionalKey(value, "up")) camera.up = expectVec3(*up, keyPath(path, "up"));
+  if (const Json* projection = optionalKey(value, "projection")) {
+    const std::string name = expectString(*projection, keyPath(path, "projection"));
+    if (name == "perspective") camera.projection = Camera::Projection::Perspective;
+    else if (name == "orthographic") camera.projection = Camera::Projection::Orthographic;
+    else
+      fail(keyPath(path, "projection"),
+           "unknown projection '" + name + "' (expected perspective or orthographic)");
+  }
+  if (const Json* fov = optionalKey(value, "fov_y_deg")) {
+    camera.fovYDeg = expectNumber(*fov, keyPath(path, "fov_y_deg"));
+    if (!(camera.fovYDeg > 0 && camera.fovYDeg < 180))
+      fail(keyPath(path, "fov_y_deg"), "fov_y_deg " + shortNumber(camera.fovYDeg) +
+                                           " is outside (0, 180) degrees");
+  }
+  if (const Json* height = optionalKey(value, "height")) {
+    camera.height = expectNumber(*height, keyPath(path, "height"));
+    if (!(camera.height > 0)) fail(keyPath(path, "height"), "orthographic height must be positive");
+  }
+  if (const Json* near = optionalKey(value, "near")) camera.near = expectNumber(*near, keyPath(path, "near"));
+  if (const Json* far = optionalKey(value, "far")) camera.far = expectNumber(*far, keyPath(path, "far"));
+  if (!(camera.near > 0)) fail(keyPath(path, "near"), "near must be positive");
+  if (!(camera.far > camera.near)) fail(keyPath(path, "far"), "far must be greater than near");
+
+  const Vec3 view = camera.target - camera.position;
+  if (!(glm::length(view) > Tolerance::forSize(sceneSize).length()))
+    fail(keyPath(path, "target"), "target is at the camera position (no view direction)");
+  // Sine of the angle between up and the view direction, as a relative tolerance.
+  const double upLength = glm::length(camera.up);
+  if (!(upLength > 0) ||
+      glm::length(glm::cross(glm::normalize(view), camera.up)) <= kRelativePlanarity * upLength)
+    fail(keyPath(path, "up"), "up is parallel to the view direction");
+  return camera;
+}
+
+}  // namespace
+
+Transform transformFromJson(const Json& value, const std::string& path) {
+  expectObject(value, path);
+  Transform transform;
+  if (const Json* t = optionalKey(value, "translate"))
+    transform.translate = expectVec3(*t, keyPath(path, "translate"));
+  if (const Json* r = optionalKey(value, "rotate_deg"))
+    transform.rotateDeg = expectVec3(*r, keyPath(path, "rotate_deg"));
+  if (const Json* s = optionalKey(value, "scale")) {
+    transform.scale = expectVec3(*s, keyPath(path, "scale"));
+    for (int c = 0; c < 3; ++c)
+      if (transform.scale[c] == 0)
+        fail(keyPath(path, "scale"), "scale component " + std::to_string(c) + " is zero");
+  }
+  return transform;
+}
+
+Object objectFromJson(const Json& value, const std::string& path, const std::vector<Material>& materials) {
+  expectObject(value, path);
+  Object object;
+  object.id = expectName(requireKey(value, "id", path), keyPath(path, "id"));
+
+  const std::string verticesPath = keyPath(path, "vertices");
+  const Json& vertices = expectArray(requireKey(value, "vertices", path), verticesPath);
+  for (size_t i = 0; i < vertices.size(); ++i)
+    object.vertices.push_back(expectVec3(vertices[i], indexPath(verticesPath, i)));
+
+  const std::string facesPath = keyPath(path, "faces");
+  const Json& faces = expectArray(requireKey(value, "faces", path), facesPath);
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const std::string facePath = indexPath(facesPath, f);
+    const Json& face = expectArray(faces[f], facePath);
+    checkPolygonSize(face.size(), facePath, "face");
+    std::vector<int> indices;
+    for (size_t k = 0; k < face.size(); ++k)
+      indices.push_back(int(expectIndex(face[k], indexPath(facePath, k), object.vertices.size())));
+    std::vector<int> sorted = indices;
+    std::sort(sorted.begin(), sorted.end());
+    if (const auto repeat = std::adjacent_find(sorted.begin(), sorted.end()); repeat != sorted.end())
+      fail(facePath, "face repeats vertex " + std::to_string(*repeat));
+    Polygon3 polygon;
+    for (int index : indices) polygon.push_back(object.vertices[size_t(index)]);
+    // Affine transforms keep planarity and convexity: check in object space.
+    checkConvexPlanar(polygon, facePath, "face");
+    object.faces.push_back(std::move(indices));
+  }
+
+  if (const Json* material = optionalKey(value, "material")) {
+    object.material = expectString(*material, keyPath(path, "material"));
+    const bool known = std::any_of(materials.begin(), materials.end(),
+                                   [&](const Material& m) { return m.id == object.material; });
+    if (!known) fail(keyPath(path, "material"), "unknown material '" + object.material + "'");
+  }
+  if (const Json* isStatic = optionalKey(value, "static"))
+    object.isStatic = expectBool(*isStatic, keyPath(path, "static"));
+  if (const Json* transform = optionalKey(value, "transform"))
+    object.transform = transformFromJson(*transform, keyPath(path, "transform"));
+
+  // An extreme non-uniform scale can flatten a face that was fine in object space.
+  const auto world = Scene::worldPolygons(object);
+  for (size_t f = 0; f < world.size(); ++f)
+    if (!planeOf(world[f]))
+      fail(indexPath(facesPath, f), "face becomes degenerate under the object's transform");
+  return object;
+}
+
+namespace {
+// Reads just the id of a list entry so a duplicate is reported before anything
+// else about that entry.
+std::string peekId(const Json& value, const std::string& path) {
+  expectObject(value, path);
+  return expectName(requireKey(value, "id", path), keyPath(path, "id"));
+}
+}  // namespace
+
+Scene sceneFromJson(const Json& root) {
+  expectHeader(root, kFormat, kVersion);
+
+  const Json& lightsJson = expectArray(requireKey(root, "lights", ""), "lights");
+  if (lightsJson.empty()) fail("lights", "at least one light is required");
+  std::vector<Light> lights;
+  std::set<std::string> lightIds;
+  for (size_t i = 0; i < lightsJson.size(); ++i) {
+    const std::string path = indexPath("lights", i);
+    const std::string id = peekId(lightsJson[i], path);
+    if (!lightIds.insert(id).second) fail(keyPath(path, "id"), "duplicate light id '" + id + "'");
+    lights.push_back(lightFromJson(lightsJson[i], path));
+  }
+
+  std::vector<Material> materials;
+  if (const Json* m = optionalKey(root, "materials")) materials = materialsFromJson(*m, "materials");
+
+  const Json& objectsJson = expectArray(requireKey(root, "objects", ""), "objects");
+  std::vector<Object> objects;
+  std::set<std::string> objectIds;
+  for (size_t i = 0; i < objectsJson.size(); ++i) {
+    const std::string path = indexPath("objects", i);
+    const std::string id = peekId(objectsJson[i], path);
+    if (!objectIds.insert(id).second) fail(keyPath(path, "id"), "duplicate object id '" + id + "'");
+    objects.push_back(objectFromJson(objectsJson[i], path, materials));
+  }
+
+  std::optional<Camera> camera;
+  if (const Json* c = optionalKey(root, "camera")) {
+    // The camera's "same point" tolerance is relative to the scene's size.
+    Bounds bounds{lights[0].polygon[0], lights[0].polygon[0]};
+    auto grow = [&](const Vec3& p) {
+      bounds.min = glm::min(bounds.min, p);
+      bounds.max = glm::max(bounds.max, p);
+    };
+    for (const Light& light : lights)
+      for (const Vec3& p : light.polygon) grow(p);
+    for (const Object& object : objects)
+      for (const Vec3& p : object.vertices) grow(object.transform.apply(p));
+    camera = cameraFromJson(*c, "camera", bounds.diagonal());
+  }
+
+  try {
+    return Scene(std::move(lights), std::move(materials), std::move(objects), std::move(camera));
+  } catch (const ValidationError&) {
+    throw;
+  } catch (const std::invalid_argument& e) {
+    // Validation above should make this unreachable; keep the error a refusal.
+    throw ValidationError("", e.what());
+  }
+}
+
+Json transformToJson(const Transform& transform) {
+  return Json{{"translate", toJson(transform.translate)},
+              {"rotate_deg", toJson(transform.rotateDeg)},
+              {"scale", toJson(transform.scale)}};
+}
+
+Json objectToJson(const Object& object) {
+  Json out = Json::object();
+  out["id"] = object.id;
+  Json vertices = Json::array();
+  for (const Vec3& v : object.vertices) vertices.push_back(toJson(v));
+  out["vertices"] = std::move(vertices);
+  Json faces = Json::array();
+  for (const auto& face : object.faces) faces.push_back(face);
+  out["faces"] = std::move(faces);
+  if (!object.material.empty()) out["material"] = object.material;
+  if (object.isStatic) out["static"] = true;
+  if (object.transform != Transform{}) out["transform"] = transformToJson(object.transform);
+  return out;
+}
+
+Json sceneToJson(const Scene& scene) {
+  Json out = Json::object();
+  out["format"] = kFormat;
+  out["version"] = kVersion;
+
+  Json lights = Json::array();
+  for (const Light& light : scene.lights()) {
+    Json polygon = Json::array();
+    for (const Vec3& v : light.polygon) polygon.push_back(toJson(v));
+    lights.push_back(Json{{"id", light.id}, {"polygon", std::move(polygon)}, {"radiance", toJson(light.radiance)}});
+  }
+  out["lights"] = std::move(lights);
+
+  Json materials = Json::object();
+  for (const Material& material : scene.materials())
+    materials[material.id] = Json{{"albedo", toJson(material.albedo)}};
+  out["materials"] = std::move(materials);
+
+  Json objects = Json::array();
+  for (const Object& object : scene.objects()) objects.push_back(objectToJson(object));
+  out["objects"] = std::move(objects);
+
+  if (const auto& camera = scene.camera()) {
+    out["camera"] = Json{
+        {"position", toJson(camera->position)},
+        {"target", toJson(camera->target)},
+        {"up", toJson(camera->up)},
+        {"projection", camera->projection == Camera::Projection::Perspective ? "perspective" : "orthographic"},
+        {"fov_y_deg", camera->fovYDeg},
+        {"height", camera->height},
+        {"near", camera->near},
+        {"far", camera->far}};
+  }
+  return out;
+}
+
+Scene loadSceneFile(const std::string& path) {
+  return sceneFromJson(parseJsonText(readTextFile(path, kMaxJsonFileBytes), kMaxJsonFileBytes, kMaxJsonDepth));
+}
+
+void saveSceneFile(const Scene& scene, const std::string& path) {
+  writeTextFile(path, sceneToJson(scene).dump(2, ' ', false, Json::error_handler_t::replace) + "\n");
+}
+
+}  // namespace penumbra::protocol

@@ -1,0 +1,45 @@
+// Scene JSON v1 (SCENE_FORMAT.md) <-> penumbra::Scene: a validating reader that
+// names the key path of the first problem, and an exact writer. Free functions;
+// thread-safe (no shared state).
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/scene/scene.h"
+#include "protocol/validation_error.h"
+
+namespace penumbra::protocol {
+
+// Largest polygon (face or light) accepted: validation cost grows with the square
+// of a polygon's vertex count, and no sensible scene needs more.
+inline constexpr size_t kMaxPolygonVertices = 1024;
+
+// Validates the whole document first and throws ValidationError at the first
+// problem (in document order: format, version, lights, materials, objects,
+// camera); only a valid document becomes a Scene. Materials come out ordered by
+// name (a JSON object has no order).
+Scene sceneFromJson(const nlohmann::json& root);
+
+// Writes v1 with full double precision; sceneFromJson(sceneToJson(s)) == s
+// (materials ordered by name). The camera is written with both fov_y_deg and
+// height so that it round-trips whole.
+nlohmann::json sceneToJson(const Scene& scene);
+
+// The parts an edit reuses (SCENE_FORMAT.md "Edit scripts"). objectFromJson
+// validates one object at `path` against the given materials (all checks except
+// id uniqueness, which needs the surrounding list).
+Object objectFromJson(const nlohmann::json& value, const std::string& path,
+                      const std::vector<Material>& materials);
+Transform transformFromJson(const nlohmann::json& value, const std::string& path);
+nlohmann::json objectToJson(const Object& object);
+nlohmann::json transformToJson(const Transform& transform);
+
+// Files: limits from protocol/json_text.h (64 MiB, nesting depth 64); size,
+// depth and syntax errors are ValidationErrors with path `(json)`; a file that
+// cannot be read or written is a std::runtime_error.
+Scene loadSceneFile(const std::string& path);
+void saveSceneFile(const Scene& scene, const std::string& path);
+
+}  // namespace penumbra::protocol

@@ -1,0 +1,35 @@
+#include <cstdio>
+
+#include "bench/lib/cubes_scene.h"
+#include "protocol/scene_json.h"
+#include "server/commands.h"
+
+namespace penumbra::cli {
+
+int runGenerate(const Args& args) {
+  args.allowOnly({"cubes", "seed", "light-scale", "stacked-fraction", "tables", "out"});
+  CubesSceneOptions options;
+  options.cubes = args.intOption("cubes", options.cubes, 0, 100000);
+  options.seed = uint64_t(args.intOption("seed", int(options.seed), 0, 1 << 30));
+  options.lightScale = args.doubleOption("light-scale", options.lightScale);
+  options.stackedFraction = args.doubleOption("stacked-fraction", options.stackedFraction);
+  options.thinTables = args.doubleOption("tables", options.thinTables);
+  options.tiltedLight = args.flag("tilted-light");
+  options.twoLights = args.flag("two-lights");
+  if (!(options.lightScale > 0 && options.lightScale <= 1))
+    throw UsageError("--light-scale must be in (0, 1]");
+  if (!(options.stackedFraction >= 0 && options.stackedFraction <= 1))
+    throw UsageError("--stacked-fraction must be in [0, 1]");
+  if (!(options.thinTables >= 0 && options.thinTables <= 1))
+    throw UsageError("--tables must be a fraction in [0, 1]");
+  const auto out = args.option("out");
+  if (!out) throw UsageError("generate needs --out SCENE");
+
+  const Scene scene = makeCubesScene(options);
+  protocol::saveSceneFile(scene, *out);
+  std::printf("wrote %s: %zu objects, %zu faces, %zu lights\n", out->c_str(),
+              scene.objects().size(), scene.faces().size(), scene.lights().size());
+  return 0;
+}
+
+}  // namespace penumbra::cli

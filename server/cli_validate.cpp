@@ -1,0 +1,17 @@
+#include <cstdio>
+
+#include "protocol/scene_json.h"
+#include "server/commands.h"
+
+namespace penumbra::cli {
+
+int runValidate(const Args& args) {
+  args.allowOnly({});
+  const std::string path = args.positional(0, "SCENE");
+  const Scene scene = protocol::loadSceneFile(path);
+  std::printf("%s: valid scene (%zu objects, %zu faces, %zu lights)\n", path.c_str(),
+              scene.objects().size(), scene.faces().size(), scene.lights().size());
+  return 0;
+}
+
+}  // namespace penumbra::cli

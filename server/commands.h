@@ -1,0 +1,15 @@
+// The `penumbra` subcommands. Each returns the process exit status
+// (0 ok, 1 failure, 2 bad input or usage) and prints results to stdout,
+// progress and errors to stderr.
+#pragma once
+
+#include "server/cli_args.h"
+
+namespace penumbra::cli {
+
+int runValidate(const Args& args);
+int runInfo(const Args& args);
+int runReference(const Args& args);
+int runGenerate(const Args& args);
+
+}  // namespace penumbra::cli

@@ -1,0 +1,54 @@
+// `penumbra`: the command-line entry point. Dispatches to one subcommand and turns
+// every error into a message on stderr and an exit status (never a crash).
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <string>
+
+#include "protocol/validation_error.h"
+#include "server/commands.h"
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: penumbra COMMAND [ARGS]
+
+commands:
+  validate SCENE                       check a scene file (exit 0, or 2 with the key path of the problem)
+  info SCENE                           faces, lights, bounds and per-light face classes
+  reference SCENE --grid N --out MESH  exact reference irradiance on an N×N grid per receiving face
+  generate --cubes N --out SCENE       a seeded 'N random cubes in a room' scene
+           [--seed S] [--light-scale F] [--stacked-fraction F] [--tilted-light]
+           [--two-lights] [--tables FRACTION]
+  help                                 this text
+)";
+
+int dispatch(int argc, char** argv) {
+  using namespace penumbra::cli;
+  if (argc < 2 || !std::strcmp(argv[1], "help") || !std::strcmp(argv[1], "--help")) {
+    std::fputs(kUsage, argc < 2 ? stderr : stdout);
+    return argc < 2 ? 2 : 0;
+  }
+  const std::string command = argv[1];
+  if (command == "validate") return runValidate(Args(argc, argv, 2, {}));
+  if (command == "info") return runInfo(Args(argc, argv, 2, {}));
+  if (command == "reference") return runReference(Args(argc, argv, 2, {}));
+  if (command == "generate") return runGenerate(Args(argc, argv, 2, {"tilted-light", "two-lights"}));
+  throw UsageError("unknown command '" + command + "'");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return dispatch(argc, argv);
+  } catch (const penumbra::protocol::ValidationError& error) {
+    std::fprintf(stderr, "penumbra: invalid input: %s\n", error.what());
+    return 2;
+  } catch (const penumbra::cli::UsageError& error) {
+    std::fprintf(stderr, "penumbra: %s\n(run 'penumbra help' for usage)\n", error.what());
+    return 2;
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
+    return 1;
+  }
+}

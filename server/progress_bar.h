@@ -1,0 +1,26 @@
+// A progress bar on stderr for long CLI runs: redrawn in place on a terminal,
+// a line per 10% otherwise (logs, CI). Used from one thread at a time.
+#pragma once
+
+#include <chrono>
+#include <string>
+
+namespace penumbra::cli {
+
+class ProgressBar {
+ public:
+  explicit ProgressBar(std::string label);
+  ~ProgressBar();
+  void update(size_t done, size_t total);
+  void finish();
+
+ private:
+  std::string label_;
+  bool terminal_;
+  bool finished_ = false;
+  int lastShown_ = -1;  // percent (terminal) or tenth (log) last printed
+  std::chrono::steady_clock::time_point start_;
+  size_t total_ = 0;
+};
+
+}  // namespace penumbra::cli
