@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/geom/convex_split.h"
+
 namespace penumbra {
 
 namespace {
@@ -32,47 +34,6 @@ struct Box2 {
   }
 };
 
-template <bool kWantLeft, bool kWantRight>
-void splitSides(const Polygon2& polygon, const Vec2& a, const Vec2& b, double eps, Polygon2* left,
-                Polygon2* right) {
-  const size_t count = polygon.size();
-  if (count < 3) return;
-  thread_local std::vector<double> distance;
-  thread_local std::vector<int> side;
-  distance.resize(count);
-  side.resize(count);
-  bool anyLeft = false, anyRight = false;
-  const Vec2 d = b - a;
-  const double length = glm::length(d);
-  if (!(length > 0)) return;
-  for (size_t i = 0; i < count; ++i) {
-    distance[i] = cross2(d, polygon[i] - a) / length;
-    side[i] = distance[i] > eps ? 1 : (distance[i] < -eps ? -1 : 0);
-    anyLeft |= side[i] > 0;
-    anyRight |= side[i] < 0;
-  }
-  if (!anyRight) {
-    if (kWantLeft && anyLeft) *left = polygon;
-    return;
-  }
-  if (!anyLeft) {
-    if (kWantRight) *right = polygon;
-    return;
-  }
-  for (size_t i = 0; i < count; ++i) {
-    const size_t j = (i + 1) % count;
-    if (side[i] >= 0 && kWantLeft) left->push_back(polygon[i]);
-    if (side[i] <= 0 && kWantRight) right->push_back(polygon[i]);
-    if (side[i] * side[j] < 0) {
-      // Interpolated along the edge's own direction: both sides get the same cut.
-      const double t = distance[i] / (distance[i] - distance[j]);
-      const Vec2 cut = polygon[i] + t * (polygon[j] - polygon[i]);
-      if (kWantLeft) left->push_back(cut);
-      if (kWantRight) right->push_back(cut);
-    }
-  }
-}
-
 }  // namespace
 
 double signedArea(const Polygon2& polygon) {
@@ -96,15 +57,26 @@ double lineDistance(const Vec2& a, const Vec2& b, const Vec2& p) {
   return length > 0 ? cross2(d, p - a) / length : 0.0;
 }
 
+namespace {
+// Splits by the directed line a→b (left = front); a zero-length line splits nothing.
+void splitByDirectedLine(const Polygon2& polygon, const Vec2& a, const Vec2& b, double eps,
+                         Polygon2* left, Polygon2* right) {
+  const Vec2 d = b - a;
+  const double length = glm::length(d);
+  if (!(length > 0)) return;
+  splitConvex(polygon, [&](const Vec2& v) { return cross2(d, v - a) / length; }, eps, left, right);
+}
+}  // namespace
+
 Polygon2 clipLeftOf(const Polygon2& polygon, const Vec2& a, const Vec2& b, double eps) {
   Polygon2 left;
-  splitSides<true, false>(polygon, a, b, eps, &left, nullptr);
+  splitByDirectedLine(polygon, a, b, eps, &left, nullptr);
   return left;
 }
 
 Split2 splitByLine(const Polygon2& polygon, const Vec2& a, const Vec2& b, double eps) {
   Split2 out;
-  splitSides<true, true>(polygon, a, b, eps, &out.left, &out.right);
+  splitByDirectedLine(polygon, a, b, eps, &out.left, &out.right);
   return out;
 }
 

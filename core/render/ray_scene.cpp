@@ -159,7 +159,7 @@ size_t RayScene::triangleCount() const {
   return count;
 }
 
-bool RayScene::occluded(const Vec3& p, const Vec3& q) const {
+bool RayScene::traceSegment(const Vec3& p, const Vec3& q, std::vector<uint32_t>* blockers) const {
   SegmentContext context;
   rtcInitIntersectContext(&context.base);
   context.faces = faces_.data();
@@ -167,24 +167,18 @@ bool RayScene::occluded(const Vec3& p, const Vec3& q) const {
   context.p = p;
   context.q = q;
   context.onPlane = tolerance_.onPlane();
+  context.blockers = blockers;
   RTCRay ray = segmentRay(p, q);
   rtcOccluded1(scene_, &context.base, &ray);
   // Embree marks an occluded ray by setting tfar to -inf.
   return ray.tfar < 0.0f;
 }
 
+bool RayScene::occluded(const Vec3& p, const Vec3& q) const { return traceSegment(p, q, nullptr); }
+
 std::vector<uint32_t> RayScene::blockers(const Vec3& p, const Vec3& q) const {
   std::vector<uint32_t> found;
-  SegmentContext context;
-  rtcInitIntersectContext(&context.base);
-  context.faces = faces_.data();
-  context.geometries = geometries_.data();
-  context.p = p;
-  context.q = q;
-  context.onPlane = tolerance_.onPlane();
-  context.blockers = &found;
-  RTCRay ray = segmentRay(p, q);
-  rtcOccluded1(scene_, &context.base, &ray);
+  traceSegment(p, q, &found);
   std::sort(found.begin(), found.end());
   found.erase(std::unique(found.begin(), found.end()), found.end());
   return found;

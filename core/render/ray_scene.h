@@ -75,6 +75,8 @@ class RayScene {
 
  private:
   void check(const char* what) const;
+  // Whether some face blocks p→q; with `blockers`, lists every one instead of stopping.
+  bool traceSegment(const Vec3& p, const Vec3& q, std::vector<uint32_t>* blockers) const;
 
   std::vector<Face> faces_;  // copy of Scene::faces(): planes in double for the filters
   std::vector<Geometry> geometries_;  // one per object; geomID == object index

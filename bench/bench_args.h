@@ -1,0 +1,26 @@
+// Options shared by the `penumbra-bench` drivers, parsed once from argv.
+// Plain value; not shared between threads.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace penumbra::bench {
+
+struct BenchArgs {
+  std::vector<int> cubes{15, 150, 1500};
+  uint64_t seed = 1;
+  double lightScale = 1.0;
+  size_t points = 2000;
+  int maxSamples = 1 << 16;
+  std::string jsonOut;  // empty: no JSON file
+};
+
+// Throws std::invalid_argument naming the bad option.
+BenchArgs parseBenchArgs(int argc, char** argv, int first);
+
+nlohmann::json runReferenceBench(const BenchArgs& args);
+
+}  // namespace penumbra::bench

@@ -1,0 +1,74 @@
+// `penumbra-bench BENCHMARK [options]`: the benchmark driver. Prints a table,
+// and with --json OUT writes the same numbers as JSON.
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "bench/bench_args.h"
+
+namespace penumbra::bench {
+
+BenchArgs parseBenchArgs(int argc, char** argv, int first) {
+  BenchArgs args;
+  for (int i = first; i < argc; ++i) {
+    const std::string name = argv[i];
+    if (i + 1 >= argc) throw std::invalid_argument(name + " needs a value");
+    const std::string value = argv[++i];
+    try {
+      if (name == "--cubes") {
+        args.cubes.clear();
+        std::stringstream list(value);
+        for (std::string item; std::getline(list, item, ',');) args.cubes.push_back(std::stoi(item));
+      } else if (name == "--seed") {
+        args.seed = std::stoull(value);
+      } else if (name == "--light-scale") {
+        args.lightScale = std::stod(value);
+      } else if (name == "--points") {
+        args.points = std::stoul(value);
+      } else if (name == "--max-samples") {
+        args.maxSamples = std::stoi(value);
+      } else if (name == "--json") {
+        args.jsonOut = value;
+      } else {
+        throw std::invalid_argument("unknown option " + name);
+      }
+    } catch (const std::logic_error& error) {
+      throw std::invalid_argument(name + " '" + value + "': " + error.what());
+    }
+  }
+  return args;
+}
+
+}  // namespace penumbra::bench
+
+int main(int argc, char** argv) {
+  using namespace penumbra::bench;
+  constexpr const char* kUsage =
+      "usage: penumbra-bench reference [--cubes 15,150,1500] [--seed S] [--light-scale F]\n"
+      "                                [--points K] [--max-samples N] [--json OUT]\n";
+  if (argc < 2) {
+    std::fputs(kUsage, stderr);
+    return 2;
+  }
+  try {
+    const std::string benchmark = argv[1];
+    const BenchArgs args = parseBenchArgs(argc, argv, 2);
+    nlohmann::json result;
+    if (benchmark == "reference") {
+      result = runReferenceBench(args);
+    } else {
+      std::fputs(kUsage, stderr);
+      return 2;
+    }
+    if (!args.jsonOut.empty()) {
+      std::ofstream(args.jsonOut) << result.dump(2) << "\n";
+      std::printf("wrote %s\n", args.jsonOut.c_str());
+    }
+    return 0;
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "penumbra-bench: %s\n", error.what());
+    return 2;
+  }
+}

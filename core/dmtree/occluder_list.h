@@ -1,0 +1,24 @@
+// A DM-tree cell's occluder list for one light: the faces that hide the light
+// from the cell, fully (umbra, flagged and kept at the head) or partly.
+// Plain data owned by its cell; read-only outside core/dmtree.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/scene/scene.h"
+
+namespace penumbra {
+
+struct OccluderEntry {
+  uint32_t light = 0;
+  FaceId face;
+  bool umbra = false;  // the face hides the whole light from the cell
+  bool operator==(const OccluderEntry&) const = default;
+};
+
+// Umbra entries first (paper §2.4), then partial ones; at most one entry per
+// (light, face).
+using OccluderList = std::vector<OccluderEntry>;
+
+}  // namespace penumbra
