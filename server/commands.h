@@ -11,5 +11,6 @@ int runValidate(const Args& args);
 int runInfo(const Args& args);
 int runReference(const Args& args);
 int runGenerate(const Args& args);
+int runBuild(const Args& args);
 
 }  // namespace penumbra::cli

@@ -16,6 +16,8 @@ commands:
   validate SCENE                       check a scene file (exit 0, or 2 with the key path of the problem)
   info SCENE                           faces, lights, bounds and per-light face classes
   reference SCENE --grid N --out MESH  exact reference irradiance on an N×N grid per receiving face
+  build SCENE --out MESH [--stats]     the discontinuity mesh; --stats prints counters and timings as JSON
+           [--grid G]                  overlap-cube tiles per side (default: from the face count)
   generate --cubes N --out SCENE       a seeded 'N random cubes in a room' scene
            [--seed S] [--light-scale F] [--stacked-fraction F] [--tilted-light]
            [--two-lights] [--tables FRACTION]
@@ -32,6 +34,7 @@ int dispatch(int argc, char** argv) {
   if (command == "validate") return runValidate(Args(argc, argv, 2, {}));
   if (command == "info") return runInfo(Args(argc, argv, 2, {}));
   if (command == "reference") return runReference(Args(argc, argv, 2, {}));
+  if (command == "build") return runBuild(Args(argc, argv, 2, {"stats"}));
   if (command == "generate") return runGenerate(Args(argc, argv, 2, {"tilted-light", "two-lights"}));
   throw UsageError("unknown command '" + command + "'");
 }

@@ -1,0 +1,109 @@
+#include "core/dmtree/dm_tree.h"
+
+#include <algorithm>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+namespace penumbra {
+
+DmTree::DmTree(const Polygon2& receiver, const Tolerance& tolerance) : tolerance_(tolerance) {
+  const CellId c = mesh_.reset(receiver, tolerance_.length());
+  receiverArea_ = signedArea(mesh_.polygon(c));
+  root_ = addNode(NodeId(), c);
+}
+
+NodeId DmTree::addNode(NodeId parent, CellId cell) {
+  DmNode n;
+  n.parent = parent;
+  n.cell = cell;
+  nodes_.push_back(n);
+  ++liveNodes_;
+  const NodeId id(static_cast<uint32_t>(nodes_.size() - 1));
+  if (cell.is_valid()) mesh_.cell(cell).leaf = id;
+  return id;
+}
+
+std::vector<CellId> DmTree::cells() const {
+  std::vector<CellId> out;
+  for (uint32_t i = 0; i < mesh_.cellSlots(); ++i)
+    if (mesh_.cell(CellId(i)).alive) out.push_back(CellId(i));
+  return out;
+}
+
+std::vector<VertexId> DmTree::vertices() const {
+  std::vector<VertexId> out;
+  for (uint32_t i = 0; i < mesh_.vertexSlots(); ++i)
+    if (mesh_.vertex(VertexId(i)).alive) out.push_back(VertexId(i));
+  return out;
+}
+
+CellId DmTree::locate(const Vec2& p) const {
+  NodeId n = root_;
+  while (!node(n).isLeaf()) n = node(n).line.distance(p) >= 0 ? node(n).front : node(n).back;
+  return node(n).cell;
+}
+
+void DmTree::validate() const {
+  auto fail = [](const std::string& what) { throw std::logic_error("DM-tree: " + what); };
+  const double eps = tolerance_.length();
+  mesh_.validate(eps, receiverArea_);
+
+  // BSP: reachable nodes are exactly the live ones; leaves ↔ cells one-to-one.
+  size_t reached = 0, leaves = 0;
+  std::vector<NodeId> stack{root_};
+  if (node(root_).parent.is_valid()) fail("root has a parent");
+  while (!stack.empty()) {
+    const NodeId n = stack.back();
+    stack.pop_back();
+    const DmNode& d = node(n);
+    if (!d.alive) fail("dead node reachable");
+    ++reached;
+    if (d.isLeaf()) {
+      ++leaves;
+      if (!mesh_.cell(d.cell).alive || mesh_.cell(d.cell).leaf != n) fail("leaf and cell disagree");
+      continue;
+    }
+    for (NodeId c : {d.front, d.back}) {
+      if (!c.is_valid() || node(c).parent != n) fail("child/parent mismatch");
+      stack.push_back(c);
+    }
+  }
+  if (reached != liveNodes_) fail("live nodes not in the tree");
+  if (leaves != mesh_.cellCount()) fail("leaf count differs from cell count");
+
+  for (CellId c : cells()) {
+    const Polygon2 poly = mesh_.polygon(c);
+    Vec2 centroid{0.0};
+    for (const Vec2& p : poly) centroid += p;
+    centroid /= double(poly.size());
+    // Each cell lies on its side of every ancestor's line.
+    NodeId child = mesh_.cell(c).leaf;
+    for (NodeId n = node(child).parent; n.is_valid(); child = n, n = node(n).parent) {
+      const double side = node(n).front == child ? 1.0 : -1.0;
+      for (const Vec2& p : poly)
+        if (side * node(n).line.distance(p) < -eps) fail("cell vertex on the wrong side of an ancestor");
+      if (!(side * node(n).line.distance(centroid) > 0)) fail("cell centroid on the wrong side of an ancestor");
+    }
+    // Occluder lists: umbra entries first, one entry per (light, face).
+    const OccluderList& list = mesh_.cell(c).occluders;
+    std::set<OccluderKey> seen;
+    bool partialSeen = false;
+    for (const OccluderEntry& e : list) {
+      if (!seen.insert({e.light, e.face}).second) fail("duplicate occluder entry");
+      if (e.umbra && partialSeen) fail("umbra entry after a partial one");
+      partialSeen |= !e.umbra;
+    }
+  }
+  // Every mesh edge is the receiver's boundary or made by a live internal node.
+  for (uint32_t i = 0; i < mesh_.halfEdgeSlots(); ++i) {
+    const HalfEdgeMesh::HalfEdge& h = mesh_.halfEdge(HalfEdgeId(i));
+    if (!h.alive || !h.node.is_valid()) continue;
+    if (!node(h.node).alive || node(h.node).isLeaf()) fail("edge made by a dead or leaf node");
+    const DmNode& n = node(h.node);
+    for (VertexId v : {h.origin, mesh_.destination(HalfEdgeId(i))})
+      if (std::abs(n.line.distance(mesh_.vertex(v).position)) > eps) fail("edge off its node's line");
+  }
+}
+
+}  // namespace penumbra

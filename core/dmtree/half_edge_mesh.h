@@ -1,0 +1,113 @@
+// The winged-edge (half-edge) mesh of one receiver's DM-tree cells: vertices,
+// half-edge pairs, convex CCW cells. Changed only by its owning DmTree; not thread-safe.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "core/dmtree/handles.h"
+#include "core/dmtree/occluder_list.h"
+#include "core/geom/convex2d.h"
+#include "core/geom/vec.h"
+
+namespace penumbra {
+
+// An oriented line n·x + c = 0 with |n| = 1; "front" is n·x + c > 0.
+struct Line2 {
+  Vec2 normal{1.0, 0.0};
+  double offset = 0;
+  double distance(const Vec2& p) const { return glm::dot(normal, p) + offset; }
+  // The line through a→b whose front is the right side of a→b.
+  static Line2 rightOf(const Vec2& a, const Vec2& b);
+};
+
+class HalfEdgeMesh {
+ public:
+  struct Vertex {
+    Vec2 position{0.0};
+    HalfEdgeId out;  // one half-edge leaving the vertex
+    bool alive = true;
+  };
+  struct HalfEdge {
+    VertexId origin;
+    HalfEdgeId next, prev;
+    CellId cell;  // invalid: outside the receiver
+    NodeId node;  // the tree node whose split created the edge; invalid: receiver boundary
+    bool alive = true;
+  };
+  struct Cell {
+    HalfEdgeId edge;  // one half-edge of the loop
+    NodeId leaf;      // the BSP leaf holding this cell
+    OccluderList occluders;
+    bool alive = true;
+  };
+
+  // Where a line cuts a cell, planned before anything changes. side: +1/-1 if the
+  // cell lies wholly in front/behind (within eps), 0 if it straddles: then the cut
+  // runs from `entry` (behind→front, walking the loop) to `exit` (front→behind).
+  struct CutEnd {
+    HalfEdgeId edge;     // loop half-edge: split it at `point`, or, if !split, its origin is the end
+    bool split = false;
+    Vec2 point{0.0};
+  };
+  struct CutPlan {
+    CellId cell;
+    int side = 0;
+    CutEnd entry, exit;
+  };
+  struct CutResult {
+    CellId front, back;
+    HalfEdgeId chord;  // entry→exit, in the back cell
+    std::vector<VertexId> newVertices;
+  };
+
+  // One cell: the receiver's convex CCW polygon (short edges dropped at eps).
+  CellId reset(const Polygon2& receiver, double eps);
+
+  CutPlan planCut(CellId cell, const Line2& line, double eps) const;
+  // Applies a straddling plan: the front part keeps `plan.cell`, the back part is a
+  // new cell; both copy the occluder list. New chord edges carry `node`.
+  CutResult applyCut(const CutPlan& plan, NodeId node);
+
+  // Removes the straight chain of edges shared by two adjacent cells (the inverse of
+  // applyCut); `drop` dies, `keep` holds the union. Degree-2 vertices left on a
+  // straight side between edges of the same node are dissolved. Returns removed vertices.
+  std::vector<VertexId> mergeCells(CellId keep, CellId drop, double eps);
+
+  const Vertex& vertex(VertexId v) const { return vertices_[v.index]; }
+  const HalfEdge& halfEdge(HalfEdgeId h) const { return halfEdges_[h.index]; }
+  const Cell& cell(CellId c) const { return cells_[c.index]; }
+  Cell& cell(CellId c) { return cells_[c.index]; }
+  static HalfEdgeId twin(HalfEdgeId h) { return HalfEdgeId(h.index ^ 1u); }
+  VertexId destination(HalfEdgeId h) const { return halfEdge(twin(h)).origin; }
+
+  // Slot counts (dead slots included) and live counts.
+  size_t vertexSlots() const { return vertices_.size(); }
+  size_t halfEdgeSlots() const { return halfEdges_.size(); }
+  size_t cellSlots() const { return cells_.size(); }
+  size_t vertexCount() const { return liveVertices_; }
+  size_t halfEdgeCount() const { return liveHalfEdges_; }
+  size_t cellCount() const { return liveCells_; }
+
+  std::vector<HalfEdgeId> loop(CellId c) const;
+  Polygon2 polygon(CellId c) const;
+  // Every live cell whose closure contains v, by a walk around v.
+  std::vector<CellId> cellsAround(VertexId v) const;
+
+  // Topology and geometry of the mesh alone (see DmTree::validate for the rest).
+  void validate(double eps, double receiverArea) const;
+
+ private:
+  VertexId addVertex(const Vec2& p);
+  HalfEdgeId addEdgePair();
+  VertexId splitEdge(HalfEdgeId h, const Vec2& p);
+  void dissolveVertex(VertexId v);
+  bool dissolvable(VertexId v, double eps) const;
+
+  std::vector<Vertex> vertices_;
+  std::vector<HalfEdge> halfEdges_;
+  std::vector<Cell> cells_;
+  size_t liveVertices_ = 0, liveHalfEdges_ = 0, liveCells_ = 0;
+};
+
+}  // namespace penumbra

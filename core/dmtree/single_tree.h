@@ -1,0 +1,37 @@
+// The single DM-tree of one occluder on one receiver (paper §2.3): penumbra edges
+// as a linear chain, umbra edges behind it, internal segments filtered down from
+// the first umbra node. Built once per SingleShadow; plain data, thread-safe to read.
+#pragma once
+
+#include <vector>
+
+#include "core/dmtree/half_edge_mesh.h"
+#include "core/geom/tolerance.h"
+#include "core/shadow/single_shadow.h"
+
+namespace penumbra {
+
+struct SingleTreeNode {
+  enum class Region : uint8_t { None, Out, Penumbra, Umbra };
+  Region region = Region::None;  // a leaf iff not None
+  // Internal nodes: the segment a→b on `line` (front = right of a→b = outside for
+  // polygon edges) and the critical surface that generates it.
+  Line2 line;
+  Vec2 a{0.0}, b{0.0};
+  SegmentKind kind = SegmentKind::Internal;
+  ElementRef lightElement, occluderElement;
+  bool generated = false;  // false: a region edge no CriticalSegment matched (e.g. on the receiver's boundary)
+  int front = -1, back = -1;
+};
+
+struct SingleTree {
+  std::vector<SingleTreeNode> nodes;
+  int root = -1;  // -1: the shadow misses the receiver
+  Polygon2 penumbra, umbra;  // the regions, short edges dropped
+  // Every discontinuity the tree carries (region edges and internal segments).
+  std::vector<SingleTreeNode> segments() const;
+};
+
+SingleTree buildSingleTree(const SingleShadow& shadow, const Tolerance& tolerance);
+
+}  // namespace penumbra

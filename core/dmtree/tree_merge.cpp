@@ -1,0 +1,140 @@
+// DmTree::insert: building the single tree and merging it into the total tree
+// (Naylor et al. BSP merging with partial sub-hyperplanes, paper §2.3).
+#include <algorithm>
+#include <stdexcept>
+
+#include "core/dmtree/dm_tree.h"
+
+namespace penumbra {
+
+namespace {
+
+Vec2 centroid(const Polygon2& poly) {
+  // Area centroid relative to the first vertex (less cancellation).
+  const Vec2 o = poly[0];
+  Vec2 sum{0.0};
+  double twice = 0;
+  for (size_t i = 1; i + 1 < poly.size(); ++i) {
+    const double w = cross2(poly[i] - o, poly[i + 1] - o);
+    sum += w * (poly[i] + poly[i + 1] - 2.0 * o);
+    twice += w;
+  }
+  return o + sum / (3.0 * twice);
+}
+
+bool strictlyInside(const Polygon2& poly, const Vec2& p) {
+  if (poly.size() < 3) return false;
+  for (size_t i = 0; i < poly.size(); ++i)
+    if (!(lineDistance(poly[i], poly[(i + 1) % poly.size()], p) > 0)) return false;
+  return true;
+}
+
+}  // namespace
+
+void DmTree::collectCells(NodeId n, const Polygon2& region, std::vector<CellId>& out) const {
+  const DmNode& d = node(n);
+  if (d.isLeaf()) {
+    out.push_back(d.cell);
+    return;
+  }
+  // front = right of a→b for the two points a, b on the line.
+  const Vec2 a = -d.line.offset * d.line.normal;
+  const Vec2 b = a + Vec2{-d.line.normal.y, d.line.normal.x};
+  const Split2 split = splitByLine(region, a, b, tolerance_.length());
+  if (split.right.size() >= 3 && signedArea(split.right) > tolerance_.area()) collectCells(d.front, split.right, out);
+  if (split.left.size() >= 3 && signedArea(split.left) > tolerance_.area()) collectCells(d.back, split.left, out);
+}
+
+// Partitions cell c by the single-tree subtree s. A node splits the cell only where its
+// segment crosses the cell's interior (the split then spans the cell: construction
+// edges); a node whose line straddles the cell without its segment crossing it cannot
+// classify the cell, so both of its subtrees are applied in turn.
+void DmTree::partition(CellId c, const SingleTree& tree, int s, const Generator& gen,
+                       std::vector<CellId>& pieces, InsertResult& result) {
+  const SingleTreeNode& sn = tree.nodes[s];
+  if (sn.region != SingleTreeNode::Region::None) {
+    pieces.push_back(c);
+    return;
+  }
+  const double eps = tolerance_.length();
+  const HalfEdgeMesh::CutPlan plan = mesh_.planCut(c, sn.line, eps);
+  if (plan.side > 0) return partition(c, tree, sn.front, gen, pieces, result);
+  if (plan.side < 0) return partition(c, tree, sn.back, gen, pieces, result);
+
+  const double length = glm::length(sn.b - sn.a);
+  const Vec2 dir = (sn.b - sn.a) / length;
+  const double t0 = glm::dot(plan.entry.point - sn.a, dir), t1 = glm::dot(plan.exit.point - sn.a, dir);
+  const double chordLo = std::min(t0, t1), chordHi = std::max(t0, t1);
+  const double lo = std::max(chordLo, 0.0), hi = std::min(chordHi, length);
+  if (hi - lo <= eps) {
+    std::vector<CellId> front;
+    partition(c, tree, sn.front, gen, front, result);
+    for (CellId f : front) partition(f, tree, sn.back, gen, pieces, result);
+    return;
+  }
+
+  const NodeId n = mesh_.cell(c).leaf;
+  const HalfEdgeMesh::CutResult cut = mesh_.applyCut(plan, n);
+  result.newVertices.insert(result.newVertices.end(), cut.newVertices.begin(), cut.newVertices.end());
+  ++result.nodesAdded;
+  const NodeId front = addNode(n, cut.front);
+  const NodeId back = addNode(n, cut.back);
+  DmNode& d = nodes_[n.index];
+  d.cell = CellId();
+  d.front = front;
+  d.back = back;
+  d.line = sn.line;
+  d.light = gen.light;
+  d.occluder = gen.occluder;
+  d.kind = sn.kind;
+  d.lightElement = sn.lightElement;
+  d.occluderElement = sn.occluderElement;
+  d.a = sn.a + lo * dir;
+  d.b = sn.a + hi * dir;
+  d.partial = lo > chordLo + eps || hi < chordHi - eps;
+  partition(cut.front, tree, sn.front, gen, pieces, result);
+  partition(cut.back, tree, sn.back, gen, pieces, result);
+}
+
+InsertResult DmTree::insert(const SingleShadow& shadow) {
+  // Check first, then change.
+  const OccluderKey key{shadow.light, shadow.occluder};
+  if (inserted_.count(key)) throw std::invalid_argument("DM-tree: occluder already inserted for this light");
+  for (const CriticalSegment& s : shadow.segments)
+    if (!std::isfinite(s.a.x) || !std::isfinite(s.a.y) || !std::isfinite(s.b.x) || !std::isfinite(s.b.y))
+      throw std::invalid_argument("DM-tree: non-finite segment end point");
+  for (const Polygon2* poly : {&shadow.penumbra, &shadow.umbra})
+    for (const Vec2& p : *poly)
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) throw std::invalid_argument("DM-tree: non-finite region");
+
+  InsertResult result;
+  const SingleTree tree = buildSingleTree(shadow, tolerance_);
+  if (tree.root < 0) return result;
+
+  // The total-tree leaves the penumbra overlaps with positive area.
+  std::vector<CellId> targets;
+  collectCells(root_, tree.penumbra, targets);
+  inserted_[key] = tree.segments();
+
+  const Generator gen{shadow.light, shadow.occluder};
+  for (CellId target : targets) {
+    std::vector<CellId> pieces;
+    partition(target, tree, tree.root, gen, pieces, result);
+    // No region boundary crosses a piece: one interior point classifies it.
+    for (CellId piece : pieces) {
+      const Vec2 p = centroid(mesh_.polygon(piece));
+      if (!strictlyInside(tree.penumbra, p)) continue;
+      const bool umbra = strictlyInside(tree.umbra, p);
+      OccluderList& list = mesh_.cell(piece).occluders;
+      const OccluderEntry entry{shadow.light, shadow.occluder, umbra};
+      if (umbra)
+        list.insert(std::find_if(list.begin(), list.end(), [](const OccluderEntry& e) { return !e.umbra; }), entry);
+      else
+        list.push_back(entry);
+      result.changedCells.push_back(piece);
+    }
+  }
+  return result;
+}
+
+}  // namespace penumbra

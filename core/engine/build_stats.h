@@ -1,0 +1,36 @@
+// Counters and timings of one full build of the discontinuity mesh (what
+// `penumbra build --stats` prints). Plain value filled by the engine.
+#pragma once
+
+#include <cstddef>
+
+namespace penumbra {
+
+struct BuildTimings {
+  double ordering = 0;          // seconds: front-to-back orders, all lights
+  double cube = 0;              // shadow overlap cubes
+  double castingAndMerging = 0; // castShadow + DM-tree merges
+  double illumination = 0;      // vertex illumination
+  double triangulation = 0;     // cells -> triangles (Engine::mesh)
+  double total() const { return ordering + cube + castingAndMerging + illumination + triangulation; }
+};
+
+struct BuildStats {
+  size_t faces = 0;
+  size_t receivers = 0;            // faces with a DM-tree (some light reaches their front)
+  size_t lights = 0;
+  size_t candidatePairs = 0;       // unordered pairs from the overlap cubes, summed over lights
+  size_t castAttempts = 0;         // (occluder, receiver, light) castShadow calls
+  size_t pairsWithShadow = 0;      // of those, the ones that cast a shadow
+  size_t tiles = 0;                // overlap-cube tiles, summed over lights
+  size_t orderFragments = 0;       // fragments of the front-to-back orders
+  size_t treeNodes = 0;            // splitting nodes of all DM-trees
+  size_t cells = 0;
+  size_t vertices = 0;             // DM-tree vertices (before per-side copies)
+  size_t litVertices = 0, penumbraVertices = 0, umbraVertices = 0;
+  size_t comparisons = 0;          // source/occluder comparisons, all vertices and lights
+  double comparisonsPerVertex() const { return vertices ? double(comparisons) / double(vertices) : 0; }
+  BuildTimings seconds;
+};
+
+}  // namespace penumbra

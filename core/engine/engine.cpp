@@ -1,0 +1,269 @@
+#include "core/engine/engine.h"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <stdexcept>
+#include <tuple>
+
+#include "core/mesh/cell_triangulation.h"
+#include "core/shadow/cast_shadow.h"
+
+namespace penumbra {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+Polygon2 polygonInFrame(const Polygon3& polygon, const PlaneFrame& frame) {
+  Polygon2 out;
+  out.reserve(polygon.size());
+  for (const Vec3& p : polygon) out.push_back(frame.to2D(p));
+  return out;
+}
+
+// Sums the lights' contributions like the reference: radiance-weighted factors,
+// classes combined over the lights that reach the point (Umbra if none does).
+VertexIrradiance sumLights(const Scene& scene, const std::vector<VertexLight>& lights,
+                           const std::vector<bool>* dark = nullptr) {
+  VertexIrradiance out;
+  bool any = false;
+  for (size_t l = 0; l < lights.size(); ++l) {
+    const VertexLight& light = lights[l];
+    out.comparisons += light.comparisons;
+    if (!light.applies) continue;
+    const bool isDark = dark && (*dark)[l];
+    const LightClass cls = isDark ? LightClass::Umbra : light.lightClass;
+    if (!isDark) out.irradiance += scene.lights()[l].radiance * light.factor;
+    out.lightClass = any ? combine(out.lightClass, cls) : cls;
+    any = true;
+  }
+  if (!any) out.lightClass = LightClass::Umbra;
+  return out;
+}
+
+}  // namespace
+
+Engine::Engine(Scene scene, EngineSettings settings, const EngineProgress& progress)
+    : scene_(std::move(scene)), settings_(settings) {
+  build(progress);
+}
+
+const Engine::Receiver* Engine::receiver(FaceId face) const {
+  const auto it = receiverIndex_.find(face);
+  return it == receiverIndex_.end() ? nullptr : &receivers_[it->second];
+}
+
+const std::set<FaceId>& Engine::castOn(FaceId occluder) const {
+  static const std::set<FaceId> kNone;
+  const auto it = castOn_.find(occluder);
+  return it == castOn_.end() ? kNone : it->second;
+}
+
+void Engine::build(const EngineProgress& progress) {
+  const size_t lightCount = scene_.lights().size();
+  stats_ = BuildStats{};
+  stats_.faces = scene_.faces().size();
+  stats_.lights = lightCount;
+
+  // Front-to-back orders (§2.1).
+  auto start = Clock::now();
+  for (size_t l = 0; l < lightCount; ++l) {
+    orders_.push_back(std::make_unique<FaceOrder>(scene_, l));
+    stats_.orderFragments += orders_.back()->counters().fragments;
+  }
+  stats_.seconds.ordering = secondsSince(start);
+
+  // Shadow overlap cubes (§2.2).
+  start = Clock::now();
+  OverlapCubeSettings cubeSettings;
+  cubeSettings.grid = settings_.overlapGrid;
+  for (size_t l = 0; l < lightCount; ++l) {
+    cubes_.push_back(std::make_unique<OverlapCube>(scene_, l, cubeSettings));
+    stats_.tiles += cubes_.back()->tileCount();
+  }
+  stats_.seconds.cube = secondsSince(start);
+
+  // One DM-tree per receiving face.
+  start = Clock::now();
+  const auto& faces = scene_.faces();
+  std::map<FaceId, const Face*> faceById;
+  for (const Face& face : faces) {
+    faceById[face.id] = &face;
+    if (!scene_.receivesLight(face)) continue;
+    const PlaneFrame frame = PlaneFrame::onPlane(face.plane, face.polygon[0]);
+    receiverIndex_[face.id] = receivers_.size();
+    receivers_.push_back(Receiver{face.id, frame,
+                                  DmTree(polygonInFrame(face.polygon, frame), scene_.tolerance()),
+                                  {}, {}});
+  }
+  stats_.receivers = receivers_.size();
+
+  // Cast every candidate pair both ways (§2.3), occluders in front-to-back order.
+  for (size_t l = 0; l < lightCount; ++l) {
+    const auto pairs = cubes_[l]->candidatePairs();
+    stats_.candidatePairs += pairs.size();
+    struct Attempt {
+      size_t occluderRank, receiverRank;
+      FaceId occluder, receiver;
+    };
+    std::vector<Attempt> attempts;
+    const FaceOrder& order = *orders_[l];
+    for (const auto& [a, b] : pairs) {
+      if (!order.contains(a) || !order.contains(b)) continue;
+      attempts.push_back({order.rank(a), order.rank(b), a, b});
+      attempts.push_back({order.rank(b), order.rank(a), b, a});
+    }
+    std::sort(attempts.begin(), attempts.end(), [](const Attempt& x, const Attempt& y) {
+      return std::tie(x.occluderRank, x.receiverRank) < std::tie(y.occluderRank, y.receiverRank);
+    });
+    for (size_t i = 0; i < attempts.size(); ++i) {
+      const Attempt& attempt = attempts[i];
+      if (progress && i % 4096 == 0) progress("casting", i, attempts.size());
+      const auto found = receiverIndex_.find(attempt.receiver);
+      if (found == receiverIndex_.end()) continue;
+      Receiver& receiver = receivers_[found->second];
+      ++stats_.castAttempts;
+      const auto shadow = castShadow(scene_, l, *faceById.at(attempt.occluder),
+                                     *faceById.at(attempt.receiver), receiver.frame);
+      if (!shadow) continue;
+      receiver.tree.insert(*shadow);
+      castOn_[attempt.occluder].insert(attempt.receiver);
+      ++stats_.pairsWithShadow;
+    }
+    if (progress) progress("casting", attempts.size(), attempts.size());
+  }
+  stats_.seconds.castingAndMerging = secondsSince(start);
+
+  // Illuminate every vertex (§2.4).
+  start = Clock::now();
+  for (size_t r = 0; r < receivers_.size(); ++r) {
+    if (progress) progress("illumination", r, receivers_.size());
+    illuminate(receivers_[r]);
+  }
+  if (progress) progress("illumination", receivers_.size(), receivers_.size());
+  stats_.seconds.illumination = secondsSince(start);
+
+  for (const Receiver& receiver : receivers_) {
+    stats_.treeNodes += receiver.tree.internalNodeCount();
+    stats_.cells += receiver.tree.cellCount();
+    for (VertexId v : receiver.tree.vertices()) {
+      const VertexIrradiance& value = receiver.values[v.index];
+      ++stats_.vertices;
+      stats_.comparisons += value.comparisons;
+      switch (value.lightClass) {
+        case LightClass::Lit: ++stats_.litVertices; break;
+        case LightClass::Penumbra: ++stats_.penumbraVertices; break;
+        case LightClass::Umbra: ++stats_.umbraVertices; break;
+      }
+    }
+  }
+}
+
+void Engine::illuminate(Receiver& receiver) {
+  const DmTree& tree = receiver.tree;
+  const size_t slots = tree.mesh().vertexSlots();
+  receiver.values.assign(slots, VertexIrradiance{});
+  receiver.perLight.assign(slots, {});
+  const Vec3 normal = receiver.frame.normal;
+  std::vector<const OccluderList*> lists;
+  for (VertexId v : tree.vertices()) {
+    lists.clear();
+    for (CellId c : tree.cellsAround(v)) lists.push_back(&tree.occluders(c));
+    const Vec3 p = receiver.frame.to3D(tree.position(v));
+    auto& perLight = receiver.perLight[v.index];
+    for (size_t l = 0; l < scene_.lights().size(); ++l)
+      perLight.push_back(illuminateVertex(scene_, l, p, normal, lists));
+    receiver.values[v.index] = sumLights(scene_, perLight);
+  }
+}
+
+Mesh Engine::mesh() {
+  const auto start = Clock::now();
+  Mesh out;
+  const double eps = scene_.tolerance().length();
+  const size_t lightCount = scene_.lights().size();
+  for (const Receiver& receiver : receivers_) {
+    const DmTree& tree = receiver.tree;
+    const HalfEdgeMesh& halfEdges = tree.mesh();
+    const Vec3 normal = receiver.frame.normal;
+
+    // Vertices on a contact (D0) edge take their value per side.
+    std::vector<bool> onContact(halfEdges.vertexSlots(), false);
+    for (uint32_t h = 0; h < halfEdges.halfEdgeSlots(); ++h) {
+      const auto& edge = halfEdges.halfEdge(HalfEdgeId(h));
+      if (!edge.alive || !edge.node.is_valid()) continue;
+      if (tree.node(edge.node).kind != SegmentKind::Contact) continue;
+      onContact[edge.origin.index] = true;
+      onContact[halfEdges.destination(HalfEdgeId(h)).index] = true;
+    }
+
+    ReceiverMesh result;
+    result.face = receiver.face;
+    result.normal = normal;
+    // One output vertex per (tree vertex, value): copies only where values differ.
+    std::map<std::tuple<uint32_t, double, double, double, LightClass>, uint32_t> outputIndex;
+    auto emit = [&](uint32_t key, const Vec3& position, const VertexIrradiance& value) {
+      const auto id = std::make_tuple(key, value.irradiance.x, value.irradiance.y,
+                                      value.irradiance.z, value.lightClass);
+      const auto [it, added] = outputIndex.emplace(id, uint32_t(result.positions.size()));
+      if (added) {
+        result.positions.push_back(position);
+        result.irradiance.push_back(value.irradiance);
+        result.classes.push_back(value.lightClass);
+      }
+      return it->second;
+    };
+
+    for (CellId c : tree.cells()) {
+      const OccluderList& list = tree.occluders(c);
+      std::vector<bool> dark(lightCount, false);
+      for (const OccluderEntry& entry : list)
+        if (entry.umbra) dark[entry.light] = true;
+      const bool anyDark = std::find(dark.begin(), dark.end(), true) != dark.end();
+
+      const auto loop = halfEdges.loop(c);
+      Polygon2 polygon;
+      for (HalfEdgeId h : loop) polygon.push_back(tree.position(halfEdges.halfEdge(h).origin));
+      Vec3 centre3{0.0};
+      for (const Vec2& q : polygon) centre3 += receiver.frame.to3D(q);
+      centre3 /= double(polygon.size());
+
+      std::vector<uint32_t> corners;
+      for (HalfEdgeId h : loop) {
+        const VertexId v = halfEdges.halfEdge(h).origin;
+        const Vec3 p = receiver.frame.to3D(tree.position(v));
+        VertexIrradiance value = receiver.values[v.index];
+        if (onContact[v.index]) {
+          value = illuminatePointFromCell(scene_, p, normal, centre3 - p, list);
+        } else if (anyDark) {
+          value = sumLights(scene_, receiver.perLight[v.index], &dark);
+        }
+        corners.push_back(emit(v.index, p, value));
+      }
+      const CellTriangulation triangulation = triangulateConvexCell(polygon, eps);
+      if (triangulation.usesCentre) {
+        const VertexIrradiance value = illuminatePoint(scene_, centre3, normal, {&list});
+        // Centre points are unique to their cell: key them past every tree vertex.
+        corners.push_back(emit(uint32_t(halfEdges.vertexSlots() + c.index), centre3, value));
+      }
+      for (const auto& t : triangulation.triangles)
+        result.triangles.push_back({corners[t[0]], corners[t[1]], corners[t[2]]});
+    }
+    out.receivers.push_back(std::move(result));
+  }
+  stats_.seconds.triangulation = secondsSince(start);
+  return out;
+}
+
+void Engine::validate() const {
+  for (const auto& order : orders_) order->validate();
+  for (const auto& cube : cubes_) cube->validate();
+  for (const Receiver& receiver : receivers_) receiver.tree.validate();
+}
+
+}  // namespace penumbra

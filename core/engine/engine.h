@@ -1,0 +1,74 @@
+// The discontinuity-meshing engine of one scene: front-to-back orders and overlap
+// cubes per light, a DM-tree per receiving face, vertex illumination, and the
+// triangulated lit mesh. The engine owns all shadow state and is the only thing
+// that changes it; one writer at a time, const access from several threads is safe.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <set>
+#include <vector>
+
+#include "core/dmtree/dm_tree.h"
+#include "core/engine/build_stats.h"
+#include "core/geom/plane_frame.h"
+#include "core/illum/vertex_illumination.h"
+#include "core/mesh/mesh.h"
+#include "core/order/face_order.h"
+#include "core/overlap/overlap_cube.h"
+#include "core/scene/scene.h"
+
+namespace penumbra {
+
+struct EngineSettings {
+  int overlapGrid = 0;  // tiles per cube side; 0 = chosen from the face count
+};
+
+// Called with (step name, done, total) as a long build proceeds; may be empty.
+using EngineProgress = std::function<void(const char* step, size_t done, size_t total)>;
+
+class Engine {
+ public:
+  explicit Engine(Scene scene, EngineSettings settings = {}, const EngineProgress& progress = {});
+
+  const Scene& scene() const { return scene_; }
+  const BuildStats& stats() const { return stats_; }
+
+  // The receiving faces, in Scene::faces() order.
+  struct Receiver {
+    FaceId face;
+    PlaneFrame frame;  // the 2D frame of its DM-tree
+    DmTree tree;
+    // Per live tree vertex (indexed by VertexId): the value at the vertex.
+    std::vector<VertexIrradiance> values;
+    std::vector<std::vector<VertexLight>> perLight;  // [vertex][light]
+  };
+  const std::vector<Receiver>& receivers() const { return receivers_; }
+  const Receiver* receiver(FaceId face) const;
+  // The receivers a face has cast a shadow on (paper §3.1: removal starts there).
+  const std::set<FaceId>& castOn(FaceId occluder) const;
+
+  // Triangulates every cell. Vertices repeat once per side where the value jumps
+  // (contact edges, cells in a light's umbra), so no triangle interpolates across
+  // a value discontinuity and umbra cells stay dark. Adds its time to stats().
+  Mesh mesh();
+
+  // Checks every structure the engine holds; throws std::logic_error.
+  void validate() const;
+
+ private:
+  void build(const EngineProgress& progress);
+  void illuminate(Receiver& receiver);
+
+  Scene scene_;
+  EngineSettings settings_;
+  std::vector<std::unique_ptr<FaceOrder>> orders_;   // per light
+  std::vector<std::unique_ptr<OverlapCube>> cubes_;  // per light
+  std::vector<Receiver> receivers_;
+  std::map<FaceId, size_t> receiverIndex_;
+  std::map<FaceId, std::set<FaceId>> castOn_;
+  BuildStats stats_;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,19 @@
+// Finding a scene face by its stable id (Scene::faces() is sorted by FaceId).
+// Free function on a const Scene; thread-safe.
+#pragma once
+
+#include <algorithm>
+
+#include "core/scene/scene.h"
+
+namespace penumbra {
+
+// The face with this id, or nullptr if the scene has none (a stale list entry).
+inline const Face* findFace(const Scene& scene, FaceId id) {
+  const std::vector<Face>& faces = scene.faces();
+  const auto it = std::lower_bound(faces.begin(), faces.end(), id,
+                                   [](const Face& f, FaceId key) { return f.id < key; });
+  return it != faces.end() && it->id == id ? &*it : nullptr;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,26 @@
+#include "core/illum/lambert.h"
+
+#include <cmath>
+
+namespace penumbra {
+
+double lambertIntegral(const Vec3& p, const Vec3& n, const Polygon3& polygon) {
+  const size_t count = polygon.size();
+  if (count < 3) return 0;
+  // Lambert: Φ = ½ Σ_i Θ_i (n · Γ_i), Θ_i the angle each edge subtends at p and Γ_i
+  // the unit normal of the plane through p and the edge. The sign only tells the
+  // winding as seen from p, and the integrand is non-negative in front of p's
+  // plane, so the magnitude is the value.
+  double sum = 0;
+  Vec3 a = polygon[count - 1] - p;
+  for (size_t i = 0; i < count; ++i) {
+    const Vec3 b = polygon[i] - p;
+    const Vec3 normal = glm::cross(a, b);
+    const double sine = glm::length(normal);  // |a||b| sin Θ
+    if (sine > 0) sum += std::atan2(sine, glm::dot(a, b)) * glm::dot(n, normal) / sine;
+    a = b;
+  }
+  return 0.5 * std::abs(sum);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,143 @@
+#include "core/illum/vertex_illumination.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "core/illum/backprojection.h"
+#include "core/illum/face_lookup.h"
+
+namespace penumbra {
+
+namespace {
+
+// One cell's entries for one light.
+std::vector<OccluderEntry> entriesFor(const OccluderList& list, size_t light) {
+  std::vector<OccluderEntry> out;
+  for (const OccluderEntry& e : list)
+    if (e.light == light) out.push_back(e);
+  return out;
+}
+
+bool holds(const std::vector<OccluderEntry>& entries, FaceId face) {
+  return std::any_of(entries.begin(), entries.end(),
+                     [&](const OccluderEntry& e) { return e.face == face; });
+}
+
+VertexLight fromView(const Backprojection& view, VertexCase decidedBy) {
+  VertexLight out;
+  out.applies = true;
+  out.decidedBy = decidedBy;
+  out.unoccludedFactor = view.unoccludedFactor();
+  out.factor = view.visibleFactor();
+  out.lightClass = view.lightClass();
+  out.comparisons = view.comparisons();
+  return out;
+}
+
+VertexLight umbra(const Backprojection& view) {
+  VertexLight out;
+  out.applies = true;
+  out.decidedBy = VertexCase::Umbra;
+  out.unoccludedFactor = view.unoccludedFactor();
+  out.lightClass = LightClass::Umbra;
+  return out;
+}
+
+// Sums one light's result into the all-lights result.
+void accumulate(VertexIrradiance& total, bool& anyLight, const Light& light,
+                const VertexLight& one) {
+  if (!one.applies) return;
+  total.irradiance += light.radiance * one.factor;
+  total.lightClass = anyLight ? combine(total.lightClass, one.lightClass) : one.lightClass;
+  total.comparisons += one.comparisons;
+  anyLight = true;
+}
+
+Vec3 directionInPlane(const Vec3& n, const Vec3& d) {
+  const Vec3 inPlane = d - glm::dot(n, d) * n;
+  const double length = glm::length(inPlane);
+  if (!(length > 0)) throw std::invalid_argument("illuminateFromCell: direction along the normal");
+  return inPlane / length;
+}
+
+}  // namespace
+
+VertexLight illuminateVertex(const Scene& scene, size_t light, const Vec3& p, const Vec3& n,
+                             const std::vector<const OccluderList*>& cellsAround) {
+  if (cellsAround.empty()) throw std::invalid_argument("illuminateVertex: no cells around");
+  std::vector<std::vector<OccluderEntry>> cells;
+  cells.reserve(cellsAround.size());
+  for (const OccluderList* list : cellsAround) {
+    if (!list) throw std::invalid_argument("illuminateVertex: null occluder list");
+    cells.push_back(entriesFor(*list, light));
+  }
+
+  Backprojection view(scene, light, p, n);
+  if (!view.applies()) return VertexLight{};
+
+  // (1) Some cell sees the whole light, so p does (a blocker of p would block
+  // positive area from every cell touching p).
+  for (const auto& cell : cells)
+    if (cell.empty()) return fromView(view, VertexCase::Unoccluded);
+
+  // (2) A face hiding the light from a cell hides it from p too, by continuity,
+  // unless its plane contains p (a D⁰ contact): such a face is missing from the
+  // cells on its front side, and the rule check below makes it exact.
+  const double onPlane = scene.tolerance().onPlane();
+  for (const auto& cell : cells)
+    for (const OccluderEntry& e : cell) {
+      if (!e.umbra) break;  // umbra entries come first
+      const Face* face = findFace(scene, e.face);
+      if (!face || !(face->plane.signedDistance(p) < -onPlane)) continue;
+      const bool everywhere = std::all_of(cells.begin(), cells.end(),
+                                          [&](const auto& other) { return holds(other, e.face); });
+      if (everywhere) return umbra(view);
+    }
+
+  // (3) O_covering: the faces every cell lists; a face blocking p blocks positive
+  // area from each cell around it, so this is a superset of p's blockers.
+  for (const OccluderEntry& e : cells.front()) {
+    const bool everywhere = std::all_of(cells.begin() + 1, cells.end(),
+                                        [&](const auto& other) { return holds(other, e.face); });
+    if (!everywhere) continue;
+    if (const Face* face = findFace(scene, e.face)) view.occlude(*face);
+  }
+  return fromView(view, VertexCase::Covering);
+}
+
+VertexIrradiance illuminatePoint(const Scene& scene, const Vec3& p, const Vec3& n,
+                                 const std::vector<const OccluderList*>& cellsAround) {
+  VertexIrradiance total;
+  bool anyLight = false;
+  for (size_t l = 0; l < scene.lights().size(); ++l)
+    accumulate(total, anyLight, scene.lights()[l], illuminateVertex(scene, l, p, n, cellsAround));
+  if (!anyLight) total.lightClass = LightClass::Umbra;
+  return total;
+}
+
+VertexLight illuminateVertexFromCell(const Scene& scene, size_t light, const Vec3& p,
+                                     const Vec3& n, const Vec3& d, const OccluderList& cell) {
+  const Vec3 towards = directionInPlane(n, d);
+  const std::vector<OccluderEntry> entries = entriesFor(cell, light);
+  Backprojection view(scene, light, p, n);
+  if (!view.applies()) return VertexLight{};
+  if (entries.empty()) return fromView(view, VertexCase::Unoccluded);
+  // The cell's inside is hidden throughout: so is the limit.
+  if (entries.front().umbra) return umbra(view);
+  for (const OccluderEntry& e : entries)
+    if (const Face* face = findFace(scene, e.face)) view.occludeApproaching(*face, towards);
+  return fromView(view, VertexCase::Covering);
+}
+
+VertexIrradiance illuminatePointFromCell(const Scene& scene, const Vec3& p, const Vec3& n,
+                                         const Vec3& d, const OccluderList& cell) {
+  VertexIrradiance total;
+  bool anyLight = false;
+  for (size_t l = 0; l < scene.lights().size(); ++l)
+    accumulate(total, anyLight, scene.lights()[l],
+               illuminateVertexFromCell(scene, l, p, n, d, cell));
+  if (!anyLight) total.lightClass = LightClass::Umbra;
+  return total;
+}
+
+}  // namespace penumbra

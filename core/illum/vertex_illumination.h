@@ -1,0 +1,65 @@
+// Illuminating a DM-mesh vertex from the occluder lists of the cells around it
+// (paper §2.4, its three cases made exact), and the one-sided limit from one cell
+// for vertices on value discontinuities. Free functions on a const Scene; thread-safe.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/dmtree/occluder_list.h"
+#include "core/mesh/mesh.h"
+#include "core/scene/scene.h"
+
+namespace penumbra {
+
+// Which of §2.4's cases decided a vertex's value for one light.
+enum class VertexCase : uint8_t {
+  NoLight,     // the light does not face p or lies wholly behind p's plane
+  Unoccluded,  // (1) some cell has no occluder for the light
+  Umbra,       // (2) one face hides the whole light from every cell and from p
+  Covering,    // (3) backprojection of the faces common to all the cells
+};
+
+// One light at a vertex.
+struct VertexLight {
+  double factor = 0;            // ∫ cosθp·cosθL / r² dA over the visible part
+  double unoccludedFactor = 0;  // the same over the light's front part (case 3 and 1)
+  LightClass lightClass = LightClass::Lit;  // meaningless when !applies
+  size_t comparisons = 0;       // source/occluder comparisons (faces projected)
+  bool applies = false;         // the light reaches p's front side at all
+  VertexCase decidedBy = VertexCase::NoLight;
+};
+
+// All lights at a vertex: radiance-weighted sum and combined class (Umbra when no
+// light applies, as for the reference).
+struct VertexIrradiance {
+  Vec3 irradiance{0.0};
+  LightClass lightClass = LightClass::Umbra;
+  size_t comparisons = 0;
+};
+
+// Light `light` at p (unit front normal n) from the occluder lists of the cells
+// around p (entries of other lights are ignored). The cases in order:
+// (1) a cell without entry for the light → the whole front part, Lit;
+// (2) a face flagged umbra in some cell, present in every cell and blocking p under
+//     the single-sided rule → 0, Umbra (a D⁰ vertex's umbra face misses the cells
+//     on its other side, or contains p, so such a vertex falls through);
+// (3) the faces present in every cell → backprojection; Penumbra if something was
+//     removed, Umbra if nothing is left, Lit otherwise.
+// Throws std::invalid_argument if cellsAround is empty or holds a null list.
+VertexLight illuminateVertex(const Scene& scene, size_t light, const Vec3& p, const Vec3& n,
+                             const std::vector<const OccluderList*>& cellsAround);
+VertexIrradiance illuminatePoint(const Scene& scene, const Vec3& p, const Vec3& n,
+                                 const std::vector<const OccluderList*>& cellsAround);
+
+// The limit of the same quantity as the point tends to p from inside `cell`, along
+// direction d (projected into p's plane; must not be along n): no entry → Lit; a
+// face flagged umbra → 0, Umbra; otherwise the cell's faces, a face whose plane
+// contains p blocking by its limiting projection (Backprojection::occludeApproaching).
+VertexLight illuminateVertexFromCell(const Scene& scene, size_t light, const Vec3& p,
+                                     const Vec3& n, const Vec3& d, const OccluderList& cell);
+VertexIrradiance illuminatePointFromCell(const Scene& scene, const Vec3& p, const Vec3& n,
+                                         const Vec3& d, const OccluderList& cell);
+
+}  // namespace penumbra

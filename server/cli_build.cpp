@@ -1,0 +1,81 @@
+#include <sys/resource.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "core/engine/engine.h"
+#include "protocol/mesh_json.h"
+#include "protocol/scene_json.h"
+#include "server/commands.h"
+#include "server/progress_bar.h"
+
+namespace penumbra::cli {
+
+namespace {
+
+// Peak resident memory of this process so far, in MiB.
+double peakMemoryMiB() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+nlohmann::json statsJson(const BuildStats& s, const Mesh& mesh) {
+  const BuildTimings& t = s.seconds;
+  return {{"faces", s.faces},
+          {"receivers", s.receivers},
+          {"lights", s.lights},
+          {"candidate_pairs", s.candidatePairs},
+          {"cast_attempts", s.castAttempts},
+          {"pairs_with_shadow", s.pairsWithShadow},
+          {"tiles", s.tiles},
+          {"order_fragments", s.orderFragments},
+          {"tree_nodes", s.treeNodes},
+          {"cells", s.cells},
+          {"vertices", {{"total", s.vertices},
+                        {"lit", s.litVertices},
+                        {"penumbra", s.penumbraVertices},
+                        {"umbra", s.umbraVertices}}},
+          {"mesh", {{"vertices", mesh.vertexCount()}, {"triangles", mesh.triangleCount()}}},
+          {"comparisons_per_vertex", s.comparisonsPerVertex()},
+          {"peak_memory_mib", peakMemoryMiB()},
+          {"seconds", {{"ordering", t.ordering},
+                       {"cube", t.cube},
+                       {"casting_and_merging", t.castingAndMerging},
+                       {"illumination", t.illumination},
+                       {"triangulation", t.triangulation},
+                       {"total", t.total()}}}};
+}
+
+}  // namespace
+
+int runBuild(const Args& args) {
+  args.allowOnly({"out", "grid"});
+  const std::string scenePath = args.positional(0, "SCENE");
+  const auto out = args.option("out");
+  if (!out) throw UsageError("build needs --out MESH");
+  EngineSettings settings;
+  settings.overlapGrid = args.intOption("grid", 0, 0, 256);
+  const Scene scene = protocol::loadSceneFile(scenePath);
+
+  ProgressBar casting("casting"), illumination("illumination");
+  Engine engine(scene, settings, [&](const char* step, size_t done, size_t total) {
+    (std::string(step) == "casting" ? casting : illumination).update(done, total);
+  });
+  casting.finish();
+  illumination.finish();
+  const Mesh mesh = engine.mesh();
+  protocol::saveMeshFile(engine.scene(), mesh, std::filesystem::path(scenePath).filename().string(), *out);
+
+  const BuildStats& stats = engine.stats();
+  if (args.flag("stats")) {
+    std::printf("%s\n", statsJson(stats, mesh).dump(2).c_str());
+  } else {
+    std::printf("wrote %s: %zu receivers, %zu vertices, %zu triangles (%.3f s)\n", out->c_str(),
+                mesh.receivers.size(), mesh.vertexCount(), mesh.triangleCount(), stats.seconds.total());
+  }
+  return 0;
+}
+
+}  // namespace penumbra::cli
