@@ -15,6 +15,7 @@ struct BenchArgs {
   double lightScale = 1.0;
   size_t points = 2000;
   int maxSamples = 1 << 16;
+  int qualityMaxCubes = 150;  // mesh-quality comparison only up to this scene size
   std::string jsonOut;  // empty: no JSON file
 };
 
@@ -22,5 +23,6 @@ struct BenchArgs {
 BenchArgs parseBenchArgs(int argc, char** argv, int first);
 
 nlohmann::json runReferenceBench(const BenchArgs& args);
+nlohmann::json runBuildBench(const BenchArgs& args);
 
 }  // namespace penumbra::bench

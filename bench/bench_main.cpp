@@ -29,6 +29,8 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first) {
         args.points = std::stoul(value);
       } else if (name == "--max-samples") {
         args.maxSamples = std::stoi(value);
+      } else if (name == "--quality-max-cubes") {
+        args.qualityMaxCubes = std::stoi(value);
       } else if (name == "--json") {
         args.jsonOut = value;
       } else {
@@ -46,8 +48,11 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first) {
 int main(int argc, char** argv) {
   using namespace penumbra::bench;
   constexpr const char* kUsage =
-      "usage: penumbra-bench reference [--cubes 15,150,1500] [--seed S] [--light-scale F]\n"
-      "                                [--points K] [--max-samples N] [--json OUT]\n";
+      "usage: penumbra-bench reference|build [--cubes 15,150,1500] [--seed S] [--light-scale F]\n"
+      "                      [--points K] [--max-samples N] [--quality-max-cubes N] [--json OUT]\n"
+      "  reference: exact reference and Monte Carlo cost per point\n"
+      "  build:     DM build times and counters at light scales 1 and 0.2, Monte Carlo cost for\n"
+      "             1% RMS on the same penumbra vertices, DM vs equal-vertex grid error\n";
   if (argc < 2) {
     std::fputs(kUsage, stderr);
     return 2;
@@ -58,6 +63,8 @@ int main(int argc, char** argv) {
     nlohmann::json result;
     if (benchmark == "reference") {
       result = runReferenceBench(args);
+    } else if (benchmark == "build") {
+      result = runBuildBench(args);
     } else {
       std::fputs(kUsage, stderr);
       return 2;

@@ -17,6 +17,10 @@ struct OccluderEntry {
   bool operator==(const OccluderEntry&) const = default;
 };
 
+// The occluder of a light's own plane: where that plane cuts a receiver, the part
+// behind it gets no light (lights emit from their front only). Not a scene face.
+inline constexpr FaceId kLightPlaneOccluder{0xffffffffu, 0xffffffffu};
+
 // Umbra entries first (paper §2.4), then partial ones; at most one entry per
 // (light, face).
 using OccluderList = std::vector<OccluderEntry>;

@@ -1,11 +1,15 @@
 #include "core/engine/engine.h"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
+#include "core/geom/clip.h"
+#include "core/illum/face_lookup.h"
 #include "core/mesh/cell_triangulation.h"
 #include "core/shadow/cast_shadow.h"
 
@@ -44,6 +48,34 @@ VertexIrradiance sumLights(const Scene& scene, const std::vector<VertexLight>& l
   }
   if (!any) out.lightClass = LightClass::Umbra;
   return out;
+}
+
+// Where light `light`'s plane cuts the receiver: the part behind it, as an umbra of
+// the pseudo-occluder kLightPlaneOccluder, so no triangle straddles the line where
+// the irradiance falls to zero.
+std::optional<SingleShadow> lightPlaneShadow(const Scene& scene, size_t light, const Face& receiver,
+                                             const PlaneFrame& frame) {
+  const Plane lightPlane = scene.lights()[light].plane();
+  const double eps = scene.tolerance().length();
+  const Split3 split = splitByPlane(receiver.polygon, lightPlane, eps);
+  if (split.front.empty() || split.back.empty()) return std::nullopt;
+  SingleShadow shadow;
+  shadow.light = uint32_t(light);
+  shadow.occluder = kLightPlaneOccluder;
+  shadow.receiver = receiver.id;
+  shadow.penumbra = polygonInFrame(split.back, frame);
+  shadow.umbra = shadow.penumbra;
+  // The chord along the light's plane: the back part's vertices on the plane.
+  std::vector<Vec2> chord;
+  for (const Vec3& p : split.back)
+    if (std::abs(lightPlane.signedDistance(p)) <= eps) chord.push_back(frame.to2D(p));
+  if (chord.size() != 2) return std::nullopt;
+  CriticalSegment segment;
+  segment.a = chord[0];
+  segment.b = chord[1];
+  segment.kind = SegmentKind::Umbra;
+  shadow.segments.push_back(segment);
+  return shadow;
 }
 
 }  // namespace
@@ -102,6 +134,10 @@ void Engine::build(const EngineProgress& progress) {
                                   {}, {}});
   }
   stats_.receivers = receivers_.size();
+  for (Receiver& receiver : receivers_)
+    for (size_t l = 0; l < lightCount; ++l)
+      if (const auto horizon = lightPlaneShadow(scene_, l, *faceById.at(receiver.face), receiver.frame))
+        receiver.tree.insert(*horizon);
 
   // Cast every candidate pair both ways (§2.3), occluders in front-to-back order.
   for (size_t l = 0; l < lightCount; ++l) {
@@ -186,22 +222,26 @@ Mesh Engine::mesh() {
   const auto start = Clock::now();
   Mesh out;
   const double eps = scene_.tolerance().length();
+  const double onPlane = scene_.tolerance().onPlane();
   const size_t lightCount = scene_.lights().size();
   for (const Receiver& receiver : receivers_) {
     const DmTree& tree = receiver.tree;
     const HalfEdgeMesh& halfEdges = tree.mesh();
     const Vec3 normal = receiver.frame.normal;
 
-    // Vertices on a contact (D0) edge take their value per side.
+    // Vertices on a value discontinuity (D0: an occluder of a cell around them has
+    // its plane through them, i.e. touches the receiver there) take their value
+    // per side, as the limit from each cell.
     std::vector<bool> onContact(halfEdges.vertexSlots(), false);
-    for (uint32_t h = 0; h < halfEdges.halfEdgeSlots(); ++h) {
-      const auto& edge = halfEdges.halfEdge(HalfEdgeId(h));
-      if (!edge.alive || !edge.node.is_valid()) continue;
-      if (tree.node(edge.node).kind != SegmentKind::Contact) continue;
-      onContact[edge.origin.index] = true;
-      onContact[halfEdges.destination(HalfEdgeId(h)).index] = true;
+    for (VertexId v : tree.vertices()) {
+      const Vec3 p = receiver.frame.to3D(tree.position(v));
+      for (CellId c : tree.cellsAround(v)) {
+        for (const OccluderEntry& entry : tree.occluders(c)) {
+          const Face* face = findFace(scene_, entry.face);
+          if (face && std::abs(face->plane.signedDistance(p)) <= onPlane) onContact[v.index] = true;
+        }
+      }
     }
-
     ReceiverMesh result;
     result.face = receiver.face;
     result.normal = normal;
