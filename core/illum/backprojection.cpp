@@ -26,20 +26,36 @@ Backprojection::Backprojection(const Scene& scene, size_t light, const Vec3& p, 
   for (const Vec3& q : front_) front2.push_back(frame_.to2D(q));
   visible_.push_back(counterClockwise(std::move(front2)));
 
-  // Side planes of the cone from p over the front part, oriented towards its
-  // centroid (an inner point), so the winding never matters. They are moved out
-  // by a little more than the clipping tolerance: a vertex kept unmoved within eps
-  // of a plane then lies outside the true cone, never inside it (that would leave
-  // a sliver of the light uncovered, magnified by the projection); the exact trim
-  // is the 2D subtraction against the light itself.
-  const Vec3 inner = centroid(front_) - p;
-  const double widen = 2 * eps;
+  // Side planes of the cone from p over the front part with every edge moved out,
+  // in the light's plane, by the front part's own size. The cone only keeps the
+  // projections finite; the exact trim is the 2D subtraction against the light.
+  // The margin must be large, not a few eps: clipping a blocker at a boundary just
+  // outside the light leaves it short edges (~eps long, magnified) along its real
+  // edges, and the 2D subtraction cuts the light along their lines, whose
+  // directions they fix only to rounding / length. Extended across the light such
+  // a cut lands ~1e-9 of the light's size off the true edge, and the next shadow
+  // through the same edge (its neighbour face) cannot snap it back: area lost.
+  // With the boundary this far out, blocker vertices within eps of it are far
+  // outside the light too, so no sliver of the light is ever left uncovered.
+  const Vec3 inner = centroid(front_);
+  Vec3 low = front_[0], high = front_[0];
+  for (const Vec3& q : front_) {
+    low = glm::min(low, q);
+    high = glm::max(high, q);
+  }
+  const double margin = glm::length(high - low);
   for (size_t i = 0; i < front_.size(); ++i) {
-    const Vec3 normal = glm::cross(front_[i] - p, front_[(i + 1) % front_.size()] - p);
+    const Vec3 a = front_[i], b = front_[(i + 1) % front_.size()];
+    Vec3 out = glm::cross(b - a, lightPlane_.normal);
+    const double outLength = glm::length(out);
+    if (!(outLength > 0)) continue;
+    out /= outLength;
+    if (glm::dot(out, inner - a) > 0) out = -out;
+    const Vec3 normal = glm::cross(a + margin * out - p, b + margin * out - p);
     const double length = glm::length(normal);
     if (!(length > 0)) continue;
-    const Vec3 unit = (glm::dot(normal, inner) < 0 ? -normal : normal) / length;
-    cone_.push_back(Plane{unit, -glm::dot(unit, p) + widen});
+    const Vec3 unit = (glm::dot(normal, inner - p) < 0 ? -normal : normal) / length;
+    cone_.push_back(Plane::throughPoint(unit, p));
   }
 }
 

@@ -59,7 +59,7 @@ class Backprojection {
   bool applies_ = false;
   Polygon3 front_;              // the light clipped to p's front half-space
   PlaneFrame frame_;            // 2D frame on the light's plane
-  std::vector<Plane> cone_;     // inward side planes of the cone from p over front_
+  std::vector<Plane> cone_;     // inward side planes of a cone from p over front_ plus a margin
   std::vector<Polygon2> visible_;
   bool occluded_ = false;
   size_t comparisons_ = 0;
