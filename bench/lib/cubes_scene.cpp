@@ -245,4 +245,16 @@ Scene makeCubesScene(const CubesSceneOptions& options) {
   return Scene(std::move(lights), std::move(materials), std::move(objects), camera);
 }
 
+CubesSceneOptions mixedCubesOptions(uint64_t seed) {
+  CubesSceneOptions options;
+  options.cubes = 1 + int(seed % 6);
+  options.seed = seed;
+  options.lightScale = seed % 3 == 0 ? 0.2 : 1.0;
+  options.tiltedLight = seed % 4 == 1;
+  options.twoLights = seed % 5 == 2;
+  options.stackedFraction = seed % 2 ? 0.4 : 0.0;
+  options.thinTables = seed % 6 == 3 ? 0.3 : 0.0;
+  return options;
+}
+
 }  // namespace penumbra

@@ -27,6 +27,11 @@ struct CubesSceneOptions {
 // Every object is placed with a transform (translate, rotate about y, scale).
 Scene makeCubesScene(const CubesSceneOptions& options);
 
+// The mix of options the property tests sweep, one scene per seed: 1–6 cubes, a
+// light 5× smaller on every third seed, tilted on every fourth, two lights on every
+// fifth, stacked cubes on odd seeds, tables on every sixth.
+CubesSceneOptions mixedCubesOptions(uint64_t seed);
+
 // Room dimensions used by makeCubesScene (for tests and benchmark reports).
 struct CubesRoom {
   double side = 0;    // floor is [-side/2, side/2]² in x and z

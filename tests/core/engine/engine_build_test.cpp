@@ -89,15 +89,8 @@ TEST(EngineBuild, DemoScenesMatchReference) {
 
 TEST(EngineBuild, GeneratedScenesMatchReference) {
   size_t scenes = 0, vertices = 0, valueErrors = 0, classErrors = 0;
-  for (uint64_t seed = 1; seed <= 40; ++seed) {
-    CubesSceneOptions options;
-    options.cubes = 2 + int(seed % 7);
-    options.seed = seed;
-    options.lightScale = seed % 3 == 0 ? 0.2 : 1.0;
-    options.tiltedLight = seed % 4 == 1;
-    options.twoLights = seed % 5 == 2;
-    options.stackedFraction = seed % 2 ? 0.4 : 0.0;
-    options.thinTables = seed % 6 == 3 ? 0.3 : 0.0;
+  for (uint64_t seed = 1; seed <= 200; ++seed) {
+    const CubesSceneOptions options = mixedCubesOptions(seed);
     SCOPED_TRACE(seed);
     Engine engine(makeCubesScene(options));
     engine.validate();

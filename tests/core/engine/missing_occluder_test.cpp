@@ -93,14 +93,7 @@ TEST(OccluderLists, OfficeListsEveryBlockerAroundEveryVertex) {
 TEST(OccluderLists, GeneratedScenesListEveryBlockerAroundEveryVertex) {
   Counts total;
   for (uint64_t seed = 1; seed <= 40; ++seed) {
-    CubesSceneOptions options;  // the scenes of EngineBuild.GeneratedScenesMatchReference
-    options.cubes = 2 + int(seed % 7);
-    options.seed = seed;
-    options.lightScale = seed % 3 == 0 ? 0.2 : 1.0;
-    options.tiltedLight = seed % 4 == 1;
-    options.twoLights = seed % 5 == 2;
-    options.stackedFraction = seed % 2 ? 0.4 : 0.0;
-    options.thinTables = seed % 6 == 3 ? 0.3 : 0.0;
+    const CubesSceneOptions options = mixedCubesOptions(seed);
     SCOPED_TRACE(seed);
     const Engine engine(makeCubesScene(options));
     const Counts c = checkLists(engine);
