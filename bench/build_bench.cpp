@@ -62,18 +62,36 @@ MonteCarloCost monteCarloCost(const Scene& scene, const std::vector<Vec3>& posit
   return cost;
 }
 
-// Relative L1 interpolation error Σ|mesh − exact| / Σ exact over the points.
-double interpolationError(const Mesh& mesh, const std::vector<SurfacePoint>& points,
-                          const std::vector<double>& exact) {
+struct InterpolationError {
+  double meanRelative = 0;  // mean of |mesh − exact| / exact over points with exact > 0
+  double relativeL1 = 0;    // Σ|mesh − exact| / Σ exact over all points
+  double darkLeak = 0;      // share of points with exact = 0 where the mesh is not 0
+};
+
+InterpolationError interpolationError(const Mesh& mesh, const std::vector<SurfacePoint>& points,
+                                      const std::vector<double>& exact) {
   const MeshInterpolator interpolator(mesh);
-  double error = 0, total = 0;
+  InterpolationError out;
+  double error = 0, total = 0, relative = 0;
+  size_t lit = 0, dark = 0, leaks = 0;
   for (size_t i = 0; i < points.size(); ++i) {
     const auto value = interpolator.at(points[i].face, points[i].position);
     if (!value) continue;
-    error += std::abs(value->x - exact[i]);
+    const double difference = std::abs(value->x - exact[i]);
+    error += difference;
     total += exact[i];
+    if (exact[i] > 0) {
+      relative += difference / exact[i];
+      ++lit;
+    } else {
+      ++dark;
+      leaks += value->x > 0;
+    }
   }
-  return total > 0 ? error / total : 0;
+  out.meanRelative = lit ? relative / double(lit) : 0;
+  out.relativeL1 = total > 0 ? error / total : 0;
+  out.darkLeak = dark ? double(leaks) / double(dark) : 0;
+  return out;
 }
 
 }  // namespace
@@ -132,16 +150,20 @@ nlohmann::json runBuildBench(const BenchArgs& args) {
         const double perFace = double(mesh.vertexCount()) / double(std::max<size_t>(1, mesh.receivers.size()));
         const int grid = std::max(1, int(std::lround(std::sqrt(perFace) - 1)));
         const Mesh gridMesh = referenceGridMesh(scene, grid);
-        const double dmError = interpolationError(mesh, points, exact);
-        const double gridError = interpolationError(gridMesh, points, exact);
-        ratio = gridError > 0 ? dmError / gridError : NAN;
+        const InterpolationError dm = interpolationError(mesh, points, exact);
+        const InterpolationError onGrid = interpolationError(gridMesh, points, exact);
+        ratio = onGrid.meanRelative > 0 ? dm.meanRelative / onGrid.meanRelative : NAN;
         quality = {{"points", points.size()},
                    {"dm_vertices", mesh.vertexCount()},
                    {"grid", grid},
                    {"grid_vertices", gridMesh.vertexCount()},
-                   {"dm_relative_l1_error", dmError},
-                   {"grid_relative_l1_error", gridError},
-                   {"dm_over_grid", ratio}};
+                   {"dm_mean_relative_error", dm.meanRelative},
+                   {"grid_mean_relative_error", onGrid.meanRelative},
+                   {"dm_over_grid", ratio},
+                   {"dm_relative_l1_error", dm.relativeL1},
+                   {"grid_relative_l1_error", onGrid.relativeL1},
+                   {"dm_dark_points_lit", dm.darkLeak},
+                   {"grid_dark_points_lit", onGrid.darkLeak}};
       }
       const BuildTimings& t = stats.seconds;
       std::printf("%6d %5.1f %6zu %8zu %8zu %7zu %8zu %9zu %6.2f | %9.3f %7.0f%% %7.0f%% | %9.1f %9.0f %8.3f\n",

@@ -11,6 +11,7 @@
 #include "core/geom/clip.h"
 #include "core/illum/face_lookup.h"
 #include "core/mesh/cell_triangulation.h"
+#include "core/mesh/lattice_split.h"
 #include "core/shadow/cast_shadow.h"
 
 namespace penumbra {
@@ -218,46 +219,89 @@ void Engine::illuminate(Receiver& receiver) {
   }
 }
 
+namespace {
+
+// Output vertices of one receiver: points within eps are one location (lattice
+// cuts of a shared edge come from each side), and a location repeats once per
+// distinct value (value discontinuities, dark cells).
+class ReceiverMeshBuilder {
+ public:
+  ReceiverMeshBuilder(ReceiverMesh& mesh, const PlaneFrame& frame, double eps)
+      : mesh_(mesh), frame_(frame), eps_(eps) {}
+
+  uint32_t vertex(const Vec2& at, const VertexIrradiance& value) {
+    const auto key = std::make_tuple(location(at), value.irradiance.x, value.irradiance.y,
+                                     value.irradiance.z, value.lightClass);
+    const auto [it, added] = index_.emplace(key, uint32_t(mesh_.positions.size()));
+    if (added) {
+      mesh_.positions.push_back(frame_.to3D(locations_[std::get<0>(key)]));
+      mesh_.irradiance.push_back(value.irradiance);
+      mesh_.classes.push_back(value.lightClass);
+    }
+    return it->second;
+  }
+
+ private:
+  // Buckets of side 2·eps: a point merges with the first earlier one within eps.
+  uint32_t location(const Vec2& at) {
+    const double side = 2 * eps_;
+    const long x = long(std::floor(at.x / side)), y = long(std::floor(at.y / side));
+    for (long dx = -1; dx <= 1; ++dx)
+      for (long dy = -1; dy <= 1; ++dy) {
+        const auto bucket = buckets_.find({x + dx, y + dy});
+        if (bucket == buckets_.end()) continue;
+        for (uint32_t id : bucket->second)
+          if (glm::length(locations_[id] - at) <= eps_) return id;
+      }
+    const uint32_t id = uint32_t(locations_.size());
+    locations_.push_back(at);
+    buckets_[{x, y}].push_back(id);
+    return id;
+  }
+
+  ReceiverMesh& mesh_;
+  const PlaneFrame& frame_;
+  double eps_;
+  std::vector<Vec2> locations_;
+  std::map<std::pair<long, long>, std::vector<uint32_t>> buckets_;
+  std::map<std::tuple<uint32_t, double, double, double, LightClass>, uint32_t> index_;
+};
+
+}  // namespace
+
 Mesh Engine::mesh() {
   const auto start = Clock::now();
   Mesh out;
   const double eps = scene_.tolerance().length();
   const double onPlane = scene_.tolerance().onPlane();
+  const double spacing = meshSpacing();
   const size_t lightCount = scene_.lights().size();
   for (const Receiver& receiver : receivers_) {
     const DmTree& tree = receiver.tree;
     const HalfEdgeMesh& halfEdges = tree.mesh();
     const Vec3 normal = receiver.frame.normal;
 
-    // Vertices on a value discontinuity (D0: an occluder of a cell around them has
-    // its plane through them, i.e. touches the receiver there) take their value
-    // per side, as the limit from each cell.
-    std::vector<bool> onContact(halfEdges.vertexSlots(), false);
+    // A point is on a value discontinuity (D0) when an occluder of a cell around it
+    // has its plane through it (it touches the receiver there): it then takes its
+    // value per side, as the limit from each cell.
+    auto onContact = [&](const Vec3& p, const OccluderList& list) {
+      for (const OccluderEntry& entry : list) {
+        const Face* face = findFace(scene_, entry.face);
+        if (face && std::abs(face->plane.signedDistance(p)) <= onPlane) return true;
+      }
+      return false;
+    };
+    std::vector<bool> treeVertexOnContact(halfEdges.vertexSlots(), false);
     for (VertexId v : tree.vertices()) {
       const Vec3 p = receiver.frame.to3D(tree.position(v));
-      for (CellId c : tree.cellsAround(v)) {
-        for (const OccluderEntry& entry : tree.occluders(c)) {
-          const Face* face = findFace(scene_, entry.face);
-          if (face && std::abs(face->plane.signedDistance(p)) <= onPlane) onContact[v.index] = true;
-        }
-      }
+      for (CellId c : tree.cellsAround(v))
+        if (onContact(p, tree.occluders(c))) treeVertexOnContact[v.index] = true;
     }
+
     ReceiverMesh result;
     result.face = receiver.face;
     result.normal = normal;
-    // One output vertex per (tree vertex, value): copies only where values differ.
-    std::map<std::tuple<uint32_t, double, double, double, LightClass>, uint32_t> outputIndex;
-    auto emit = [&](uint32_t key, const Vec3& position, const VertexIrradiance& value) {
-      const auto id = std::make_tuple(key, value.irradiance.x, value.irradiance.y,
-                                      value.irradiance.z, value.lightClass);
-      const auto [it, added] = outputIndex.emplace(id, uint32_t(result.positions.size()));
-      if (added) {
-        result.positions.push_back(position);
-        result.irradiance.push_back(value.irradiance);
-        result.classes.push_back(value.lightClass);
-      }
-      return it->second;
-    };
+    ReceiverMeshBuilder builder(result, receiver.frame, eps);
 
     for (CellId c : tree.cells()) {
       const OccluderList& list = tree.occluders(c);
@@ -269,35 +313,51 @@ Mesh Engine::mesh() {
       const auto loop = halfEdges.loop(c);
       Polygon2 polygon;
       for (HalfEdgeId h : loop) polygon.push_back(tree.position(halfEdges.halfEdge(h).origin));
-      Vec3 centre3{0.0};
-      for (const Vec2& q : polygon) centre3 += receiver.frame.to3D(q);
-      centre3 /= double(polygon.size());
+      Vec3 centre{0.0};
+      for (const Vec2& q : polygon) centre += receiver.frame.to3D(q);
+      centre /= double(polygon.size());
 
-      std::vector<uint32_t> corners;
-      for (HalfEdgeId h : loop) {
-        const VertexId v = halfEdges.halfEdge(h).origin;
-        const Vec3 p = receiver.frame.to3D(tree.position(v));
-        VertexIrradiance value = receiver.values[v.index];
-        if (onContact[v.index]) {
-          value = illuminatePointFromCell(scene_, p, normal, centre3 - p, list);
-        } else if (anyDark) {
-          value = sumLights(scene_, receiver.perLight[v.index], &dark);
+      // The value of a point of this cell's closure, as seen from this cell.
+      auto valueAt = [&](const Vec2& q) {
+        const Vec3 p = receiver.frame.to3D(q);
+        for (size_t i = 0; i < polygon.size(); ++i) {
+          if (polygon[i] != q) continue;
+          const VertexId v = halfEdges.halfEdge(loop[i]).origin;
+          if (treeVertexOnContact[v.index]) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
+          if (anyDark) return sumLights(scene_, receiver.perLight[v.index], &dark);
+          return receiver.values[v.index];
         }
-        corners.push_back(emit(v.index, p, value));
+        // A lattice point: lit exactly from this cell's list (cases 2 and 3 keep it
+        // dark in a light's umbra).
+        if (onContact(p, list)) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
+        return illuminatePoint(scene_, p, normal, {&list});
+      };
+
+      for (const Polygon2& piece : splitByLattice(polygon, spacing, eps)) {
+        std::vector<uint32_t> corners;
+        for (const Vec2& q : piece) corners.push_back(builder.vertex(q, valueAt(q)));
+        const CellTriangulation triangulation = triangulateConvexCell(piece, eps);
+        if (triangulation.usesCentre) {
+          Vec2 middle{0.0};
+          for (const Vec2& q : piece) middle += q;
+          middle /= double(piece.size());
+          corners.push_back(
+              builder.vertex(middle, illuminatePoint(scene_, receiver.frame.to3D(middle), normal, {&list})));
+        }
+        for (const auto& t : triangulation.triangles)
+          result.triangles.push_back({corners[t[0]], corners[t[1]], corners[t[2]]});
       }
-      const CellTriangulation triangulation = triangulateConvexCell(polygon, eps);
-      if (triangulation.usesCentre) {
-        const VertexIrradiance value = illuminatePoint(scene_, centre3, normal, {&list});
-        // Centre points are unique to their cell: key them past every tree vertex.
-        corners.push_back(emit(uint32_t(halfEdges.vertexSlots() + c.index), centre3, value));
-      }
-      for (const auto& t : triangulation.triangles)
-        result.triangles.push_back({corners[t[0]], corners[t[1]], corners[t[2]]});
     }
     out.receivers.push_back(std::move(result));
   }
   stats_.seconds.triangulation = secondsSince(start);
   return out;
+}
+
+double Engine::meshSpacing() const {
+  if (settings_.meshSpacing > 0) return settings_.meshSpacing;
+  if (settings_.meshSpacing < 0) return 0;
+  return scene_.bounds().diagonal() / EngineSettings::kDefaultSpacingDivisions;
 }
 
 void Engine::validate() const {

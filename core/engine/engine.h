@@ -23,6 +23,11 @@ namespace penumbra {
 
 struct EngineSettings {
   int overlapGrid = 0;  // tiles per cube side; 0 = chosen from the face count
+  // Display subdivision: cells are also cut by a lattice of this spacing (metres)
+  // on each face, so smoothly lit regions get vertices too; 0 = the scene's
+  // diagonal / kDefaultSpacingDivisions, negative = none (the bare DM cells).
+  double meshSpacing = 0;
+  static constexpr double kDefaultSpacingDivisions = 32;
 };
 
 // Called with (step name, done, total) as a long build proceeds; may be empty.
@@ -49,10 +54,14 @@ class Engine {
   // The receivers a face has cast a shadow on (paper §3.1: removal starts there).
   const std::set<FaceId>& castOn(FaceId occluder) const;
 
-  // Triangulates every cell. Vertices repeat once per side where the value jumps
-  // (contact edges, cells in a light's umbra), so no triangle interpolates across
-  // a value discontinuity and umbra cells stay dark. Adds its time to stats().
+  // Triangulates every cell (cut further by the display lattice, see
+  // EngineSettings::meshSpacing). Vertices repeat once per side where the value
+  // jumps (contact edges, cells in a light's umbra), so no triangle interpolates
+  // across a value discontinuity and umbra cells stay dark. Adds its time to stats().
   Mesh mesh();
+
+  // The lattice spacing mesh() uses (0: none).
+  double meshSpacing() const;
 
   // Checks every structure the engine holds; throws std::logic_error.
   void validate() const;

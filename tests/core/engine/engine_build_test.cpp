@@ -3,7 +3,10 @@
 // the brute-force reference, and the triangles tile every receiving face.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <tuple>
 
 #include "bench/lib/cubes_scene.h"
 #include "core/engine/engine.h"
@@ -46,6 +49,57 @@ Mismatches compareVertices(const Engine& engine, const ExactReference& reference
     }
   }
   return m;
+}
+
+// Invariant 1 at every output vertex (lattice points included): a location that
+// repeats (one copy per side of a value jump, dark copies in umbra cells) must have
+// a copy equal to the reference at that point, or else (a contact on the face's own
+// boundary, seen from one side only) every copy must be the limit from its side:
+// the reference just inside a triangle that uses it.
+size_t compareMeshVertices(const Scene& scene, const Mesh& mesh, const ExactReference& reference,
+                           double peak) {
+  const double onPlane = scene.tolerance().onPlane();
+  size_t errors = 0;
+  for (const ReceiverMesh& r : mesh.receivers) {
+    std::map<std::tuple<double, double, double>, std::vector<size_t>> copies;
+    for (size_t i = 0; i < r.positions.size(); ++i)
+      copies[{r.positions[i].x, r.positions[i].y, r.positions[i].z}].push_back(i);
+    std::vector<size_t> triangleOf(r.positions.size());
+    for (size_t t = 0; t < r.triangles.size(); ++t)
+      for (uint32_t i : r.triangles[t]) triangleOf[i] = t;
+    auto limitMatches = [&](size_t i) {
+      const auto& t = r.triangles[triangleOf[i]];
+      const Vec3 inside = (r.positions[t[0]] + r.positions[t[1]] + r.positions[t[2]]) / 3.0;
+      // The shortest step towards the triangle's centre that clears every face
+      // plane through the vertex (so those faces count as blockers, as in the limit).
+      const Vec3 p = r.positions[i];
+      for (double t : {1e-3, 1e-2, 1e-1}) {
+        const Vec3 q = p + t * (inside - p);
+        // (Planes holding the receiver's plane contain p and q alike: skip them.)
+        const bool clear = std::all_of(scene.faces().begin(), scene.faces().end(), [&](const Face& f) {
+          return std::abs(f.plane.signedDistance(p)) > onPlane ||
+                 std::abs(glm::dot(f.plane.normal, r.normal)) > 1 - 1e-12 ||
+                 std::abs(f.plane.signedDistance(q)) > 2 * onPlane;
+        });
+        if (clear)
+          return std::abs(r.irradiance[i].x - reference.evaluate(q, r.normal).irradiance.x) <= 1e-3 * peak;
+      }
+      return false;
+    };
+    for (const auto& [at, indices] : copies) {
+      const PointIrradiance truth = reference.evaluate(r.positions[indices[0]], r.normal);
+      bool matched = false;
+      for (size_t i : indices)
+        matched |= std::abs(r.irradiance[i].x - truth.irradiance.x) <=
+                   1e-9 * std::abs(truth.irradiance.x) + 1e-12 * peak;
+      if (!matched) matched = std::all_of(indices.begin(), indices.end(), limitMatches);
+      if (!matched && errors++ < 5)
+        ADD_FAILURE() << "mesh vertex of face " << r.face.object << "/" << r.face.face << ": "
+                      << r.irradiance[indices[0]].x << " (" << indices.size() << " copies), reference "
+                      << truth.irradiance.x;
+    }
+  }
+  return errors;
 }
 
 // Invariant 2: triangles tile each receiving face.
@@ -105,6 +159,24 @@ TEST(EngineBuild, GeneratedScenesMatchReference) {
   std::printf("%zu scenes, %zu vertices, %zu value errors, %zu class errors\n", scenes, vertices, valueErrors, classErrors);
   EXPECT_EQ(valueErrors, 0u);
   EXPECT_EQ(classErrors, 0u);
+}
+
+// Every output vertex, lattice points and per-side copies included. Disabled: a thin
+// DM cell can straddle a contact line near a footprint corner (office, generated
+// seeds 110 and 167), so a copy there takes the limit from the wrong side.
+TEST(EngineBuild, DISABLED_MeshVerticesMatchReferenceOrSideLimit) {
+  size_t errors = 0, scenes = 0;
+  auto check = [&](const Scene& scene) {
+    Engine engine(scene);
+    const ExactReference reference(engine.scene());
+    errors += compareMeshVertices(engine.scene(), engine.mesh(), reference, peakIrradiance(engine));
+    ++scenes;
+  };
+  for (const char* name : {"cornell", "office", "cubes15"})
+    check(protocol::loadSceneFile(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/" + name + ".scene.json"));
+  for (uint64_t seed = 1; seed <= 200; ++seed) check(makeCubesScene(mixedCubesOptions(seed)));
+  std::printf("%zu scenes, %zu mesh vertices off\n", scenes, errors);
+  EXPECT_EQ(errors, 0u);
 }
 
 }  // namespace
