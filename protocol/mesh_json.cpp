@@ -37,7 +37,7 @@ ReceiverMesh receiverFromJson(const Json& value, const std::string& path, const 
   const std::string objectId = expectString(requireKey(value, "object", path), keyPath(path, "object"));
   const auto object = scene.findObject(objectId);
   if (!object) fail(keyPath(path, "object"), "unknown object '" + objectId + "'");
-  receiver.face.object = uint32_t(*object);
+  receiver.face.object = scene.handleOf(*object);
   receiver.face.face = expectIndex(requireKey(value, "face", path), keyPath(path, "face"),
                                    scene.objects()[*object].faces.size());
 
@@ -85,7 +85,7 @@ ReceiverMesh receiverFromJson(const Json& value, const std::string& path, const 
 Json meshToJson(const Scene& scene, const Mesh& mesh, const std::string& sceneName) {
   Json receivers = Json::array();
   for (const ReceiverMesh& r : mesh.receivers) {
-    const Object& object = scene.objects().at(r.face.object);
+    const Object& object = scene.object(r.face.object);
     if (r.face.face >= object.faces.size())
       throw std::out_of_range("mesh receiver names face " + std::to_string(r.face.face) + " of object '" +
                               object.id + "', which has " + std::to_string(object.faces.size()));

@@ -106,7 +106,7 @@ RayScene::RayScene(const Scene& scene) : faces_(scene.faces()), tolerance_(scene
     geometry.firstFace = faceIndex;
     std::vector<float> vertices;
     std::vector<uint32_t> triangles;
-    for (; faceIndex < faces_.size() && faces_[faceIndex].id.object == o; ++faceIndex) {
+    for (; faceIndex < faces_.size() && faces_[faceIndex].id.object == scene.handleOf(o); ++faceIndex) {
       const Polygon3& polygon = faces_[faceIndex].polygon;
       const uint32_t base = uint32_t(vertices.size() / 3);
       for (const Vec3& v : polygon) {

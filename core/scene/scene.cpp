@@ -18,15 +18,20 @@ Scene::Scene(std::vector<Light> lights, std::vector<Material> materials,
       objects_(std::move(objects)),
       camera_(std::move(camera)) {
   for (const Object& object : objects_) {
-    if (!object.material.empty() && !findMaterial(object.material))
-      throw std::invalid_argument("object '" + object.id + "' names unknown material '" +
-                                  object.material + "'");
-    for (const auto& face : object.faces)
-      for (int index : face)
-        if (index < 0 || size_t(index) >= object.vertices.size())
-          throw std::invalid_argument("object '" + object.id + "' has a face index out of range");
+    handles_.push_back(nextHandle_++);
+    checkReferences(object);
   }
   deriveFaces();
+}
+
+void Scene::checkReferences(const Object& object) const {
+  if (!object.material.empty() && !findMaterial(object.material))
+    throw std::invalid_argument("object '" + object.id + "' names unknown material '" +
+                                object.material + "'");
+  for (const auto& face : object.faces)
+    for (int index : face)
+      if (index < 0 || size_t(index) >= object.vertices.size())
+        throw std::invalid_argument("object '" + object.id + "' has a face index out of range");
 }
 
 std::vector<Polygon3> Scene::worldPolygons(const Object& object) {
@@ -38,6 +43,20 @@ std::vector<Polygon3> Scene::worldPolygons(const Object& object) {
     for (int index : indices) polygon.push_back(object.transform.apply(object.vertices[index]));
     if (object.transform.mirrors()) std::reverse(polygon.begin(), polygon.end());
     out.push_back(std::move(polygon));
+  }
+  return out;
+}
+
+std::vector<Face> Scene::facesOf(const Object& object, uint32_t handle) const {
+  checkReferences(object);
+  std::vector<Face> out;
+  const auto polygons = worldPolygons(object);
+  for (uint32_t f = 0; f < polygons.size(); ++f) {
+    const auto plane = planeOf(polygons[f]);
+    if (!plane)
+      throw std::invalid_argument("object '" + object.id + "' face " + std::to_string(f) +
+                                  " is degenerate");
+    out.push_back(Face{FaceId{handle, f}, polygons[f], *plane, area(polygons[f])});
   }
   return out;
 }
@@ -55,18 +74,59 @@ void Scene::deriveFaces() {
   };
   for (const Light& light : lights_)
     for (const Vec3& p : light.polygon) grow(p);
-  for (uint32_t o = 0; o < objects_.size(); ++o) {
-    const auto polygons = worldPolygons(objects_[o]);
-    for (uint32_t f = 0; f < polygons.size(); ++f) {
-      const auto plane = planeOf(polygons[f]);
-      if (!plane)
-        throw std::invalid_argument("object '" + objects_[o].id + "' face " + std::to_string(f) +
-                                    " is degenerate");
-      for (const Vec3& p : polygons[f]) grow(p);
-      faces_.push_back(Face{FaceId{o, f}, polygons[f], *plane, area(polygons[f])});
+  for (size_t o = 0; o < objects_.size(); ++o) {
+    for (Face& face : facesOf(objects_[o], handles_[o])) {
+      for (const Vec3& p : face.polygon) grow(p);
+      faces_.push_back(std::move(face));
     }
   }
   tolerance_ = Tolerance::forSize(bounds_.diagonal());
+}
+
+std::optional<size_t> Scene::indexOfHandle(uint32_t handle) const {
+  const auto it = std::lower_bound(handles_.begin(), handles_.end(), handle);
+  if (it == handles_.end() || *it != handle) return std::nullopt;
+  return size_t(it - handles_.begin());
+}
+
+const Object& Scene::object(uint32_t handle) const {
+  const auto index = indexOfHandle(handle);
+  if (!index) throw std::out_of_range("no object with handle " + std::to_string(handle));
+  return objects_[*index];
+}
+
+uint32_t Scene::addObject(Object object) {
+  if (findObject(object.id)) throw std::invalid_argument("duplicate object id '" + object.id + "'");
+  const uint32_t handle = nextHandle_;
+  std::vector<Face> faces = facesOf(object, handle);  // checks before changing anything
+  ++nextHandle_;
+  objects_.push_back(std::move(object));
+  handles_.push_back(handle);
+  // Handles only grow: the new faces sort after every existing one.
+  for (Face& face : faces) faces_.push_back(std::move(face));
+  return handle;
+}
+
+void Scene::removeObject(uint32_t handle) {
+  const auto index = indexOfHandle(handle);
+  if (!index) throw std::invalid_argument("no object with handle " + std::to_string(handle));
+  objects_.erase(objects_.begin() + long(*index));
+  handles_.erase(handles_.begin() + long(*index));
+  faces_.erase(std::remove_if(faces_.begin(), faces_.end(),
+                              [&](const Face& f) { return f.id.object == handle; }),
+               faces_.end());
+}
+
+void Scene::setTransform(uint32_t handle, const Transform& transform) {
+  const auto index = indexOfHandle(handle);
+  if (!index) throw std::invalid_argument("no object with handle " + std::to_string(handle));
+  Object moved = objects_[*index];
+  moved.transform = transform;
+  std::vector<Face> faces = facesOf(moved, handle);  // checks before changing anything
+  objects_[*index] = std::move(moved);
+  const auto first = std::lower_bound(faces_.begin(), faces_.end(), FaceId{handle, 0},
+                                      [](const Face& f, const FaceId& id) { return f.id < id; });
+  for (size_t f = 0; f < faces.size(); ++f) first[long(f)] = std::move(faces[f]);
 }
 
 std::optional<size_t> Scene::findObject(std::string_view id) const {
@@ -82,7 +142,7 @@ std::optional<size_t> Scene::findMaterial(std::string_view id) const {
 }
 
 Vec3 Scene::albedo(FaceId face) const {
-  const auto material = findMaterial(objects_.at(face.object).material);
+  const auto material = findMaterial(object(face.object).material);
   return material ? materials_[*material].albedo : Material{}.albedo;
 }
 

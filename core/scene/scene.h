@@ -1,6 +1,7 @@
 // The scene model: lights, materials, objects as authored, and the world-space
-// faces derived from them (stable ids: object index + face index). Owned by one
-// writer (the engine or a loader); const access is thread-safe.
+// faces derived from them (stable ids: object handle + face index; handles are
+// assigned in order and never reused, so edits never renumber other faces).
+// Owned by one writer (the engine or a loader); const access is thread-safe.
 #pragma once
 
 #include <cstdint>
@@ -52,7 +53,7 @@ struct Camera {
 };
 
 struct FaceId {
-  uint32_t object = 0;  // index into Scene::objects()
+  uint32_t object = 0;  // the object's stable handle (Scene::handleOf; never reused)
   uint32_t face = 0;    // index into that object's faces
   bool operator==(const FaceId&) const = default;
   auto operator<=>(const FaceId&) const = default;
@@ -85,11 +86,16 @@ class Scene {
   const std::vector<Light>& lights() const { return lights_; }
   const std::vector<Material>& materials() const { return materials_; }
   const std::vector<Object>& objects() const { return objects_; }
+  // Stable handles: objects() is ordered by handle; a loaded scene's handles are
+  // 0..n-1, objects added later get new ones.
+  uint32_t handleOf(size_t objectIndex) const { return handles_[objectIndex]; }
+  std::optional<size_t> indexOfHandle(uint32_t handle) const;
+  const Object& object(uint32_t handle) const;
   const std::optional<Camera>& camera() const { return camera_; }
   // All faces of all objects in world space, ordered by (object, face).
   const std::vector<Face>& faces() const { return faces_; }
 
-  std::optional<size_t> findObject(std::string_view id) const;
+  std::optional<size_t> findObject(std::string_view id) const;  // index into objects()
   std::optional<size_t> findMaterial(std::string_view id) const;
   // Albedo of a face's object (the default material when it names none).
   Vec3 albedo(FaceId face) const;
@@ -104,12 +110,25 @@ class Scene {
   // World-space polygons of one object's faces (winding fixed for mirrors).
   static std::vector<Polygon3> worldPolygons(const Object& object);
 
+  // Edits (the engine's, after it has validated them). Bounds and tolerance stay
+  // those of the scene as constructed: every geometric decision keeps one scale.
+  // Throw std::invalid_argument (changing nothing) on an unknown material, a bad
+  // face index, a degenerate world face, a duplicate id or an unknown handle.
+  uint32_t addObject(Object object);
+  void removeObject(uint32_t handle);
+  void setTransform(uint32_t handle, const Transform& transform);
+  // The world faces an object would have (checks it like addObject).
+  std::vector<Face> facesOf(const Object& object, uint32_t handle) const;
+
  private:
+  void checkReferences(const Object& object) const;
   void deriveFaces();
 
   std::vector<Light> lights_;
   std::vector<Material> materials_;
   std::vector<Object> objects_;
+  std::vector<uint32_t> handles_;  // parallel to objects_, increasing
+  uint32_t nextHandle_ = 0;
   std::optional<Camera> camera_;
   std::vector<Face> faces_;
   Bounds bounds_;
