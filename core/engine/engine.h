@@ -12,6 +12,7 @@
 
 #include "core/dmtree/dm_tree.h"
 #include "core/engine/build_stats.h"
+#include "core/engine/frame.h"
 #include "core/geom/plane_frame.h"
 #include "core/illum/vertex_illumination.h"
 #include "core/mesh/mesh.h"
@@ -39,6 +40,15 @@ class Engine {
 
   const Scene& scene() const { return scene_; }
   const BuildStats& stats() const { return stats_; }
+  // 0 after the build, +1 per applied frame.
+  uint64_t version() const { return version_; }
+
+  // Applies a frame's edits together and relights once (paper §3). Checks every
+  // edit first: on any invalid one, throws EditError and changes nothing.
+  FrameResult apply(const Frame& frame);
+
+  // The scene after a frame, without changing anything (throws EditError).
+  Scene sceneAfter(const Frame& frame) const;
 
   // The receiving faces, in Scene::faces() order.
   struct Receiver {
@@ -72,6 +82,7 @@ class Engine {
 
   Scene scene_;
   EngineSettings settings_;
+  uint64_t version_ = 0;
   std::vector<std::unique_ptr<FaceOrder>> orders_;   // per light
   std::vector<std::unique_ptr<OverlapCube>> cubes_;  // per light
   std::vector<Receiver> receivers_;

@@ -1,0 +1,62 @@
+// A frame of edits (SCENE_FORMAT.md edit scripts, already parsed) and what applying
+// it did. Plain data; built by protocol or callers, consumed by Engine::apply.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/scene/scene.h"
+
+namespace penumbra {
+
+struct Edit {
+  enum class Op { Move, Add, Remove };
+  Op op = Op::Move;
+  std::string id;       // move, remove: an existing object's id; add: object.id
+  Transform transform;  // move: the new absolute transform
+  Object object;        // add: the new object (transform included)
+};
+
+struct Frame {
+  std::vector<Edit> edits;
+};
+
+struct FrameTimings {
+  double remove = 0;   // seconds: faces leaving the order, cube and DM-trees
+  double add = 0;      // faces entering them, shadows cast both ways
+  double relight = 0;  // vertices relit
+  double total() const { return remove + add + relight; }
+};
+
+struct FrameResult {
+  uint64_t version = 0;            // the scene version after the frame
+  FrameTimings seconds;
+  size_t verticesRelit = 0;        // DM vertices illuminated again
+  size_t verticesChanged = 0;      // of those, the ones whose value changed
+  size_t verticesCreated = 0;      // new DM vertices (relit, counted in verticesRelit)
+  std::vector<FaceId> changedReceivers;  // receivers whose mesh changed (ids in the new scene)
+  std::vector<FaceId> removedReceivers;  // receivers that left the scene
+  size_t nodesDeleted = 0;         // DM-tree nodes removed by node deletion
+  size_t treeRebuilds = 0;         // fallback: receivers' DM-trees rebuilt from scratch
+};
+
+// A frame refused before anything changed: which edit, the key path inside it
+// (e.g. "transform.scale"), and the problem.
+class EditError : public std::invalid_argument {
+ public:
+  EditError(size_t editIndex, std::string path, const std::string& problem)
+      : std::invalid_argument("edits[" + std::to_string(editIndex) + "]" +
+                              (path.empty() ? "" : "." + path) + ": " + problem),
+        editIndex_(editIndex),
+        path_(std::move(path)) {}
+  size_t editIndex() const { return editIndex_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  size_t editIndex_;
+  std::string path_;
+};
+
+}  // namespace penumbra
