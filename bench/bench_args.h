@@ -17,6 +17,11 @@ struct BenchArgs {
   int maxSamples = 1 << 16;
   int qualityMaxCubes = 150;  // mesh-quality comparison only up to this scene size
   std::string jsonOut;  // empty: no JSON file
+  // edits: --cubes given (else 150,1500,5000), --frames (drag frames, 0 = by size),
+  // --html OUT, --write-scripts DIR --scene FILE (write that scene's scripts only).
+  bool cubesGiven = false;
+  int frames = 0;
+  std::string htmlOut, writeScripts, scenePath;
 };
 
 // Throws std::invalid_argument naming the bad option.
@@ -24,5 +29,6 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first);
 
 nlohmann::json runReferenceBench(const BenchArgs& args);
 nlohmann::json runBuildBench(const BenchArgs& args);
+nlohmann::json runEditsBench(const BenchArgs& args);
 
 }  // namespace penumbra::bench

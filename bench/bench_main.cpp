@@ -19,6 +19,7 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first) {
     try {
       if (name == "--cubes") {
         args.cubes.clear();
+        args.cubesGiven = true;
         std::stringstream list(value);
         for (std::string item; std::getline(list, item, ',');) args.cubes.push_back(std::stoi(item));
       } else if (name == "--seed") {
@@ -31,6 +32,14 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first) {
         args.maxSamples = std::stoi(value);
       } else if (name == "--quality-max-cubes") {
         args.qualityMaxCubes = std::stoi(value);
+      } else if (name == "--frames") {
+        args.frames = std::stoi(value);
+      } else if (name == "--html") {
+        args.htmlOut = value;
+      } else if (name == "--write-scripts") {
+        args.writeScripts = value;
+      } else if (name == "--scene") {
+        args.scenePath = value;
       } else if (name == "--json") {
         args.jsonOut = value;
       } else {
@@ -48,11 +57,14 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first) {
 int main(int argc, char** argv) {
   using namespace penumbra::bench;
   constexpr const char* kUsage =
-      "usage: penumbra-bench reference|build [--cubes 15,150,1500] [--seed S] [--light-scale F]\n"
+      "usage: penumbra-bench reference|build|edits [--cubes 15,150,1500] [--seed S] [--light-scale F]\n"
       "                      [--points K] [--max-samples N] [--quality-max-cubes N] [--json OUT]\n"
+      "                      edits: [--frames F] [--html OUT] | --write-scripts DIR --scene FILE\n"
       "  reference: exact reference and Monte Carlo cost per point\n"
       "  build:     DM build times and counters at light scales 1 and 0.2, Monte Carlo cost for\n"
-      "             1% RMS on the same penumbra vertices, DM vs equal-vertex grid error\n";
+      "             1% RMS on the same penumbra vertices, DM vs equal-vertex grid error\n"
+      "  edits:     edit scripts (drag, move 1/5/10/30% of faces, remove-add, build-up) per frame vs a\n"
+      "             full rebuild, default --cubes 150,1500,5000; --html writes the report\n";
   if (argc < 2) {
     std::fputs(kUsage, stderr);
     return 2;
@@ -65,6 +77,8 @@ int main(int argc, char** argv) {
       result = runReferenceBench(args);
     } else if (benchmark == "build") {
       result = runBuildBench(args);
+    } else if (benchmark == "edits") {
+      result = runEditsBench(args);
     } else {
       std::fputs(kUsage, stderr);
       return 2;

@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/engine/engine.h"
+#include "interchange/dm_edges.h"
+#include "interchange/glb_export.h"
 #include "protocol/mesh_json.h"
 #include "protocol/scene_json.h"
 #include "server/commands.h"
@@ -51,7 +53,7 @@ nlohmann::json statsJson(const BuildStats& s, const Mesh& mesh) {
 }  // namespace
 
 int runBuild(const Args& args) {
-  args.allowOnly({"out", "grid"});
+  args.allowOnly({"out", "grid", "color-scale"});
   const std::string scenePath = args.positional(0, "SCENE");
   const auto out = args.option("out");
   if (!out) throw UsageError("build needs --out MESH");
@@ -66,7 +68,15 @@ int runBuild(const Args& args) {
   casting.finish();
   illumination.finish();
   const Mesh mesh = engine.mesh();
-  protocol::saveMeshFile(engine.scene(), mesh, std::filesystem::path(scenePath).filename().string(), *out);
+  if (std::filesystem::path(*out).extension() == ".glb") {  // glTF binary (interchange/glb_export.h)
+    interchange::GlbOptions glb;
+    glb.colorScale = args.doubleOption("color-scale", 0);
+    if (args.flag("edges")) glb.edges = interchange::dmEdges(engine);
+    const interchange::GlbFile file = interchange::saveMeshGlb(engine.scene(), mesh, *out, glb);
+    std::fprintf(stderr, "GLB COLOR_0 = radiance (W m^-2 sr^-1) x %.9g\n", file.colorScale);
+  } else {
+    protocol::saveMeshFile(engine.scene(), mesh, std::filesystem::path(scenePath).filename().string(), *out);
+  }
 
   const BuildStats& stats = engine.stats();
   if (args.flag("stats")) {

@@ -12,5 +12,9 @@ int runInfo(const Args& args);
 int runReference(const Args& args);
 int runGenerate(const Args& args);
 int runBuild(const Args& args);
+int runImport(const Args& args);
+int runRender(const Args& args);
+int runServe(const Args& args);
+int runReplay(const Args& args);
 
 }  // namespace penumbra::cli

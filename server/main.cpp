@@ -17,10 +17,21 @@ commands:
   info SCENE                           faces, lights, bounds and per-light face classes
   reference SCENE --grid N --out MESH  exact reference irradiance on an N×N grid per receiving face
   build SCENE --out MESH [--stats]     the discontinuity mesh; --stats prints counters and timings as JSON
+           [--color-scale S] [--edges] MESH ending in .glb: glTF binary, COLOR_0 = radiance × S
            [--grid G]                  overlap-cube tiles per side (default: from the face count)
+  render SCENE --out IMG.png|IMG.exr   an image shaded by the DM mesh (built, or --mesh MESH);
+         [--width W] [--height H]      default 512×512, at most 8192 per side
+         [--camera JSON|FILE]          default: the scene's camera, else a view of its bounds
+         [--reference] [--stats]       shade with the exact reference; print timings as JSON
+  import FILE --out SCENE               an OBJ (+MTL), glTF or GLB file as a scene; repairs on stderr
+           [--scale S] [--light-radiance R,G,B] [--report REPORT.json]
   generate --cubes N --out SCENE       a seeded 'N random cubes in a room' scene
            [--seed S] [--light-scale F] [--stacked-fraction F] [--tilted-light]
            [--two-lights] [--tables FRACTION]
+  replay SCENE EDITS.jsonl             apply an edit script frame by frame; per-frame times and counts
+         [--verify] [--verify-every K] [--report OUT.json] [--out MESH]
+  serve [SCENE...] [--host H]          the HTTP API and web page (docs/API.md) on the scenes;
+        [--port P] [--static DIR]      default 127.0.0.1:8080 and ./web_client; prints the URL
   help                                 this text
 )";
 
@@ -34,7 +45,11 @@ int dispatch(int argc, char** argv) {
   if (command == "validate") return runValidate(Args(argc, argv, 2, {}));
   if (command == "info") return runInfo(Args(argc, argv, 2, {}));
   if (command == "reference") return runReference(Args(argc, argv, 2, {}));
-  if (command == "build") return runBuild(Args(argc, argv, 2, {"stats"}));
+  if (command == "build") return runBuild(Args(argc, argv, 2, {"stats", "edges"}));
+  if (command == "import") return runImport(Args(argc, argv, 2, {}));
+  if (command == "render") return runRender(Args(argc, argv, 2, {"reference", "stats"}));
+  if (command == "replay") return runReplay(Args(argc, argv, 2, {"verify"}));
+  if (command == "serve") return runServe(Args(argc, argv, 2, {}));
   if (command == "generate") return runGenerate(Args(argc, argv, 2, {"tilted-light", "two-lights"}));
   throw UsageError("unknown command '" + command + "'");
 }

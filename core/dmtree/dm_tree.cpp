@@ -9,8 +9,17 @@ namespace penumbra {
 
 DmTree::DmTree(const Polygon2& receiver, const Tolerance& tolerance) : tolerance_(tolerance) {
   const CellId c = mesh_.reset(receiver, tolerance_.length());
-  receiverArea_ = signedArea(mesh_.polygon(c));
+  receiver_ = mesh_.polygon(c);
+  receiverArea_ = signedArea(receiver_);
   root_ = addNode(NodeId(), c);
+}
+
+void DmTree::record(const OccluderKey& key, const SingleShadow& shadow, const SingleTree& tree) {
+  Inserted& entry = inserted_[key];
+  entry.segments = tree.segments();
+  entry.penumbra = tree.penumbra;
+  entry.shadow = shadow;
+  entry.sequence = nextSequence_++;
 }
 
 NodeId DmTree::addNode(NodeId parent, CellId cell) {

@@ -38,10 +38,20 @@ struct InsertResult {
 
 struct RemoveResult {
   bool found = false;                     // the occluder had been inserted
-  std::vector<CellId> changedCells;       // cells that lost the occluder (may have died in condensing)
+  // Cells that lost the occluder or whose outline changed (re-split, extended or
+  // merged); some may have died later in the same removal: check cell(c).alive.
+  std::vector<CellId> changedCells;
   std::vector<VertexId> removedVertices;
-  size_t nodesRemoved = 0;  // splitting nodes condensed away
-  size_t nodesKept = 0;     // its nodes left as construction edges (orphans), see TODO below
+  std::vector<VertexId> newVertices;      // made by extending or re-inserting edges
+  size_t nodesRemoved = 0;    // the occluder's splitting nodes deleted (paper §3.1)
+  size_t nodesRelabeled = 0;  // its nodes kept because a live occluder's segment lies on them
+  size_t nodesKept = 0;       // its nodes left as orphan construction edges (0 unless a step failed)
+  size_t nodesCollapsed = 0;  // other occluders' nodes merged away in a re-inserted subtree
+  size_t nodesReinserted = 0; // nodes made re-inserting that subtree's live segments
+  size_t nodesCondensed = 0;  // splits of homogeneous cells removed afterwards
+  // A geometric step failed and the tree was rebuilt from its stored shadows: every
+  // earlier CellId/VertexId is invalid (the caller relights everything).
+  bool rebuilt = false;
 };
 
 class DmTree {
@@ -53,11 +63,17 @@ class DmTree {
   // std::invalid_argument, before changing anything, if (light, occluder) is already in.
   InsertResult insert(const SingleShadow& shadow);
 
-  // Removes every trace of one occluder: its occluder-list entries, and its nodes where
-  // both children are leaves with equal lists (bottom-up condensing).
-  // TODO(§3.1): a node of the occluder with a non-leaf subtree is kept as an orphan
-  // construction edge; the paper's three-step deletion (unlink, extend dangling edges of
-  // the cheaper subtree, E[cost_a] = D_a·size_b, insert the other) is not done yet.
+  // Removes every trace of one occluder: its occluder-list entries (visiting only the
+  // cells under its penumbra) and its nodes, top-down (paper §3.1; those inside a
+  // collapsed subtree go with it). A node with two subtrees is deleted in three steps:
+  // unlink its edge; take as basis the subtree a minimising E[cost_a] = (D_a + 1)·size_b
+  // (D_a: dangling edges on a's side, size_b: live occluders' nodes in the other) and
+  // extend a's dangling edges across the freed cell; re-insert b's live discontinuity
+  // segments (b collapsed into one cell, each new cell's list read from the old cell
+  // around one point); then condense extended splits of homogeneous cells. A node on
+  // which a still-inserted occluder's segment lies is relabeled to it, not deleted. If
+  // a geometric step fails (std::logic_error) the tree is rebuilt from the stored
+  // shadows and `rebuilt` is set (a counted fallback, never the normal path).
   RemoveResult removeOccluder(uint32_t light, FaceId occluder);
 
   std::vector<CellId> cells() const;
@@ -74,6 +90,7 @@ class DmTree {
   const DmNode& node(NodeId n) const { return nodes_[n.index]; }
   const HalfEdgeMesh& mesh() const { return mesh_; }
   size_t nodeCount() const { return liveNodes_; }  // leaves included
+  size_t nodeSlots() const { return nodes_.size(); }  // dead nodes included
   size_t internalNodeCount() const { return liveNodes_ - mesh_.cellCount(); }
   size_t cellCount() const { return mesh_.cellCount(); }
   size_t vertexCount() const { return mesh_.vertexCount(); }
@@ -94,18 +111,44 @@ class DmTree {
   void collectCells(NodeId n, const Polygon2& region, std::vector<CellId>& out) const;
   void partition(CellId c, const SingleTree& tree, int s, const Generator& gen, std::vector<CellId>& pieces,
                  InsertResult& result);
-  void condense(NodeId n, const OccluderKey& key, RemoveResult& result);
-  bool carriesLiveSegment(NodeId n) const;
+  void record(const OccluderKey& key, const SingleShadow& shadow, const SingleTree& tree);
+
+  // Node deletion (node_removal.cpp).
+  void collectOccluderNodes(NodeId n, const Polygon2& region, const OccluderKey& key,
+                            std::vector<NodeId>& out) const;
+  Polygon2 regionOf(NodeId n) const;
+  const SingleTreeNode* liveSegmentOn(NodeId n, const Polygon2& region, const std::vector<OccluderKey>& keys,
+                                      OccluderKey* owner) const;
+  void leavesOf(NodeId n, std::vector<NodeId>& out) const;
+  void leavesAlong(NodeId n, const Vec2& p, const Vec2& q, std::vector<NodeId>& out) const;
+  void deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result);
+  void collapse(NodeId n, RemoveResult& result);
+  void extendInto(NodeId n, CellId piece, std::vector<NodeId>& extended, RemoveResult& result);
+  void filterSegment(NodeId n, const Vec2& p, const Vec2& q, const SingleTreeNode& seg, const OccluderKey& key,
+                     RemoveResult& result);
+  void condenseLeafPair(NodeId n, const std::vector<OccluderKey>& keys, RemoveResult& result);
+  void killNode(NodeId n);
+  void rebuild();
+
+  struct Inserted {
+    std::vector<SingleTreeNode> segments;  // every discontinuity it carries
+    Polygon2 penumbra;                      // as merged (short edges dropped)
+    SingleShadow shadow;                    // for the counted rebuild fallback
+    uint64_t sequence = 0;                  // insertion order
+  };
 
   Tolerance tolerance_;
   double receiverArea_ = 0;
+  Polygon2 receiver_;
   HalfEdgeMesh mesh_;
   std::vector<DmNode> nodes_;
   size_t liveNodes_ = 0;
   NodeId root_;
-  // The discontinuities each inserted occluder carries (kept so removal can tell
-  // which edges other occluders still need).
-  std::map<OccluderKey, std::vector<SingleTreeNode>> inserted_;
+  // What each inserted occluder carries (kept so removal can tell which edges other
+  // occluders still need, and re-insert them).
+  std::map<OccluderKey, Inserted> inserted_;
+  uint64_t nextSequence_ = 0;
+  OccluderKey removing_{};  // the occluder removeOccluder is deleting (counts its nodes apart)
 };
 
 }  // namespace penumbra

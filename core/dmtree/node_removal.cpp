@@ -1,56 +1,457 @@
-// DmTree::removeOccluder: deleting one occluder's entries and nodes (paper §3.1),
-// first version: list entries plus bottom-up condensing of its leaf-pair nodes.
+// DmTree::removeOccluder: deleting one occluder's list entries and tree nodes (paper
+// §3.1): unlink a node's edge, extend the basis subtree across the freed cell,
+// re-insert the other subtree's live segments, condense what no longer separates.
 #include <algorithm>
 #include <cmath>
+#include <set>
+#include <stdexcept>
 
 #include "core/dmtree/dm_tree.h"
 
 namespace penumbra {
 
-// Whether some still-inserted occluder has a discontinuity along n's chord: the edge
-// must stay although n's own occluder is gone.
-bool DmTree::carriesLiveSegment(NodeId n) const {
-  const double eps = tolerance_.length();
-  const DmNode& d = node(n);
-  const Vec2 dir{-d.line.normal.y, d.line.normal.x};
-  double lo = INFINITY, hi = -INFINITY;
-  for (const Vec2& p : mesh_.polygon(node(d.front).cell))
-    if (std::abs(d.line.distance(p)) <= eps) {
-      lo = std::min(lo, glm::dot(p, dir));
-      hi = std::max(hi, glm::dot(p, dir));
-    }
-  for (const auto& [key, segments] : inserted_)
-    for (const SingleTreeNode& s : segments) {
-      if (std::abs(d.line.distance(s.a)) > eps || std::abs(d.line.distance(s.b)) > eps) continue;
-      const double ta = glm::dot(s.a, dir), tb = glm::dot(s.b, dir);
-      if (std::min(hi, std::max(ta, tb)) - std::max(lo, std::min(ta, tb)) > eps) return true;
-    }
-  return false;
+namespace {
+
+Vec2 centroid(const Polygon2& poly) {
+  const Vec2 o = poly[0];
+  Vec2 sum{0.0};
+  double twice = 0;
+  for (size_t i = 1; i + 1 < poly.size(); ++i) {
+    const double w = cross2(poly[i] - o, poly[i + 1] - o);
+    sum += w * (poly[i] + poly[i + 1] - 2.0 * o);
+    twice += w;
+  }
+  return o + sum / (3.0 * twice);
 }
 
-void DmTree::condense(NodeId n, const OccluderKey& key, RemoveResult& result) {
-  if (node(n).isLeaf()) return;
-  condense(node(n).front, key, result);
-  condense(node(n).back, key, result);
+// How deep p lies inside a convex CCW polygon (negative outside).
+double depthInside(const Polygon2& poly, const Vec2& p) {
+  double depth = INFINITY;
+  for (size_t i = 0; i < poly.size(); ++i) depth = std::min(depth, lineDistance(poly[i], poly[(i + 1) % poly.size()], p));
+  return depth;
+}
+
+// Clips p→q to the convex CCW polygon grown by eps; false if less than eps is left.
+bool clipSegment(const Polygon2& poly, Vec2& p, Vec2& q, double eps) {
+  double t0 = 0, t1 = 1;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const Vec2 a = poly[i], b = poly[(i + 1) % poly.size()];
+    const double dp = lineDistance(a, b, p) + eps, dq = lineDistance(a, b, q) + eps;
+    if (dp < 0 && dq < 0) return false;
+    if (dp < 0) t0 = std::max(t0, dp / (dp - dq));
+    else if (dq < 0) t1 = std::min(t1, dp / (dp - dq));
+  }
+  if (!(t1 > t0)) return false;
+  const Vec2 a = p + t0 * (q - p), b = p + t1 * (q - p);
+  p = a;
+  q = b;
+  return glm::length(q - p) > eps;
+}
+
+Vec2 along(const Line2& line) { return {-line.normal.y, line.normal.x}; }
+
+// Where `line` crosses a convex region, as an interval of positions along the line.
+bool chordExtent(const Line2& line, const Polygon2& region, double eps, double& lo, double& hi) {
+  const Vec2 dir = along(line);
+  lo = INFINITY;
+  hi = -INFINITY;
+  const size_t m = region.size();
+  for (size_t i = 0; i < m; ++i) {
+    const Vec2 p = region[i], q = region[(i + 1) % m];
+    const double dp = line.distance(p), dq = line.distance(q);
+    if (std::abs(dp) <= eps) {
+      lo = std::min(lo, glm::dot(p, dir));
+      hi = std::max(hi, glm::dot(p, dir));
+    } else if ((dp > eps && dq < -eps) || (dp < -eps && dq > eps)) {
+      const Vec2 x = p + (dp / (dp - dq)) * (q - p);
+      lo = std::min(lo, glm::dot(x, dir));
+      hi = std::max(hi, glm::dot(x, dir));
+    }
+  }
+  return hi - lo > eps;
+}
+
+}  // namespace
+
+void DmTree::killNode(NodeId n) {
+  DmNode& d = nodes_[n.index];
+  d.alive = false;
+  d.cell = CellId();
+  d.front = d.back = NodeId();
+  --liveNodes_;
+}
+
+void DmTree::leavesOf(NodeId n, std::vector<NodeId>& out) const {
+  std::vector<NodeId> stack{n};
+  while (!stack.empty()) {
+    const NodeId k = stack.back();
+    stack.pop_back();
+    if (node(k).isLeaf()) {
+      out.push_back(k);
+    } else {
+      stack.push_back(node(k).back);
+      stack.push_back(node(k).front);
+    }
+  }
+}
+
+// The leaves below n whose cells touch the segment p→q with positive length.
+void DmTree::leavesAlong(NodeId n, const Vec2& p, const Vec2& q, std::vector<NodeId>& out) const {
+  const double eps = tolerance_.length();
+  if (!(glm::length(q - p) > eps)) return;
   const DmNode& d = node(n);
-  const bool ours = d.orphan || (d.light == key.first && d.occluder == key.second);
-  if (!ours || !node(d.front).isLeaf() || !node(d.back).isLeaf()) return;
-  const CellId keep = node(d.front).cell, drop = node(d.back).cell;
-  if (mesh_.cell(keep).occluders != mesh_.cell(drop).occluders) return;
-  if (carriesLiveSegment(n)) return;
+  if (d.isLeaf()) {
+    out.push_back(n);
+    return;
+  }
+  const double dp = d.line.distance(p), dq = d.line.distance(q);
+  if (std::abs(dp) <= eps && std::abs(dq) <= eps) {  // along n's edge: both sides touch it
+    leavesAlong(d.front, p, q, out);
+    leavesAlong(d.back, p, q, out);
+  } else if (dp >= -eps && dq >= -eps) {
+    leavesAlong(d.front, p, q, out);
+  } else if (dp <= eps && dq <= eps) {
+    leavesAlong(d.back, p, q, out);
+  } else {
+    const Vec2 x = p + (dp / (dp - dq)) * (q - p);
+    leavesAlong(dp > 0 ? d.front : d.back, p, x, out);
+    leavesAlong(dq > 0 ? d.front : d.back, x, q, out);
+  }
+}
+
+Polygon2 DmTree::regionOf(NodeId n) const {
+  Polygon2 region = receiver_;
+  for (NodeId child = n, p = node(n).parent; p.is_valid() && !region.empty(); child = p, p = node(p).parent) {
+    const DmNode& d = node(p);
+    const Vec2 a = -d.line.offset * d.line.normal;
+    const Split2 split = splitByLine(region, a, a + along(d.line), tolerance_.length());
+    region = d.front == child ? split.right : split.left;  // front = right of a→b
+  }
+  return region;
+}
+
+// A still-inserted occluder's discontinuity overlapping n's chord (within `region`,
+// n's cell): the edge must stay although n's own generator is gone.
+const SingleTreeNode* DmTree::liveSegmentOn(NodeId n, const Polygon2& region, const std::vector<OccluderKey>& keys,
+                                            OccluderKey* owner) const {
+  const double eps = tolerance_.length();
+  const Line2& line = node(n).line;
+  double lo, hi;
+  if (!chordExtent(line, region, eps, lo, hi)) return nullptr;
+  const Vec2 dir = along(line);
+  for (const OccluderKey& key : keys) {
+    const auto it = inserted_.find(key);
+    if (it == inserted_.end()) continue;
+    for (const SingleTreeNode& s : it->second.segments) {
+      if (std::abs(line.distance(s.a)) > eps || std::abs(line.distance(s.b)) > eps) continue;
+      const double ta = glm::dot(s.a, dir), tb = glm::dot(s.b, dir);
+      if (std::min(hi, std::max(ta, tb)) - std::max(lo, std::min(ta, tb)) > eps) {
+        if (owner) *owner = key;
+        return &s;
+      }
+    }
+  }
+  return nullptr;
+}
+
+// Post-order: children before parents (reversed, every node comes before its
+// descendants).
+void DmTree::collectOccluderNodes(NodeId n, const Polygon2& region, const OccluderKey& key,
+                                  std::vector<NodeId>& out) const {
+  const DmNode& d = node(n);
+  if (d.isLeaf()) return;
+  const Vec2 a = -d.line.offset * d.line.normal;
+  const Split2 split = splitByLine(region, a, a + along(d.line), tolerance_.length());
+  if (split.right.size() >= 3 && signedArea(split.right) > tolerance_.area())
+    collectOccluderNodes(d.front, split.right, key, out);
+  if (split.left.size() >= 3 && signedArea(split.left) > tolerance_.area())
+    collectOccluderNodes(d.back, split.left, key, out);
+  if (d.light == key.first && d.occluder == key.second) out.push_back(n);
+}
+
+// Merges every cell below n into one; n becomes its leaf.
+void DmTree::collapse(NodeId n, RemoveResult& result) {
+  if (node(n).isLeaf()) return;
+  const NodeId front = node(n).front, back = node(n).back;
+  collapse(front, result);
+  collapse(back, result);
+  const CellId keep = node(front).cell, drop = node(back).cell;
   const std::vector<VertexId> removed = mesh_.mergeCells(keep, drop, tolerance_.length());
   result.removedVertices.insert(result.removedVertices.end(), removed.begin(), removed.end());
-  for (NodeId child : {d.front, d.back}) {
-    nodes_[child.index].alive = false;
-    nodes_[child.index].cell = CellId();
-    --liveNodes_;
-  }
-  DmNode& m = nodes_[n.index];
-  m.front = m.back = NodeId();
-  m.cell = keep;
-  m.orphan = m.partial = false;
+  killNode(front);
+  killNode(back);
+  DmNode& d = nodes_[n.index];
+  d.cell = keep;
   mesh_.cell(keep).leaf = n;
+  if (d.light == removing_.first && d.occluder == removing_.second) ++result.nodesRemoved;
+  else ++result.nodesCollapsed;
+}
+
+// Step 2: the piece of the freed cell under basis node n is cut by n's line (the
+// dangling edge extended) until it reaches a leaf, then joins that leaf's cell across
+// the deleted edge. Only lines that crossed the deleted edge can cut a piece.
+void DmTree::extendInto(NodeId n, CellId piece, std::vector<NodeId>& extended, RemoveResult& result) {
+  const double eps = tolerance_.length();
+  if (node(n).isLeaf()) {
+    const CellId keep = node(n).cell;
+    const std::vector<VertexId> removed = mesh_.mergeCells(keep, piece, eps);
+    result.removedVertices.insert(result.removedVertices.end(), removed.begin(), removed.end());
+    result.changedCells.push_back(keep);
+    return;
+  }
+  const HalfEdgeMesh::CutPlan plan = mesh_.planCut(piece, node(n).line, eps);
+  if (plan.side > 0) return extendInto(node(n).front, piece, extended, result);
+  if (plan.side < 0) return extendInto(node(n).back, piece, extended, result);
+  const HalfEdgeMesh::CutResult cut = mesh_.applyCut(plan, n);
+  result.newVertices.insert(result.newVertices.end(), cut.newVertices.begin(), cut.newVertices.end());
+  nodes_[n.index].partial = true;
+  extended.push_back(n);
+  const NodeId front = node(n).front, back = node(n).back;
+  extendInto(front, cut.front, extended, result);
+  extendInto(back, cut.back, extended, result);
+}
+
+// Step 3: filters the live segment piece p→q down from n; where it crosses a leaf
+// cell's interior the cell is split along it (the split spans the cell).
+void DmTree::filterSegment(NodeId n, const Vec2& p, const Vec2& q, const SingleTreeNode& seg, const OccluderKey& key,
+                           RemoveResult& result) {
+  const double eps = tolerance_.length();
+  if (!node(n).isLeaf()) {
+    const Line2 line = node(n).line;
+    const NodeId front = node(n).front, back = node(n).back;
+    const double dp = line.distance(p), dq = line.distance(q);
+    if (std::abs(dp) <= eps && std::abs(dq) <= eps) return;  // on n's edge already
+    if (dp >= -eps && dq >= -eps) return filterSegment(front, p, q, seg, key, result);
+    if (dp <= eps && dq <= eps) return filterSegment(back, p, q, seg, key, result);
+    const Vec2 x = p + (dp / (dp - dq)) * (q - p);
+    filterSegment(dp > 0 ? front : back, p, x, seg, key, result);
+    filterSegment(dq > 0 ? front : back, x, q, seg, key, result);
+    return;
+  }
+  const CellId c = node(n).cell;
+  const HalfEdgeMesh::CutPlan plan = mesh_.planCut(c, seg.line, eps);
+  if (plan.side != 0) return;
+  const double length = glm::length(seg.b - seg.a);
+  const Vec2 dir = (seg.b - seg.a) / length;
+  const double t0 = glm::dot(plan.entry.point - seg.a, dir), t1 = glm::dot(plan.exit.point - seg.a, dir);
+  const double tp = glm::dot(p - seg.a, dir), tq = glm::dot(q - seg.a, dir);
+  const double chordLo = std::min(t0, t1), chordHi = std::max(t0, t1);
+  const double lo = std::max(chordLo, std::min(tp, tq)), hi = std::min(chordHi, std::max(tp, tq));
+  if (hi - lo <= eps) return;
+  const HalfEdgeMesh::CutResult cut = mesh_.applyCut(plan, n);
+  result.newVertices.insert(result.newVertices.end(), cut.newVertices.begin(), cut.newVertices.end());
+  result.changedCells.push_back(cut.front);
+  result.changedCells.push_back(cut.back);
+  ++result.nodesReinserted;
+  const NodeId front = addNode(n, cut.front);
+  const NodeId back = addNode(n, cut.back);
+  DmNode& d = nodes_[n.index];
+  d.cell = CellId();
+  d.front = front;
+  d.back = back;
+  d.line = seg.line;
+  d.light = key.first;
+  d.occluder = key.second;
+  d.kind = seg.kind;
+  d.lightElement = seg.lightElement;
+  d.occluderElement = seg.occluderElement;
+  d.a = seg.a + lo * dir;
+  d.b = seg.a + hi * dir;
+  d.partial = lo > chordLo + eps || hi < chordHi - eps;
+  d.orphan = false;
+}
+
+// Removes n's split if its two cells are leaves with equal lists and its edge carries
+// no live discontinuity (paper: "the subtrees created are condensed", edge 14b).
+void DmTree::condenseLeafPair(NodeId n, const std::vector<OccluderKey>& keys, RemoveResult& result) {
+  const DmNode& d = node(n);
+  if (!d.alive || d.isLeaf() || !node(d.front).isLeaf() || !node(d.back).isLeaf()) return;
+  const CellId keep = node(d.front).cell, drop = node(d.back).cell;
+  if (mesh_.cell(keep).occluders != mesh_.cell(drop).occluders) return;
+  if (liveSegmentOn(n, regionOf(n), keys, nullptr)) return;
+  const std::vector<VertexId> removed = mesh_.mergeCells(keep, drop, tolerance_.length());
+  result.removedVertices.insert(result.removedVertices.end(), removed.begin(), removed.end());
+  result.changedCells.push_back(keep);
+  const NodeId front = d.front, back = d.back;
+  killNode(front);
+  killNode(back);
+  DmNode& m = nodes_[n.index];
+  m.cell = keep;
+  m.partial = m.orphan = false;
+  mesh_.cell(keep).leaf = n;
+  if (m.light == removing_.first && m.occluder == removing_.second) ++result.nodesRemoved;
+  else ++result.nodesCondensed;
+}
+
+void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) {
+  const double eps = tolerance_.length();
+  const NodeId front = node(e).front, back = node(e).back;
+  const Line2 deletedLine = node(e).line;
+  const Polygon2 region = regionOf(e);
+  double lo, hi;
+  if (!chordExtent(deletedLine, region, eps, lo, hi)) throw std::logic_error("DM-tree: a node without an edge");
+  const Vec2 origin = -deletedLine.offset * deletedLine.normal, dir = along(deletedLine);
+  const Vec2 chordP = origin + lo * dir, chordQ = origin + hi * dir;
+  // The cells along e's edge, on each side.
+  std::vector<NodeId> along[2];
+  leavesAlong(front, chordP, chordQ, along[0]);
+  leavesAlong(back, chordP, chordQ, along[1]);
+
+  // Occluders that can have a discontinuity on e's edge: those covering a cell along it
+  // (a segment always borders a cell its occluder covers).
+  std::set<OccluderKey> keySet;
+  auto addListed = [&](NodeId leaf) {
+    for (const OccluderEntry& entry : mesh_.cell(node(leaf).cell).occluders) keySet.insert({entry.light, entry.face});
+  };
+  for (const auto& side : along)
+    for (NodeId leaf : side) addListed(leaf);
+  auto sortedKeys = [&] {
+    keySet.erase(key);
+    std::vector<OccluderKey> keys;
+    for (const OccluderKey& k : keySet)
+      if (inserted_.count(k)) keys.push_back(k);
+    std::sort(keys.begin(), keys.end(), [&](const OccluderKey& x, const OccluderKey& y) {
+      return inserted_.at(x).sequence < inserted_.at(y).sequence;
+    });
+    return keys;
+  };
+
+  // A live segment on e's edge: e stays, now generated by that occluder.
+  OccluderKey owner;
+  if (const SingleTreeNode* s = liveSegmentOn(e, region, sortedKeys(), &owner)) {
+    DmNode& d = nodes_[e.index];
+    d.light = owner.first;
+    d.occluder = owner.second;
+    d.kind = s->kind;
+    d.lightElement = s->lightElement;
+    d.occluderElement = s->occluderElement;
+    d.a = s->a;
+    d.b = s->b;
+    d.partial = true;
+    ++result.nodesRelabeled;
+    return;
+  }
+  if (node(front).isLeaf() && node(back).isLeaf() &&
+      mesh_.cell(node(front).cell).occluders != mesh_.cell(node(back).cell).occluders) {
+    // Different lists but no live segment between them: a numerical disagreement;
+    // keep the edge rather than give one side the wrong list.
+    nodes_[e.index].orphan = true;
+    ++result.nodesKept;
+    return;
+  }
+
+  // Step 1 (counting): dangling edges are the other edges ending on e's edge.
+  size_t dangling[2] = {0, 0};
+  for (int side = 0; side < 2; ++side)
+    for (NodeId leaf : along[side])
+      for (HalfEdgeId h : mesh_.loop(node(leaf).cell)) {
+        if (mesh_.halfEdge(h).node != e) continue;
+        const VertexId v = mesh_.halfEdge(h).origin;
+        const Vec2 x = mesh_.vertex(v).position;
+        const double t = glm::dot(x, dir);
+        const NodeId other = mesh_.halfEdge(mesh_.halfEdge(h).prev).node;
+        if (other != e && t > lo + eps && t < hi - eps) ++dangling[side];  // not at the edge's ends
+      }
+  // Step 2: the basis a minimises E[cost_a] = (D_a + 1)·size_b (the paper's D_a·size_b;
+  // the +1 counts re-inserting b even when a has nothing to extend).
+  std::vector<NodeId> leaves[2];
+  leavesOf(front, leaves[0]);
+  leavesOf(back, leaves[1]);
+  // Live internal nodes per side (the removed occluder's own vanish with a collapse).
+  size_t size[2] = {leaves[0].size() - 1, leaves[1].size() - 1};
+  for (int side = 0; side < 2; ++side) {
+    std::vector<NodeId> stack{side == 0 ? front : back};
+    while (!stack.empty()) {
+      const DmNode& d = node(stack.back());
+      stack.pop_back();
+      if (d.isLeaf()) continue;
+      if (d.light == key.first && d.occluder == key.second) --size[side];
+      stack.push_back(d.front);
+      stack.push_back(d.back);
+    }
+  }
+  const bool frontBasis = (dangling[0] + 1) * size[1] <= (dangling[1] + 1) * size[0];
+  const NodeId a = frontBasis ? front : back, b = frontBasis ? back : front;
+  const double basisSide = frontBasis ? 1.0 : -1.0;
+
+  // b's cells (one point of each new cell is classified against them) and generators.
+  std::vector<std::pair<Polygon2, OccluderList>> oldCells;
+  for (NodeId leaf : leaves[frontBasis ? 1 : 0]) {
+    oldCells.push_back({mesh_.polygon(node(leaf).cell), mesh_.cell(node(leaf).cell).occluders});
+    addListed(leaf);
+  }
+  {
+    std::vector<NodeId> stack{b};
+    while (!stack.empty()) {
+      const DmNode& d = node(stack.back());
+      stack.pop_back();
+      if (d.isLeaf()) continue;
+      keySet.insert({d.light, d.occluder});
+      stack.push_back(d.front);
+      stack.push_back(d.back);
+    }
+  }
+  const std::vector<OccluderKey> keys = sortedKeys();
+
+  collapse(b, result);
+  const CellId freed = node(b).cell;
+  const Polygon2 freedPolygon = mesh_.polygon(freed);
+  const size_t firstChanged = result.changedCells.size();
+  std::vector<NodeId> extended;
+  extendInto(a, freed, extended, result);
+  killNode(b);
+
+  // Unlink e: a takes its place.
+  const NodeId parent = node(e).parent;
+  nodes_[a.index].parent = parent;
+  if (!parent.is_valid()) root_ = a;
+  else if (node(parent).front == e) nodes_[parent.index].front = a;
+  else nodes_[parent.index].back = a;
+  killNode(e);
   ++result.nodesRemoved;
+  for (NodeId leaf : along[frontBasis ? 0 : 1])
+    for (HalfEdgeId h : mesh_.loop(node(leaf).cell))
+      if (mesh_.halfEdge(h).node == e) throw std::logic_error("DM-tree: an edge of a deleted node is left");
+
+  // Step 3: b's live discontinuities (and any on e's line) go back in, in insertion order.
+  for (const OccluderKey& k : keys)
+    for (const SingleTreeNode& seg : inserted_.at(k).segments) {
+      Vec2 p = seg.a, q = seg.b;
+      if (clipSegment(freedPolygon, p, q, eps)) filterSegment(a, p, q, seg, k, result);
+    }
+  // Cells reaching into b's former half take the list of the old cell around their centroid.
+  std::vector<CellId> touched(result.changedCells.begin() + firstChanged, result.changedCells.end());
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  for (CellId c : touched) {
+    if (!mesh_.cell(c).alive) continue;
+    const Vec2 p = centroid(mesh_.polygon(c));
+    if (!(basisSide * deletedLine.distance(p) < 0) || oldCells.empty()) continue;
+    size_t best = 0;
+    double bestDepth = -INFINITY;
+    for (size_t i = 0; i < oldCells.size(); ++i) {
+      const double depth = depthInside(oldCells[i].first, p);
+      if (depth > bestDepth) {
+        bestDepth = depth;
+        best = i;
+      }
+    }
+    if (mesh_.cell(c).occluders != oldCells[best].second) mesh_.cell(c).occluders = oldCells[best].second;
+  }
+  // Extended splits, deepest first (they were found top-down).
+  for (auto it = extended.rbegin(); it != extended.rend(); ++it) condenseLeafPair(*it, keys, result);
+}
+
+void DmTree::rebuild() {
+  std::vector<std::pair<uint64_t, SingleShadow>> ordered;
+  for (const auto& [key, entry] : inserted_) ordered.push_back({entry.sequence, entry.shadow});
+  std::sort(ordered.begin(), ordered.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  inserted_.clear();
+  nodes_.clear();
+  liveNodes_ = 0;
+  const CellId c = mesh_.reset(receiver_, tolerance_.length());
+  root_ = addNode(NodeId(), c);
+  for (const auto& [sequence, shadow] : ordered) insert(shadow);
 }
 
 RemoveResult DmTree::removeOccluder(uint32_t light, FaceId occluder) {
@@ -59,23 +460,53 @@ RemoveResult DmTree::removeOccluder(uint32_t light, FaceId occluder) {
   const auto it = inserted_.find(key);
   if (it == inserted_.end()) return result;
   result.found = true;
+  const Polygon2 penumbra = it->second.penumbra;
   inserted_.erase(it);
-
-  for (CellId c : cells()) {
-    OccluderList& list = mesh_.cell(c).occluders;
-    const auto end = std::remove_if(list.begin(), list.end(),
-                                    [&](const OccluderEntry& e) { return e.light == light && e.face == occluder; });
-    if (end == list.end()) continue;
-    list.erase(end, list.end());
-    result.changedCells.push_back(c);
-  }
-  condense(root_, key, result);
-  // What could not be condensed stays as construction edges (TODO §3.1 in the header).
-  for (DmNode& d : nodes_)
-    if (d.alive && !d.isLeaf() && !d.orphan && d.light == light && d.occluder == occluder) {
-      d.orphan = true;
-      ++result.nodesKept;
+  const size_t firstVertex = mesh_.vertexSlots();
+  removing_ = key;
+  try {
+    // Its list entries: only cells under its penumbra can hold one.
+    std::vector<CellId> covered;
+    if (!penumbra.empty()) collectCells(root_, penumbra, covered);
+    for (CellId c : covered) {
+      OccluderList& list = mesh_.cell(c).occluders;
+      const auto end = std::remove_if(list.begin(), list.end(),
+                                      [&](const OccluderEntry& e) { return e.light == light && e.face == occluder; });
+      if (end == list.end()) continue;
+      list.erase(end, list.end());
+      result.changedCells.push_back(c);
     }
+    // Its nodes, top-down: those in a subtree collapsed for re-insertion go with it.
+    std::vector<NodeId> doomed;
+    if (!penumbra.empty()) collectOccluderNodes(root_, penumbra, key, doomed);
+    std::reverse(doomed.begin(), doomed.end());
+    for (NodeId e : doomed) {
+      const DmNode& d = node(e);
+      if (!d.alive || d.isLeaf() || d.light != light || d.occluder != occluder) continue;
+      deleteNode(e, key, result);
+    }
+  } catch (const std::logic_error&) {
+    // Counted fallback: the tree is rebuilt from the shadows still inserted.
+    rebuild();
+    RemoveResult rebuilt;
+    rebuilt.found = true;
+    rebuilt.rebuilt = true;
+    rebuilt.changedCells = cells();
+    rebuilt.newVertices = vertices();
+    return rebuilt;
+  }
+  // Handles made and unmade within this removal are neither new nor removed.
+  auto& created = result.newVertices;
+  auto& removed = result.removedVertices;
+  std::sort(created.begin(), created.end());
+  created.erase(std::unique(created.begin(), created.end()), created.end());
+  removed.erase(std::remove_if(removed.begin(), removed.end(), [&](VertexId v) { return v.index >= firstVertex; }),
+                removed.end());
+  created.erase(std::remove_if(created.begin(), created.end(), [&](VertexId v) { return !mesh_.vertex(v).alive; }),
+                created.end());
+  std::sort(result.changedCells.begin(), result.changedCells.end());
+  result.changedCells.erase(std::unique(result.changedCells.begin(), result.changedCells.end()),
+                            result.changedCells.end());
   return result;
 }
 

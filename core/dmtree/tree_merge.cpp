@@ -114,7 +114,7 @@ InsertResult DmTree::insert(const SingleShadow& shadow) {
   // The total-tree leaves the penumbra overlaps with positive area.
   std::vector<CellId> targets;
   collectCells(root_, tree.penumbra, targets);
-  inserted_[key] = tree.segments();
+  record(key, shadow, tree);
 
   const Generator gen{shadow.light, shadow.occluder};
   for (CellId target : targets) {

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <chrono>
 #include <map>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <tuple>
 
 #include "core/geom/clip.h"
@@ -128,17 +130,10 @@ void Engine::build(const EngineProgress& progress) {
   for (const Face& face : faces) {
     faceById[face.id] = &face;
     if (!scene_.receivesLight(face)) continue;
-    const PlaneFrame frame = PlaneFrame::onPlane(face.plane, face.polygon[0]);
     receiverIndex_[face.id] = receivers_.size();
-    receivers_.push_back(Receiver{face.id, frame,
-                                  DmTree(polygonInFrame(face.polygon, frame), scene_.tolerance()),
-                                  {}, {}});
+    receivers_.push_back(makeReceiver(face));
   }
   stats_.receivers = receivers_.size();
-  for (Receiver& receiver : receivers_)
-    for (size_t l = 0; l < lightCount; ++l)
-      if (const auto horizon = lightPlaneShadow(scene_, l, *faceById.at(receiver.face), receiver.frame))
-        receiver.tree.insert(*horizon);
 
   // Cast every candidate pair both ways (§2.3), occluders in front-to-back order.
   for (size_t l = 0; l < lightCount; ++l) {
@@ -165,12 +160,7 @@ void Engine::build(const EngineProgress& progress) {
       if (found == receiverIndex_.end()) continue;
       Receiver& receiver = receivers_[found->second];
       ++stats_.castAttempts;
-      const auto shadow = castShadow(scene_, l, *faceById.at(attempt.occluder),
-                                     *faceById.at(attempt.receiver), receiver.frame);
-      if (!shadow) continue;
-      receiver.tree.insert(*shadow);
-      castOn_[attempt.occluder].insert(attempt.receiver);
-      ++stats_.pairsWithShadow;
+      if (castPair(l, *faceById.at(attempt.occluder), receiver)) ++stats_.pairsWithShadow;
     }
     if (progress) progress("casting", attempts.size(), attempts.size());
   }
@@ -201,22 +191,100 @@ void Engine::build(const EngineProgress& progress) {
   }
 }
 
+Engine::Receiver Engine::makeReceiver(const Face& face) const {
+  const PlaneFrame frame = PlaneFrame::onPlane(face.plane, face.polygon[0]);
+  Receiver receiver{face.id, frame, DmTree(polygonInFrame(face.polygon, frame), scene_.tolerance()), {}, {}, {}};
+  for (size_t l = 0; l < scene_.lights().size(); ++l)
+    if (const auto horizon = lightPlaneShadow(scene_, l, face, frame)) receiver.tree.insert(*horizon);
+  return receiver;
+}
+
+std::optional<InsertResult> Engine::castPair(size_t light, const Face& occluder, Receiver& receiver) {
+  const Face* face = findFace(scene_, receiver.face);
+  if (!face) throw std::logic_error("Engine: receiver without a scene face");
+  const auto shadow = castShadow(scene_, light, occluder, *face, receiver.frame);
+  if (!shadow) return std::nullopt;
+  InsertResult inserted = receiver.tree.insert(*shadow);
+  castOn_[occluder.id].insert(receiver.face);
+  castBy_[receiver.face].insert(occluder.id);
+  return inserted;
+}
+
+void Engine::castAllOn(Receiver& receiver) {
+  const Face* face = findFace(scene_, receiver.face);
+  if (!face) throw std::logic_error("Engine: receiver without a scene face");
+  for (size_t l = 0; l < scene_.lights().size(); ++l) {
+    const FaceOrder& order = *orders_[l];
+    if (!order.contains(receiver.face)) continue;
+    std::vector<std::pair<size_t, FaceId>> occluders;
+    for (FaceId candidate : cubes_[l]->candidates(receiver.face))
+      if (order.contains(candidate)) occluders.push_back({order.rank(candidate), candidate});
+    std::sort(occluders.begin(), occluders.end());
+    for (const auto& [rank, occluder] : occluders) castPair(l, *findFace(scene_, occluder), receiver);
+  }
+}
+
+void Engine::forgetReceived(FaceId face) {
+  const auto it = castBy_.find(face);
+  if (it == castBy_.end()) return;
+  for (FaceId occluder : it->second) {
+    const auto on = castOn_.find(occluder);
+    if (on == castOn_.end()) continue;
+    on->second.erase(face);
+    if (on->second.empty()) castOn_.erase(on);
+  }
+  castBy_.erase(it);
+}
+
+void Engine::growSlots(Receiver& receiver) {
+  const size_t slots = receiver.tree.mesh().vertexSlots();
+  if (receiver.values.size() >= slots) return;
+  receiver.values.resize(slots);
+  receiver.perLight.resize(slots);
+  receiver.litAt.resize(slots, Vec2(std::numeric_limits<double>::quiet_NaN()));
+}
+
 void Engine::illuminate(Receiver& receiver) {
-  const DmTree& tree = receiver.tree;
-  const size_t slots = tree.mesh().vertexSlots();
+  const size_t slots = receiver.tree.mesh().vertexSlots();
   receiver.values.assign(slots, VertexIrradiance{});
   receiver.perLight.assign(slots, {});
-  const Vec3 normal = receiver.frame.normal;
+  receiver.litAt.assign(slots, Vec2(std::numeric_limits<double>::quiet_NaN()));
+  for (VertexId v : receiver.tree.vertices()) relightVertex(receiver, v);
+}
+
+void Engine::relightVertex(Receiver& receiver, VertexId v) const {
+  const DmTree& tree = receiver.tree;
   std::vector<const OccluderList*> lists;
-  for (VertexId v : tree.vertices()) {
-    lists.clear();
-    for (CellId c : tree.cellsAround(v)) lists.push_back(&tree.occluders(c));
-    const Vec3 p = receiver.frame.to3D(tree.position(v));
-    auto& perLight = receiver.perLight[v.index];
-    for (size_t l = 0; l < scene_.lights().size(); ++l)
-      perLight.push_back(illuminateVertex(scene_, l, p, normal, lists));
-    receiver.values[v.index] = sumLights(scene_, perLight);
-  }
+  for (CellId c : tree.cellsAround(v)) lists.push_back(&tree.occluders(c));
+  const Vec3 p = receiver.frame.to3D(tree.position(v));
+  auto& perLight = receiver.perLight[v.index];
+  perLight.clear();
+  for (size_t l = 0; l < scene_.lights().size(); ++l)
+    perLight.push_back(illuminateVertex(scene_, l, p, receiver.frame.normal, lists));
+  receiver.values[v.index] = sumLights(scene_, perLight);
+  receiver.litAt[v.index] = tree.position(v);
+}
+
+void Engine::compactReceivers(const std::vector<bool>& dropped) {
+  std::vector<Receiver> kept;
+  kept.reserve(receivers_.size());
+  for (size_t i = 0; i < receivers_.size(); ++i)
+    if (!dropped[i]) kept.push_back(std::move(receivers_[i]));
+  std::stable_sort(kept.begin(), kept.end(), [](const Receiver& a, const Receiver& b) { return a.face < b.face; });
+  receivers_ = std::move(kept);
+  receiverIndex_.clear();
+  for (size_t i = 0; i < receivers_.size(); ++i) receiverIndex_[receivers_[i].face] = i;
+}
+
+bool Engine::insideEditVolume(const Face& face) const {
+  const double eps = scene_.tolerance().length();
+  for (const auto& cube : cubes_)
+    for (const Vec3& v : face.polygon) {
+      const Vec3 rel = v - cube->cubeMin();
+      if (glm::any(glm::lessThan(rel, Vec3(-eps))) || glm::any(glm::greaterThan(rel, Vec3(cube->cubeSide() + eps))))
+        return false;
+    }
+  return true;
 }
 
 namespace {
@@ -273,7 +341,6 @@ Mesh Engine::mesh() {
   const auto start = Clock::now();
   Mesh out;
   const double eps = scene_.tolerance().length();
-  const double onPlane = scene_.tolerance().onPlane();
   const double spacing = meshSpacing();
   const size_t lightCount = scene_.lights().size();
   for (const Receiver& receiver : receivers_) {
@@ -283,11 +350,16 @@ Mesh Engine::mesh() {
 
     // A point is on a value discontinuity (D0) when an occluder of a cell around it
     // has its plane through it (it touches the receiver there): it then takes its
-    // value per side, as the limit from each cell.
+    // value per side, as the limit from each cell. "Through it" is the geometric
+    // predicate (length tolerance), not onPlane(): a point within onPlane() of the
+    // plane but off the contact line (e.g. on a line meeting it at a shallow angle
+    // near a footprint corner) lies inside one side, where the value is the point
+    // value (the face does not shadow it, SCENE_FORMAT.md), with no other side's
+    // copy to carry that value.
     auto onContact = [&](const Vec3& p, const OccluderList& list) {
       for (const OccluderEntry& entry : list) {
         const Face* face = findFace(scene_, entry.face);
-        if (face && std::abs(face->plane.signedDistance(p)) <= onPlane) return true;
+        if (face && std::abs(face->plane.signedDistance(p)) <= eps) return true;
       }
       return false;
     };
@@ -364,6 +436,27 @@ void Engine::validate() const {
   for (const auto& order : orders_) order->validate();
   for (const auto& cube : cubes_) cube->validate();
   for (const Receiver& receiver : receivers_) receiver.tree.validate();
+  // The cast relations mirror each other and name live faces and receivers.
+  auto fail = [](const std::string& what) { throw std::logic_error("Engine: " + what); };
+  for (const auto& [occluder, targets] : castOn_) {
+    if (!findFace(scene_, occluder)) fail("castOn names a face not in the scene");
+    for (FaceId target : targets) {
+      if (!receiver(target)) fail("castOn names a face without a DM-tree");
+      const auto by = castBy_.find(target);
+      if (by == castBy_.end() || !by->second.count(occluder)) fail("castOn without its castBy entry");
+    }
+  }
+  for (const auto& [target, occluders] : castBy_)
+    for (FaceId occluder : occluders) {
+      const auto on = castOn_.find(occluder);
+      if (on == castOn_.end() || !on->second.count(target)) fail("castBy without its castOn entry");
+    }
+  for (size_t i = 0; i < receivers_.size(); ++i) {
+    if (i && !(receivers_[i - 1].face < receivers_[i].face)) fail("receivers out of face order");
+    const auto it = receiverIndex_.find(receivers_[i].face);
+    if (it == receiverIndex_.end() || it->second != i) fail("receiver index out of date");
+  }
+  if (receiverIndex_.size() != receivers_.size()) fail("receiver index holds stale faces");
 }
 
 }  // namespace penumbra

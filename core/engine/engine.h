@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <vector>
 
@@ -39,13 +40,24 @@ class Engine {
   explicit Engine(Scene scene, EngineSettings settings = {}, const EngineProgress& progress = {});
 
   const Scene& scene() const { return scene_; }
+  // Counters and timings of the full build (the constructor, or apply()'s whole-engine
+  // fallback); apply() reports its own work in FrameResult and leaves these alone,
+  // except mesh(), which records its triangulation time here.
   const BuildStats& stats() const { return stats_; }
   // 0 after the build, +1 per applied frame.
   uint64_t version() const { return version_; }
 
-  // Applies a frame's edits together and relights once (paper §3). Checks every
-  // edit first: on any invalid one, throws EditError and changes nothing.
+  // Applies a frame's edits together and relights once (paper §3): the removed and
+  // moved objects' faces leave the orders, cubes and the DM-trees they cast on (node
+  // deletion); the added and moved ones enter them and cast both ways with the faces
+  // sharing their tiles; only the vertices those changes created or re-covered are
+  // relit. Checks every edit first (including that moved and added objects stay in
+  // the overlap cubes' edit volume): on any invalid one, throws EditError and changes
+  // nothing. A receiver whose node deletion fails is rebuilt alone (counted in
+  // FrameResult::treeRebuilds); an unexpected failure mid-frame rebuilds the engine.
   FrameResult apply(const Frame& frame);
+  // The DM vertices the last apply() relit, per receiver (sorted ids).
+  const std::map<FaceId, std::vector<VertexId>>& lastRelit() const { return lastRelit_; }
 
   // The scene after a frame, without changing anything (throws EditError).
   Scene sceneAfter(const Frame& frame) const;
@@ -58,6 +70,9 @@ class Engine {
     // Per live tree vertex (indexed by VertexId): the value at the vertex.
     std::vector<VertexIrradiance> values;
     std::vector<std::vector<VertexLight>> perLight;  // [vertex][light]
+    // Per vertex slot: where its value was computed (NaN: never), so a slot that
+    // holds a vertex the tree did not report as new is still found and lit.
+    std::vector<Vec2> litAt;
   };
   const std::vector<Receiver>& receivers() const { return receivers_; }
   const Receiver* receiver(FaceId face) const;
@@ -78,7 +93,23 @@ class Engine {
 
  private:
   void build(const EngineProgress& progress);
+  // A receiver with an empty DM-tree but the light-plane horizons of every light.
+  Receiver makeReceiver(const Face& face) const;
+  // Casts `occluder` on `receiver` from `light` and merges the shadow; records the
+  // pair in castOn_/castBy_. Returns nullopt when nothing is shadowed.
+  std::optional<InsertResult> castPair(size_t light, const Face& occluder, Receiver& receiver);
+  // Casts every candidate occluder of the overlap cubes on one (fresh) receiver.
+  void castAllOn(Receiver& receiver);
+  // Forgets every cast relation with `face` as receiver.
+  void forgetReceived(FaceId face);
+  // Sizes the per-slot arrays to the tree's vertex slots.
+  static void growSlots(Receiver& receiver);
   void illuminate(Receiver& receiver);
+  void relightVertex(Receiver& receiver, VertexId v) const;
+  // Sorts receivers_ by face (Scene::faces() order), drops `dropped`, reindexes.
+  void compactReceivers(const std::vector<bool>& dropped);
+  // Whether every vertex of the face lies in each light's overlap cube.
+  bool insideEditVolume(const Face& face) const;
 
   Scene scene_;
   EngineSettings settings_;
@@ -87,7 +118,9 @@ class Engine {
   std::vector<std::unique_ptr<OverlapCube>> cubes_;  // per light
   std::vector<Receiver> receivers_;
   std::map<FaceId, size_t> receiverIndex_;
-  std::map<FaceId, std::set<FaceId>> castOn_;
+  std::map<FaceId, std::set<FaceId>> castOn_;   // occluder -> receivers it shadows
+  std::map<FaceId, std::set<FaceId>> castBy_;   // receiver -> occluders shadowing it
+  std::map<FaceId, std::vector<VertexId>> lastRelit_;
   BuildStats stats_;
 };
 

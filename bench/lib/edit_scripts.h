@@ -1,0 +1,47 @@
+// Seeded edit-script generators over a generated "cubes in a room" scene (or any
+// scene whose movable objects are not the room's floor/ceiling/wall_*): dragging
+// one cube, moving a share of the faces, removing and re-adding, building up.
+// Pure functions of (scene, options); thread-safe.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/engine/frame.h"
+#include "core/scene/scene.h"
+
+namespace penumbra {
+
+struct EditScript {
+  std::string name;           // "drag", "move-5pct", "remove-add", "build-up"
+  std::vector<Frame> frames;  // applies to the scene it was generated from
+  size_t editedFaces = 0;     // faces of the objects one frame edits (build-up: the largest)
+  double faceShare = 0;       // editedFaces / the scene's faces
+};
+
+// The objects a script may edit: every object but the room (floor, ceiling, wall_*).
+std::vector<size_t> movableObjects(const Scene& scene);
+
+// One free cube (nothing rests on it) slid in `frames` small steps across the
+// room on its own support, turning a little. Throws std::invalid_argument if the
+// scene has no movable object.
+EditScript dragScript(const Scene& scene, int frames, uint64_t seed);
+
+// A seeded set of movable objects holding about `share` of the scene's faces
+// (at least one object), moved together each frame by the same small offset
+// (a small circle, absolute transforms).
+EditScript moveShareScript(const Scene& scene, double share, int frames, uint64_t seed);
+
+// `pairs` times: one frame removes a seeded movable object, the next adds it back.
+EditScript removeAddScript(const Scene& scene, int pairs, uint64_t seed);
+
+// Frame 1 removes every movable object (the empty room); then one frame per
+// object adds it back as it was, up to `maxObjects` (0: all).
+EditScript buildUpScript(const Scene& scene, int maxObjects);
+
+// The scripts shipped in bench/edits/ for a small scene (drag 100 frames, move
+// 1/5/10/30% of the faces 10 frames each, remove-add 5 pairs, build-up).
+std::vector<EditScript> standardEditScripts(const Scene& scene, uint64_t seed);
+
+}  // namespace penumbra

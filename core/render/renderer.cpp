@@ -1,0 +1,178 @@
+#include "core/render/renderer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+#include "core/reference/exact_irradiance.h"
+#include "core/render/mesh_lookup.h"
+#include "core/render/ray_scene.h"
+
+namespace penumbra {
+
+namespace {
+
+// Back faces are skipped by re-tracing just past them; a ray crosses few of them.
+constexpr int kMaxBackFaceSkips = 64;
+// Re-trace start past a skipped hit, relative to the ray parameter (Embree's t is float).
+constexpr double kSkipRelative = 1e-5;
+constexpr double kSurfacePercentile = 0.99;
+
+Vec3 ambientIrradiance(const Scene& scene, double fraction) {
+  Vec3 power(0.0);
+  for (const Light& light : scene.lights()) power += M_PI * light.radiance * light.area();
+  const Vec3 e = scene.bounds().max - scene.bounds().min;
+  const double surface = 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
+  if (!(surface > 0)) return Vec3(0.0);
+  return fraction * power / surface;
+}
+
+// Ray parameter where origin + t·dir meets the emitting front of a light, if it does.
+std::optional<double> hitLight(const Light& light, const Plane& plane, const Vec3& origin, const Vec3& dir) {
+  const double facing = glm::dot(plane.normal, dir);
+  if (!(facing < 0)) return std::nullopt;  // seen from behind or edge-on: lights emit forward only
+  const double t = -plane.signedDistance(origin) / facing;
+  if (!(t >= 0)) return std::nullopt;
+  const Vec3 x = origin + t * dir;
+  const Polygon3& polygon = light.polygon;
+  for (size_t k = 0; k < polygon.size(); ++k) {
+    const Vec3& a = polygon[k];
+    const Vec3& b = polygon[(k + 1) % polygon.size()];
+    if (glm::dot(glm::cross(b - a, x - a), plane.normal) < 0) return std::nullopt;
+  }
+  return t;
+}
+
+}  // namespace
+
+double srgbEncode(double linear) {
+  const double x = std::clamp(linear, 0.0, 1.0);
+  return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055;
+}
+
+Camera renderCamera(const Scene& scene, const RenderSettings& settings) {
+  if (settings.camera) return *settings.camera;
+  if (scene.camera()) return *scene.camera();
+  return defaultCamera(scene.bounds());
+}
+
+RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings& settings,
+                     const RenderProgress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  for (const auto& [name, value] : {std::pair{"width", settings.width}, std::pair{"height", settings.height}}) {
+    if (value < 1 || value > RenderSettings::kMaxSize)
+      throw std::invalid_argument(std::string("render: ") + name + " " + std::to_string(value) +
+                                  " is outside 1.." + std::to_string(RenderSettings::kMaxSize));
+  }
+  if (!(settings.ambientFraction >= 0) || !(settings.exposure >= 0))
+    throw std::invalid_argument("render: ambient fraction and exposure must be non-negative");
+  const CameraProjection camera(renderCamera(scene, settings), settings.width, settings.height,
+                                settings.convention);
+
+  const RayScene rays(scene);
+  const MeshLookup lookup(scene, mesh);
+  const ExactReference reference(scene);
+  std::vector<bool> receives(scene.faces().size());
+  for (size_t i = 0; i < scene.faces().size(); ++i) receives[i] = scene.receivesLight(scene.faces()[i]);
+  std::vector<Plane> lightPlanes;
+  for (const Light& light : scene.lights()) lightPlanes.push_back(light.plane());
+
+  RenderedImage image;
+  image.width = settings.width;
+  image.height = settings.height;
+  image.ambientIrradiance = ambientIrradiance(scene, settings.ambientFraction);
+  const size_t pixels = size_t(image.width) * size_t(image.height);
+  image.linear.assign(3 * pixels, 0.0f);
+  // 0: background, 1: surface, 2: light — for the exposure and the counts.
+  std::vector<uint8_t> kind(pixels, 0);
+
+  std::atomic<size_t> rowsDone{0};
+  std::mutex progressMutex;
+  tbb::parallel_for(tbb::blocked_range<int>(0, image.height), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j) {
+      for (int i = 0; i < image.width; ++i) {
+        const CameraProjection::Ray ray = camera.rayThrough(Vec2(i + 0.5, j + 0.5));
+        // The near→far segment is t in [0, 1].
+        std::optional<RayScene::Hit> surface;
+        double tNear = 0;
+        for (int pass = 0; pass < kMaxBackFaceSkips; ++pass) {
+          auto hit = rays.intersect(ray.origin, ray.dir, tNear, 1.0);
+          if (!hit) break;
+          if (!settings.cullBackFaces || hit->frontFacing) {
+            surface = hit;
+            break;
+          }
+          tNear = hit->t + kSkipRelative * std::max(hit->t, 1e-3);
+        }
+        double closest = surface ? surface->t : INFINITY;
+        std::optional<size_t> light;
+        for (size_t l = 0; l < scene.lights().size(); ++l) {
+          const auto t = hitLight(scene.lights()[l], lightPlanes[l], ray.origin, ray.dir);
+          if (t && *t <= 1.0 && *t < closest) {
+            closest = *t;
+            light = l;
+          }
+        }
+
+        Vec3 radiance = settings.background;
+        const size_t p = size_t(j) * image.width + i;
+        if (light) {
+          radiance = scene.lights()[*light].radiance;
+          kind[p] = 2;
+        } else if (surface) {
+          const Face& face = scene.faces()[surface->faceIndex];
+          Vec3 irradiance(0.0);
+          // Faces receive light on their front only: a back seen with culling off is ambient.
+          if (receives[surface->faceIndex] && surface->frontFacing) {
+            if (settings.reference) {
+              irradiance = reference.evaluate(surface->position, face.plane.normal).irradiance;
+            } else if (const auto value = lookup.irradiance(surface->faceIndex, surface->position)) {
+              irradiance = *value;
+            }
+          }
+          radiance = scene.albedo(face.id) / M_PI * (irradiance + image.ambientIrradiance);
+          kind[p] = 1;
+        }
+        for (int c = 0; c < 3; ++c) image.linear[3 * p + c] = float(radiance[c]);
+      }
+      if (progress) {
+        const size_t done = ++rowsDone;
+        std::lock_guard lock(progressMutex);
+        progress(done, size_t(image.height));
+      }
+    }
+  });
+
+  std::vector<float> surfaceValues;
+  for (size_t p = 0; p < pixels; ++p) {
+    if (kind[p] == 1) {
+      ++image.surfacePixels;
+      surfaceValues.push_back(std::max({image.linear[3 * p], image.linear[3 * p + 1], image.linear[3 * p + 2]}));
+    } else if (kind[p] == 2) {
+      ++image.lightPixels;
+    }
+  }
+  image.exposure = settings.exposure;
+  if (image.exposure == 0) {
+    image.exposure = 1;
+    if (!surfaceValues.empty()) {
+      const size_t k = std::min(surfaceValues.size() - 1, size_t(kSurfacePercentile * double(surfaceValues.size())));
+      std::nth_element(surfaceValues.begin(), surfaceValues.begin() + long(k), surfaceValues.end());
+      if (surfaceValues[k] > 0) image.exposure = 1.0 / surfaceValues[k];
+    }
+  }
+  image.srgb.resize(3 * pixels);
+  for (size_t k = 0; k < 3 * pixels; ++k)
+    image.srgb[k] = uint8_t(std::lround(255 * srgbEncode(image.exposure * image.linear[k])));
+  image.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return image;
+}
+
+}  // namespace penumbra

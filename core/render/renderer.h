@@ -1,0 +1,74 @@
+// Images of a lit scene: Embree primary rays through each pixel centre (the exact inverse of the
+// camera's view-projection), surfaces shaded from the DM mesh (or the exact reference), lights
+// drawn as their radiance; linear float RGB plus a tone-mapped 8-bit sRGB copy. Thread-safe.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "core/mesh/mesh.h"
+#include "core/render/camera_projection.h"
+#include "core/scene/scene.h"
+
+namespace penumbra {
+
+struct RenderSettings {
+  static constexpr int kMaxSize = 8192;  // per side; larger requests are refused
+  int width = 512;
+  int height = 512;
+  // The view; empty: the scene's camera, else defaultCamera(scene bounds).
+  std::optional<Camera> camera;
+  ClipConvention convention;  // any convention draws the same image; kept for tests
+  // Shade each hit with ExactReference::evaluate instead of the mesh (slow; for comparison).
+  bool reference = false;
+  // Faces are single-sided: rays pass through a face seen from behind (three.js FrontSide),
+  // so a room can be looked into from outside. Without culling a back shows the ambient part only.
+  bool cullBackFaces = true;
+  // Ambient irradiance (W·m⁻², per channel) = ambientFraction × the lights' total emitted
+  // power (Σ π·radiance·area) / the surface area of the scene's bounding box — roughly that
+  // fraction of the mean irradiance if all power landed evenly on the box. Radiance of a
+  // surface = albedo/π · (E + ambient); faces that receive no light get the ambient part only.
+  double ambientFraction = 0.1;
+  Vec3 background{0.0};  // radiance of rays that hit nothing
+  // Linear scale before tone mapping; 0 = automatic (see RenderedImage::exposure).
+  double exposure = 0;
+};
+
+struct RenderedImage {
+  int width = 0, height = 0;
+  // RGB radiance (W·m⁻²·sr⁻¹), row-major, row 0 at the top: 3·width·height floats.
+  std::vector<float> linear;
+  // The 8-bit sRGB version: exposure·linear clamped to [0, 1] per channel, then the sRGB
+  // transfer function (IEC 61966-2-1), rounded. Same layout as `linear`.
+  std::vector<uint8_t> srgb;
+  // Automatic exposure: 1 / the 99th percentile of the surface pixels' largest channel (light
+  // and background pixels excluded), so lit surfaces span the range and lights clip to white.
+  double exposure = 1;
+  Vec3 ambientIrradiance{0.0};
+  size_t surfacePixels = 0, lightPixels = 0;
+  double seconds = 0;  // wall time of render()
+
+  Vec3 pixel(int i, int j) const {
+    const size_t k = 3 * (size_t(j) * size_t(width) + size_t(i));
+    return Vec3(linear[k], linear[k + 1], linear[k + 2]);
+  }
+};
+
+// Called as rows complete (rows done, total rows), from one thread at a time.
+using RenderProgress = std::function<void(size_t done, size_t total)>;
+
+// Throws std::invalid_argument if width or height is outside 1..kMaxSize or the camera is
+// degenerate; RayTracingError on an Embree failure. `mesh` must belong to `scene` (Engine::mesh());
+// it is not used with settings.reference.
+RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings& settings,
+                     const RenderProgress& progress = {});
+
+// The camera render() uses for these settings.
+Camera renderCamera(const Scene& scene, const RenderSettings& settings);
+
+// The sRGB transfer function of a linear value in [0, 1].
+double srgbEncode(double linear);
+
+}  // namespace penumbra

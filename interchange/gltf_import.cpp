@@ -1,0 +1,271 @@
+#include "interchange/gltf_import.h"
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <set>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <tiny_gltf.h>
+
+#include "protocol/validation_error.h"
+
+namespace penumbra::interchange {
+
+namespace {
+
+using protocol::ValidationError;
+
+constexpr size_t kMaxGltfBytes = size_t(256) << 20;
+constexpr int kMaxNodeDepth = 64;
+
+// Images are not needed (only factors are read) and never decoded.
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+  return true;
+}
+
+// Uploads must not reach the server's files through buffer URIs.
+bool noFile(const std::string&, void*) { return false; }
+std::string samePath(const std::string& path, void*) { return path; }
+bool noRead(std::vector<unsigned char>*, std::string* err, const std::string& path, void*) {
+  if (err) *err += "external buffer '" + path + "' is not allowed here (embed it: GLB or a data: URI)\n";
+  return false;
+}
+bool noWrite(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+
+bool isBinary(const std::vector<uint8_t>& bytes) {
+  return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+}
+
+std::string at(const std::string& list, size_t index) { return list + "[" + std::to_string(index) + "]"; }
+
+// The bytes of element i of an accessor, checked against its view and buffer.
+class AccessorReader {
+ public:
+  AccessorReader(const tinygltf::Model& model, int index, const std::string& path) : path_(path) {
+    if (index < 0 || size_t(index) >= model.accessors.size()) throw ValidationError(path, "no such accessor");
+    const tinygltf::Accessor& accessor = model.accessors[size_t(index)];
+    if (accessor.sparse.isSparse) throw ValidationError(path, "sparse accessors are not supported");
+    if (accessor.bufferView < 0 || size_t(accessor.bufferView) >= model.bufferViews.size())
+      throw ValidationError(path, "accessor has no buffer view");
+    const tinygltf::BufferView& view = model.bufferViews[size_t(accessor.bufferView)];
+    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
+      throw ValidationError(path, "buffer view has no buffer");
+    const std::vector<unsigned char>& data = model.buffers[size_t(view.buffer)].data;
+    componentType_ = accessor.componentType;
+    components_ = tinygltf::GetNumComponentsInType(uint32_t(accessor.type));
+    const int componentSize = tinygltf::GetComponentSizeInBytes(uint32_t(componentType_));
+    if (components_ <= 0 || componentSize <= 0) throw ValidationError(path, "unknown accessor type");
+    elementSize_ = size_t(components_) * size_t(componentSize);
+    stride_ = view.byteStride ? view.byteStride : elementSize_;
+    count_ = accessor.count;
+    if (view.byteOffset + view.byteLength > data.size())
+      throw ValidationError(path, "buffer view runs past its buffer");
+    if (count_ && accessor.byteOffset + stride_ * (count_ - 1) + elementSize_ > view.byteLength)
+      throw ValidationError(path, "accessor runs past its buffer view");
+    base_ = data.data() + view.byteOffset + accessor.byteOffset;
+  }
+
+  size_t count() const { return count_; }
+  int components() const { return components_; }
+  int componentType() const { return componentType_; }
+
+  double component(size_t i, int c) const {
+    const unsigned char* p = base_ + stride_ * i + size_t(c) * (elementSize_ / size_t(components_));
+    switch (componentType_) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: { float v; std::memcpy(&v, p, 4); return v; }
+      case TINYGLTF_COMPONENT_TYPE_DOUBLE: { double v; std::memcpy(&v, p, 8); return v; }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return v; }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return v; }
+      default: throw ValidationError(path_, "unsupported component type " + std::to_string(componentType_));
+    }
+  }
+
+ private:
+  std::string path_;
+  const unsigned char* base_ = nullptr;
+  size_t stride_ = 0, elementSize_ = 0, count_ = 0;
+  int components_ = 0, componentType_ = 0;
+};
+
+Mat4 localMatrix(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) {
+    Mat4 m;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[size_t(c * 4 + r)];  // column-major, like GLM
+    return m;
+  }
+  Mat4 m(1.0);
+  if (node.translation.size() == 3) m = glm::translate(m, Vec3(node.translation[0], node.translation[1], node.translation[2]));
+  if (node.rotation.size() == 4)
+    m = m * glm::mat4_cast(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
+  if (node.scale.size() == 3) m = glm::scale(m, Vec3(node.scale[0], node.scale[1], node.scale[2]));
+  return m;
+}
+
+std::vector<ImportedMaterial> materialsOf(const tinygltf::Model& model, ImportReport& report) {
+  std::vector<ImportedMaterial> materials;
+  std::set<std::string> names;
+  for (size_t i = 0; i < model.materials.size(); ++i) {
+    const tinygltf::Material& m = model.materials[i];
+    ImportedMaterial material;
+    material.name = m.name.empty() ? "material" + std::to_string(i) : m.name;
+    if (!names.insert(material.name).second) {
+      material.name += "." + std::to_string(i);
+      names.insert(material.name);
+      report.count("material_names_made_unique");
+    }
+    const std::vector<double>& base = m.pbrMetallicRoughness.baseColorFactor;
+    if (base.size() >= 3) material.albedo = Vec3(base[0], base[1], base[2]);
+    if (m.pbrMetallicRoughness.baseColorTexture.index >= 0) report.count("textures_ignored");
+    double strength = 1;
+    const auto ext = m.extensions.find("KHR_materials_emissive_strength");
+    if (ext != m.extensions.end() && ext->second.Has("emissiveStrength"))
+      strength = ext->second.Get("emissiveStrength").GetNumberAsDouble();
+    if (m.emissiveFactor.size() == 3)
+      material.emission = strength * Vec3(m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]);
+    materials.push_back(std::move(material));
+  }
+  return materials;
+}
+
+// One primitive's triangles (list, strip or fan) as index triples into its positions.
+std::vector<IndexPolygon> trianglesOf(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                                      size_t vertexCount, const std::string& path) {
+  std::vector<int> order;
+  if (primitive.indices >= 0) {
+    const AccessorReader indices(model, primitive.indices, path + ".indices");
+    if (indices.components() != 1) throw ValidationError(path + ".indices", "indices must be scalars");
+    for (size_t i = 0; i < indices.count(); ++i) {
+      const double v = indices.component(i, 0);
+      if (v >= double(vertexCount)) throw ValidationError(path + ".indices", "index " + std::to_string(size_t(v)) + " is past the positions");
+      order.push_back(int(v));
+    }
+  } else {
+    for (size_t i = 0; i < vertexCount; ++i) order.push_back(int(i));
+  }
+  std::vector<IndexPolygon> triangles;
+  const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    for (size_t i = 0; i + 2 < order.size(); i += 3) triangles.push_back({order[i], order[i + 1], order[i + 2]});
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    for (size_t i = 0; i + 2 < order.size(); ++i)
+      triangles.push_back(i % 2 ? IndexPolygon{order[i + 1], order[i], order[i + 2]}
+                                : IndexPolygon{order[i], order[i + 1], order[i + 2]});
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+    for (size_t i = 1; i + 1 < order.size(); ++i) triangles.push_back({order[0], order[i], order[i + 1]});
+  }
+  return triangles;
+}
+
+ImportResult importModel(const tinygltf::Model& model, const std::string& warn, const ImportOptions& options,
+                         ImportReport report) {
+  for (size_t start = 0; start < warn.size();) {
+    const size_t end = std::min(warn.find('\n', start), warn.size());
+    if (end > start) report.warnings.push_back(warn.substr(start, end - start));
+    start = end + 1;
+  }
+  ImportedGeometry geometry;
+  geometry.materials = materialsOf(model, report);
+
+  std::vector<int> roots;
+  if (!model.scenes.empty()) {
+    const size_t scene = model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size()
+                             ? size_t(model.defaultScene) : 0;
+    roots = model.scenes[scene].nodes;
+  } else {
+    std::set<int> children;
+    for (const tinygltf::Node& node : model.nodes) children.insert(node.children.begin(), node.children.end());
+    for (size_t i = 0; i < model.nodes.size(); ++i)
+      if (!children.count(int(i))) roots.push_back(int(i));
+  }
+
+  std::function<void(int, const Mat4&, int)> visit = [&](int index, const Mat4& parent, int depth) {
+    const std::string path = at("nodes", size_t(std::max(index, 0)));
+    if (index < 0 || size_t(index) >= model.nodes.size()) throw ValidationError(path, "no such node");
+    if (depth > kMaxNodeDepth) throw ValidationError(path, "nodes nest deeper than 64 (a cycle?)");
+    const tinygltf::Node& node = model.nodes[size_t(index)];
+    const Mat4 worldFromNode = parent * localMatrix(node);
+    if (node.mesh >= 0) {
+      if (size_t(node.mesh) >= model.meshes.size()) throw ValidationError(path + ".mesh", "no such mesh");
+      const tinygltf::Mesh& mesh = model.meshes[size_t(node.mesh)];
+      const bool mirrored = glm::determinant(Mat3(worldFromNode)) < 0;
+      for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+        const tinygltf::Primitive& primitive = mesh.primitives[p];
+        const std::string primitivePath = at(at("meshes", size_t(node.mesh)) + ".primitives", p);
+        const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+          report.count("point_and_line_primitives_skipped");
+          continue;
+        }
+        const auto position = primitive.attributes.find("POSITION");
+        if (position == primitive.attributes.end())
+          throw ValidationError(primitivePath + ".attributes", "primitive has no POSITION");
+        const AccessorReader positions(model, position->second, primitivePath + ".attributes.POSITION");
+        if (positions.components() != 3) throw ValidationError(primitivePath + ".attributes.POSITION", "POSITION must be VEC3");
+        ImportedGroup group;
+        group.name = !node.name.empty() ? node.name : !mesh.name.empty() ? mesh.name : "mesh" + std::to_string(node.mesh);
+        if (primitive.material >= int(geometry.materials.size()))
+          throw ValidationError(primitivePath + ".material", "no such material");
+        group.material = primitive.material;
+        group.joinTriangles = true;
+        for (size_t i = 0; i < positions.count(); ++i) {
+          const glm::dvec4 local(positions.component(i, 0), positions.component(i, 1), positions.component(i, 2), 1.0);
+          group.positions.push_back(Vec3(worldFromNode * local));
+        }
+        group.polygons = trianglesOf(model, primitive, positions.count(), primitivePath);
+        if (mirrored)  // glTF: a mirroring transform flips the winding back
+          for (IndexPolygon& t : group.polygons) std::swap(t[1], t[2]);
+        geometry.groups.push_back(std::move(group));
+      }
+    }
+    for (int child : node.children) visit(child, worldFromNode, depth + 1);
+  };
+  for (int root : roots) visit(root, Mat4(1.0), 0);
+  return assembleScene(geometry, options, std::move(report));
+}
+
+ImportResult importGltf(const std::vector<uint8_t>& bytes, const std::string& baseDir, bool allowFiles,
+                        const ImportOptions& options, const std::string& sourceName) {
+  if (bytes.size() > kMaxGltfBytes) throw ValidationError("(gltf)", "the file is over the limit of 256 MiB");
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(skipImage, nullptr);
+  if (!allowFiles) loader.SetFsCallbacks(tinygltf::FsCallbacks{noFile, samePath, noRead, noWrite, nullptr});
+  tinygltf::Model model;
+  std::string err, warn;
+  ImportReport report;
+  report.source = sourceName;
+  const bool binary = isBinary(bytes);
+  report.format = binary ? "glb" : "gltf";
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), baseDir)
+                         : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                                      unsigned(bytes.size()), baseDir);
+  if (!ok) throw ValidationError("(gltf)", err.empty() ? "tinygltf could not read the file" : err);
+  return importModel(model, warn, options, std::move(report));
+}
+
+}  // namespace
+
+ImportResult importGltfFile(const std::string& path, const ImportOptions& options) {
+  const std::filesystem::path file(path);
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  if (std::filesystem::file_size(file) > kMaxGltfBytes)
+    throw ValidationError("(gltf)", file.filename().string() + " is over the limit of 256 MiB");
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string baseDir = file.parent_path().empty() ? "." : file.parent_path().string();
+  return importGltf(bytes, baseDir, /*allowFiles=*/true, options, file.filename().string());
+}
+
+ImportResult importGltfBytes(const std::vector<uint8_t>& bytes, const ImportOptions& options,
+                             const std::string& sourceName) {
+  // Only embedded buffers (GLB, data: URIs) resolve.
+  return importGltf(bytes, "", /*allowFiles=*/false, options, sourceName);
+}
+
+}  // namespace penumbra::interchange

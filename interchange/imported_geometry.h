@@ -1,0 +1,41 @@
+// What a format reader hands to scene assembly: named polygon groups with a
+// material each, and the materials (albedo, emitted radiance). Plain data, built by
+// one reader; thread-safe to read.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/geom/vec.h"
+#include "interchange/polygon_repair.h"
+
+namespace penumbra::interchange {
+
+struct ImportedMaterial {
+  std::string name;
+  Vec3 albedo{0.8};
+  Vec3 emission{0.0};  // radiance, W·m⁻²·sr⁻¹; non-zero makes its polygons lights
+  bool defined = true;  // false: named by the file but found in no material file
+};
+
+struct ImportedGroup {
+  std::string name;   // may be empty or repeated; assembly makes ids unique
+  int material = -1;  // index into ImportedGeometry::materials, -1 = none
+  std::vector<Vec3> positions;  // file units (assembly applies ImportOptions::scale)
+  std::vector<IndexPolygon> polygons;
+  // glTF: triangles of one surface are joined back into convex polygons.
+  bool joinTriangles = false;
+};
+
+struct ImportedGeometry {
+  std::vector<ImportedMaterial> materials;
+  std::vector<ImportedGroup> groups;
+};
+
+struct ImportOptions {
+  double scale = 1;                  // multiplies every coordinate (e.g. 0.001 for millimetres)
+  std::optional<Vec3> lightRadiance;  // replaces every light's radiance
+};
+
+}  // namespace penumbra::interchange

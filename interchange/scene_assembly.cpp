@@ -1,0 +1,233 @@
+#include "interchange/scene_assembly.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "core/geom/polygon.h"
+#include "interchange/vertex_weld.h"
+#include "protocol/scene_json.h"
+
+namespace penumbra::interchange {
+
+namespace {
+
+using protocol::ValidationError;
+using Json = nlohmann::json;
+
+// Positions closer than this fraction of the scene's diagonal are one vertex.
+constexpr double kWeldFraction = 1e-9;
+
+Json toJson(const Vec3& v) { return Json::array({v.x, v.y, v.z}); }
+
+bool isEmissive(const Vec3& e) { return e.x > 0 || e.y > 0 || e.z > 0; }
+
+// The face's vertex cycle rotated to start at its smallest index (one key per face).
+IndexPolygon canonical(IndexPolygon p) {
+  std::rotate(p.begin(), std::min_element(p.begin(), p.end()), p.end());
+  return p;
+}
+
+std::string trimmed(const std::string& s) {
+  const size_t first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return "";
+  return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
+}
+
+// Hands out unique ids: "name", then "name.2", "name.3", …
+class IdPool {
+ public:
+  IdPool(std::string fallback, std::string repair, ImportReport& report)
+      : fallback_(std::move(fallback)), repair_(std::move(repair)), report_(report) {}
+  std::string take(const std::string& wanted) {
+    std::string base = trimmed(wanted);
+    if (base.empty()) base = fallback_;
+    std::string id = base;
+    for (int k = 2; used_.count(id); ++k) id = base + "." + std::to_string(k);
+    if (id != trimmed(wanted)) report_.count(repair_);
+    used_.insert(id);
+    return id;
+  }
+
+ private:
+  std::string fallback_, repair_;
+  ImportReport& report_;
+  std::set<std::string> used_;
+};
+
+struct RepairedGroup {
+  const ImportedGroup* source = nullptr;
+  std::vector<Vec3> positions;  // welded, scaled
+  std::vector<IndexPolygon> faces;
+};
+
+RepairedGroup repairGroup(const ImportedGroup& group, double scale, double weldEps, ImportReport& report) {
+  RepairedGroup out;
+  out.source = &group;
+  std::vector<Vec3> scaled;
+  scaled.reserve(group.positions.size());
+  for (const Vec3& p : group.positions) scaled.push_back(p * scale);
+  WeldResult weld = weldVertices(scaled, weldEps);
+  out.positions = std::move(weld.positions);
+
+  std::vector<IndexPolygon> pieces;
+  std::set<int> used;
+  for (const IndexPolygon& polygon : group.polygons) {
+    IndexPolygon remapped;
+    for (int i : polygon) {
+      remapped.push_back(weld.remap[size_t(i)]);
+      used.insert(i);
+    }
+    const PolygonRepair repair = repairPolygon(out.positions, remapped);
+    report.count("repeated_polygon_vertices_removed", repair.repeatedVerticesRemoved);
+    if (repair.degenerate) report.count("degenerate_polygons_dropped");
+    if (repair.selfIntersecting) report.count("self_intersecting_polygons_dropped");
+    if (!repair.pieces.empty() && repair.nonPlanar) report.count("non_planar_polygons_split");
+    if (!repair.pieces.empty() && !repair.nonPlanar && repair.nonConvex) report.count("non_convex_polygons_split");
+    if (repair.pieces.size() > 1) report.count("pieces_added_by_splits", repair.pieces.size() - 1);
+    pieces.insert(pieces.end(), repair.pieces.begin(), repair.pieces.end());
+  }
+  // Used input positions that joined one met earlier (duplicate coordinates).
+  size_t joined = 0;
+  std::set<int> welded;
+  for (int i : used)
+    if (!welded.insert(weld.remap[size_t(i)]).second) ++joined;
+  report.count("duplicate_vertices_merged", joined);
+  if (group.joinTriangles) report.count("coplanar_triangles_joined", joinCoplanarConvex(out.positions, pieces));
+
+  // Same face twice: dropped. A face and its reverse: a two-sided surface, both kept.
+  std::set<IndexPolygon> seen;
+  for (IndexPolygon& face : pieces) {
+    if (!seen.insert(canonical(face)).second) {
+      report.count("duplicate_faces_dropped");
+      continue;
+    }
+    IndexPolygon reversed(face.rbegin(), face.rend());
+    if (seen.count(canonical(reversed))) report.count("reverse_wound_duplicates_kept_two_sided");
+    out.faces.push_back(std::move(face));
+  }
+  return out;
+}
+
+}  // namespace
+
+ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions& options, ImportReport report) {
+  if (!(std::isfinite(options.scale) && options.scale > 0))
+    throw ValidationError("scale", "scale must be a positive number");
+  if (options.lightRadiance)
+    for (int c = 0; c < 3; ++c)
+      if (!(std::isfinite((*options.lightRadiance)[c]) && (*options.lightRadiance)[c] >= 0))
+        throw ValidationError("light-radiance", "radiance must be three non-negative numbers");
+
+  // Scene size first: it sets the welding distance.
+  Bounds bounds{Vec3(INFINITY), Vec3(-INFINITY)};
+  bool anyPosition = false;
+  for (const ImportedGroup& group : geometry.groups)
+    for (const IndexPolygon& polygon : group.polygons)
+      for (int i : polygon) {
+        const Vec3 p = group.positions[size_t(i)] * options.scale;
+        bounds.min = glm::min(bounds.min, p);
+        bounds.max = glm::max(bounds.max, p);
+        anyPosition = true;
+      }
+  if (!anyPosition || !(bounds.diagonal() > 0))
+    throw ValidationError("(import)", "the file has no faces with area");
+  const double weldEps = kWeldFraction * bounds.diagonal();
+
+  std::vector<RepairedGroup> groups;
+  for (const ImportedGroup& group : geometry.groups) {
+    // Undefined materials count once per group that uses them.
+    if (group.material >= 0 && !geometry.materials[size_t(group.material)].defined)
+      report.count("groups_with_undefined_material");
+    groups.push_back(repairGroup(group, options.scale, weldEps, report));
+  }
+
+  auto emissionOf = [&](const RepairedGroup& g) {
+    return g.source->material >= 0 ? geometry.materials[size_t(g.source->material)].emission : Vec3(0.0);
+  };
+
+  // The centre of what is lit: lights are turned to face it.
+  Bounds lit{Vec3(INFINITY), Vec3(-INFINITY)};
+  for (const RepairedGroup& g : groups)
+    if (!isEmissive(emissionOf(g)))
+      for (const IndexPolygon& face : g.faces)
+        for (int i : face) {
+          lit.min = glm::min(lit.min, g.positions[size_t(i)]);
+          lit.max = glm::max(lit.max, g.positions[size_t(i)]);
+        }
+  const bool anyLit = lit.min.x <= lit.max.x;
+
+  Json lights = Json::array(), objects = Json::array(), materials = Json::object();
+  IdPool lightIds("light", "light_ids_made_unique", report);
+  IdPool objectIds("object", "object_ids_made_unique", report);
+  std::set<int> usedMaterials;
+  for (const RepairedGroup& g : groups) {
+    if (g.faces.empty()) {
+      if (!g.source->polygons.empty()) report.count("groups_emptied_by_repairs");
+      continue;
+    }
+    const Vec3 emission = emissionOf(g);
+    if (isEmissive(emission)) {
+      for (const IndexPolygon& face : g.faces) {
+        Polygon3 polygon;
+        for (int i : face) polygon.push_back(g.positions[size_t(i)]);
+        const auto plane = planeOf(polygon);
+        if (anyLit && plane && plane->signedDistance(lit.center()) < 0) {
+          std::reverse(polygon.begin(), polygon.end());
+          report.count("lights_turned_to_face_the_scene");
+        }
+        Vec3 radiance = emission;
+        if (options.lightRadiance) {
+          radiance = *options.lightRadiance;
+          report.count("light_radiance_overridden");
+        }
+        Json points = Json::array();
+        for (const Vec3& p : polygon) points.push_back(toJson(p));
+        lights.push_back({{"id", lightIds.take(g.source->name)}, {"polygon", points}, {"radiance", toJson(radiance)}});
+      }
+      continue;
+    }
+    // Only the vertices the faces use, in first-use order.
+    std::map<int, int> compact;
+    Json vertices = Json::array(), faces = Json::array();
+    for (const IndexPolygon& face : g.faces) {
+      Json indices = Json::array();
+      for (int i : face) {
+        const auto [it, fresh] = compact.emplace(i, int(compact.size()));
+        if (fresh) vertices.push_back(toJson(g.positions[size_t(i)]));
+        indices.push_back(it->second);
+      }
+      faces.push_back(indices);
+    }
+    report.count("unused_vertices_dropped", g.positions.size() - compact.size());
+    Json object = {{"id", objectIds.take(g.source->name)}, {"vertices", vertices}, {"faces", faces}};
+    const int m = g.source->material;
+    if (m >= 0 && geometry.materials[size_t(m)].defined) {
+      object["material"] = geometry.materials[size_t(m)].name;
+      usedMaterials.insert(m);
+    }
+    objects.push_back(std::move(object));
+    report.faces += g.faces.size();
+  }
+  for (int m : usedMaterials) {
+    const ImportedMaterial& material = geometry.materials[size_t(m)];
+    const Vec3 albedo = glm::clamp(material.albedo, 0.0, 1.0);
+    if (albedo != material.albedo) report.count("albedo_clamped_to_0_1");
+    materials[material.name] = {{"albedo", toJson(albedo)}};
+  }
+  if (lights.empty())
+    throw ValidationError("(import)",
+                          "no emissive faces: give a material Ke (or Ka on a material named like a light), "
+                          "an emissiveFactor, or use --light-radiance with a material named like a light");
+
+  Json scene = {{"format", "penumbra.scene"}, {"version", 1}, {"lights", lights}, {"objects", objects}};
+  if (!materials.empty()) scene["materials"] = materials;
+  report.objects = objects.size();
+  report.lights = lights.size();
+  report.materials = materials.size();
+  Scene validated = protocol::sceneFromJson(scene);
+  return ImportResult{std::move(scene), std::move(validated), std::move(report)};
+}
+
+}  // namespace penumbra::interchange

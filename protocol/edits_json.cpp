@@ -1,0 +1,127 @@
+#include "protocol/edits_json.h"
+
+#include "protocol/json_reader.h"
+#include "protocol/json_text.h"
+#include "protocol/scene_json.h"
+
+namespace penumbra::protocol {
+
+namespace {
+
+constexpr std::string_view kOps = "expected \"move\", \"add\" or \"remove\"";
+
+// Without a material list, any named material passes here (Engine::apply checks
+// it against the scene); every other object check still runs.
+std::vector<Material> materialsFor(const Json& object, const std::vector<Material>* materials) {
+  if (materials) return *materials;
+  std::vector<Material> named;
+  if (object.is_object())
+    if (const Json* m = optionalKey(object, "material"); m && m->is_string())
+      named.push_back(Material{m->get<std::string>(), Vec3(0.8)});
+  return named;
+}
+
+Edit editFromJson(const Json& value, const std::string& path,
+                  const std::vector<Material>* materials) {
+  expectObject(value, path);
+  const std::string op = expectString(requireKey(value, "op", path), keyPath(path, "op"));
+  Edit edit;
+  if (op == "move") {
+    edit.op = Edit::Op::Move;
+    edit.id = expectName(requireKey(value, "id", path), keyPath(path, "id"));
+    edit.transform =
+        transformFromJson(requireKey(value, "transform", path), keyPath(path, "transform"));
+  } else if (op == "remove") {
+    edit.op = Edit::Op::Remove;
+    edit.id = expectName(requireKey(value, "id", path), keyPath(path, "id"));
+  } else if (op == "add") {
+    edit.op = Edit::Op::Add;
+    const Json& object = requireKey(value, "object", path);
+    edit.object = objectFromJson(object, keyPath(path, "object"), materialsFor(object, materials));
+    edit.id = edit.object.id;
+  } else {
+    fail(keyPath(path, "op"), "unknown op '" + op + "' (" + std::string(kOps) + ")");
+  }
+  return edit;
+}
+
+}  // namespace
+
+Frame frameFromJson(const Json& value, const std::vector<Material>* materials) {
+  expectObject(value, "");
+  const Json& edits = expectArray(requireKey(value, "edits", ""), "edits");
+  Frame frame;
+  for (size_t i = 0; i < edits.size(); ++i)
+    frame.edits.push_back(editFromJson(edits[i], indexPath("edits", i), materials));
+  return frame;
+}
+
+Json frameToJson(const Frame& frame) {
+  Json edits = Json::array();
+  for (const Edit& edit : frame.edits) {
+    switch (edit.op) {
+      case Edit::Op::Move:
+        edits.push_back(
+            {{"op", "move"}, {"id", edit.id}, {"transform", transformToJson(edit.transform)}});
+        break;
+      case Edit::Op::Add:
+        edits.push_back({{"op", "add"}, {"object", objectToJson(edit.object)}});
+        break;
+      case Edit::Op::Remove:
+        edits.push_back({{"op", "remove"}, {"id", edit.id}});
+        break;
+    }
+  }
+  return Json{{"edits", std::move(edits)}};
+}
+
+EditScriptError::EditScriptError(size_t line, std::string path, std::string problem)
+    : ValidationError(path, problem), line_(line) {
+  message_ =
+      "line " + std::to_string(line) + ": " + (path.empty() ? problem : path + ": " + problem);
+}
+
+EditScriptError atLine(size_t line, const EditError& error) {
+  const std::string path =
+      indexPath("edits", error.editIndex()) + (error.path().empty() ? "" : "." + error.path());
+  std::string problem = error.what();
+  if (problem.rfind(path + ": ", 0) == 0) problem = problem.substr(path.size() + 2);
+  return EditScriptError(line, path, problem);
+}
+
+std::vector<ScriptFrame> readEditScriptFrames(std::string_view text,
+                                              const std::vector<Material>* materials) {
+  std::vector<ScriptFrame> frames;
+  size_t line = 0;
+  for (size_t start = 0; start < text.size();) {
+    size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view content = text.substr(start, end - start);
+    start = end + 1;
+    ++line;
+    if (!content.empty() && content.back() == '\r') content.remove_suffix(1);
+    if (content.find_first_not_of(" \t") == std::string_view::npos) continue;  // blank line
+    try {
+      frames.push_back(
+          {line,
+           frameFromJson(parseJsonText(content, kMaxJsonFileBytes, kMaxJsonDepth), materials)});
+    } catch (const ValidationError& error) {
+      throw EditScriptError(line, error.path(), error.problem());
+    }
+  }
+  return frames;
+}
+
+std::vector<Frame> readEditScript(std::string_view text, const std::vector<Material>* materials) {
+  std::vector<Frame> frames;
+  for (ScriptFrame& f : readEditScriptFrames(text, materials)) frames.push_back(std::move(f.frame));
+  return frames;
+}
+
+std::string writeEditScript(const std::vector<Frame>& frames) {
+  std::string text;
+  for (const Frame& frame : frames) text += frameToJson(frame).dump() + "\n";
+  return text;
+}
+
+}  // namespace penumbra::protocol

@@ -1,0 +1,55 @@
+// API errors: ApiError (status, stable code, key path, message) thrown by handlers,
+// and errorJson, the body {"error": {...}}. Immutable values; thread-safe.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+
+namespace penumbra::server {
+
+// Stable error codes (docs/API.md "Errors"); clients switch on these, not on messages.
+namespace error_code {
+inline constexpr const char* kMalformedJson = "malformed_json";       // 400
+inline constexpr const char* kBadParameter = "bad_parameter";         // 400
+inline constexpr const char* kBadRequest = "bad_request";             // 400
+inline constexpr const char* kNotFound = "not_found";                 // 404
+inline constexpr const char* kPayloadTooLarge = "payload_too_large";  // 413
+inline constexpr const char* kInvalidScene = "invalid_scene";         // 422
+inline constexpr const char* kInvalidFrame = "invalid_frame";         // 422
+inline constexpr const char* kTooManyScenes = "too_many_scenes";      // 429
+inline constexpr const char* kTooManyStreams = "too_many_streams";    // 429
+inline constexpr const char* kInternal = "internal_error";            // 500
+inline constexpr const char* kNotImplemented = "not_implemented";     // 501
+}  // namespace error_code
+
+// Thrown by request handlers; the server turns it into status + errorJson.
+class ApiError : public std::runtime_error {
+ public:
+  ApiError(int status, std::string code, std::string path, const std::string& message)
+      : std::runtime_error(message),
+        status_(status),
+        code_(std::move(code)),
+        path_(std::move(path)) {}
+  int status() const { return status_; }
+  const std::string& code() const { return code_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  int status_;
+  std::string code_;
+  std::string path_;
+};
+
+// {"error": {"code", "message", "path"}}; `extra` keys (e.g. "edit") are merged
+// into the inner object.
+nlohmann::json errorJson(const std::string& code, const std::string& message,
+                         const std::string& path,
+                         const nlohmann::json& extra = nlohmann::json::object());
+
+// The body for a status that cpp-httplib produced itself (unknown path, oversized
+// or unreadable body) and so has no handler-written body.
+nlohmann::json errorJsonForStatus(int status, const std::string& method, const std::string& path,
+                                  size_t maxBodyBytes);
+
+}  // namespace penumbra::server

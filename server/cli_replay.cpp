@@ -1,0 +1,292 @@
+// `penumbra replay SCENE EDITS.jsonl`: applies an edit script frame by frame with
+// Engine::apply, prints what each frame cost, and with --verify checks each (or
+// every K-th) frame against a full rebuild of the resulting scene.
+//
+// The whole script is checked before anything is applied: every line is parsed
+// (key paths), then every frame is played on a copy of the scene model (unknown
+// ids, duplicate ids, degenerate faces). A bad script exits 2 naming the line and
+// the key path, and no frame is applied, no file written.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "core/engine/engine.h"
+#include "core/illum/vertex_illumination.h"
+#include "protocol/edits_json.h"
+#include "protocol/frame_result_json.h"
+#include "protocol/json_text.h"
+#include "protocol/mesh_json.h"
+#include "protocol/scene_json.h"
+#include "server/commands.h"
+#include "server/progress_bar.h"
+
+namespace penumbra::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using nlohmann::json;
+
+constexpr size_t kVerifyAllMaxFaces = 200;  // smaller scenes are verified every frame
+constexpr double kRelative = 1e-9;          // DESIGN.md invariant 1/3
+constexpr double kOfPeak = 1e-12;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Plays a frame on the scene model the way Engine::apply checks it (edits in
+// order, each on the result of the previous), throwing EditError.
+void playOnScene(Scene& scene, const Frame& frame) {
+  for (size_t i = 0; i < frame.edits.size(); ++i) {
+    const Edit& edit = frame.edits[i];
+    try {
+      if (edit.op == Edit::Op::Add) {
+        if (scene.findObject(edit.object.id))
+          throw EditError(i, "object.id", "duplicate object id '" + edit.object.id + "'");
+        scene.addObject(edit.object);
+        continue;
+      }
+      const auto index = scene.findObject(edit.id);
+      if (!index) throw EditError(i, "id", "unknown object '" + edit.id + "'");
+      if (edit.op == Edit::Op::Move)
+        scene.setTransform(scene.handleOf(*index), edit.transform);
+      else
+        scene.removeObject(scene.handleOf(*index));
+    } catch (const EditError&) {
+      throw;
+    } catch (const std::invalid_argument& error) {
+      throw EditError(i, edit.op == Edit::Op::Add ? "object" : "transform", error.what());
+    }
+  }
+}
+
+double segmentDistance(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double t = std::clamp(glm::dot(p - a, ab) / std::max(glm::dot(ab, ab), 1e-300), 0.0, 1.0);
+  return glm::length(p - (a + t * ab));
+}
+
+// The rebuild's value at world point p of its receiver: its own vertex value if
+// p is one of its vertices, else lit from the cells whose closure holds p (one
+// cell inside, the two sides of an edge on it).
+Vec3 rebuiltValueAt(const Engine& rebuilt, const Engine::Receiver& receiver, const Vec3& p,
+                    double eps) {
+  const DmTree& tree = receiver.tree;
+  const Vec2 q = receiver.frame.to2D(p);
+  const CellId cell = tree.locate(q);
+  const auto loop = tree.mesh().loop(cell);
+  for (HalfEdgeId h : loop) {
+    const VertexId v = tree.mesh().halfEdge(h).origin;
+    if (glm::length(tree.position(v) - q) <= eps) return receiver.values[v.index].irradiance;
+  }
+  std::vector<const OccluderList*> lists{&tree.occluders(cell)};
+  for (HalfEdgeId h : loop) {
+    const Vec2 a = tree.position(tree.mesh().halfEdge(h).origin),
+               b = tree.position(tree.mesh().destination(h));
+    if (segmentDistance(q, a, b) > eps) continue;
+    const CellId other = tree.mesh().halfEdge(HalfEdgeMesh::twin(h)).cell;
+    if (other.is_valid()) lists.push_back(&tree.occluders(other));
+    break;
+  }
+  return illuminatePoint(rebuilt.scene(), p, receiver.frame.normal, lists).irradiance;
+}
+
+std::string faceName(const Scene& scene, FaceId face) {
+  return "'" + scene.object(face.object).id + "' face " + std::to_string(face.face);
+}
+
+// The first difference between the incremental engine and a full rebuild of its
+// scene: the same receivers, and at every DM vertex of the incremental mesh the
+// same value (1e-9 relative, 1e-12 of the peak absolute).
+std::optional<std::string> firstDifference(const Engine& incremental, const Engine& rebuilt) {
+  const Scene& scene = incremental.scene();
+  if (incremental.receivers().size() != rebuilt.receivers().size())
+    return std::to_string(incremental.receivers().size()) + " receivers, the rebuild has " +
+           std::to_string(rebuilt.receivers().size());
+  double peak = 0;
+  for (const auto& r : rebuilt.receivers())
+    for (VertexId v : r.tree.vertices())
+      for (int c = 0; c < 3; ++c) peak = std::max(peak, std::abs(r.values[v.index].irradiance[c]));
+  const double eps = scene.tolerance().length();
+  for (const auto& r : incremental.receivers()) {
+    const Engine::Receiver* other = rebuilt.receiver(r.face);
+    if (!other) return "receiver " + faceName(scene, r.face) + " is not one in the rebuild";
+    for (VertexId v : r.tree.vertices()) {
+      const Vec3 p = r.frame.to3D(r.tree.position(v));
+      const Vec3 a = r.values[v.index].irradiance;
+      const Vec3 b = rebuiltValueAt(rebuilt, *other, p, eps);
+      for (int c = 0; c < 3; ++c) {
+        if (std::abs(a[c] - b[c]) <=
+            kRelative * std::max(std::abs(a[c]), std::abs(b[c])) + kOfPeak * peak)
+          continue;
+        char message[256];
+        std::snprintf(message, sizeof message,
+                      "at (%.9g, %.9g, %.9g): %.17g, the rebuild has %.17g", p.x, p.y, p.z, a[c],
+                      b[c]);
+        return "receiver " + faceName(scene, r.face) + " vertex " + std::to_string(v.index) + " " +
+               message;
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+struct Totals {
+  FrameTimings seconds;
+  size_t relit = 0, changed = 0, created = 0, rebuilds = 0, verified = 0;
+  double rebuildSeconds = 0, editSecondsVerified = 0;
+};
+
+}  // namespace
+
+int runReplay(const Args& args) {
+  args.allowOnly({"verify-every", "report", "out"});
+  const std::string scenePath = args.positional(0, "SCENE");
+  const std::string scriptPath = args.positional(1, "EDITS.jsonl");
+  const bool verify = args.flag("verify") || args.option("verify-every");
+  const int verifyEvery = args.intOption("verify-every", 10, 1, 1 << 30);
+  const Scene scene = protocol::loadSceneFile(scenePath);
+
+  // Check the whole script before applying anything.
+  const std::string text = protocol::readTextFile(scriptPath, protocol::kMaxJsonFileBytes);
+  const std::vector<protocol::ScriptFrame> frames =
+      protocol::readEditScriptFrames(text, &scene.materials());
+  {
+    Scene model = scene;
+    for (const auto& f : frames) {
+      try {
+        playOnScene(model, f.frame);
+      } catch (const EditError& error) {
+        throw protocol::atLine(f.line, error);
+      }
+    }
+  }
+
+  ProgressBar building("building");
+  const auto buildStart = Clock::now();
+  Engine engine(scene, {},
+                [&](const char*, size_t done, size_t total) { building.update(done, total); });
+  const double buildSeconds = secondsSince(buildStart);
+  building.finish();
+  std::printf("built %zu faces, %zu receivers in %.3f s; replaying %zu frames%s\n",
+              engine.scene().faces().size(), engine.receivers().size(), buildSeconds, frames.size(),
+              verify ? " with --verify" : "");
+  std::printf("%6s %5s %9s %9s %9s %9s %9s %9s %8s %9s %8s %11s %7s\n", "frame", "line", "version",
+              "remove_ms", "add_ms", "relight_ms", "total_ms", "relit", "changed", "created",
+              "recv", "rebuild_ms", "ratio");
+
+  json report = {{"format", "penumbra.replay-report"},
+                 {"version", 1},
+                 {"scene", scenePath},
+                 {"script", scriptPath},
+                 {"build_seconds", buildSeconds},
+                 {"frames", json::array()}};
+  Totals totals;
+  std::optional<std::string> failure;
+  ProgressBar progress("replay");
+  for (size_t i = 0; i < frames.size() && !failure; ++i) {
+    FrameResult result;
+    const auto applyStart = Clock::now();
+    try {
+      result = engine.apply(frames[i].frame);
+    } catch (const EditError& error) {
+      throw protocol::atLine(frames[i].line, error);  // the dry run should have caught it
+    }
+    const double wallSeconds = secondsSince(applyStart);
+
+    json entry = protocol::frameResultToJson(result, engine.scene());
+    entry.erase("changed_receivers");
+    entry.erase("removed_receivers");
+    entry["frame"] = i + 1;
+    entry["line"] = frames[i].line;
+    entry["wall_seconds"] = wallSeconds;
+    totals.seconds.remove += result.seconds.remove;
+    totals.seconds.add += result.seconds.add;
+    totals.seconds.relight += result.seconds.relight;
+    totals.relit += result.verticesRelit;
+    totals.changed += result.verticesChanged;
+    totals.created += result.verticesCreated;
+    totals.rebuilds += result.treeRebuilds;
+
+    const bool verifyThis =
+        verify && (engine.scene().faces().size() <= kVerifyAllMaxFaces ||
+                   (i + 1) % size_t(verifyEvery) == 0 || i + 1 == frames.size());
+    entry["verified"] = verifyThis;
+    double rebuildSeconds = NAN;
+    if (verifyThis) {
+      const auto rebuildStart = Clock::now();
+      const Engine rebuilt(engine.scene());
+      rebuildSeconds = secondsSince(rebuildStart);
+      entry["rebuild_seconds"] = rebuildSeconds;
+      entry["edit_over_rebuild"] = result.seconds.total() / rebuildSeconds;
+      ++totals.verified;
+      totals.rebuildSeconds += rebuildSeconds;
+      totals.editSecondsVerified += result.seconds.total();
+      if (auto difference = firstDifference(engine, rebuilt))
+        failure = "frame " + std::to_string(i + 1) + " (line " + std::to_string(frames[i].line) +
+                  "): incremental result differs from a full rebuild: " + *difference;
+    }
+    std::printf("%6zu %5zu %9llu %9.3f %9.3f %9.3f %9.3f %9zu %8zu %9zu %8zu", i + 1,
+                frames[i].line, (unsigned long long)result.version, 1e3 * result.seconds.remove,
+                1e3 * result.seconds.add, 1e3 * result.seconds.relight,
+                1e3 * result.seconds.total(), result.verticesRelit, result.verticesChanged,
+                result.verticesCreated, result.changedReceivers.size());
+    if (verifyThis)
+      std::printf(" %11.3f %7.3f\n", 1e3 * rebuildSeconds, result.seconds.total() / rebuildSeconds);
+    else
+      std::printf(" %11s %7s\n", "-", "-");
+    report["frames"].push_back(std::move(entry));
+    progress.update(i + 1, frames.size());
+  }
+  progress.finish();
+
+  report["totals"] = {
+      {"frames", report["frames"].size()},
+      {"seconds",
+       {{"remove", totals.seconds.remove},
+        {"add", totals.seconds.add},
+        {"relight", totals.seconds.relight},
+        {"total", totals.seconds.total()}}},
+      {"vertices",
+       {{"relit", totals.relit}, {"changed", totals.changed}, {"created", totals.created}}},
+      {"tree_rebuilds", totals.rebuilds},
+      {"verified_frames", totals.verified},
+      {"rebuild_seconds_verified", totals.rebuildSeconds},
+      {"edit_seconds_verified", totals.editSecondsVerified},
+      {"edit_over_rebuild", totals.rebuildSeconds > 0
+                                ? json(totals.editSecondsVerified / totals.rebuildSeconds)
+                                : json(nullptr)}};
+  report["verify_failure"] = failure ? json(*failure) : json(nullptr);
+  std::printf(
+      "total: %zu frames, %.3f s (remove %.3f, add %.3f, relight %.3f); %zu relit, %zu changed, "
+      "%zu created; %zu tree rebuilds (fallback)",
+      report["frames"].size(), totals.seconds.total(), totals.seconds.remove, totals.seconds.add,
+      totals.seconds.relight, totals.relit, totals.changed, totals.created, totals.rebuilds);
+  if (totals.verified)
+    std::printf("; %zu frames verified, edit / rebuild = %.3f", totals.verified,
+                totals.editSecondsVerified / totals.rebuildSeconds);
+  std::printf("\n");
+
+  if (const auto out = args.option("report")) {
+    protocol::writeTextFile(*out, report.dump(2) + "\n");
+    std::printf("wrote %s\n", out->c_str());
+  }
+  if (failure) {
+    std::fprintf(stderr, "penumbra: verify failed: %s\n", failure->c_str());
+    return 1;
+  }
+  if (const auto out = args.option("out")) {
+    protocol::saveMeshFile(engine.scene(), engine.mesh(),
+                           std::filesystem::path(scenePath).filename().string(), *out);
+    std::printf("wrote %s\n", out->c_str());
+  }
+  return 0;
+}
+
+}  // namespace penumbra::cli

@@ -1,0 +1,75 @@
+// The HTTP service (docs/API.md): REST API, server-sent events and the static page on
+// cpp-httplib, one engine session per scene. Methods are thread-safe; handlers run on its pool.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "core/engine/engine.h"
+#include "server/scene_session.h"
+
+namespace httplib {
+class Server;
+}
+
+namespace penumbra::server {
+
+// Documented limits (docs/API.md "Limits").
+inline constexpr size_t kMaxBodyBytes = size_t(16) << 20;  // 16 MiB request bodies, else 413
+inline constexpr size_t kMaxScenes = 32;                   // served at once, else 429
+inline constexpr int kMaxEventStreams = 8;                 // open /events streams, else 429
+inline constexpr int kRequestWorkers = 16;                 // workers left for ordinary requests
+inline constexpr int kWorkerThreads = kMaxEventStreams + kRequestWorkers;
+inline constexpr int kMaxImageSide = 4096;  // image width/height in [1, 4096]
+
+struct ServerOptions {
+  std::string host = "127.0.0.1";
+  int port = 8080;        // 0: any free port (see HttpServer::port)
+  std::string staticDir;  // served at "/" (empty: no page); node_modules beside or inside it at
+                          // /node_modules
+  EngineSettings engine;
+};
+
+class HttpServer {
+ public:
+  explicit HttpServer(ServerOptions options);
+  ~HttpServer();  // stops and waits for the workers
+  HttpServer(const HttpServer&) = delete;
+  HttpServer& operator=(const HttpServer&) = delete;
+
+  // Builds and serves a scene as POST /api/scenes would; `preferredId` is used when
+  // free and well-formed. Returns the id. Throws ApiError (e.g. too many scenes).
+  std::string addScene(Scene scene, const std::string& name, const std::string& preferredId = "");
+
+  // Binds the listening socket; returns the port. Throws std::runtime_error.
+  int bind();
+  // Serves until stop() (blocks; run it on a thread of its own). Call after bind().
+  void listen();
+  // Ends event streams, closes the socket; listen() then returns once the
+  // workers have finished their requests.
+  void stop();
+  bool isRunning() const;
+  int port() const { return port_; }
+  const ServerOptions& options() const { return options_; }
+
+ private:
+  void registerRoutes();
+  void registerStaticFiles();
+  std::shared_ptr<SceneSession> findScene(const std::string& id) const;
+  std::string freshId(const std::string& preferred);  // call with scenesMutex_ held
+
+  ServerOptions options_;
+  std::unique_ptr<httplib::Server> http_;
+  int port_ = 0;
+  std::atomic<bool> stopping_{false};
+  std::atomic<int> openStreams_{0};
+  mutable std::mutex scenesMutex_;  // guards scenes_, nextId_
+  std::map<std::string, std::shared_ptr<SceneSession>> scenes_;
+  size_t nextId_ = 1;
+};
+
+}  // namespace penumbra::server

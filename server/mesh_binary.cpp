@@ -1,0 +1,123 @@
+#include "server/mesh_binary.h"
+
+#include <bit>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+
+namespace penumbra::server::mesh_binary {
+
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "the binary mesh is written little-endian");
+
+// Appends fixed-width values; every section keeps the 4-byte alignment typed arrays need.
+class Writer {
+ public:
+  explicit Writer(size_t reserve) { bytes_.reserve(reserve); }
+  void u32(uint64_t value) {
+    if (value > UINT32_MAX) throw std::overflow_error("binary mesh: value does not fit 32 bits");
+    put(static_cast<uint32_t>(value));
+  }
+  void f32(double value) { put(static_cast<float>(value)); }
+  void u8(uint8_t value) { bytes_.push_back(static_cast<char>(value)); }
+  void raw(const void* data, size_t size) { bytes_.append(static_cast<const char*>(data), size); }
+  void padTo4() {
+    while (bytes_.size() % 4) bytes_.push_back('\0');
+  }
+  std::string take() { return std::move(bytes_); }
+
+ private:
+  template <class T>
+  void put(T value) {
+    char out[sizeof(T)];
+    std::memcpy(out, &value, sizeof(T));
+    bytes_.append(out, sizeof(T));
+  }
+  std::string bytes_;
+};
+
+uint8_t classCode(LightClass c) {
+  switch (c) {
+    case LightClass::Lit:
+      return kLit;
+    case LightClass::Penumbra:
+      return kPenumbra;
+    case LightClass::Umbra:
+      return kUmbra;
+  }
+  return kLit;
+}
+
+}  // namespace
+
+std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection) {
+  // Object names: each named once, receivers refer to them by index.
+  std::vector<std::string> names;
+  std::map<std::string, uint32_t> nameIndex;
+  auto indexOf = [&](const std::string& name) {
+    const auto [it, inserted] = nameIndex.emplace(name, uint32_t(names.size()));
+    if (inserted) names.push_back(name);
+    return it->second;
+  };
+  std::vector<uint32_t> receiverObjects, removedObjects;
+  size_t vertices = 0, triangles = 0;
+  for (size_t i : selection.receivers) {
+    receiverObjects.push_back(indexOf(snapshot.receiverKeys[i].object));
+    vertices += snapshot.mesh.receivers[i].positions.size();
+    triangles += snapshot.mesh.receivers[i].triangles.size();
+  }
+  for (const ReceiverKey& key : selection.removed) removedObjects.push_back(indexOf(key.object));
+
+  size_t namesBytes = 0;
+  for (const std::string& n : names) namesBytes += 4 + (n.size() + 3) / 4 * 4;
+  Writer out(kHeaderBytes + namesBytes + selection.receivers.size() * kReceiverRecordBytes +
+             selection.removed.size() * kRemovedRecordBytes + vertices * 25 + triangles * 12 +
+             selection.receivers.size() * 4);
+
+  out.raw(kMagic, 4);
+  out.u32(kLayoutVersion);
+  out.u32(snapshot.version);
+  out.u32(selection.since ? kFlagDelta : 0);
+  out.u32(selection.since.value_or(0));
+  out.u32(names.size());
+  out.u32(selection.receivers.size());
+  out.u32(selection.removed.size());
+  out.u32(vertices);
+  out.u32(triangles);
+
+  for (const std::string& n : names) {
+    out.u32(n.size());
+    out.raw(n.data(), n.size());
+    out.padTo4();
+  }
+  for (size_t k = 0; k < selection.receivers.size(); ++k) {
+    const size_t i = selection.receivers[k];
+    const ReceiverMesh& r = snapshot.mesh.receivers[i];
+    out.u32(receiverObjects[k]);
+    out.u32(snapshot.receiverKeys[i].face);
+    out.u32(r.positions.size());
+    out.u32(r.triangles.size());
+    out.u32(snapshot.receiverVersions[i]);
+    for (int c = 0; c < 3; ++c) out.f32(r.normal[c]);
+  }
+  for (size_t k = 0; k < selection.removed.size(); ++k) {
+    out.u32(removedObjects[k]);
+    out.u32(selection.removed[k].face);
+  }
+  for (size_t i : selection.receivers) {
+    const ReceiverMesh& r = snapshot.mesh.receivers[i];
+    for (const Vec3& p : r.positions)
+      for (int c = 0; c < 3; ++c) out.f32(p[c]);
+    for (const Vec3& e : r.irradiance)
+      for (int c = 0; c < 3; ++c) out.f32(e[c]);
+    for (LightClass c : r.classes) out.u8(classCode(c));
+    out.padTo4();
+    for (const auto& t : r.triangles)
+      for (uint32_t index : t) out.u32(index);
+  }
+  return out.take();
+}
+
+}  // namespace penumbra::server::mesh_binary

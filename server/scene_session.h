@@ -1,0 +1,76 @@
+// One served scene: its engine (edits applied one frame at a time under a writer mutex) and
+// the latest published immutable SceneSnapshot, which readers take without waiting.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "core/engine/engine.h"
+#include "server/scene_snapshot.h"
+
+namespace penumbra::server {
+
+// What POST /api/scenes/{id}/rebuild reports: a full build of the current scene
+// from scratch (the engine that serves edits is left as it is).
+struct RebuildReport {
+  uint64_t version = 0;     // the version that was rebuilt
+  double buildSeconds = 0;  // Engine construction (ordering .. illumination)
+  double meshSeconds = 0;   // triangulation
+  BuildStats stats;
+  size_t meshVertices = 0, meshTriangles = 0;      // of the rebuilt mesh
+  size_t servedVertices = 0, servedTriangles = 0;  // of the served one, for comparison
+};
+
+class SceneSession {
+ public:
+  // Builds the engine (may take seconds for large scenes) and publishes version 0.
+  SceneSession(std::string id, std::string name, Scene scene, EngineSettings settings = {});
+
+  const std::string& id() const { return id_; }
+  std::shared_ptr<const SceneSnapshot> snapshot() const;
+
+  // Applies one frame, serialised with other frames of this scene, and publishes
+  // the new version before returning it with the engine's result. Throws EditError
+  // (nothing changed) on an invalid frame.
+  struct Applied {
+    FrameResult result;
+    std::shared_ptr<const SceneSnapshot> snapshot;  // the version this frame made
+  };
+  Applied apply(const Frame& frame);
+
+  // A full rebuild of the current version, timed. Serialised with other rebuilds,
+  // not with edits (it works on a snapshot's scene).
+  RebuildReport rebuild();
+  std::optional<RebuildReport> lastRebuild() const;
+
+  // Waits until a version newer than `after` is published, the session is closed,
+  // or the timeout passes; returns the current snapshot.
+  std::shared_ptr<const SceneSnapshot> waitForVersionAfter(uint64_t after,
+                                                           std::chrono::milliseconds timeout) const;
+
+  // Marks the session deleted: waiters wake, event streams end.
+  void close();
+  bool closed() const;
+
+ private:
+  void publish(std::shared_ptr<const SceneSnapshot> next);
+
+  const std::string id_;
+  const EngineSettings settings_;
+  std::mutex editMutex_;  // one frame at a time; guards engine_
+  std::unique_ptr<Engine> engine_;
+  mutable std::mutex rebuildMutex_;  // one rebuild at a time
+
+  mutable std::mutex publishMutex_;  // guards current_, closed_, lastRebuild_
+  mutable std::condition_variable published_;
+  std::shared_ptr<const SceneSnapshot> current_;
+  std::optional<RebuildReport> lastRebuild_;
+  bool closed_ = false;
+};
+
+}  // namespace penumbra::server

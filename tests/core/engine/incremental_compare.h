@@ -1,0 +1,47 @@
+// Test helpers for the incremental engine: comparing two engines' DM meshes of the
+// same scene (vertex values at the same points, classes at points, discontinuity
+// segments up to splitting) and generating random edit frames on cube scenes.
+#pragma once
+
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/engine/engine.h"
+
+namespace penumbra::testing {
+
+struct EngineDiff {
+  size_t vertices = 0;        // vertices compared, both directions
+  size_t matchedVertices = 0; // of those, with a vertex of the other engine at the same point
+  size_t valueErrors = 0;
+  // Vertices where the two disagree but `a` equals the exact reference and `b` does
+  // not (the rebuild's own precision, e.g. backprojection order): not `a`'s error.
+  size_t secondOffReference = 0;
+  size_t pointsCompared = 0;
+  size_t classErrors = 0;
+  size_t segmentSamples = 0;
+  size_t segmentErrors = 0;
+  size_t receiverErrors = 0;  // receivers present in one engine only
+  std::string firstProblem;
+  size_t errors() const { return valueErrors + classErrors + segmentErrors + receiverErrors; }
+};
+
+// Compares `a` and `b` (same scene): (a) every DM vertex of each has the other's value
+// at its point (the lists around the other's vertex there, else of its cell holding
+// the point, lit at exactly that point), within 1e-9 relative + 1e-12 of `peak`, or
+// else `a` has the exact reference's value there and `b` not (counted apart); (b) `randomPoints` seeded points lit from
+// each engine's cell get the same class and value; (c) every non-orphan node segment
+// of each lies on edges of the other (sampled).
+EngineDiff compareEngines(const Engine& a, const Engine& b, double peak, size_t randomPoints, uint64_t seed);
+
+// The largest vertex irradiance (red channel) of an engine.
+double peakIrradiance(const Engine& engine);
+
+// A random frame of `edits` edits (move: small/large translations, rotations about
+// y, resting on or touching/piercing another object; add: a new cube on the floor or
+// on a cube; remove) on the generated cubes scene held by `engine`.
+Frame randomFrame(const Engine& engine, std::mt19937_64& rng, size_t edits, int& nextNewId);
+
+}  // namespace penumbra::testing

@@ -1,0 +1,119 @@
+// Engine::apply on hand-made frames: invalid frames change nothing (version, scene
+// and mesh byte-identical), a move relights only near the moved object, receivers
+// of removed objects are reported, and undoing a move restores the values.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "bench/lib/cubes_scene.h"
+#include "core/engine/engine.h"
+#include "protocol/mesh_json.h"
+#include "protocol/scene_json.h"
+#include "tests/core/engine/incremental_compare.h"
+
+namespace penumbra {
+namespace {
+
+std::string meshText(Engine& engine) {
+  return protocol::meshToJson(engine.scene(), engine.mesh(), "s").dump();
+}
+std::string sceneText(const Engine& engine) { return protocol::sceneToJson(engine.scene()).dump(); }
+
+Edit moveEdit(const Engine& engine, const std::string& id, const Vec3& by) {
+  Edit edit;
+  edit.op = Edit::Op::Move;
+  edit.id = id;
+  edit.transform = engine.scene().objects()[*engine.scene().findObject(id)].transform;
+  edit.transform.translate += by;
+  return edit;
+}
+
+void expectRefusedUnchanged(Engine& engine, const Frame& frame, size_t editIndex, const std::string& path) {
+  const uint64_t version = engine.version();
+  const std::string scene = sceneText(engine), mesh = meshText(engine);
+  try {
+    engine.apply(frame);
+    ADD_FAILURE() << "frame accepted";
+  } catch (const EditError& error) {
+    EXPECT_EQ(error.editIndex(), editIndex) << error.what();
+    EXPECT_EQ(error.path(), path) << error.what();
+  }
+  EXPECT_EQ(engine.version(), version);
+  EXPECT_EQ(sceneText(engine), scene);
+  EXPECT_EQ(meshText(engine), mesh);
+  EXPECT_NO_THROW(engine.validate());
+}
+
+TEST(IncrementalFrame, InvalidFramesChangeNothing) {
+  Engine engine(makeCubesScene(mixedCubesOptions(4)));
+  engine.apply(Frame{{moveEdit(engine, "cube_0", Vec3(0.1, 0, 0))}});  // a state that is not a fresh build
+
+  Edit unknown;
+  unknown.op = Edit::Op::Remove;
+  unknown.id = "no_such_object";
+  expectRefusedUnchanged(engine, Frame{{moveEdit(engine, "cube_0", Vec3(0.05, 0, 0)), unknown}}, 1, "id");
+
+  Edit duplicate;
+  duplicate.op = Edit::Op::Add;
+  duplicate.object = engine.scene().objects()[*engine.scene().findObject("cube_1")];
+  expectRefusedUnchanged(engine, Frame{{moveEdit(engine, "cube_0", Vec3(0.05, 0, 0)), duplicate}}, 1, "object.id");
+
+  Edit zeroScale = moveEdit(engine, "cube_1", Vec3(0.0));
+  zeroScale.transform.scale = Vec3(0.0);
+  expectRefusedUnchanged(engine, Frame{{zeroScale}}, 0, "transform");
+
+  // Far outside the room: the overlap cubes could not find its shadows.
+  expectRefusedUnchanged(engine, Frame{{moveEdit(engine, "cube_0", Vec3(100, 0, 0))}}, 0, "transform");
+}
+
+TEST(IncrementalFrame, MoveRelightsLocallyAndUndoRestores) {
+  Engine many(makeCubesScene(CubesSceneOptions{12, 5}));
+  size_t total = 0;
+  for (const auto& r : many.receivers()) total += r.tree.vertexCount();
+
+  const FrameResult moved = many.apply(Frame{{moveEdit(many, "cube_3", Vec3(0.02, 0, 0.01))}});
+  EXPECT_EQ(moved.version, 1u);
+  EXPECT_EQ(moved.treeRebuilds, 0u);
+  EXPECT_GT(moved.verticesRelit, 0u);
+  EXPECT_LT(moved.verticesRelit, total / 2) << "a small move relit most of the scene";
+  EXPECT_LE(moved.verticesChanged, moved.verticesRelit);
+  EXPECT_TRUE(moved.removedReceivers.empty());
+  // The moved cube's own receiving faces are among the changed ones.
+  const uint32_t handle = many.scene().handleOf(*many.scene().findObject("cube_3"));
+  EXPECT_TRUE(std::any_of(moved.changedReceivers.begin(), moved.changedReceivers.end(),
+                          [&](FaceId f) { return f.object == handle; }));
+
+  const FrameResult back = many.apply(Frame{{moveEdit(many, "cube_3", Vec3(-0.02, 0, -0.01))}});
+  EXPECT_EQ(back.version, 2u);
+  const Engine rebuilt(many.scene());
+  const testing::EngineDiff diff = testing::compareEngines(many, rebuilt, testing::peakIrradiance(rebuilt), 100, 1);
+  EXPECT_EQ(diff.errors(), 0u) << diff.firstProblem;
+}
+
+TEST(IncrementalFrame, RemoveReportsReceiversAndAddBringsThemBack) {
+  Engine engine(makeCubesScene(CubesSceneOptions{6, 9}));
+  const uint32_t handle = engine.scene().handleOf(*engine.scene().findObject("cube_2"));
+  const Object cube = engine.scene().objects()[*engine.scene().findObject("cube_2")];
+  Edit remove;
+  remove.op = Edit::Op::Remove;
+  remove.id = "cube_2";
+  const FrameResult removed = engine.apply(Frame{{remove}});
+  EXPECT_FALSE(removed.removedReceivers.empty());
+  for (FaceId f : removed.removedReceivers) EXPECT_EQ(f.object, handle);
+  for (const auto& r : engine.receivers()) EXPECT_NE(r.face.object, handle);
+  EXPECT_TRUE(engine.castOn(FaceId{handle, 0}).empty());
+
+  Edit add;
+  add.op = Edit::Op::Add;
+  add.object = cube;
+  const FrameResult added = engine.apply(Frame{{add}});
+  EXPECT_GT(added.verticesCreated, 0u);
+  const Engine rebuilt(engine.scene());
+  const testing::EngineDiff diff = testing::compareEngines(engine, rebuilt, testing::peakIrradiance(rebuilt), 100, 2);
+  EXPECT_EQ(diff.errors(), 0u) << diff.firstProblem;
+  EXPECT_NO_THROW(engine.validate());
+}
+
+}  // namespace
+}  // namespace penumbra

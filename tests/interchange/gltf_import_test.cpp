@@ -1,0 +1,162 @@
+// glTF/GLB import: meshes → objects (node transforms applied, triangles joined
+// back into convex faces), baseColorFactor → albedo, emissiveFactor ×
+// KHR_materials_emissive_strength → lights. The test writes its glTF with tinygltf.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <sstream>
+
+#include <tiny_gltf.h>
+
+#include "interchange/gltf_import.h"
+#include "interchange/scene_import.h"
+#include "interchange_fixtures.h"
+#include "protocol/validation_error.h"
+
+namespace penumbra::interchange {
+namespace {
+
+using testing::scratchDir;
+using testing::writeFile;
+
+// Builds a model: each added quad is a mesh of two indexed triangles under its own node.
+class ModelWriter {
+ public:
+  ModelWriter() {
+    model_.asset.version = "2.0";
+    model_.buffers.emplace_back();
+    model_.scenes.emplace_back();
+    model_.defaultScene = 0;
+  }
+  int material(const std::string& name, const Vec3& base, const Vec3& emissive, double strength) {
+    tinygltf::Material m;
+    m.name = name;
+    m.pbrMetallicRoughness.baseColorFactor = {base.x, base.y, base.z, 1};
+    m.emissiveFactor = {emissive.x, emissive.y, emissive.z};
+    if (strength != 1)
+      m.extensions["KHR_materials_emissive_strength"] =
+          tinygltf::Value(tinygltf::Value::Object{{"emissiveStrength", tinygltf::Value(strength)}});
+    model_.materials.push_back(m);
+    return int(model_.materials.size() - 1);
+  }
+  // corners counter-clockwise seen from the front; translation on the node.
+  void quad(const std::string& name, const std::array<Vec3, 4>& corners, int material, const Vec3& translation) {
+    std::vector<float> positions;
+    for (const Vec3& c : corners) positions.insert(positions.end(), {float(c.x), float(c.y), float(c.z)});
+    const std::vector<uint16_t> indices = {0, 1, 2, 0, 2, 3};
+    tinygltf::Primitive p;
+    p.mode = TINYGLTF_MODE_TRIANGLES;
+    p.material = material;
+    p.attributes["POSITION"] = accessor(positions.data(), positions.size() * 4, 4, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                        TINYGLTF_TYPE_VEC3);
+    p.indices = accessor(indices.data(), indices.size() * 2, 6, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                         TINYGLTF_TYPE_SCALAR);
+    tinygltf::Mesh mesh;
+    mesh.primitives.push_back(p);
+    model_.meshes.push_back(mesh);
+    tinygltf::Node node;
+    node.name = name;
+    node.mesh = int(model_.meshes.size() - 1);
+    node.translation = {translation.x, translation.y, translation.z};
+    model_.nodes.push_back(node);
+    model_.scenes[0].nodes.push_back(int(model_.nodes.size() - 1));
+  }
+  std::vector<uint8_t> write(bool binary) {
+    tinygltf::TinyGLTF writer;
+    std::ostringstream out;
+    EXPECT_TRUE(writer.WriteGltfSceneToStream(&model_, out, false, binary));
+    const std::string s = out.str();
+    return std::vector<uint8_t>(s.begin(), s.end());
+  }
+
+ private:
+  int accessor(const void* data, size_t bytes, size_t count, int componentType, int type) {
+    std::vector<unsigned char>& buffer = model_.buffers[0].data;
+    while (buffer.size() % 4) buffer.push_back(0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = buffer.size();
+    view.byteLength = bytes;
+    buffer.resize(buffer.size() + bytes);
+    std::memcpy(buffer.data() + view.byteOffset, data, bytes);
+    model_.bufferViews.push_back(view);
+    tinygltf::Accessor a;
+    a.bufferView = int(model_.bufferViews.size() - 1);
+    a.componentType = componentType;
+    a.type = type;
+    a.count = count;
+    if (type == TINYGLTF_TYPE_VEC3) {
+      a.minValues = {-100, -100, -100};
+      a.maxValues = {100, 100, 100};
+    }
+    model_.accessors.push_back(a);
+    return int(model_.accessors.size() - 1);
+  }
+  tinygltf::Model model_;
+};
+
+std::vector<uint8_t> smallModel(bool binary) {
+  ModelWriter w;
+  const int grey = w.material("grey", {0.5, 0.6, 0.7}, {0, 0, 0}, 1);
+  const int lamp = w.material("lamp", {1, 1, 1}, {1, 0.5, 0.25}, 8);
+  w.quad("floor", {{{-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}}}, grey, {0, 0, 0});
+  w.quad("card", {{{-0.5, 0, -0.5}, {-0.5, 0, 0.5}, {0.5, 0, 0.5}, {0.5, 0, -0.5}}}, grey, {0, 1, 0});
+  // Wound facing up: the importer turns it down towards the scene, and says so.
+  w.quad("lamp", {{{-0.5, 0, -0.5}, {-0.5, 0, 0.5}, {0.5, 0, 0.5}, {0.5, 0, -0.5}}}, lamp, {0, 3, 0});
+  return w.write(binary);
+}
+
+void expectSmallScene(const ImportResult& result) {
+  const Scene& scene = result.scene;
+  EXPECT_EQ(result.report.repaired("coplanar_triangles_joined"), 3u) << result.report.summary();
+  EXPECT_EQ(result.report.repaired("lights_turned_to_face_the_scene"), 1u);
+  ASSERT_EQ(scene.lights().size(), 1u);
+  EXPECT_EQ(scene.lights()[0].polygon.size(), 4u);
+  EXPECT_EQ(scene.lights()[0].radiance, Vec3(8, 4, 2));
+  for (const Vec3& p : scene.lights()[0].polygon) EXPECT_EQ(p.y, 3);
+  ASSERT_EQ(scene.objects().size(), 2u);
+  EXPECT_EQ(scene.faces().size(), 2u);  // each quad's two triangles are one face again
+  const auto card = scene.findObject("card");
+  ASSERT_TRUE(card);
+  for (const Vec3& v : scene.objects()[*card].vertices) EXPECT_EQ(v.y, 1);  // node translation applied
+  EXPECT_EQ(scene.albedo(scene.faces()[0].id), Vec3(0.5, 0.6, 0.7));
+}
+
+TEST(GltfImport, GlbFromMemory) {
+  const ImportResult result = importSceneBytes(smallModel(true), "small.glb", {}, {});
+  EXPECT_EQ(result.report.format, "glb");
+  expectSmallScene(result);
+}
+
+TEST(GltfImport, GltfFileWithEmbeddedBuffer) {
+  const auto dir = scratchDir();
+  const std::vector<uint8_t> text = smallModel(false);
+  writeFile(dir / "small.gltf", std::string(text.begin(), text.end()));
+  const ImportResult result = importGltfFile((dir / "small.gltf").string(), {});
+  EXPECT_EQ(result.report.format, "gltf");
+  expectSmallScene(result);
+}
+
+TEST(GltfImport, UploadsCannotReadFilesAndBadAccessorsAreErrors) {
+  const std::string external =
+      R"({"asset":{"version":"2.0"},"buffers":[{"uri":"/etc/passwd","byteLength":12}],)"
+      R"("bufferViews":[{"buffer":0,"byteLength":12}],)"
+      R"("accessors":[{"bufferView":0,"componentType":5126,"count":1,"type":"VEC3"}],)"
+      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})";
+  EXPECT_THROW(importSceneBytes(std::vector<uint8_t>(external.begin(), external.end()), "x.gltf", {}, {}),
+               protocol::ValidationError);
+  const std::string overrun =
+      R"({"asset":{"version":"2.0"},"buffers":[{"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAA","byteLength":12}],)"
+      R"("bufferViews":[{"buffer":0,"byteLength":12}],)"
+      R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],)"
+      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})";
+  try {
+    importSceneBytes(std::vector<uint8_t>(overrun.begin(), overrun.end()), "x.gltf", {}, {});
+    FAIL() << "an accessor past its buffer view was accepted";
+  } catch (const protocol::ValidationError& error) {
+    EXPECT_EQ(error.path(), "meshes[0].primitives[0].attributes.POSITION") << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace penumbra::interchange

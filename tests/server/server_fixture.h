@@ -1,0 +1,85 @@
+// Test fixture: a real HttpServer on an ephemeral loopback port, listening on its own thread
+// from construction to scope exit (then stopped and joined). One per test.
+#pragma once
+
+#include <httplib.h>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "protocol/json_text.h"
+#include "protocol/scene_json.h"
+#include "server/http_server.h"
+
+namespace penumbra::server::test {
+
+using nlohmann::json;
+
+inline std::string scenePath(const std::string& name) {
+  return std::string(PENUMBRA_SOURCE_DIR) + "/scenes/" + name + ".scene.json";
+}
+
+inline std::string sceneText(const std::string& name) {
+  return protocol::readTextFile(scenePath(name), protocol::kMaxJsonFileBytes);
+}
+
+class RunningServer {
+ public:
+  explicit RunningServer(ServerOptions options = loopback()) : server_(std::move(options)) {
+    port_ = server_.bind();
+    listener_ = std::thread([this] { server_.listen(); });
+    // cpp-httplib 0.11 has no wait_until_ready(): poll.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (!server_.isRunning()) {
+      if (std::chrono::steady_clock::now() > deadline)
+        throw std::runtime_error("server did not start");
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+  }
+  ~RunningServer() {
+    server_.stop();
+    listener_.join();
+  }
+
+  static ServerOptions loopback() {
+    ServerOptions options;
+    options.host = "127.0.0.1";
+    options.port = 0;
+    return options;
+  }
+
+  HttpServer& server() { return server_; }
+  int port() const { return port_; }
+  httplib::Client client() const {
+    httplib::Client client("127.0.0.1", port_);
+    client.set_read_timeout(30, 0);
+    return client;
+  }
+  // Serves a bundled scene under the id `name`.
+  std::string addBundled(const std::string& name) {
+    return server_.addScene(protocol::loadSceneFile(scenePath(name)), name + ".scene.json", name);
+  }
+
+ private:
+  HttpServer server_;
+  int port_ = 0;
+  std::thread listener_;
+};
+
+inline json bodyJson(const httplib::Result& result) {
+  if (!result) throw std::runtime_error("no HTTP response: " + httplib::to_string(result.error()));
+  return json::parse(result->body);
+}
+
+inline json moveFrame(const std::string& id, double x, double y, double z, double rotateY = 0) {
+  return {{"edits",
+           json::array(
+               {{{"op", "move"},
+                 {"id", id},
+                 {"transform", {{"translate", {x, y, z}}, {"rotate_deg", {0, rotateY, 0}}}}}})}};
+}
+
+}  // namespace penumbra::server::test

@@ -1,0 +1,230 @@
+// The page's wiring: picks the scene (?scene=ID, else the first served), loads it and its mesh,
+// and connects the view, selection gizmo, edit coalescer, undo history, server render, timings,
+// events and error banner. Each concept lives in its own module beside this one.
+import { ApiClient } from './api_client.js';
+import { ErrorBanner } from './error_banner.js';
+import { EditCoalescer } from './edit_coalescer.js';
+import { EventSync } from './event_sync.js';
+import { MeshSync } from './mesh_sync.js';
+import { ReceiverLayer } from './receiver_layer.js';
+import { RenderPanel } from './render_panel.js';
+import { SceneObjects } from './scene_objects.js';
+import { installSceneFileLoader } from './scene_file_loader.js';
+import { applyTransform, sameTransform, transformOf } from './scene_transform.js';
+import { SceneView } from './scene_view.js';
+import { SelectionGizmo } from './selection_gizmo.js';
+import { installTestHook } from './test_hook.js';
+import { TimingsPanel } from './timings_panel.js';
+import { ToneMap } from './tone_map.js';
+import { UndoHistory } from './undo_history.js';
+
+const $ = (id) => document.getElementById(id);
+// Keys typed into a text field are not commands (checkboxes and buttons keep W/E and Ctrl+Z).
+const isTyping = (target) => target instanceof HTMLInputElement && !['checkbox', 'button', 'file'].includes(target.type);
+
+class App {
+  constructor() {
+    this.api = new ApiClient();
+    this.banner = new ErrorBanner($('error-banner'), $('error-text'), $('error-close'));
+    this.view = new SceneView($('viewport'));
+    this.objects = new SceneObjects(this.view.scene);
+    this.receivers = new ReceiverLayer(this.view.scene);
+    this.timings = new TimingsPanel($('timings'));
+    this.history = new UndoHistory();
+    this.ownVersions = new Set();
+    this.dragStart = null;
+    this.announced = 0; // the newest version the event stream announced
+    this.fail = (error) => this.banner.show(error);
+    installSceneFileLoader($('scene-file'), this.api, this.fail);
+  }
+
+  async start() {
+    const requested = new URLSearchParams(window.location.search).get('scene');
+    let sceneId = requested;
+    if (!sceneId) {
+      const { scenes } = await this.api.listScenes();
+      if (!scenes.length) throw new Error('the server serves no scene: load a .scene.json file');
+      sceneId = scenes[0].id;
+    }
+    this.sceneId = sceneId;
+    const wrapped = await this.api.getScene(sceneId);
+    $('scene-name').textContent = `${wrapped.id} (${wrapped.name})`;
+    this.sceneJson = wrapped.scene;
+
+    this.objects.build(wrapped.scene);
+    this.toneMap = new ToneMap(wrapped.scene, this.objects.bounds);
+    this.view.setCamera(wrapped.scene.camera, this.objects.bounds);
+
+    this.meshSync = new MeshSync(this.api, sceneId, (decoded) => {
+      this.receivers.apply(decoded, this.toneMap);
+      $('version').textContent = String(decoded.sceneVersion);
+      this.view.requestRender();
+    });
+    const whole = await this.meshSync.loadWhole();
+    this.toneMap.calibrate(whole.receivers);
+    this.receivers.apply({ ...whole, delta: false }, this.toneMap); // recolour with the calibrated exposure
+    this.objects.build(wrapped.scene, (id) => this.toneMap.ambientColour(id));
+
+    this.coalescer = new EditCoalescer((frame) => this.sendFrame(frame), { onError: (error) => this.editFailed(error) });
+    this.gizmo = new SelectionGizmo(this.view, this.objects, {
+      onSelect: (id) => { $('selection').textContent = id ? `selected ${id}` : 'click an object'; },
+      onDragStart: (id) => { this.dragStart = { id, before: transformOf(this.gizmo.holder()) }; },
+      onChange: (id) => this.coalescer.move(id, transformOf(this.gizmo.holder())),
+      onDragEnd: (id) => this.dragEnded(id),
+      onMode: (mode) => this.showMode(mode),
+    });
+    this.showMode('translate');
+    this.renderPanel = new RenderPanel(this.api, sceneId, this.view, $('render'), $('render-info'), this.fail);
+    this.view.onCameraChange(() => this.renderPanel.schedule());
+    this.events = new EventSync(this.api.eventsUrl(sceneId), {
+      onVersion: (version) => this.versionAnnounced(version),
+      onError: this.fail,
+    });
+    this.installControls();
+    this.api.stats(sceneId).then((stats) => {
+      this.timings.initialBuild = stats.build && stats.build.seconds ? stats.build.seconds.total : null;
+      this.timings.draw();
+    }).catch(this.fail);
+
+    this.renderPanel.schedule();
+    this.view.requestRender();
+  }
+
+  installControls() {
+    $('mode-translate').addEventListener('click', () => this.gizmo.setMode('translate'));
+    $('mode-rotate').addEventListener('click', () => this.gizmo.setMode('rotate'));
+    $('undo').addEventListener('click', () => this.undo());
+    $('redo').addEventListener('click', () => this.redo());
+    $('toggle-edges').addEventListener('change', (event) => {
+      this.receivers.setEdgesVisible(event.target.checked);
+      this.view.requestRender();
+      $('edge-legend').hidden = !event.target.checked;
+    });
+    $('rebuild').addEventListener('click', async () => {
+      $('rebuild').disabled = true;
+      try {
+        this.timings.rebuild = await this.api.rebuild(this.sceneId);
+        this.timings.draw();
+      } catch (error) {
+        this.fail(error);
+      } finally {
+        $('rebuild').disabled = false;
+      }
+    });
+    window.addEventListener('keydown', (event) => {
+      if (!(event.ctrlKey || event.metaKey) || isTyping(event.target)) return;
+      if (event.key === 'z' || event.key === 'Z') {
+        event.preventDefault();
+        if (event.shiftKey) this.redo();
+        else this.undo();
+      } else if (event.key === 'y') {
+        event.preventDefault();
+        this.redo();
+      }
+    });
+    this.updateUndoButtons();
+  }
+
+  showMode(mode) {
+    $('mode-translate').classList.toggle('active', mode === 'translate');
+    $('mode-rotate').classList.toggle('active', mode === 'rotate');
+  }
+
+  // One frame: the edit, then the mesh delta it made (so frames go at the server's pace).
+  async sendFrame(frame) {
+    const start = performance.now();
+    const bytesBefore = this.meshSync.totalBytes;
+    const result = await this.api.postEdits(this.sceneId, frame);
+    const answered = performance.now();
+    this.ownVersions.add(result.version);
+    await this.meshSync.refresh(Math.max(result.version, this.announced));
+    const end = performance.now();
+    this.timings.edited(result, (end - start) / 1000, this.meshSync.totalBytes - bytesBefore,
+      { edit: (answered - start) / 1000, mesh: (end - answered) / 1000 });
+    // The server's image waits for the drag's end: it would compete with the edits for the server.
+    if (!this.gizmo.dragging) this.renderPanel.schedule();
+  }
+
+  // A refused frame leaves the server as it was: show why, and put the stand-ins back.
+  async editFailed(error) {
+    this.fail(error);
+    try {
+      const wrapped = await this.api.getScene(this.sceneId);
+      this.objects.syncTransforms(wrapped.scene, null);
+    } catch (again) {
+      this.fail(again);
+    }
+  }
+
+  dragEnded(id) {
+    this.renderPanel.schedule();
+    const start = this.dragStart;
+    this.dragStart = null;
+    if (!start || start.id !== id) return;
+    const after = transformOf(this.gizmo.holder());
+    if (!sameTransform(start.before, after)) this.history.push({ id, before: start.before, after });
+    this.updateUndoButtons();
+  }
+
+  moveTo(id, transform) {
+    const holder = this.objects.byId.get(id);
+    if (!holder) return;
+    applyTransform(holder, transform);
+    this.coalescer.move(id, transform);
+  }
+
+  undo() {
+    if (this.gizmo.dragging) return;
+    const entry = this.history.undo();
+    if (entry) this.moveTo(entry.id, entry.before);
+    this.updateUndoButtons();
+  }
+
+  redo() {
+    if (this.gizmo.dragging) return;
+    const entry = this.history.redo();
+    if (entry) this.moveTo(entry.id, entry.after);
+    this.updateUndoButtons();
+  }
+
+  updateUndoButtons() {
+    $('undo').disabled = !this.history.canUndo();
+    $('redo').disabled = !this.history.canRedo();
+  }
+
+  async versionAnnounced(version) {
+    this.announced = Math.max(this.announced, version);
+    try {
+      // While a frame of ours is in flight, its own refresh fetches up to `announced`.
+      if (this.meshSync.version === null || version <= this.meshSync.version || this.coalescer.busy()) return;
+      await this.meshSync.refresh(version);
+      this.renderPanel.schedule();
+      if (this.ownVersions.has(version) || this.coalescer.busy()) return;
+      // Another client's edit: follow its transforms (a changed object list reloads the page's stand-ins).
+      const wrapped = await this.api.getScene(this.sceneId);
+      if (this.objects.sameObjects(wrapped.scene)) {
+        this.objects.syncTransforms(wrapped.scene, this.gizmo.dragging ? this.gizmo.selected : null);
+      } else {
+        this.gizmo.select(null);
+        this.objects.build(wrapped.scene, (id) => this.toneMap.ambientColour(id));
+      }
+    } catch (error) {
+      this.fail(error);
+    }
+  }
+
+  busy() {
+    return !!(this.coalescer && this.coalescer.busy()) || !!(this.meshSync && this.meshSync.running);
+  }
+
+  async idle() {
+    while (this.busy()) {
+      await this.coalescer.idle();
+      if (this.meshSync.running) await this.meshSync.running.catch(() => {});
+    }
+  }
+}
+
+const app = new App();
+const hook = installTestHook(app);
+app.start().then(() => { hook.ready = true; }).catch((error) => app.banner.show(error));

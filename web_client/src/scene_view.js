@@ -1,0 +1,117 @@
+// The 3D view: renderer, scene, a camera made from the scene's camera (perspective or
+// orthographic, as core/render/camera_projection.h reads it), OrbitControls around its target,
+// and the camera as /image query parameters so the server renders exactly this view.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+// core/render's defaultCamera: from the bounds' centre, backed off along (0.6, 0.45, 1) until
+// the bounding sphere fits a 45° vertical field of view.
+function defaultCamera(bounds) {
+  const centre = bounds.getCenter(new THREE.Vector3());
+  const radius = Math.max(bounds.getSize(new THREE.Vector3()).length() / 2, 1e-3);
+  const distance = radius / Math.sin((45 / 2) * Math.PI / 180);
+  const eye = centre.clone().add(new THREE.Vector3(0.6, 0.45, 1).normalize().multiplyScalar(distance));
+  return { position: eye.toArray(), target: centre.toArray(), up: [0, 1, 0], projection: 'perspective',
+    fov_y_deg: 45, near: distance / 100, far: distance * 3 };
+}
+
+export class SceneView {
+  constructor(container) {
+    this.container = container;
+    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(1);
+    this.renderer.outputColorSpace = THREE.SRGBColorSpace;
+    container.appendChild(this.renderer.domElement);
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color(0x000000);
+    this.camera = null;
+    this.controls = null;
+    this.listeners = [];
+    this.renderPending = false;
+    this.frames = 0;
+    this.onCameraChange(() => this.requestRender());
+    window.addEventListener('resize', () => this.resize());
+  }
+
+  // sceneCamera: the scene JSON's camera, or undefined (then the default camera of `bounds`).
+  setCamera(sceneCamera, bounds) {
+    const c = { ...defaultCamera(bounds), ...(sceneCamera || {}) };
+    const aspect = this.aspect();
+    if (c.projection === 'orthographic') {
+      const h = (c.height || 2) / 2;
+      this.camera = new THREE.OrthographicCamera(-aspect * h, aspect * h, h, -h, c.near, c.far);
+      this.orthoHeight = c.height || 2;
+    } else {
+      this.camera = new THREE.PerspectiveCamera(c.fov_y_deg, aspect, c.near, c.far);
+    }
+    this.camera.up.fromArray(c.up);
+    this.camera.position.fromArray(c.position);
+    this.camera.lookAt(new THREE.Vector3(...c.target));
+    if (this.controls) this.controls.dispose();
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.target.fromArray(c.target);
+    this.controls.update();
+    this.controls.addEventListener('change', () => this.listeners.forEach((f) => f()));
+    this.resize();
+  }
+
+  onCameraChange(listener) {
+    this.listeners.push(listener);
+  }
+
+  aspect() {
+    const { clientWidth: w, clientHeight: h } = this.container;
+    return w > 0 && h > 0 ? w / h : 1;
+  }
+
+  resize() {
+    const { clientWidth: w, clientHeight: h } = this.container;
+    this.renderer.setSize(w, h);
+    if (!this.camera) return;
+    const aspect = this.aspect();
+    if (this.camera.isPerspectiveCamera) {
+      this.camera.aspect = aspect;
+    } else {
+      const half = this.orthoHeight / 2;
+      Object.assign(this.camera, { left: -aspect * half, right: aspect * half, top: half, bottom: -half });
+    }
+    this.camera.updateProjectionMatrix();
+    this.listeners.forEach((f) => f());
+  }
+
+  // The current view as /image query parameters (docs/API.md "GET .../image").
+  cameraQuery() {
+    const c = this.camera;
+    const list = (v) => v.toArray().map((x) => x.toPrecision(17)).join(',');
+    const query = { position: list(c.position), target: list(this.controls.target), up: list(c.up),
+      near: String(c.near), far: String(c.far) };
+    if (c.isPerspectiveCamera) {
+      // three.js divides the frustum's top by zoom: the same as a narrower field of view.
+      const fov = c.zoom === 1 ? c.fov : 2 * Math.atan(Math.tan(c.fov * Math.PI / 360) / c.zoom) * 180 / Math.PI;
+      Object.assign(query, { projection: 'perspective', fov_y_deg: String(fov) });
+    }
+    else {
+      Object.assign(query, { projection: 'orthographic', ortho_height: String((c.top - c.bottom) / c.zoom) });
+    }
+    return query;
+  }
+
+  // A world point → continuous pixel coordinates of a width × height image (y down, pixel
+  // centres at +0.5), through three.js's Vector3.project.
+  projectToPixel(point, width, height) {
+    const ndc = new THREE.Vector3(...point).project(this.camera);
+    return { x: (ndc.x + 1) / 2 * width, y: (1 - ndc.y) / 2 * height, z: ndc.z };
+  }
+
+  // Draws on the next animation frame, once however often it is asked: the page draws only
+  // when something changed (camera, mesh, gizmo), which keeps a software-rendered browser idle.
+  requestRender() {
+    if (this.renderPending) return;
+    this.renderPending = true;
+    requestAnimationFrame(() => {
+      this.renderPending = false;
+      this.renderer.render(this.scene, this.camera);
+      ++this.frames;
+    });
+  }
+}

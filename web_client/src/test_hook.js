@@ -1,0 +1,89 @@
+// window.penumbra: a small read-only view of the page's state for tests (tests/web) and for
+// people at the console: counts, versions, a receiver's arrays, projections to the screen.
+import * as THREE from 'three';
+import { receiverKey } from './mesh_binary.js';
+import { transformOf } from './scene_transform.js';
+
+// Barycentric interpolation of a receiver's irradiance at a point on its plane; null outside.
+function irradianceAt(receiver, point) {
+  const n = receiver.normal.map(Math.abs);
+  const drop = n[0] > n[1] && n[0] > n[2] ? 0 : n[1] > n[2] ? 1 : 2;
+  const [u, v] = [0, 1, 2].filter((k) => k !== drop);
+  const p = receiver.positions, idx = receiver.indices, e = receiver.irradiance;
+  for (let t = 0; t < idx.length; t += 3) {
+    const [a, b, c] = [idx[t], idx[t + 1], idx[t + 2]];
+    const ax = p[3 * a + u], ay = p[3 * a + v];
+    const d = (p[3 * b + u] - ax) * (p[3 * c + v] - ay) - (p[3 * c + u] - ax) * (p[3 * b + v] - ay);
+    if (d === 0) continue;
+    const wb = ((point[u] - ax) * (p[3 * c + v] - ay) - (p[3 * c + u] - ax) * (point[v] - ay)) / d;
+    const wc = ((p[3 * b + u] - ax) * (point[v] - ay) - (point[u] - ax) * (p[3 * b + v] - ay)) / d;
+    const wa = 1 - wb - wc;
+    if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9) continue;
+    return [0, 1, 2].map((k) => wa * e[3 * a + k] + wb * e[3 * b + k] + wc * e[3 * c + k]);
+  }
+  return null;
+}
+
+export function installTestHook(app) {
+  const hook = {
+    ready: false,
+    state() {
+      const counts = app.receivers.counts();
+      return {
+        ready: hook.ready, sceneId: app.sceneId, version: app.meshSync ? app.meshSync.version : null, ...counts,
+        editsSent: app.coalescer ? app.coalescer.sent : 0, editsReplaced: app.coalescer ? app.coalescer.replaced : 0,
+        busy: app.busy(), selected: app.gizmo ? app.gizmo.selected : null, gizmoAxis: app.gizmo ? app.gizmo.controls.axis : null,
+        dragging: app.gizmo ? app.gizmo.dragging : false,
+        errors: [...app.banner.errors], bannerVisible: app.banner.visible(),
+        renders: app.renderPanel ? app.renderPanel.renders : 0, renderVersion: app.renderPanel ? app.renderPanel.lastVersion : null,
+        lastFrame: app.timings.frame, roundTrip: app.timings.roundTrip, phases: app.timings.phases || null, totals: { ...app.timings.totals }, frames: app.view.frames,
+        mesh: app.meshSync ? { lastBytes: app.meshSync.lastBytes, totalBytes: app.meshSync.totalBytes, fetches: app.meshSync.fetches } : null,
+        events: app.events ? app.events.events : 0,
+        canvas: { width: app.view.renderer.domElement.clientWidth, height: app.view.renderer.domElement.clientHeight },
+      };
+    },
+    receiver(object, face) {
+      const r = app.receivers.receiver(receiverKey(object, face));
+      return r && { sceneVersion: r.sceneVersion, vertexCount: r.vertexCount, irradiance: Array.from(r.irradiance),
+        classes: Array.from(r.classes), positions: Array.from(r.positions) };
+    },
+    irradianceAt(object, face, point) {
+      const r = app.receivers.receiver(receiverKey(object, face));
+      return r ? irradianceAt(r, point) : null;
+    },
+    // A world point → page (client) coordinates of the canvas, for page.mouse.
+    screenOf(point) {
+      const rect = app.view.renderer.domElement.getBoundingClientRect();
+      const p = app.view.projectToPixel(point, rect.width, rect.height);
+      return { x: rect.left + p.x, y: rect.top + p.y };
+    },
+    // The point t gizmo units along a world axis (x|y|z) from the selected object (the
+    // translate handles' pickers span 0..0.6 units; a unit is TransformControls' screen scale).
+    gizmoAxisPoint(axis, t) {
+      const holder = app.gizmo.holder();
+      const centre = holder.getWorldPosition(new THREE.Vector3());
+      const camera = app.view.camera;
+      const factor = camera.isPerspectiveCamera
+        ? centre.distanceTo(camera.position) * Math.min(1.9 * Math.tan(Math.PI * camera.fov / 360) / camera.zoom, 7)
+        : (camera.top - camera.bottom) / camera.zoom;
+      const dir = new THREE.Vector3(axis === 'x' ? 1 : 0, axis === 'y' ? 1 : 0, axis === 'z' ? 1 : 0);
+      return centre.addScaledVector(dir, t * factor * app.gizmo.controls.size / 4).toArray();
+    },
+    objectTransform(id) {
+      const holder = app.objects.byId.get(id);
+      return holder ? transformOf(holder) : null;
+    },
+    // Pixels of world points in a width × height image of the current view, by three.js.
+    projectToPixels(points, width, height) {
+      return points.map((p) => app.view.projectToPixel(p, width, height));
+    },
+    cameraQuery() {
+      return app.view.cameraQuery();
+    },
+    idle() {
+      return app.idle();
+    },
+  };
+  window.penumbra = hook;
+  return hook;
+}

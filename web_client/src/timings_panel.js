@@ -1,0 +1,67 @@
+// The readout: the last edit's engine timings (remove / add / relight / total), vertices relit
+// / changed / created, receivers changed, the page's round trip (edit answer + mesh delta fetched
+// and applied) and bytes
+// of the delta, edits per second over the last seconds, beside the full-rebuild time.
+
+const ms = (s) => (s === undefined || s === null ? '–' : `${(1000 * s).toFixed(1)} ms`);
+
+export class TimingsPanel {
+  constructor(table) {
+    this.table = table;
+    this.frame = null;
+    this.roundTrip = null;
+    this.bytes = null;
+    this.rebuild = null;
+    this.initialBuild = null;
+    this.stamps = [];
+    this.totals = { frames: 0, roundTrip: 0, edit: 0, mesh: 0, engine: 0 }; // sums, seconds
+    this.draw();
+  }
+
+  // phases: {edit, mesh} seconds — the edit's answer, then fetching and applying its delta.
+  edited(frame, roundTripSeconds, bytes, phases) {
+    this.frame = frame;
+    this.phases = phases;
+    this.totals.frames += 1;
+    this.totals.roundTrip += roundTripSeconds;
+    this.totals.edit += phases.edit;
+    this.totals.mesh += phases.mesh;
+    this.totals.engine += frame.seconds ? frame.seconds.total : 0;
+    this.roundTrip = roundTripSeconds;
+    this.bytes = bytes;
+    const now = performance.now();
+    this.stamps.push(now);
+    while (this.stamps.length && now - this.stamps[0] > 2000) this.stamps.shift();
+    this.draw();
+  }
+
+  editsPerSecond() {
+    if (this.stamps.length < 2) return 0;
+    return (this.stamps.length - 1) / ((this.stamps[this.stamps.length - 1] - this.stamps[0]) / 1000);
+  }
+
+  draw() {
+    const f = this.frame || {};
+    const s = f.seconds || {};
+    const v = f.vertices || {};
+    const rows = [
+      ['remove', ms(s.remove)], ['add', ms(s.add)], ['relight', ms(s.relight)], ['engine total', ms(s.total)],
+      ['vertices relit / changed / created', f.vertices ? `${v.relit} / ${v.changed} / ${v.created}` : '–'],
+      ['receivers changed', f.changed_receivers_count ?? '–'],
+      ['round trip (edit + mesh)', this.phases ? `${ms(this.roundTrip)} (${ms(this.phases.edit)} + ${ms(this.phases.mesh)})` : ms(this.roundTrip)],
+      ['mesh delta', this.bytes === null ? '–' : `${(this.bytes / 1024).toFixed(1)} KiB`],
+      ['edits / s (last 2 s)', this.editsPerSecond().toFixed(1)],
+      ['initial build', ms(this.initialBuild)],
+      ['full rebuild', this.rebuild ? `${ms(this.rebuild.seconds.total)} (build ${ms(this.rebuild.seconds.build)})` : '–'],
+    ];
+    this.table.replaceChildren(...rows.map(([k, value]) => {
+      const tr = document.createElement('tr');
+      for (const text of [k, value]) {
+        const td = document.createElement('td');
+        td.textContent = String(text);
+        tr.appendChild(td);
+      }
+      return tr;
+    }));
+  }
+}

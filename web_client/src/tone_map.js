@@ -1,0 +1,78 @@
+// Irradiance → display colour, with the server renderer's exposure idea (core/render/renderer.h):
+// radiance = albedo/π · (E + ambient), ambient = 10% of the lights' power spread over the
+// surface of the scene's bounding box; exposure = 1 / the 99th percentile of the surfaces'
+// largest radiance channel. The page takes that percentile over the mesh's vertices (not the
+// pixels) once per scene load, so colours stay steady while objects move. Colours are linear;
+// the renderer's sRGB output encodes them like the server's PNG.
+import * as THREE from 'three';
+
+const AMBIENT_FRACTION = 0.1;
+const PERCENTILE = 0.99;
+
+function polygonArea(polygon) {
+  const n = new THREE.Vector3();
+  const a = new THREE.Vector3(), b = new THREE.Vector3();
+  for (let k = 0; k < polygon.length; ++k) {
+    a.fromArray(polygon[k]);
+    b.fromArray(polygon[(k + 1) % polygon.length]);
+    n.add(new THREE.Vector3().crossVectors(a, b));
+  }
+  return n.length() / 2;
+}
+
+export class ToneMap {
+  // scene: scene JSON v1; bounds: THREE.Box3 of lights and world-space faces (as core's Scene::bounds).
+  constructor(scene, bounds) {
+    const power = [0, 0, 0];
+    for (const light of scene.lights) {
+      const area = polygonArea(light.polygon);
+      for (let c = 0; c < 3; ++c) power[c] += Math.PI * light.radiance[c] * area;
+    }
+    const e = bounds.getSize(new THREE.Vector3());
+    const surface = 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
+    this.ambient = power.map((p) => (surface > 0 ? AMBIENT_FRACTION * p / surface : 0));
+    this.albedo = new Map();
+    for (const object of scene.objects) {
+      const material = object.material && scene.materials ? scene.materials[object.material] : null;
+      this.albedo.set(object.id, material ? material.albedo : [0.8, 0.8, 0.8]);
+    }
+    this.exposure = 1;
+  }
+
+  // Sets the exposure from receivers ({object, irradiance: Float32Array}); call on load.
+  calibrate(receivers) {
+    const values = [];
+    for (const r of receivers) {
+      const albedo = this.albedoOf(r.object);
+      for (let i = 0; i < r.irradiance.length; i += 3) {
+        let m = 0;
+        for (let c = 0; c < 3; ++c) m = Math.max(m, albedo[c] / Math.PI * (r.irradiance[i + c] + this.ambient[c]));
+        values.push(m);
+      }
+    }
+    if (!values.length) return;
+    values.sort((a, b) => a - b);
+    const v = values[Math.min(values.length - 1, Math.floor(PERCENTILE * values.length))];
+    if (v > 0) this.exposure = 1 / v;
+  }
+
+  albedoOf(objectId) {
+    return this.albedo.get(objectId) || [0.8, 0.8, 0.8];
+  }
+
+  // Linear display colours (Float32Array, 3 per vertex, clamped to [0, 1]).
+  colours(objectId, irradiance) {
+    const albedo = this.albedoOf(objectId);
+    const out = new Float32Array(irradiance.length);
+    for (let i = 0; i < irradiance.length; i += 3)
+      for (let c = 0; c < 3; ++c)
+        out[i + c] = Math.min(1, this.exposure * albedo[c] / Math.PI * (irradiance[i + c] + this.ambient[c]));
+    return out;
+  }
+
+  // The colour of a face that receives no light (ambient only), as three.js Color.
+  ambientColour(objectId) {
+    const albedo = this.albedoOf(objectId);
+    return new THREE.Color(...albedo.map((a, c) => Math.min(1, this.exposure * a / Math.PI * this.ambient[c])));
+  }
+}
