@@ -96,12 +96,17 @@ VertexLight illuminateVertex(const Scene& scene, size_t light, const Vec3& p, co
 
   // (3) O_covering: the faces every cell lists; a face blocking p blocks positive
   // area from each cell around it, so this is a superset of p's blockers.
+  // Subtracted in FaceId order: the visible pieces (and their last-bit rounding)
+  // then do not depend on the order the cells' lists were built in.
+  std::vector<FaceId> covering;
   for (const OccluderEntry& e : cells.front()) {
     const bool everywhere = std::all_of(cells.begin() + 1, cells.end(),
                                         [&](const auto& other) { return holds(other, e.face); });
-    if (!everywhere) continue;
-    if (const Face* face = findFace(scene, e.face)) view.occlude(*face);
+    if (everywhere) covering.push_back(e.face);
   }
+  std::sort(covering.begin(), covering.end());
+  for (FaceId id : covering)
+    if (const Face* face = findFace(scene, id)) view.occlude(*face);
   return fromView(view, VertexCase::Covering);
 }
 
@@ -124,8 +129,11 @@ VertexLight illuminateVertexFromCell(const Scene& scene, size_t light, const Vec
   if (entries.empty()) return fromView(view, VertexCase::Unoccluded);
   // The cell's inside is hidden throughout: so is the limit.
   if (entries.front().umbra) return umbra(view);
-  for (const OccluderEntry& e : entries)
-    if (const Face* face = findFace(scene, e.face)) view.occludeApproaching(*face, towards);
+  std::vector<FaceId> faces;
+  for (const OccluderEntry& e : entries) faces.push_back(e.face);
+  std::sort(faces.begin(), faces.end());  // order-independent result, as in case (3)
+  for (FaceId id : faces)
+    if (const Face* face = findFace(scene, id)) view.occludeApproaching(*face, towards);
   return fromView(view, VertexCase::Covering);
 }
 
