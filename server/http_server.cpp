@@ -11,14 +11,17 @@
 
 #include "core/render/renderer.h"
 #include "interchange/glb_export.h"
+#include "interchange/scene_import.h"
 #include "protocol/edits_json.h"
 #include "protocol/frame_result_json.h"
 #include "protocol/json_reader.h"
 #include "protocol/json_text.h"
 #include "protocol/scene_json.h"
 #include "server/api_errors.h"
+#include "server/gzip_encoding.h"
 #include "server/image_encoding.h"
 #include "server/mesh_binary.h"
+#include "server/scene_upload.h"
 
 namespace penumbra::server {
 
@@ -395,14 +398,31 @@ void HttpServer::registerRoutes() {
            }));
 
   http.Post("/api/scenes", guarded([this](const httplib::Request& req, httplib::Response& res) {
-              const json body = parseBody(req);
+              // Scene JSON as the body, or a file to import (?format=obj|gltf|glb, docs/API.md).
+              const std::optional<SceneUpload> upload = sceneUploadOf(req);
               Scene scene;
-              try {
-                scene = protocol::sceneFromJson(body);
-              } catch (const protocol::ValidationError& error) {
-                throw ApiError(422, error_code::kInvalidScene, error.path(), error.problem());
+              std::string name = queryText(req, "name").value_or("scene");
+              json importJson;
+              if (upload) {
+                const auto start = Clock::now();
+                try {
+                  interchange::ImportResult imported = interchange::importSceneBytes(
+                      upload->bytes, upload->fileName, upload->mtlFiles, upload->options);
+                  scene = std::move(imported.scene);
+                  importJson = imported.report.toJson();
+                } catch (const protocol::ValidationError& error) {
+                  throw ApiError(422, error_code::kInvalidScene, error.path(), error.problem());
+                }
+                importJson["seconds"] = std::chrono::duration<double>(Clock::now() - start).count();
+                if (!req.has_param("name")) name = upload->fileName;
+              } else {
+                const json body = parseBody(req);
+                try {
+                  scene = protocol::sceneFromJson(body);
+                } catch (const protocol::ValidationError& error) {
+                  throw ApiError(422, error_code::kInvalidScene, error.path(), error.problem());
+                }
               }
-              const std::string name = queryText(req, "name").value_or("scene");
               std::string id;
               try {
                 id = addScene(std::move(scene), name, name);
@@ -413,6 +433,7 @@ void HttpServer::registerRoutes() {
               res.set_header("Location", "/api/scenes/" + id);
               json body201 = sceneSummaryJson(*snapshot);
               body201["build_seconds"] = snapshot->buildStats.seconds.total();
+              if (upload) body201["import"] = std::move(importJson);
               sendJson(res, 201, body201);
             }));
 
@@ -471,6 +492,10 @@ void HttpServer::registerRoutes() {
         const json delta = changedAtJson(*applied.snapshot, applied.snapshot->version - 1);
         body200["mesh_changed"] = delta["changed"];
         body200["mesh_removed"] = delta["removed"];
+        body200["mesh_seconds"] = applied.meshSeconds;
+        body200["meshed_receivers_count"] = applied.meshedReceivers;
+        body200["mesh_cells"] = {{"reused", applied.meshCells.cellsReused},
+                                 {"lit", applied.meshCells.cellsLit}};
         sendJson(res, 200, body200);
       }));
 
@@ -486,15 +511,40 @@ void HttpServer::registerRoutes() {
         } else if (format == "bin") {
           res.status = 200;
           res.set_header("Cache-Control", "no-store");
-          res.set_content(mesh_binary::encode(*snapshot, selection), "application/octet-stream");
+          std::string bytes = mesh_binary::encode(*snapshot, selection);
+          // Typed arrays are not a type httplib compresses itself; gzip them when the
+          // client takes it (browsers' fetch decodes it transparently).
+          res.set_header("Vary", "Accept-Encoding");
+          res.set_header("X-Penumbra-Uncompressed-Bytes", std::to_string(bytes.size()));
+          const auto policy = options_.meshCompression;
+          const bool loopback = req.remote_addr == "127.0.0.1" || req.remote_addr == "::1" ||
+                                req.remote_addr.rfind("::ffff:127.", 0) == 0;
+          if (policy != ServerOptions::MeshCompression::Never &&
+              (policy == ServerOptions::MeshCompression::Always || !loopback) &&
+              acceptsGzip(req.get_header_value("Accept-Encoding"))) {
+            bytes = gzipCompress(bytes);
+            res.set_header("Content-Encoding", "gzip");
+          }
+          res.set_content(bytes, "application/octet-stream");
         } else if (format == "glb") {
           // The whole scene's lit mesh (a viewer's file, not a delta): `since` is refused.
           if (since)
             throw ApiError(400, error_code::kBadParameter, "query.since",
                            "format=glb is always the whole mesh; drop since");
-          const interchange::GlbFile glb = interchange::meshToGlb(snapshot->scene, snapshot->mesh);
+          // A fixed color_scale keeps colours comparable across versions (the default, 1 /
+          // the brightest radiance channel, follows the scene).
+          interchange::GlbOptions glbOptions;
+          if (const auto scale = queryNumber(req, "color_scale")) {
+            if (!(*scale > 0))
+              throw ApiError(400, error_code::kBadParameter, "query.color_scale",
+                             "color_scale must be positive");
+            glbOptions.colorScale = *scale;
+          }
+          const interchange::GlbFile glb =
+              interchange::meshToGlb(snapshot->scene, snapshot->mesh, glbOptions);
           res.status = 200;
           res.set_header("Cache-Control", "no-store");
+          res.set_header("X-Penumbra-Color-Scale", json(glb.colorScale).dump());
           res.set_header("Content-Disposition", "inline; filename=\"" + snapshot->id + ".glb\"");
           res.set_content(std::string(glb.bytes.begin(), glb.bytes.end()), "model/gltf-binary");
         } else {

@@ -32,6 +32,11 @@ struct ServerOptions {
   std::string staticDir;  // served at "/" (empty: no page); node_modules beside or inside it at
                           // /node_modules
   EngineSettings engine;
+  // gzip of binary mesh responses for clients that accept it (docs/API.md "Binary"):
+  // Auto compresses only for non-loopback clients (on loopback, compressing costs more
+  // time than sending the bytes).
+  enum class MeshCompression { Auto, Always, Never };
+  MeshCompression meshCompression = MeshCompression::Auto;
 };
 
 class HttpServer {

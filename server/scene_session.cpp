@@ -58,7 +58,28 @@ SceneSession::Applied SceneSession::apply(const Frame& frame) {
   next->version = result.version;
   next->buildStats = previous->buildStats;
   next->scene = engine_->scene();
-  next->mesh = engine_->mesh();
+
+  // Only the receivers the frame changed (and new ones) are meshed again; the others
+  // keep the previous version's mesh, which is what a fresh mesh() would give them.
+  const auto meshStart = std::chrono::steady_clock::now();
+  std::map<FaceId, size_t> previousByFace;
+  for (size_t i = 0; i < previous->mesh.receivers.size(); ++i)
+    previousByFace.emplace(previous->mesh.receivers[i].face, i);
+  const std::set<FaceId> changed(result.changedReceivers.begin(), result.changedReceivers.end());
+  std::vector<FaceId> remesh;
+  for (const Engine::Receiver& r : engine_->receivers())
+    if (changed.count(r.face) || !previousByFace.count(r.face)) remesh.push_back(r.face);
+  Mesh remeshed = engine_->mesh(remesh);
+  const Engine::MeshCacheCounters cells = engine_->lastMeshCounters();
+  next->mesh.receivers.reserve(engine_->receivers().size());
+  size_t fresh = 0;
+  for (const Engine::Receiver& r : engine_->receivers()) {
+    if (fresh < remeshed.receivers.size() && remeshed.receivers[fresh].face == r.face)
+      next->mesh.receivers.push_back(std::move(remeshed.receivers[fresh++]));
+    else
+      next->mesh.receivers.push_back(previous->mesh.receivers[previousByFace.at(r.face)]);
+  }
+  const double meshSeconds = secondsSince(meshStart);
   next->receiverKeys = receiverKeysOf(next->scene, next->mesh);
 
   // A receiver's version moves only when its mesh data really changed, so `since`
@@ -83,7 +104,7 @@ SceneSession::Applied SceneSession::apply(const Frame& frame) {
   next->lastFrame = result;
   std::shared_ptr<const SceneSnapshot> published = std::move(next);
   publish(published);
-  return {std::move(result), std::move(published)};
+  return {std::move(result), std::move(published), meshSeconds, remesh.size(), cells};
 }
 
 void SceneSession::publish(std::shared_ptr<const SceneSnapshot> next) {

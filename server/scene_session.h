@@ -35,11 +35,15 @@ class SceneSession {
   std::shared_ptr<const SceneSnapshot> snapshot() const;
 
   // Applies one frame, serialised with other frames of this scene, and publishes
-  // the new version before returning it with the engine's result. Throws EditError
+  // the new version before returning it with the engine's result. Only the receivers
+  // the engine reports changed (and new ones) are meshed again. Throws EditError
   // (nothing changed) on an invalid frame.
   struct Applied {
     FrameResult result;
     std::shared_ptr<const SceneSnapshot> snapshot;  // the version this frame made
+    double meshSeconds = 0;     // re-meshing the changed receivers and assembling the mesh
+    size_t meshedReceivers = 0;  // receivers meshed again (the others kept their mesh)
+    Engine::MeshCacheCounters meshCells;  // of those receivers' cells: replayed / lit afresh
   };
   Applied apply(const Frame& frame);
 

@@ -117,7 +117,10 @@ class DmTree {
   void collectOccluderNodes(NodeId n, const Polygon2& region, const OccluderKey& key,
                             std::vector<NodeId>& out) const;
   Polygon2 regionOf(NodeId n) const;
-  const SingleTreeNode* liveSegmentOn(NodeId n, const Polygon2& region, const std::vector<OccluderKey>& keys,
+  // Where n's line crosses n's region, as positions along the line: from the cells
+  // below n when they are few (they tile the region), else from regionOf(n).
+  bool chordOf(NodeId n, double& lo, double& hi) const;
+  const SingleTreeNode* liveSegmentOn(NodeId n, double lo, double hi, const std::vector<OccluderKey>& keys,
                                       OccluderKey* owner) const;
   void leavesOf(NodeId n, std::vector<NodeId>& out) const;
   void leavesAlong(NodeId n, const Vec2& p, const Vec2& q, std::vector<NodeId>& out) const;

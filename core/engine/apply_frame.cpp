@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 
 #include "core/engine/dirty_set.h"
@@ -28,6 +29,14 @@ std::vector<Face> facesOfObject(const Scene& scene, uint32_t handle) {
   for (; it != faces.end() && it->id.object == handle; ++it) out.push_back(*it);
   return out;
 }
+
+// The switch to a full rebuild (FrameResult::fullRebuild): frames editing more than
+// this share of the faces, in scenes large enough that a rebuild is not the cheap
+// path anyway (small scenes, the property tests', stay incremental). Measured on
+// 'cubes' scenes (penumbra-bench edits): moving 10% of N = 150 costs ~0.4 of a
+// rebuild, 30% ~2×; at N = 1500 the crossing comes earlier.
+constexpr double kFullRebuildShare = 0.15;
+constexpr size_t kFullRebuildMinFaces = 400;
 
 bool sameValue(const VertexIrradiance& a, const VertexIrradiance& b) {
   if (a.lightClass != b.lightClass) return false;
@@ -82,29 +91,57 @@ Scene Engine::sceneAfter(const Frame& frame) const {
 FrameResult Engine::apply(const Frame& frame) {
   Scene next = sceneAfter(frame);  // throws before anything changes
 
-  // The frame's net effect per object handle (a move is remove + add, §3).
-  std::set<uint32_t> oldHandles, newHandles, moved;
-  for (size_t i = 0; i < scene_.objects().size(); ++i) oldHandles.insert(scene_.handleOf(i));
-  for (size_t i = 0; i < next.objects().size(); ++i) newHandles.insert(next.handleOf(i));
-  for (const Edit& edit : frame.edits)
-    if (edit.op == Edit::Op::Move)
-      if (const auto index = next.findObject(edit.id); index && oldHandles.count(next.handleOf(*index)))
-        moved.insert(next.handleOf(*index));
-  std::set<uint32_t> leaving = moved, entering = moved;  // handles whose faces leave / enter
-  for (uint32_t h : oldHandles)
-    if (!newHandles.count(h)) leaving.insert(h);
-  for (uint32_t h : newHandles)
-    if (!oldHandles.count(h)) entering.insert(h);
+  // The frame's net effect per object handle (a move is remove + add, §3), from the
+  // handles its edits name: nothing here scans the whole scene.
+  std::set<uint32_t> touched, moved;
+  for (const Edit& edit : frame.edits) {
+    const std::string& id = edit.op == Edit::Op::Add ? edit.object.id : edit.id;
+    if (const auto index = scene_.findObject(id)) touched.insert(scene_.handleOf(*index));
+    if (const auto index = next.findObject(id)) touched.insert(next.handleOf(*index));
+  }
+  std::set<uint32_t> leaving, entering;  // handles whose faces leave / enter
+  for (uint32_t h : touched) {
+    const bool inOld = scene_.indexOfHandle(h).has_value(), inNew = next.indexOfHandle(h).has_value();
+    if (inOld) leaving.insert(h);  // moved or removed (a no-op move is still re-cast)
+    if (inNew) entering.insert(h);
+    if (inOld && inNew) moved.insert(h);
+  }
   std::vector<FaceId> leavingFaces;
   for (uint32_t h : leaving)
     for (const Face& face : facesOfObject(scene_, h)) leavingFaces.push_back(face.id);
 
   FrameResult result;
   DirtySet dirty;
-  std::vector<FaceId> before;
-  for (const Receiver& r : receivers_) before.push_back(r.face);
+  std::vector<FaceId> leavingReceivers;  // leaving faces that had a DM-tree
+  for (FaceId face : leavingFaces)
+    if (receiverIndex_.count(face)) leavingReceivers.push_back(face);
   scene_ = std::move(next);
-  try {
+  // Builds the whole engine for the new scene and reports every receiver as rebuilt.
+  auto rebuildAll = [&] {
+    const auto start = Clock::now();
+    const uint64_t version = version_;
+    Engine rebuilt(scene_, settings_);
+    *this = std::move(rebuilt);
+    version_ = version;
+    result = FrameResult{};
+    for (const Receiver& r : receivers_) {
+      result.changedReceivers.push_back(r.face);
+      result.verticesRelit += r.tree.vertexCount();
+    }
+    result.verticesChanged = result.verticesCreated = result.verticesRelit;
+    result.treeRebuilds = receivers_.size();
+    result.seconds.add = secondsSince(start);
+    lastRelit_.clear();
+    for (Receiver& r : receivers_) lastRelit_[r.face] = r.tree.vertices();
+  };
+  // A frame moving a large share of the faces costs more than a rebuild (their
+  // shadows on each other go twice): switch to one (FrameResult::fullRebuild).
+  size_t enteringCount = 0;
+  for (uint32_t h : entering) enteringCount += facesOfObject(scene_, h).size();
+  const size_t faceCount = scene_.faces().size();
+  const bool largeFrame = faceCount >= kFullRebuildMinFaces &&
+                          double(std::max(leavingFaces.size(), enteringCount)) > kFullRebuildShare * double(faceCount);
+  if (!largeFrame) try {
     // REMOVE (§3.1): the leaving faces quit the orders and cubes, then every DM-tree
     // they shadowed loses their nodes and list entries.
     auto start = Clock::now();
@@ -114,7 +151,10 @@ FrameResult Engine::apply(const Frame& frame) {
         orders_[l]->removeFace(face);
         cubes_[l]->removeFace(face);
       }
+    // Receivers of leaving faces are dropped; a moved face's slot is reused for its
+    // new tree, so a move does not reorder the receivers.
     std::vector<bool> dropped(receivers_.size(), false);
+    std::map<FaceId, size_t> freeSlots;
     std::set<FaceId> rebuild;       // receivers whose node deletion threw: cast afresh
     std::set<FaceId> rebuiltTrees;  // receivers whose tree rebuilt itself in a deletion
     for (FaceId face : leavingFaces) {
@@ -156,10 +196,10 @@ FrameResult Engine::apply(const Frame& frame) {
       forgetReceived(face);
     }
     // The leaving objects' own trees go (a moved object's faces get fresh ones).
-    for (size_t i = 0; i < receivers_.size(); ++i) {
-      const FaceId face = receivers_[i].face;
-      if (!leaving.count(face.object)) continue;
+    for (FaceId face : leavingReceivers) {
+      const size_t i = receiverIndex_.at(face);
       dropped[i] = true;
+      freeSlots[face] = i;
       receiverIndex_.erase(face);
       dirty.forget(face);
       rebuild.erase(face);
@@ -173,31 +213,58 @@ FrameResult Engine::apply(const Frame& frame) {
     // receive light, and cast both ways with the faces sharing their tiles.
     start = Clock::now();
     std::vector<const Face*> enteringFaces;
-    for (const Face& face : scene_.faces())
-      if (entering.count(face.id.object)) enteringFaces.push_back(&face);
+    for (uint32_t h : entering) {
+      const auto& faces = scene_.faces();
+      auto it = std::lower_bound(faces.begin(), faces.end(), FaceId{h, 0},
+                                 [](const Face& f, const FaceId& id) { return f.id < id; });
+      for (; it != faces.end() && it->id.object == h; ++it) enteringFaces.push_back(&*it);
+    }
     for (size_t l = 0; l < lightCount; ++l)
       for (const Face* face : enteringFaces) {
         orders_[l]->insertFace(*face);
         cubes_[l]->insertFace(*face);
       }
+    bool appendedOutOfOrder = false;
     for (const Face* face : enteringFaces) {
       if (!scene_.receivesLight(*face)) continue;
-      receiverIndex_[face->id] = receivers_.size();
-      receivers_.push_back(makeReceiver(*face));
-      dropped.push_back(false);
+      if (const auto slot = freeSlots.find(face->id); slot != freeSlots.end()) {
+        receivers_[slot->second] = makeReceiver(*face);
+        dropped[slot->second] = false;
+        receiverIndex_[face->id] = slot->second;
+        freeSlots.erase(slot);
+      } else {
+        appendedOutOfOrder |= !receivers_.empty() && !(receivers_.back().face < face->id);
+        receiverIndex_[face->id] = receivers_.size();
+        receivers_.push_back(makeReceiver(*face));
+        dropped.push_back(false);
+      }
       dirty.touch(face->id);
       dirty.markTopology(face->id);
     }
     for (size_t l = 0; l < lightCount; ++l) {
       const FaceOrder& order = *orders_[l];
-      std::set<std::tuple<size_t, size_t, FaceId, FaceId>> attempts;  // ranks, occluder, receiver
+      // Front-to-back ranks among the faces involved only (FaceOrder::walkKey), so the
+      // whole walk is not rebuilt for each frame.
+      std::vector<std::pair<FaceId, FaceId>> pairs;  // (entering face, candidate)
+      std::map<FaceId, FaceOrder::WalkKey> keys;
       for (const Face* face : enteringFaces) {
         if (!order.contains(face->id)) continue;
+        keys[face->id];
         for (FaceId other : cubes_[l]->candidates(face->id)) {
           if (!order.contains(other)) continue;
-          attempts.insert({order.rank(face->id), order.rank(other), face->id, other});
-          attempts.insert({order.rank(other), order.rank(face->id), other, face->id});
+          keys[other];
+          pairs.push_back({face->id, other});
         }
+      }
+      std::vector<std::pair<FaceOrder::WalkKey, FaceId>> byKey;
+      for (auto& [face, key] : keys) byKey.push_back({order.walkKey(face), face});
+      std::sort(byKey.begin(), byKey.end());
+      std::map<FaceId, size_t> rank;
+      for (size_t i = 0; i < byKey.size(); ++i) rank[byKey[i].second] = i;
+      std::set<std::tuple<size_t, size_t, FaceId, FaceId>> attempts;  // ranks, occluder, receiver
+      for (const auto& [face, other] : pairs) {
+        attempts.insert({rank.at(face), rank.at(other), face, other});
+        attempts.insert({rank.at(other), rank.at(face), other, face});
       }
       for (const auto& [occluderRank, receiverRank, occluder, target] : attempts) {
         const auto found = receiverIndex_.find(target);
@@ -235,8 +302,13 @@ FrameResult Engine::apply(const Frame& frame) {
       std::set<VertexId> relight;
       for (VertexId v : vertices)
         if (v.index < mesh.vertexSlots() && mesh.vertex(v).alive) relight.insert(v);
-      for (VertexId v : receiver.tree.vertices())
-        if (receiver.litAt[v.index] != receiver.tree.position(v)) relight.insert(v);
+      // Vertex slots are append-only and positions never change, so only slots past
+      // `known` can hold an unlit vertex, unless the tree was rebuilt (slots reused).
+      const bool rebuiltTree = rebuiltTrees.count(face) || rebuild.count(face);
+      for (uint32_t i = rebuiltTree ? 0 : uint32_t(std::min(known, mesh.vertexSlots())); i < mesh.vertexSlots(); ++i) {
+        const VertexId v(i);
+        if (mesh.vertex(v).alive && receiver.litAt[i] != receiver.tree.position(v)) relight.insert(v);
+      }
       for (VertexId v : relight) {
         const bool fresh = v.index >= known || receiver.litAt[v.index] != receiver.tree.position(v);
         const VertexIrradiance old = receiver.values[v.index];
@@ -249,29 +321,21 @@ FrameResult Engine::apply(const Frame& frame) {
       if (!relight.empty()) lastRelit_[face] = std::vector<VertexId>(relight.begin(), relight.end());
     }
     result.seconds.relight = secondsSince(start);
-    compactReceivers(dropped);
+    // Compact only if a receiver left for good or one joined out of face order.
+    const bool anyDropped = std::find(dropped.begin(), dropped.end(), true) != dropped.end();
+    if (anyDropped || appendedOutOfOrder) compactReceivers(dropped);
   } catch (const std::exception&) {
     // Unexpected (an insert refused, a cube or order failing): the whole engine is
     // rebuilt for the new scene so no half-edited state survives.
-    const auto start = Clock::now();
-    const uint64_t version = version_;
-    Engine rebuilt(scene_, settings_);
-    *this = std::move(rebuilt);
-    version_ = version;
-    result = FrameResult{};
-    for (const Receiver& r : receivers_) {
-      result.changedReceivers.push_back(r.face);
-      result.verticesRelit += r.tree.vertexCount();
-    }
-    result.verticesChanged = result.verticesCreated = result.verticesRelit;
-    result.treeRebuilds = receivers_.size();
-    result.seconds.add = secondsSince(start);
-    lastRelit_.clear();
-    for (Receiver& r : receivers_) lastRelit_[r.face] = r.tree.vertices();
+    rebuildAll();
+  }
+  if (largeFrame) {
+    rebuildAll();
+    result.fullRebuild = true;
   }
 
   std::sort(result.changedReceivers.begin(), result.changedReceivers.end());
-  for (FaceId face : before)
+  for (FaceId face : leavingReceivers)
     if (!receiver(face)) result.removedReceivers.push_back(face);
   result.version = ++version_;
   return result;

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <unordered_map>
 
 #include "core/geom/clip.h"
 #include "core/illum/face_lookup.h"
@@ -291,18 +292,18 @@ namespace {
 
 // Output vertices of one receiver: points within eps are one location (lattice
 // cuts of a shared edge come from each side), and a location repeats once per
-// distinct value (value discontinuities, dark cells).
+// distinct value (value discontinuities, dark cells). Ids are given in order of
+// first appearance, so the output depends only on the sequence of calls.
 class ReceiverMeshBuilder {
  public:
   ReceiverMeshBuilder(ReceiverMesh& mesh, const PlaneFrame& frame, double eps)
       : mesh_(mesh), frame_(frame), eps_(eps) {}
 
   uint32_t vertex(const Vec2& at, const VertexIrradiance& value) {
-    const auto key = std::make_tuple(location(at), value.irradiance.x, value.irradiance.y,
-                                     value.irradiance.z, value.lightClass);
+    const Key key{location(at), value.irradiance.x, value.irradiance.y, value.irradiance.z, value.lightClass};
     const auto [it, added] = index_.emplace(key, uint32_t(mesh_.positions.size()));
     if (added) {
-      mesh_.positions.push_back(frame_.to3D(locations_[std::get<0>(key)]));
+      mesh_.positions.push_back(frame_.to3D(locations_[key.location]));
       mesh_.irradiance.push_back(value.irradiance);
       mesh_.classes.push_back(value.lightClass);
     }
@@ -310,12 +311,37 @@ class ReceiverMeshBuilder {
   }
 
  private:
+  struct Key {
+    uint32_t location;
+    double r, g, b;
+    LightClass lightClass;
+    bool operator==(const Key& o) const {
+      return location == o.location && r == o.r && g == o.g && b == o.b && lightClass == o.lightClass;
+    }
+  };
+  // Hashes agree with ==: +0 and -0 hash alike.
+  static size_t mix(size_t seed, size_t value) { return seed ^ (value + 0x9e3779b97f4a7c15ull + (seed << 6) + (seed >> 2)); }
+  static size_t bits(double x) { return std::hash<double>{}(x == 0 ? 0.0 : x); }
+  struct KeyHash {
+    size_t operator()(const Key& k) const {
+      return mix(mix(mix(mix(k.location, bits(k.r)), bits(k.g)), bits(k.b)), size_t(k.lightClass));
+    }
+  };
+  struct BucketHash {
+    size_t operator()(const std::pair<long, long>& b) const { return mix(std::hash<long>{}(b.first), std::hash<long>{}(b.second)); }
+  };
+
   // Buckets of side 2·eps: a point merges with the first earlier one within eps.
   uint32_t location(const Vec2& at) {
     const double side = 2 * eps_;
     const long x = long(std::floor(at.x / side)), y = long(std::floor(at.y / side));
-    for (long dx = -1; dx <= 1; ++dx)
-      for (long dy = -1; dy <= 1; ++dy) {
+    // A neighbour bucket farther than 1.25·eps along an axis holds no point within
+    // eps: skipping it finds the same first match, with ~5 look-ups instead of 9.
+    const double fx = at.x - double(x) * side, fy = at.y - double(y) * side;
+    const long xFrom = fx > 1.25 * eps_ ? 0 : -1, xTo = side - fx > 1.25 * eps_ ? 0 : 1;
+    const long yFrom = fy > 1.25 * eps_ ? 0 : -1, yTo = side - fy > 1.25 * eps_ ? 0 : 1;
+    for (long dx = xFrom; dx <= xTo; ++dx)
+      for (long dy = yFrom; dy <= yTo; ++dy) {
         const auto bucket = buckets_.find({x + dx, y + dy});
         if (bucket == buckets_.end()) continue;
         for (uint32_t id : bucket->second)
@@ -331,60 +357,171 @@ class ReceiverMeshBuilder {
   const PlaneFrame& frame_;
   double eps_;
   std::vector<Vec2> locations_;
-  std::map<std::pair<long, long>, std::vector<uint32_t>> buckets_;
-  std::map<std::tuple<uint32_t, double, double, double, LightClass>, uint32_t> index_;
+  std::unordered_map<std::pair<long, long>, std::vector<uint32_t>, BucketHash> buckets_;
+  std::unordered_map<Key, uint32_t, KeyHash> index_;
 };
+
+bool sameValue(const VertexIrradiance& a, const VertexIrradiance& b) {
+  return a.irradiance == b.irradiance && a.lightClass == b.lightClass;
+}
+
+bool sameValues(const std::vector<VertexIrradiance>& a, const std::vector<VertexIrradiance>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (!sameValue(a[i], b[i])) return false;
+  return true;
+}
+
+bool sameFrame(const PlaneFrame& a, const PlaneFrame& b) {
+  return a.origin == b.origin && a.u == b.u && a.v == b.v && a.normal == b.normal;
+}
 
 }  // namespace
 
+void Engine::CellMeshMemo::clearInputs() {
+  outline.clear();
+  occluders.clear();
+  occluderPoints.clear();
+  occluderSizes.clear();
+  cornerFromCell.clear();
+  cornerValues.clear();
+  emitted.clear();
+  triangles.clear();
+}
+
+bool Engine::CellMeshMemo::sameInputs(const CellMeshMemo& o) const {
+  return valid && outline == o.outline && occluders == o.occluders && occluderSizes == o.occluderSizes &&
+         occluderPoints == o.occluderPoints && cornerFromCell == o.cornerFromCell &&
+         sameValues(cornerValues, o.cornerValues);
+}
+
+void Engine::pruneMeshMemo() {
+  for (auto it = meshMemo_.begin(); it != meshMemo_.end();)
+    it = receiverIndex_.count(it->first) ? std::next(it) : meshMemo_.erase(it);
+}
+
 Mesh Engine::mesh() {
   const auto start = Clock::now();
+  meshCounters_ = {};
   Mesh out;
+  out.receivers.reserve(receivers_.size());
+  for (const Receiver& receiver : receivers_) out.receivers.push_back(meshReceiver(receiver));
+  pruneMeshMemo();
+  stats_.seconds.triangulation = secondsSince(start);
+  return out;
+}
+
+Mesh Engine::mesh(const std::vector<FaceId>& only) {
+  meshCounters_ = {};
+  std::vector<size_t> indices;
+  for (FaceId face : only)
+    if (const auto it = receiverIndex_.find(face); it != receiverIndex_.end()) indices.push_back(it->second);
+  std::sort(indices.begin(), indices.end());
+  indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+  Mesh out;
+  out.receivers.reserve(indices.size());
+  for (size_t i : indices) out.receivers.push_back(meshReceiver(receivers_[i]));
+  pruneMeshMemo();
+  return out;
+}
+
+ReceiverMesh Engine::meshOf(FaceId face) {
+  const auto it = receiverIndex_.find(face);
+  if (it == receiverIndex_.end()) throw std::out_of_range("Engine::meshOf: the face is not a receiver");
+  meshCounters_ = {};
+  return meshReceiver(receivers_[it->second]);
+}
+
+ReceiverMesh Engine::meshReceiver(const Receiver& receiver) {
   const double eps = scene_.tolerance().length();
   const double spacing = meshSpacing();
   const size_t lightCount = scene_.lights().size();
-  for (const Receiver& receiver : receivers_) {
-    const DmTree& tree = receiver.tree;
-    const HalfEdgeMesh& halfEdges = tree.mesh();
-    const Vec3 normal = receiver.frame.normal;
+  const DmTree& tree = receiver.tree;
+  const HalfEdgeMesh& halfEdges = tree.mesh();
+  const Vec3 normal = receiver.frame.normal;
 
-    // A point is on a value discontinuity (D0) when an occluder of a cell around it
-    // has its plane through it (it touches the receiver there): it then takes its
-    // value per side, as the limit from each cell. "Through it" is the geometric
-    // predicate (length tolerance), not onPlane(): a point within onPlane() of the
-    // plane but off the contact line (e.g. on a line meeting it at a shallow angle
-    // near a footprint corner) lies inside one side, where the value is the point
-    // value (the face does not shadow it, SCENE_FORMAT.md), with no other side's
-    // copy to carry that value.
-    auto onContact = [&](const Vec3& p, const OccluderList& list) {
-      for (const OccluderEntry& entry : list) {
-        const Face* face = findFace(scene_, entry.face);
-        if (face && std::abs(face->plane.signedDistance(p)) <= eps) return true;
-      }
-      return false;
-    };
-    std::vector<bool> treeVertexOnContact(halfEdges.vertexSlots(), false);
-    for (VertexId v : tree.vertices()) {
-      const Vec3 p = receiver.frame.to3D(tree.position(v));
-      for (CellId c : tree.cellsAround(v))
-        if (onContact(p, tree.occluders(c))) treeVertexOnContact[v.index] = true;
+  // The memo is only valid for the same face frame, lattice and tolerance.
+  ReceiverMeshMemo& memo = meshMemo_[receiver.face];
+  if (!sameFrame(memo.frame, receiver.frame) || memo.spacing != spacing || memo.eps != eps) {
+    memo.cells.clear();
+    memo.frame = receiver.frame;
+    memo.spacing = spacing;
+    memo.eps = eps;
+  }
+  memo.cells.resize(halfEdges.cellSlots());
+
+  // A point is on a value discontinuity (D0) when an occluder of a cell around it
+  // has its plane through it (it touches the receiver there): it then takes its
+  // value per side, as the limit from each cell. "Through it" is the geometric
+  // predicate (length tolerance), not onPlane(): a point within onPlane() of the
+  // plane but off the contact line (e.g. on a line meeting it at a shallow angle
+  // near a footprint corner) lies inside one side, where the value is the point
+  // value (the face does not shadow it, SCENE_FORMAT.md), with no other side's
+  // copy to carry that value.
+  auto onContact = [&](const Vec3& p, const OccluderList& list) {
+    for (const OccluderEntry& entry : list) {
+      const Face* face = findFace(scene_, entry.face);
+      if (face && std::abs(face->plane.signedDistance(p)) <= eps) return true;
+    }
+    return false;
+  };
+  // Every cell's loop once (the cells around a vertex are those whose loop holds it).
+  const std::vector<CellId> cells = tree.cells();
+  std::vector<VertexId> loops;
+  std::vector<size_t> loopStart{0};
+  std::vector<bool> treeVertexOnContact(halfEdges.vertexSlots(), false);
+  for (CellId c : cells) {
+    const OccluderList& list = tree.occluders(c);
+    for (HalfEdgeId h : halfEdges.loop(c)) {
+      const VertexId v = halfEdges.halfEdge(h).origin;
+      loops.push_back(v);
+      if (!list.empty() && !treeVertexOnContact[v.index] &&
+          onContact(receiver.frame.to3D(tree.position(v)), list))
+        treeVertexOnContact[v.index] = true;
+    }
+    loopStart.push_back(loops.size());
+  }
+
+  ReceiverMesh result;
+  result.face = receiver.face;
+  result.normal = normal;
+  ReceiverMeshBuilder builder(result, receiver.frame, eps);
+
+  CellMeshMemo inputs;  // this cell's inputs; swapped into the memo when lit afresh
+  std::vector<bool> dark(lightCount);
+  std::vector<uint32_t> ids;
+  for (size_t k = 0; k < cells.size(); ++k) {
+    const CellId c = cells[k];
+    const OccluderList& list = tree.occluders(c);
+    std::fill(dark.begin(), dark.end(), false);
+    for (const OccluderEntry& entry : list)
+      if (entry.umbra) dark[entry.light] = true;
+    const bool anyDark = std::find(dark.begin(), dark.end(), true) != dark.end();
+
+    // The inputs this cell's triangles depend on.
+    inputs.clearInputs();
+    for (size_t i = loopStart[k]; i < loopStart[k + 1]; ++i) inputs.outline.push_back(tree.position(loops[i]));
+    inputs.occluders = list;
+    for (const OccluderEntry& entry : list) {
+      const Face* face = findFace(scene_, entry.face);
+      inputs.occluderSizes.push_back(face ? uint32_t(face->polygon.size()) : 0);
+      if (face) inputs.occluderPoints.insert(inputs.occluderPoints.end(), face->polygon.begin(), face->polygon.end());
+    }
+    for (size_t i = loopStart[k]; i < loopStart[k + 1]; ++i) {
+      const VertexId v = loops[i];
+      const bool fromCell = treeVertexOnContact[v.index];
+      inputs.cornerFromCell.push_back(fromCell ? 1 : 0);
+      inputs.cornerValues.push_back(fromCell ? VertexIrradiance{}
+                                    : anyDark ? sumLights(scene_, receiver.perLight[v.index], &dark)
+                                              : receiver.values[v.index]);
     }
 
-    ReceiverMesh result;
-    result.face = receiver.face;
-    result.normal = normal;
-    ReceiverMeshBuilder builder(result, receiver.frame, eps);
-
-    for (CellId c : tree.cells()) {
-      const OccluderList& list = tree.occluders(c);
-      std::vector<bool> dark(lightCount, false);
-      for (const OccluderEntry& entry : list)
-        if (entry.umbra) dark[entry.light] = true;
-      const bool anyDark = std::find(dark.begin(), dark.end(), true) != dark.end();
-
-      const auto loop = halfEdges.loop(c);
-      Polygon2 polygon;
-      for (HalfEdgeId h : loop) polygon.push_back(tree.position(halfEdges.halfEdge(h).origin));
+    CellMeshMemo& slot = memo.cells[c.index];
+    if (slot.sameInputs(inputs)) {
+      ++meshCounters_.cellsReused;
+    } else {
+      ++meshCounters_.cellsLit;
+      const Polygon2& polygon = inputs.outline;
       Vec3 centre{0.0};
       for (const Vec2& q : polygon) centre += receiver.frame.to3D(q);
       centre /= double(polygon.size());
@@ -394,10 +531,8 @@ Mesh Engine::mesh() {
         const Vec3 p = receiver.frame.to3D(q);
         for (size_t i = 0; i < polygon.size(); ++i) {
           if (polygon[i] != q) continue;
-          const VertexId v = halfEdges.halfEdge(loop[i]).origin;
-          if (treeVertexOnContact[v.index]) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
-          if (anyDark) return sumLights(scene_, receiver.perLight[v.index], &dark);
-          return receiver.values[v.index];
+          if (inputs.cornerFromCell[i]) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
+          return inputs.cornerValues[i];
         }
         // A lattice point: lit exactly from this cell's list (cases 2 and 3 keep it
         // dark in a light's umbra).
@@ -407,23 +542,32 @@ Mesh Engine::mesh() {
 
       for (const Polygon2& piece : splitByLattice(polygon, spacing, eps)) {
         std::vector<uint32_t> corners;
-        for (const Vec2& q : piece) corners.push_back(builder.vertex(q, valueAt(q)));
+        for (const Vec2& q : piece) {
+          corners.push_back(uint32_t(inputs.emitted.size()));
+          inputs.emitted.push_back({q, valueAt(q)});
+        }
         const CellTriangulation triangulation = triangulateConvexCell(piece, eps);
         if (triangulation.usesCentre) {
           Vec2 middle{0.0};
           for (const Vec2& q : piece) middle += q;
           middle /= double(piece.size());
-          corners.push_back(
-              builder.vertex(middle, illuminatePoint(scene_, receiver.frame.to3D(middle), normal, {&list})));
+          corners.push_back(uint32_t(inputs.emitted.size()));
+          inputs.emitted.push_back(
+              {middle, illuminatePoint(scene_, receiver.frame.to3D(middle), normal, {&list})});
         }
         for (const auto& t : triangulation.triangles)
-          result.triangles.push_back({corners[t[0]], corners[t[1]], corners[t[2]]});
+          inputs.triangles.push_back({corners[t[0]], corners[t[1]], corners[t[2]]});
       }
+      inputs.valid = true;
+      std::swap(slot, inputs);  // the old slot's buffers are reused for the next cell
     }
-    out.receivers.push_back(std::move(result));
+
+    // Fresh or replayed, the builder sees the same calls in the same order.
+    ids.clear();
+    for (const auto& [at, value] : slot.emitted) ids.push_back(builder.vertex(at, value));
+    for (const auto& t : slot.triangles) result.triangles.push_back({ids[t[0]], ids[t[1]], ids[t[2]]});
   }
-  stats_.seconds.triangulation = secondsSince(start);
-  return out;
+  return result;
 }
 
 double Engine::meshSpacing() const {

@@ -82,8 +82,23 @@ class Engine {
   // Triangulates every cell (cut further by the display lattice, see
   // EngineSettings::meshSpacing). Vertices repeat once per side where the value
   // jumps (contact edges, cells in a light's umbra), so no triangle interpolates
-  // across a value discontinuity and umbra cells stay dark. Adds its time to stats().
+  // across a value discontinuity and umbra cells stay dark. Records its time in stats().
   Mesh mesh();
+  // The same for the listed receivers only (in Scene::faces() order, each once;
+  // faces that are not receivers are skipped). Equals the matching part of mesh().
+  Mesh mesh(const std::vector<FaceId>& only);
+  // One receiver's part of mesh(). Throws std::out_of_range if `face` is not a receiver.
+  ReceiverMesh meshOf(FaceId face);
+  // Meshing keeps, per receiver and per cell, the cell's triangles and the inputs they
+  // came from (outline, occluder list and those faces' polygons, corner values); a cell
+  // whose inputs are all equal is replayed instead of lit again, so the result is bit
+  // for bit what a fresh triangulation gives. Counters of the last mesh call:
+  struct MeshCacheCounters {
+    size_t cellsReused = 0, cellsLit = 0;
+  };
+  const MeshCacheCounters& lastMeshCounters() const { return meshCounters_; }
+  // Drops the memo: the next mesh call lights every cell afresh.
+  void forgetMeshMemo() { meshMemo_.clear(); }
 
   // The lattice spacing mesh() uses (0: none).
   double meshSpacing() const;
@@ -111,6 +126,31 @@ class Engine {
   // Whether every vertex of the face lies in each light's overlap cube.
   bool insideEditVolume(const Face& face) const;
 
+  // Per-cell memo of the meshing (see mesh()): what a cell emitted, and what that
+  // depends on. Buffers are reused from cell to cell.
+  struct CellMeshMemo {
+    bool valid = false;
+    Polygon2 outline;                     // the cell's loop positions
+    OccluderList occluders;               // its list
+    std::vector<Vec3> occluderPoints;     // the listed faces' world polygons, concatenated
+    std::vector<uint32_t> occluderSizes;  // their vertex counts (0: not a scene face)
+    // Per loop corner: 1 if lit from the cell (a contact vertex), else 0 and its value.
+    std::vector<uint8_t> cornerFromCell;
+    std::vector<VertexIrradiance> cornerValues;
+    // The output: builder calls (point, value) in order, and triangles into them.
+    std::vector<std::pair<Vec2, VertexIrradiance>> emitted;
+    std::vector<std::array<uint32_t, 3>> triangles;
+    void clearInputs();
+    bool sameInputs(const CellMeshMemo& inputs) const;  // valid, and every input equal
+  };
+  struct ReceiverMeshMemo {
+    PlaneFrame frame;
+    double spacing = 0, eps = 0;
+    std::vector<CellMeshMemo> cells;  // by CellId index
+  };
+  void pruneMeshMemo();  // drops the memos of faces that are no longer receivers
+  ReceiverMesh meshReceiver(const Receiver& receiver);
+
   Scene scene_;
   EngineSettings settings_;
   uint64_t version_ = 0;
@@ -122,6 +162,8 @@ class Engine {
   std::map<FaceId, std::set<FaceId>> castBy_;   // receiver -> occluders shadowing it
   std::map<FaceId, std::vector<VertexId>> lastRelit_;
   BuildStats stats_;
+  std::map<FaceId, ReceiverMeshMemo> meshMemo_;
+  MeshCacheCounters meshCounters_;
 };
 
 }  // namespace penumbra

@@ -40,6 +40,9 @@ struct FrameResult {
   std::vector<FaceId> removedReceivers;  // receivers that left the scene
   size_t nodesDeleted = 0;         // DM-tree nodes removed by node deletion
   size_t treeRebuilds = 0;         // fallback: receivers' DM-trees rebuilt from scratch
+  // The frame edited more than a set share of a large scene's faces (apply_frame.cpp:
+  // kFullRebuildShare), so the engine was rebuilt instead (treeRebuilds = every receiver).
+  bool fullRebuild = false;
 };
 
 // A frame refused before anything changed: which edit, the key path inside it

@@ -70,6 +70,7 @@ FaceOrder::FaceOrder(const Scene& scene, size_t light) {
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
   for (OrderNodeId cell : cells) sortCell(cell);
   rebuildWalk();
+  walkStale_ = false;
 }
 
 OrderNodeId FaceOrder::newNode(OrderNodeId parent) {
@@ -276,7 +277,7 @@ bool FaceOrder::insertFace(const Face& face) {
     cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
     for (OrderNodeId cell : cells) sortCell(cell);
   }
-  rebuildWalk();
+  invalidateWalk();
   return true;
 }
 
@@ -326,11 +327,54 @@ bool FaceOrder::removeFace(FaceId faceId) {
     cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
     for (OrderNodeId cell : cells) sortCell(cell);
   }
-  rebuildWalk();
+  invalidateWalk();
   return true;
 }
 
-void FaceOrder::rebuildWalk() {
+void FaceOrder::ensureWalk() const {
+  const std::lock_guard<std::mutex> lock(walkMutex_);
+  if (!walkStale_) return;
+  rebuildWalk();
+  walkStale_ = false;
+}
+
+const std::vector<OrderedFragment>& FaceOrder::fragments() const {
+  ensureWalk();
+  return walk_;
+}
+
+const FaceOrderCounters& FaceOrder::counters() const {
+  ensureWalk();
+  return counters_;
+}
+
+FaceOrder::WalkKey FaceOrder::walkKey(FaceId face) const {
+  const FaceRecord& record = faces_.at(face);
+  // In-order walk: front subtree (0), the node's plane fragments (1), back subtree
+  // (2); a cell lists its offending fragments in order. A fragment's key is its
+  // root-to-node path of those digits, then its index there; the face's key is the
+  // least over its fragments.
+  WalkKey best;
+  bool any = false;
+  for (OrderNodeId id : record.nodes) {
+    const Node& node = nodes_[id.value];
+    const std::vector<Fragment>& list = node.leaf ? node.offending : node.onPlane;
+    const auto it = std::find_if(list.begin(), list.end(), [&](const Fragment& f) { return f.face == face; });
+    if (it == list.end()) continue;  // a stale holder (the face left that node)
+    WalkKey key;
+    key.push_back(uint32_t(it - list.begin()));
+    if (!node.leaf) key.push_back(1);
+    for (OrderNodeId child = id, up = node.parent; up.isValid(); child = up, up = nodes_[up.value].parent)
+      key.push_back(nodes_[up.value].front == child ? 0 : 2);
+    std::reverse(key.begin(), key.end());
+    if (!any || key < best) best = std::move(key);
+    any = true;
+  }
+  if (!any) throw std::out_of_range("FaceOrder::walkKey: face without fragments");
+  return best;
+}
+
+void FaceOrder::rebuildWalk() const {
   walk_.clear();
   rank_.clear();
   counters_.nodes = counters_.cells = 0;
@@ -370,14 +414,19 @@ void FaceOrder::rebuildWalk() {
 }
 
 std::vector<FaceId> FaceOrder::faceOrder() const {
+  ensureWalk();
   std::vector<FaceId> order(rank_.size());
   for (const auto& [face, position] : rank_) order[position] = face;
   return order;
 }
 
-size_t FaceOrder::rank(FaceId face) const { return rank_.at(face); }
+size_t FaceOrder::rank(FaceId face) const {
+  ensureWalk();
+  return rank_.at(face);
+}
 
 void FaceOrder::validate() const {
+  ensureWalk();
   const double eps = tolerance_.length();
   if (!root_.isValid() || nodes_[root_.value].parent.isValid()) fail("bad root");
   std::map<FaceId, std::pair<size_t, double>> seen;  // fragments, area

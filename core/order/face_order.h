@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <vector>
 
 #include "core/geom/plane.h"
@@ -49,14 +50,20 @@ class FaceOrder {
   FaceOrder(const Scene& scene, size_t light);
 
   // Front-to-back: a ray from any point of the light crosses (through their front
-  // sides) fragments in increasing index order.
-  const std::vector<OrderedFragment>& fragments() const { return walk_; }
+  // sides) fragments in increasing index order. The walk is rebuilt lazily: edits
+  // only mark it stale, the first of these readers after an edit walks the tree.
+  const std::vector<OrderedFragment>& fragments() const;
   // Each face once, at its first fragment.
   std::vector<FaceId> faceOrder() const;
   // Position of a face in faceOrder(); throws std::out_of_range if absent.
   size_t rank(FaceId face) const;
+  // A face's place in the walk without walking the whole tree (what incremental
+  // edits use): walkKey(a) < walkKey(b) (lexicographic) iff rank(a) < rank(b).
+  // Costs O(fragments · depth). Throws std::out_of_range if absent.
+  using WalkKey = std::vector<uint32_t>;
+  WalkKey walkKey(FaceId face) const;
   bool contains(FaceId face) const { return faces_.count(face) != 0; }
-  const FaceOrderCounters& counters() const { return counters_; }
+  const FaceOrderCounters& counters() const;
 
   // Adds a face (world space, as in Scene::faces()). Back faces and faces already
   // present are ignored; returns whether the face was added.
@@ -95,7 +102,10 @@ class FaceOrder {
   void sortCell(OrderNodeId cell);
   void collectSubtree(OrderNodeId id, std::vector<Fragment>* front,
                       std::vector<Fragment>* offending, std::vector<OrderNodeId>* nodes) const;
-  void rebuildWalk();
+  // Marks the walk stale (edits) / rebuilds it if stale (readers; thread-safe).
+  void invalidateWalk() { walkStale_ = true; }
+  void ensureWalk() const;
+  void rebuildWalk() const;
   void noteNode(const Fragment& fragment, OrderNodeId node);
   size_t chooseSplitter(const std::vector<Fragment>& candidates) const;
 
@@ -105,9 +115,12 @@ class FaceOrder {
   std::vector<OrderNodeId> freeNodes_;
   OrderNodeId root_;
   std::map<FaceId, FaceRecord> faces_;
-  std::vector<OrderedFragment> walk_;
-  std::map<FaceId, size_t> rank_;
-  FaceOrderCounters counters_;
+  // The walk and what it derives, cached (mutable: rebuilt by const readers).
+  mutable std::vector<OrderedFragment> walk_;
+  mutable std::map<FaceId, size_t> rank_;
+  mutable FaceOrderCounters counters_;
+  mutable bool walkStale_ = true;
+  mutable std::mutex walkMutex_;
 };
 
 }  // namespace penumbra

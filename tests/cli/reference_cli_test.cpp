@@ -5,6 +5,8 @@
 // formula (no polygon clipping, no Lambert code shared with the engine).
 #include <gtest/gtest.h>
 
+#include "tests/cli/cli_test_support.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -17,9 +19,7 @@ using nlohmann::json;
 
 const std::string kBinary = std::string(PENUMBRA_BINARY_DIR) + "/penumbra";
 
-std::string tempPath(const std::string& name) {
-  return std::string(PENUMBRA_BINARY_DIR) + "/cli_test_" + name;
-}
+using penumbra::cli_test::tempPath;
 
 int run(const std::string& arguments) {
   const int status = std::system((kBinary + " " + arguments + " 2>/dev/null >/dev/null").c_str());

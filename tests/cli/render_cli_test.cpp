@@ -3,6 +3,8 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "tests/cli/cli_test_support.h"
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -14,7 +16,7 @@ namespace {
 const std::string kBinary = std::string(PENUMBRA_BINARY_DIR) + "/penumbra";
 const std::string kCornell = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/cornell.scene.json";
 
-std::string tempPath(const std::string& name) { return std::string(PENUMBRA_BINARY_DIR) + "/cli_test_render_" + name; }
+using penumbra::cli_test::tempPath;
 
 int run(const std::string& arguments) {
   const int status = std::system((kBinary + " " + arguments + " 2>/dev/null >/dev/null").c_str());

@@ -2,6 +2,8 @@
 // --verify and --report, a script with a bad line, an unknown id in frame 3.
 #include <gtest/gtest.h>
 
+#include "tests/cli/cli_test_support.h"
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -19,9 +21,7 @@ const std::string kBinary = std::string(PENUMBRA_BINARY_DIR) + "/penumbra";
 const std::string kScene = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/cubes15.scene.json";
 const std::string kScripts = std::string(PENUMBRA_SOURCE_DIR) + "/bench/edits/";
 
-std::string tempPath(const std::string& name) {
-  return std::string(PENUMBRA_BINARY_DIR) + "/cli_test_replay_" + name;
-}
+using penumbra::cli_test::tempPath;
 
 std::string readFile(const std::string& path) {
   std::ifstream in(path);

@@ -145,8 +145,9 @@ TEST(GlbExport, ExplicitScaleAndDiscontinuityLines) {
   EXPECT_EQ(model.accessors[size_t(lines.primitives[0].attributes.at("POSITION"))].count, options.edges.size() * 2);
   const ReceiverMesh& first = mesh.receivers[0];
   const std::vector<float> colors = floats(model, model.meshes[0].primitives[0].attributes.at("COLOR_0"));
-  if (first.face.object == scene.handleOf(0))
+  if (first.face.object == scene.handleOf(0)) {
     EXPECT_FLOAT_EQ(colors[0], float(scene.albedo(first.face).x / M_PI * first.irradiance[0].x * 0.25));
+  }
 }
 
 TEST(GlbExport, BuildCommandWritesGlbByExtension) {

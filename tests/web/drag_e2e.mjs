@@ -8,81 +8,13 @@
 //
 // usage: node tests/web/drag_e2e.mjs --penumbra build/penumbra [--scene scenes/cubes15.scene.json]
 //          [--screenshot build/web-e2e.png] [--measure build/cubes150.scene.json --seconds 5]
-import { spawn } from 'node:child_process';
-import { createRequire } from 'node:module';
 import fs from 'node:fs';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
 
-const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
-const requireFromPage = createRequire(path.join(repo, 'web_client', 'package.json'));
+import { check, parseArgs, repo, runWithServerAndBrowser } from './harness.mjs';
 
-function parseArgs(argv) {
-  const args = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'cubes15.scene.json'),
+const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'cubes15.scene.json'),
     screenshot: path.join(repo, 'build', 'web-e2e.png'), measure: null, seconds: 5, startupSeconds: 120 };
-  for (let i = 2; i < argv.length; i += 2) {
-    const key = argv[i].replace(/^--/, '');
-    if (!(key in args) || i + 1 >= argv.length) throw new Error(`usage: unknown or incomplete option ${argv[i]}`);
-    args[key] = key === 'seconds' || key === 'startupSeconds' ? Number(argv[i + 1]) : argv[i + 1];
-  }
-  return args;
-}
-
-let failures = 0;
-let passes = 0;
-function check(condition, what, detail = '') {
-  if (condition) {
-    ++passes;
-    console.log(`ok   ${what}`);
-  } else {
-    ++failures;
-    console.log(`FAIL ${what}${detail ? `: ${detail}` : ''}`);
-  }
-  return condition;
-}
-
-// Starts the server and resolves with {process, url} once it prints the page's URL.
-function startServer(penumbra, scene, timeoutSeconds) {
-  return new Promise((resolve, reject) => {
-    const server = spawn(penumbra, ['serve', scene, '--port', '0', '--static', path.join(repo, 'web_client')],
-      { cwd: repo, stdio: ['ignore', 'pipe', 'pipe'] });
-    let out = '';
-    let err = '';
-    const timer = setTimeout(() => {
-      server.kill('SIGTERM');
-      reject(new Error(`server printed no URL within ${timeoutSeconds} s\nstdout: ${out}\nstderr: ${err}`));
-    }, timeoutSeconds * 1000);
-    server.stdout.on('data', (chunk) => {
-      out += chunk;
-      const match = out.match(/open (http:\/\/\S+\?scene=\S+)/);
-      if (match) {
-        clearTimeout(timer);
-        resolve({ server, url: match[1] });
-      }
-    });
-    server.stderr.on('data', (chunk) => { err += chunk; });
-    server.on('exit', (code) => {
-      clearTimeout(timer);
-      reject(new Error(`server exited (${code}) before printing its URL\nstderr: ${err}`));
-    });
-  });
-}
-
-async function launchBrowser() {
-  let chromium;
-  try {
-    ({ chromium } = requireFromPage('playwright-core'));
-  } catch (error) {
-    throw new Error(`playwright-core is not installed (run: bash .ci/install-deps): ${error.message}`);
-  }
-  const executablePath = process.env.PENUMBRA_CHROMIUM || '/usr/bin/chromium';
-  if (!fs.existsSync(executablePath)) throw new Error(`no chromium at ${executablePath} (run: bash .ci/install-deps)`);
-  return chromium.launch({
-    executablePath,
-    args: ['--headless', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-gpu-sandbox',
-      '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-  });
-}
 
 async function openPage(browser, url) {
   const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
@@ -377,28 +309,14 @@ async function measure(page, base, sceneId, seconds) {
 }
 
 async function main() {
-  const args = parseArgs(process.argv);
-  const deadline = setTimeout(() => { console.log('FAIL the test took over 5 minutes'); process.exit(1); }, 300000);
-  const { server, url } = await startServer(args.penumbra, args.measure || args.scene, args.startupSeconds);
-  let browser = null;
-  try {
-    const base = new URL(url).origin;
-    const sceneId = new URL(url).searchParams.get('scene');
-    browser = await launchBrowser();
+  const args = parseArgs(process.argv, defaults);
+  await runWithServerAndBrowser({ ...args, scene: args.measure || args.scene }, async ({ browser, url, base, sceneId }) => {
     const { page, pageErrors } = await openPage(browser, url);
     const ready = await page.evaluate(() => window.penumbra.state());
     if (!check(ready.ready, 'the page loaded the scene', JSON.stringify(ready.errors))) throw new Error('page not ready');
     if (args.measure) await measure(page, base, sceneId, args.seconds);
     else await dragTest(page, pageErrors, base, sceneId, args.screenshot);
-  } catch (error) {
-    check(false, 'the test ran to the end', error.stack || String(error));
-  } finally {
-    if (browser) await browser.close();
-    server.kill('SIGTERM');
-    clearTimeout(deadline);
-  }
-  console.log(`${passes} passed, ${failures} failed`);
-  process.exit(failures ? 1 : 0);
+  });
 }
 
 main();

@@ -9,6 +9,7 @@ import { MeshSync } from './mesh_sync.js';
 import { ReceiverLayer } from './receiver_layer.js';
 import { RenderPanel } from './render_panel.js';
 import { SceneObjects } from './scene_objects.js';
+import { showImportReport } from './import_report_panel.js';
 import { installSceneFileLoader } from './scene_file_loader.js';
 import { applyTransform, sameTransform, transformOf } from './scene_transform.js';
 import { SceneView } from './scene_view.js';
@@ -35,7 +36,7 @@ class App {
     this.dragStart = null;
     this.announced = 0; // the newest version the event stream announced
     this.fail = (error) => this.banner.show(error);
-    installSceneFileLoader($('scene-file'), this.api, this.fail);
+    installSceneFileLoader($('scene-file'), this.api, this.fail, { scale: $('import-scale'), radiance: $('import-radiance') });
   }
 
   async start() {
@@ -49,6 +50,7 @@ class App {
     this.sceneId = sceneId;
     const wrapped = await this.api.getScene(sceneId);
     $('scene-name').textContent = `${wrapped.id} (${wrapped.name})`;
+    showImportReport($('import-report'), sceneId, wrapped.name);
     this.sceneJson = wrapped.scene;
 
     this.objects.build(wrapped.scene);

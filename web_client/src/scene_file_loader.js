@@ -1,15 +1,74 @@
-// "Load a scene file": a .scene.json chosen in the file input is posted as is (POST /api/scenes,
-// so the server validates it and names the key path of any problem), then the page switches
-// to the new scene (?scene=ID). OBJ / glTF import is not offered here yet.
+// "Load a scene": the files chosen in the file input become a new served scene, then the page
+// switches to it (?scene=ID). A .scene.json is posted as is (POST /api/scenes); an .obj (with the
+// .mtl files picked together), .gltf or .glb is posted as a form to POST /api/scenes?format=...
+// (docs/API.md), with the page's scale and light-radiance options. The server names the key path
+// of any problem; the import report (what was repaired) is kept for the next page in
+// sessionStorage and shown there by import_report_panel.js.
+import { storeImportReport } from './import_report_panel.js';
 
-export function installSceneFileLoader(input, api, onError) {
+const kinds = [
+  [/\.json$/i, 'scene'],
+  [/\.obj$/i, 'obj'],
+  [/\.mtl$/i, 'mtl'],
+  [/\.gltf$/i, 'gltf'],
+  [/\.glb$/i, 'glb'],
+];
+
+function kindOf(file) {
+  const match = kinds.find(([pattern]) => pattern.test(file.name));
+  return match ? match[1] : null;
+}
+
+// The files picked → {main, mtl[]}; throws with a message the banner shows.
+export function classifyFiles(files) {
+  const main = [];
+  const mtl = [];
+  for (const file of files) {
+    const kind = kindOf(file);
+    if (!kind) throw new Error(`cannot load '${file.name}': choose a .scene.json, .obj (+ .mtl), .gltf or .glb file`);
+    if (kind === 'mtl') mtl.push(file);
+    else main.push({ file, kind });
+  }
+  if (main.length !== 1) {
+    throw new Error(main.length ? `choose one scene file at a time, got ${main.map((m) => m.file.name).join(', ')}`
+      : 'the .mtl files need their .obj: pick them together');
+  }
+  if (mtl.length && main[0].kind !== 'obj') throw new Error('.mtl files go with an .obj only');
+  return { main: main[0], mtl };
+}
+
+// The import options typed in the page → query parameters (empty fields: the file's own values).
+export function importQuery(kind, name, scaleText, radianceText) {
+  const params = new URLSearchParams({ format: kind, name });
+  if (scaleText.trim()) params.set('scale', scaleText.trim());
+  if (radianceText.trim()) params.set('light_radiance', radianceText.replace(/\s+/g, ''));
+  return params;
+}
+
+async function importFile(api, main, mtl, options) {
+  const form = new FormData();
+  form.append('file', main.file, main.file.name);
+  for (const file of mtl) form.append('mtl', file, file.name);
+  const query = importQuery(main.kind, main.file.name, options.scale.value, options.radiance.value);
+  const response = await api.request('POST', `/api/scenes?${query}`, { body: form });
+  return response.json();
+}
+
+// options: {scale, radiance}: the page's input elements for the import options.
+export function installSceneFileLoader(input, api, onError, options) {
   input.addEventListener('change', async () => {
-    const file = input.files && input.files[0];
-    if (!file) return;
+    const files = input.files ? [...input.files] : [];
+    if (!files.length) return;
     try {
-      const name = file.name.replace(/\.scene\.json$|\.json$/i, '');
-      const text = await file.text();
-      const created = await api.createScene(text, name);
+      const { main, mtl } = classifyFiles(files);
+      let created;
+      if (main.kind === 'scene') {
+        const name = main.file.name.replace(/\.scene\.json$|\.json$/i, '');
+        created = await api.createScene(await main.file.text(), name);
+      } else {
+        created = await importFile(api, main, mtl, options);
+        storeImportReport(created.id, created.name, created.import);
+      }
       window.location.search = `?scene=${encodeURIComponent(created.id)}`;
     } catch (error) {
       onError(error);

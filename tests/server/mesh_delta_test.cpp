@@ -1,0 +1,198 @@
+// The served mesh after edits, as a client following it sees it: the whole mesh at
+// version 0, then each frame's `since` delta applied (listed receivers replaced,
+// removed ones dropped) gives byte-identical receiver JSON to a fresh mesh() of an
+// engine given the same frames. Also gzip Content-Encoding of the binary mesh.
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <map>
+#include <random>
+
+#include "bench/lib/cubes_scene.h"
+#include "protocol/mesh_json.h"
+#include "server/gzip_encoding.h"
+#include "server/scene_session.h"
+#include "tests/server/server_fixture.h"
+
+namespace penumbra::server {
+namespace {
+
+using nlohmann::json;
+
+// Receiver JSON by "object/face", without the served-only "scene_version".
+std::map<std::string, std::string> receiversByKey(const json& mesh) {
+  std::map<std::string, std::string> out;
+  for (json r : mesh["receivers"]) {
+    r.erase("scene_version");
+    out[r["object"].get<std::string>() + "/" + std::to_string(r["face"].get<int>())] = r.dump();
+  }
+  return out;
+}
+
+// A frame like a drag (small moves of one cube), sometimes another cube too, an
+// added cube, or removing the one added before.
+Frame randomFrame(const Scene& scene, std::mt19937_64& rng, int step, bool& added) {
+  Frame frame;
+  auto moveOf = [&](const std::string& id, double dx, double dz, double turn) {
+    const size_t index = *scene.findObject(id);
+    Edit edit;
+    edit.op = Edit::Op::Move;
+    edit.id = id;
+    edit.transform = scene.objects()[index].transform;
+    edit.transform.translate.x += dx;
+    edit.transform.translate.z += dz;
+    edit.transform.rotateDeg.y += turn;
+    return edit;
+  };
+  std::uniform_real_distribution<double> small(-0.08, 0.08);
+  frame.edits.push_back(moveOf("cube_0", small(rng), small(rng), 0));
+  if (step % 4 == 1) frame.edits.push_back(moveOf("cube_1", small(rng), small(rng), 10));
+  if (step % 5 == 2) {
+    Edit edit;
+    if (!added) {
+      edit.op = Edit::Op::Add;
+      edit.object = scene.objects()[*scene.findObject("cube_2")];
+      edit.object.id = "cube_extra";
+      edit.object.transform.translate.x += 0.5;
+      edit.object.transform.translate.z += 0.25;
+    } else {
+      edit.op = Edit::Op::Remove;
+      edit.id = "cube_extra";
+    }
+    added = !added;
+    frame.edits.push_back(edit);
+  }
+  return frame;
+}
+
+TEST(MeshDelta, DeltasAppliedToTheWholeMeshEqualAFreshMeshAfterEachFrame) {
+  CubesSceneOptions options;
+  options.cubes = 8;
+  options.seed = 4;
+  const Scene scene = makeCubesScene(options);
+  SceneSession session("t", "cubes8", scene);
+  Engine reference(scene);
+  const auto first = session.snapshot();
+  std::map<std::string, std::string> held = receiversByKey(first->meshJson(first->select(std::nullopt)));
+
+  std::mt19937_64 rng(17);
+  bool added = false;
+  size_t meshed = 0, receivers = 0, reused = 0, lit = 0;
+  for (int step = 0; step < 12; ++step) {
+    SCOPED_TRACE("step " + std::to_string(step));
+    const Frame frame = randomFrame(reference.scene(), rng, step, added);
+    const SceneSession::Applied applied = session.apply(frame);
+    reference.apply(frame);
+    meshed += applied.meshedReceivers;
+    receivers += applied.snapshot->mesh.receivers.size();
+    reused += applied.meshCells.cellsReused;
+    lit += applied.meshCells.cellsLit;
+
+    const SceneSnapshot& s = *applied.snapshot;
+    const json delta = s.meshJson(s.select(s.version - 1));
+    for (const auto& [key, text] : receiversByKey(delta)) held[key] = text;
+    for (const json& gone : delta["removed"])
+      held.erase(gone["object"].get<std::string>() + "/" + std::to_string(gone["face"].get<int>()));
+
+    reference.forgetMeshMemo();
+    const json fresh = protocol::meshToJson(reference.scene(), reference.mesh(), "cubes8");
+    const auto want = receiversByKey(fresh);
+    ASSERT_EQ(held.size(), want.size());
+    for (const auto& [key, text] : want) {
+      ASSERT_TRUE(held.count(key)) << key;
+      EXPECT_EQ(held.at(key), text) << key;
+    }
+    // The served whole mesh is that fresh mesh too.
+    EXPECT_EQ(receiversByKey(s.meshJson(s.select(std::nullopt))), want);
+    if (HasFailure()) return;
+  }
+  // Dragging one cube re-meshes a few receivers, not the scene, and of their cells
+  // most are replayed from the memo.
+  EXPECT_LT(meshed * 2, receivers);
+  EXPECT_GT(reused, lit);
+}
+
+TEST(MeshDelta, AcceptEncodingParsing) {
+  EXPECT_TRUE(acceptsGzip("gzip"));
+  EXPECT_TRUE(acceptsGzip("gzip, deflate, br"));
+  EXPECT_TRUE(acceptsGzip("br;q=1.0, GZIP;q=0.5"));
+  EXPECT_TRUE(acceptsGzip("*"));
+  EXPECT_TRUE(acceptsGzip("x-gzip"));
+  EXPECT_FALSE(acceptsGzip(""));
+  EXPECT_FALSE(acceptsGzip("identity"));
+  EXPECT_FALSE(acceptsGzip("deflate, br"));
+  EXPECT_FALSE(acceptsGzip("gzip;q=0"));
+  EXPECT_FALSE(acceptsGzip("gzip;q=0.000, *"));
+  EXPECT_FALSE(acceptsGzip("gzipx"));
+}
+
+std::string gunzip(const std::string& data) {
+  z_stream stream{};
+  EXPECT_EQ(inflateInit2(&stream, 15 + 16), Z_OK);
+  std::string out;
+  char buffer[1 << 16];
+  stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  stream.avail_in = uInt(data.size());
+  int status = Z_OK;
+  while (status == Z_OK) {
+    stream.next_out = reinterpret_cast<Bytef*>(buffer);
+    stream.avail_out = sizeof buffer;
+    status = inflate(&stream, Z_NO_FLUSH);
+    out.append(buffer, sizeof buffer - stream.avail_out);
+  }
+  EXPECT_EQ(status, Z_STREAM_END);
+  inflateEnd(&stream);
+  return out;
+}
+
+TEST(MeshDelta, BinaryMeshIsGzippedWhenTheClientAcceptsIt) {
+  ServerOptions options = test::RunningServer::loopback();
+  options.meshCompression = ServerOptions::MeshCompression::Always;
+  test::RunningServer running(options);
+  const std::string id = running.addBundled("cubes15");
+  auto client = running.client();
+  client.set_decompress(false);  // see the bytes on the wire
+  const std::string path = "/api/scenes/" + id + "/mesh?format=bin";
+  const auto plain = client.Get(path.c_str(), {{"Accept-Encoding", "identity"}});
+  ASSERT_TRUE(plain);
+  ASSERT_EQ(plain->status, 200);
+  EXPECT_FALSE(plain->has_header("Content-Encoding"));
+  EXPECT_EQ(plain->body.substr(0, 4), "PNMB");
+  EXPECT_EQ(plain->get_header_value("X-Penumbra-Uncompressed-Bytes"), std::to_string(plain->body.size()));
+
+  const auto packed = client.Get(path.c_str(), {{"Accept-Encoding", "gzip, deflate, br"}});
+  ASSERT_TRUE(packed);
+  ASSERT_EQ(packed->status, 200);
+  EXPECT_EQ(packed->get_header_value("Content-Encoding"), "gzip");
+  EXPECT_EQ(packed->get_header_value("Vary"), "Accept-Encoding");
+  EXPECT_EQ(packed->get_header_value("X-Penumbra-Uncompressed-Bytes"), std::to_string(plain->body.size()));
+  EXPECT_LT(packed->body.size(), plain->body.size() * 3 / 4);
+  EXPECT_EQ(gunzip(packed->body), plain->body);
+
+  // A client that decodes (httplib's, a browser's fetch) reads the same bytes.
+  auto decoding = running.client();
+  const auto decoded = decoding.Get(path.c_str(), {{"Accept-Encoding", "gzip"}});
+  ASSERT_TRUE(decoded);
+  EXPECT_EQ(decoded->body, plain->body);
+}
+
+}  // namespace
+}  // namespace penumbra::server
+
+namespace penumbra::server {
+namespace {
+
+TEST(MeshDelta, LoopbackClientsGetUncompressedBytesByDefault) {
+  test::RunningServer running;  // MeshCompression::Auto
+  const std::string id = running.addBundled("cubes15");
+  auto client = running.client();
+  client.set_decompress(false);
+  const auto res = client.Get(("/api/scenes/" + id + "/mesh?format=bin").c_str(), {{"Accept-Encoding", "gzip"}});
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200);
+  EXPECT_FALSE(res->has_header("Content-Encoding"));
+  EXPECT_EQ(res->body.substr(0, 4), "PNMB");
+}
+
+}  // namespace
+}  // namespace penumbra::server
