@@ -108,6 +108,10 @@ class DmTree {
   };
 
   NodeId addNode(NodeId parent, CellId cell);
+  // Splits leaf n's cell along `seg` (a straddling plan) and makes n the internal
+  // node carrying seg's piece [lo, hi] (positions along a→b) for `owner`.
+  HalfEdgeMesh::CutResult splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan& plan, const SingleTreeNode& seg,
+                                    const OccluderKey& owner, double lo, double hi, bool partial);
   void collectCells(NodeId n, const Polygon2& region, std::vector<CellId>& out) const;
   void partition(CellId c, const SingleTree& tree, int s, const Generator& gen, std::vector<CellId>& pieces,
                  InsertResult& result);

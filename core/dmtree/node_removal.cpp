@@ -12,18 +12,6 @@ namespace penumbra {
 
 namespace {
 
-Vec2 centroid(const Polygon2& poly) {
-  const Vec2 o = poly[0];
-  Vec2 sum{0.0};
-  double twice = 0;
-  for (size_t i = 1; i + 1 < poly.size(); ++i) {
-    const double w = cross2(poly[i] - o, poly[i + 1] - o);
-    sum += w * (poly[i] + poly[i + 1] - 2.0 * o);
-    twice += w;
-  }
-  return o + sum / (3.0 * twice);
-}
-
 // Clips p→q to the convex CCW polygon grown by eps; false if less than eps is left.
 bool clipSegment(const Polygon2& poly, Vec2& p, Vec2& q, double eps) {
   double t0 = 0, t1 = 1;
@@ -257,27 +245,12 @@ void DmTree::filterSegment(NodeId n, const Vec2& p, const Vec2& q, const SingleT
   const double chordLo = std::min(t0, t1), chordHi = std::max(t0, t1);
   const double lo = std::max(chordLo, std::min(tp, tq)), hi = std::min(chordHi, std::max(tp, tq));
   if (hi - lo <= eps) return;
-  const HalfEdgeMesh::CutResult cut = mesh_.applyCut(plan, n);
+  const HalfEdgeMesh::CutResult cut =
+      splitLeaf(n, plan, seg, key, lo, hi, lo > chordLo + eps || hi < chordHi - eps);
   result.newVertices.insert(result.newVertices.end(), cut.newVertices.begin(), cut.newVertices.end());
   result.changedCells.push_back(cut.front);
   result.changedCells.push_back(cut.back);
   ++result.nodesReinserted;
-  const NodeId front = addNode(n, cut.front);
-  const NodeId back = addNode(n, cut.back);
-  DmNode& d = nodes_[n.index];
-  d.cell = CellId();
-  d.front = front;
-  d.back = back;
-  d.line = seg.line;
-  d.light = key.first;
-  d.occluder = key.second;
-  d.kind = seg.kind;
-  d.lightElement = seg.lightElement;
-  d.occluderElement = seg.occluderElement;
-  d.a = seg.a + lo * dir;
-  d.b = seg.a + hi * dir;
-  d.partial = lo > chordLo + eps || hi < chordHi - eps;
-  d.orphan = false;
 }
 
 // Removes n's split if its two cells are leaves with equal lists and its edge carries
@@ -482,7 +455,7 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
   for (CellId c : touched) {
     if (!mesh_.cell(c).alive) continue;
-    const Vec2 p = centroid(mesh_.polygon(c));
+    const Vec2 p = areaCentroid(mesh_.polygon(c));
     if (!(basisSide * deletedLine.distance(p) < 0) || saved.empty()) continue;
     size_t k = 0;
     while (saved[k].list < 0) k = size_t(saved[k].line.distance(p) >= 0 ? saved[k].front : saved[k].back);

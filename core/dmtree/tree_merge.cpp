@@ -9,19 +9,6 @@ namespace penumbra {
 
 namespace {
 
-Vec2 centroid(const Polygon2& poly) {
-  // Area centroid relative to the first vertex (less cancellation).
-  const Vec2 o = poly[0];
-  Vec2 sum{0.0};
-  double twice = 0;
-  for (size_t i = 1; i + 1 < poly.size(); ++i) {
-    const double w = cross2(poly[i] - o, poly[i + 1] - o);
-    sum += w * (poly[i] + poly[i + 1] - 2.0 * o);
-    twice += w;
-  }
-  return o + sum / (3.0 * twice);
-}
-
 bool strictlyInside(const Polygon2& poly, const Vec2& p) {
   if (poly.size() < 3) return false;
   for (size_t i = 0; i < poly.size(); ++i)
@@ -43,6 +30,29 @@ void DmTree::collectCells(NodeId n, const Polygon2& region, std::vector<CellId>&
   const Split2 split = splitByLine(region, a, b, tolerance_.length());
   if (split.right.size() >= 3 && signedArea(split.right) > tolerance_.area()) collectCells(d.front, split.right, out);
   if (split.left.size() >= 3 && signedArea(split.left) > tolerance_.area()) collectCells(d.back, split.left, out);
+}
+
+HalfEdgeMesh::CutResult DmTree::splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan& plan, const SingleTreeNode& seg,
+                                          const OccluderKey& owner, double lo, double hi, bool partial) {
+  const HalfEdgeMesh::CutResult cut = mesh_.applyCut(plan, n);
+  const NodeId front = addNode(n, cut.front);
+  const NodeId back = addNode(n, cut.back);
+  const Vec2 dir = glm::normalize(seg.b - seg.a);
+  DmNode& d = nodes_[n.index];
+  d.cell = CellId();
+  d.front = front;
+  d.back = back;
+  d.line = seg.line;
+  d.light = owner.first;
+  d.occluder = owner.second;
+  d.kind = seg.kind;
+  d.lightElement = seg.lightElement;
+  d.occluderElement = seg.occluderElement;
+  d.a = seg.a + lo * dir;
+  d.b = seg.a + hi * dir;
+  d.partial = partial;
+  d.orphan = false;
+  return cut;
 }
 
 // Partitions cell c by the single-tree subtree s. A node splits the cell only where its
@@ -73,25 +83,10 @@ void DmTree::partition(CellId c, const SingleTree& tree, int s, const Generator&
     return;
   }
 
-  const NodeId n = mesh_.cell(c).leaf;
-  const HalfEdgeMesh::CutResult cut = mesh_.applyCut(plan, n);
+  const HalfEdgeMesh::CutResult cut = splitLeaf(mesh_.cell(c).leaf, plan, sn, {gen.light, gen.occluder}, lo,
+                                                hi, lo > chordLo + eps || hi < chordHi - eps);
   result.newVertices.insert(result.newVertices.end(), cut.newVertices.begin(), cut.newVertices.end());
   ++result.nodesAdded;
-  const NodeId front = addNode(n, cut.front);
-  const NodeId back = addNode(n, cut.back);
-  DmNode& d = nodes_[n.index];
-  d.cell = CellId();
-  d.front = front;
-  d.back = back;
-  d.line = sn.line;
-  d.light = gen.light;
-  d.occluder = gen.occluder;
-  d.kind = sn.kind;
-  d.lightElement = sn.lightElement;
-  d.occluderElement = sn.occluderElement;
-  d.a = sn.a + lo * dir;
-  d.b = sn.a + hi * dir;
-  d.partial = lo > chordLo + eps || hi < chordHi - eps;
   partition(cut.front, tree, sn.front, gen, pieces, result);
   partition(cut.back, tree, sn.back, gen, pieces, result);
 }
@@ -122,7 +117,7 @@ InsertResult DmTree::insert(const SingleShadow& shadow) {
     partition(target, tree, tree.root, gen, pieces, result);
     // No region boundary crosses a piece: one interior point classifies it.
     for (CellId piece : pieces) {
-      const Vec2 p = centroid(mesh_.polygon(piece));
+      const Vec2 p = areaCentroid(mesh_.polygon(piece));
       if (!strictlyInside(tree.penumbra, p)) continue;
       const bool umbra = strictlyInside(tree.umbra, p);
       OccluderList& list = mesh_.cell(piece).occluders;

@@ -137,4 +137,16 @@ bool contains(const Polygon2& polygon, const Vec2& p, double eps) {
   return true;
 }
 
+Vec2 areaCentroid(const Polygon2& polygon) {
+  const Vec2 o = polygon[0];
+  Vec2 sum{0.0};
+  double twice = 0;
+  for (size_t i = 1; i + 1 < polygon.size(); ++i) {
+    const double w = cross2(polygon[i] - o, polygon[i + 1] - o);
+    sum += w * (polygon[i] + polygon[i + 1] - 2.0 * o);
+    twice += w;
+  }
+  return o + sum / (3.0 * twice);
+}
+
 }  // namespace penumbra

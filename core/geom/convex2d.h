@@ -43,6 +43,10 @@ std::vector<Polygon2> subtract(const Polygon2& a, const Polygon2& b, double eps,
 std::vector<Polygon2> subtract(const Polygon2& a, const std::vector<Polygon2>& bs, double eps,
                                bool* overlapped = nullptr);
 
+// The area centroid of a polygon with positive area (relative to its first vertex:
+// less cancellation far from the origin).
+Vec2 areaCentroid(const Polygon2& polygon);
+
 // Whether p lies in the convex CCW polygon or within eps of it.
 bool contains(const Polygon2& polygon, const Vec2& p, double eps);
 
