@@ -9,6 +9,8 @@
 //  - the walk lists every fragment once and ranks are the faces' first positions.
 #include "core/order/face_order.h"
 
+#include <functional>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -168,33 +170,30 @@ void FaceOrder::buildSubtree(OrderNodeId at, std::vector<Fragment> front) {
 
 void FaceOrder::filterOffending(OrderNodeId from, Fragment fragment,
                                 std::vector<OrderNodeId>* cells) {
-  const double eps = tolerance_.length();
-  std::vector<std::pair<OrderNodeId, Fragment>> work;
-  work.push_back({from, std::move(fragment)});
-  while (!work.empty()) {
-    auto [id, f] = std::move(work.back());
-    work.pop_back();
-    if (nodes_[id.value].leaf) {
-      noteNode(f, id);
-      nodes_[id.value].offending.push_back(std::move(f));
-      cells->push_back(id);
-      continue;
-    }
-    Split3 split = splitByPlane(f.polygon, nodes_[id.value].plane, eps);
-    if (split.front.empty() && split.back.empty()) {
-      // Only within tolerance of the light: an offending face on a front face's plane.
-      noteNode(f, id);
-      nodes_[id.value].onPlane.push_back(std::move(f));
-      continue;
-    }
-    if (!split.back.empty())
-      work.push_back({nodes_[id.value].back, Fragment{f.face, std::move(split.back), f.plane}});
-    if (!split.front.empty())
-      work.push_back({nodes_[id.value].front, Fragment{f.face, std::move(split.front), f.plane}});
-  }
+  filterDown(from, std::move(fragment), [&](OrderNodeId id, Fragment f) {
+    noteNode(f, id);
+    nodes_[id.value].offending.push_back(std::move(f));
+    cells->push_back(id);
+  });
 }
 
 void FaceOrder::filterFront(OrderNodeId from, Fragment fragment) {
+  filterDown(from, std::move(fragment), [&](OrderNodeId id, Fragment f) {
+    // The fragment partitions this cell; the cell's offending fragments follow it down.
+    std::vector<Fragment> offending = std::move(nodes_[id.value].offending);
+    nodes_[id.value].offending.clear();
+    std::vector<Fragment> front{std::move(f)};
+    buildSubtree(id, std::move(front));
+    std::vector<OrderNodeId> cells;
+    for (Fragment& o : offending) filterOffending(id, std::move(o), &cells);
+    std::sort(cells.begin(), cells.end(), [](OrderNodeId a, OrderNodeId b) { return a.value < b.value; });
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+    for (OrderNodeId cell : cells) sortCell(cell);
+  });
+}
+
+void FaceOrder::filterDown(OrderNodeId from, Fragment fragment,
+                           const std::function<void(OrderNodeId, Fragment)>& atLeaf) {
   const double eps = tolerance_.length();
   std::vector<std::pair<OrderNodeId, Fragment>> work;
   work.push_back({from, std::move(fragment)});
@@ -202,21 +201,12 @@ void FaceOrder::filterFront(OrderNodeId from, Fragment fragment) {
     auto [id, f] = std::move(work.back());
     work.pop_back();
     if (nodes_[id.value].leaf) {
-      // The fragment partitions this cell; the cell's offending fragments follow it down.
-      std::vector<Fragment> offending = std::move(nodes_[id.value].offending);
-      nodes_[id.value].offending.clear();
-      std::vector<Fragment> front{std::move(f)};
-      buildSubtree(id, std::move(front));
-      std::vector<OrderNodeId> cells;
-      for (Fragment& o : offending) filterOffending(id, std::move(o), &cells);
-      std::sort(cells.begin(), cells.end(),
-                [](OrderNodeId a, OrderNodeId b) { return a.value < b.value; });
-      cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-      for (OrderNodeId cell : cells) sortCell(cell);
+      atLeaf(id, std::move(f));
       continue;
     }
     Split3 split = splitByPlane(f.polygon, nodes_[id.value].plane, eps);
     if (split.front.empty() && split.back.empty()) {
+      // Only within tolerance of the light: a face on a front face's plane.
       noteNode(f, id);
       nodes_[id.value].onPlane.push_back(std::move(f));
       continue;

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -99,6 +100,9 @@ class FaceOrder {
   void filterOffending(OrderNodeId from, Fragment fragment, std::vector<OrderNodeId>* cells);
   // Inserts a front fragment below `from`; a fragment reaching a leaf partitions it.
   void filterFront(OrderNodeId from, Fragment fragment);
+  // Filters a fragment down from `from`, splitting it by node planes; pieces on a
+  // node's plane stay there; each piece reaching a cell goes to atLeaf.
+  void filterDown(OrderNodeId from, Fragment fragment, const std::function<void(OrderNodeId, Fragment)>& atLeaf);
   void sortCell(OrderNodeId cell);
   void collectSubtree(OrderNodeId id, std::vector<Fragment>* front,
                       std::vector<Fragment>* offending, std::vector<OrderNodeId>* nodes) const;
