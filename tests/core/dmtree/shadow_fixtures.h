@@ -37,17 +37,8 @@ inline bool inside(const Polygon2& poly, const Vec2& p) {
   return true;
 }
 
-inline Vec2 centroidOf(const Polygon2& poly) {
-  const Vec2 o = poly[0];
-  Vec2 sum{0.0};
-  double twice = 0;
-  for (size_t i = 1; i + 1 < poly.size(); ++i) {
-    const double w = cross2(poly[i] - o, poly[i + 1] - o);
-    sum += w * (poly[i] + poly[i + 1] - 2.0 * o);
-    twice += w;
-  }
-  return o + sum / (3.0 * twice);
-}
+// The area centroid (core/geom).
+inline Vec2 centroidOf(const Polygon2& poly) { return areaCentroid(poly); }
 
 // Where a ray from p (inside or on a convex CCW polygon) leaves it.
 inline Vec2 rayExit(const Polygon2& poly, Vec2 p, Vec2 dir) {
