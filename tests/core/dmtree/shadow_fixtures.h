@@ -10,6 +10,7 @@
 #include <set>
 
 #include "core/dmtree/dm_tree.h"
+#include "core/geom/convex2d.h"
 
 namespace penumbra::dmtree_test {
 
