@@ -29,7 +29,7 @@ NodeId DmTree::addNode(NodeId parent, CellId cell) {
   nodes_.push_back(n);
   ++liveNodes_;
   const NodeId id(static_cast<uint32_t>(nodes_.size() - 1));
-  if (cell.is_valid()) mesh_.cell(cell).leaf = id;
+  if (cell.is_valid()) mesh_.setLeaf(cell, id);
   return id;
 }
 

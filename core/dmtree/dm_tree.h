@@ -83,6 +83,9 @@ class DmTree {
   Vec2 position(VertexId v) const { return mesh_.vertex(v).position; }
   // All cells whose closure contains v, by a half-edge walk around v.
   std::vector<CellId> cellsAround(VertexId v) const { return mesh_.cellsAround(v); }
+  // Marks a cell changed for meshing (HalfEdgeMesh::Cell::touched): its owner calls
+  // this when a value at one of its corners was recomputed.
+  void touch(CellId c) { mesh_.touch(c); }
   // The leaf cell containing p, by BSP descent (p on a line goes to the front).
   CellId locate(const Vec2& p) const;
 

@@ -1,5 +1,6 @@
 #include "core/dmtree/half_edge_mesh.h"
 
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,13 @@ Line2 Line2::rightOf(const Vec2& a, const Vec2& b) {
   const Vec2 n = Vec2{d.y, -d.x} / glm::length(d);
   return Line2{n, -glm::dot(n, a)};
 }
+
+namespace {
+std::atomic<uint64_t> meshClock{0};
+}  // namespace
+
+uint64_t HalfEdgeMesh::stampNow() { return meshClock.load(std::memory_order_relaxed); }
+uint64_t HalfEdgeMesh::nextStamp() { return meshClock.fetch_add(1, std::memory_order_relaxed) + 1; }
 
 VertexId HalfEdgeMesh::addVertex(const Vec2& p) {
   vertices_.push_back(Vertex{p, HalfEdgeId(), true});
@@ -57,6 +65,7 @@ CellId HalfEdgeMesh::reset(const Polygon2& receiver, double eps) {
     vertices_[i].out = HalfEdgeId(static_cast<uint32_t>(2 * i));
   }
   cells_[0].edge = HalfEdgeId(0);
+  touch(c);
   return c;
 }
 
@@ -180,6 +189,8 @@ VertexId HalfEdgeMesh::splitEdge(HalfEdgeId h, const Vec2& p) {
   halfEdges_[t.index].origin = v;
   vertices_[v.index].out = n;
   if (vertices_[b.index].out == t) vertices_[b.index].out = nt;
+  for (HalfEdgeId side : {h, t})
+    if (const CellId c = halfEdges_[side.index].cell; c.is_valid()) touch(c);
   return v;
 }
 
@@ -217,6 +228,8 @@ HalfEdgeMesh::CutResult HalfEdgeMesh::applyCut(const CutPlan& plan, NodeId node)
   cells_[front.index].edge = et;
   for (HalfEdgeId h : loop(front)) halfEdges_[h.index].cell = front;
   for (HalfEdgeId h : loop(back)) halfEdges_[h.index].cell = back;
+  touch(front);
+  touch(back);
   result.front = front;
   result.back = back;
   result.chord = e;
@@ -259,6 +272,7 @@ void HalfEdgeMesh::dissolveVertex(VertexId v) {
   if (vertices_[b.index].out == t2) vertices_[b.index].out = t1;
   for (auto [dead, keep] : {std::pair{e2, e1}, std::pair{t2, t1}}) {
     const CellId c = halfEdge(dead).cell;
+    if (c.is_valid()) touch(c);
     if (c.is_valid() && cells_[c.index].edge == dead) cells_[c.index].edge = keep;
     halfEdges_[dead.index].alive = false;
   }
@@ -308,6 +322,8 @@ std::vector<VertexId> HalfEdgeMesh::mergeCells(CellId keep, CellId drop, double 
   if (!halfEdge(vertex(w).out).alive) vertices_[w.index].out = q;
   cells_[keep.index].edge = p;
   cells_[drop.index].alive = false;
+  touch(keep);
+  touch(drop);
   --liveCells_;
   for (VertexId v : {u, w})
     if (dissolvable(v, eps)) {

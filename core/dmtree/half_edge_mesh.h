@@ -2,6 +2,7 @@
 // half-edge pairs, convex CCW cells. Changed only by its owning DmTree; not thread-safe.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -40,6 +41,8 @@ class HalfEdgeMesh {
     NodeId leaf;      // the BSP leaf holding this cell
     OccluderList occluders;
     bool alive = true;
+    // When the cell last changed (loop, list, or death), on stampNow()'s clock.
+    uint64_t touched = 0;
   };
 
   // Where a line cuts a cell, planned before anything changes. side: +1/-1 if the
@@ -77,7 +80,17 @@ class HalfEdgeMesh {
   const Vertex& vertex(VertexId v) const { return vertices_[v.index]; }
   const HalfEdge& halfEdge(HalfEdgeId h) const { return halfEdges_[h.index]; }
   const Cell& cell(CellId c) const { return cells_[c.index]; }
-  Cell& cell(CellId c) { return cells_[c.index]; }
+  // Writers: a list write marks the cell touched; the leaf is bookkeeping only.
+  OccluderList& occludersForWrite(CellId c) {
+    touch(c);
+    return cells_[c.index].occluders;
+  }
+  void setLeaf(CellId c, NodeId leaf) { cells_[c.index].leaf = leaf; }
+  // Marks a cell changed, so meshing looks at it again (see Cell::touched).
+  void touch(CellId c) { cells_[c.index].touched = nextStamp(); }
+  // One clock shared by every mesh in the process, so a stamp read before meshing
+  // is older than any later change of any tree, rebuilt trees included. Thread-safe.
+  static uint64_t stampNow();
   static HalfEdgeId twin(HalfEdgeId h) { return HalfEdgeId(h.index ^ 1u); }
   VertexId destination(HalfEdgeId h) const { return halfEdge(twin(h)).origin; }
 
@@ -98,6 +111,7 @@ class HalfEdgeMesh {
   void validate(double eps, double receiverArea) const;
 
  private:
+  static uint64_t nextStamp();
   VertexId addVertex(const Vec2& p);
   HalfEdgeId addEdgePair();
   VertexId splitEdge(HalfEdgeId h, const Vec2& p);

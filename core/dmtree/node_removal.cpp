@@ -189,7 +189,7 @@ void DmTree::collapse(NodeId n, RemoveResult& result) {
   killNode(back);
   DmNode& d = nodes_[n.index];
   d.cell = keep;
-  mesh_.cell(keep).leaf = n;
+  mesh_.setLeaf(keep, n);
   if (d.light == removing_.first && d.occluder == removing_.second) ++result.nodesRemoved;
   else ++result.nodesCollapsed;
 }
@@ -271,7 +271,7 @@ void DmTree::condenseLeafPair(NodeId n, const std::vector<OccluderKey>& keys, Re
   DmNode& m = nodes_[n.index];
   m.cell = keep;
   m.partial = m.orphan = false;
-  mesh_.cell(keep).leaf = n;
+  mesh_.setLeaf(keep, n);
   if (m.light == removing_.first && m.occluder == removing_.second) ++result.nodesRemoved;
   else ++result.nodesCondensed;
 }
@@ -460,7 +460,7 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
     size_t k = 0;
     while (saved[k].list < 0) k = size_t(saved[k].line.distance(p) >= 0 ? saved[k].front : saved[k].back);
     const OccluderList& old = oldLists[size_t(saved[k].list)];
-    if (mesh_.cell(c).occluders != old) mesh_.cell(c).occluders = old;
+    if (mesh_.cell(c).occluders != old) mesh_.occludersForWrite(c) = old;
   }
   // Extended splits, deepest first (they were found top-down).
   for (auto it = extended.rbegin(); it != extended.rend(); ++it) condenseLeafPair(*it, keys, result);
@@ -493,11 +493,11 @@ RemoveResult DmTree::removeOccluder(uint32_t light, FaceId occluder) {
     std::vector<CellId> covered;
     if (!penumbra.empty()) collectCells(root_, penumbra, covered);
     for (CellId c : covered) {
-      OccluderList& list = mesh_.cell(c).occluders;
-      const auto end = std::remove_if(list.begin(), list.end(),
-                                      [&](const OccluderEntry& e) { return e.light == light && e.face == occluder; });
-      if (end == list.end()) continue;
-      list.erase(end, list.end());
+      const auto listed = [&](const OccluderEntry& e) { return e.light == light && e.face == occluder; };
+      const OccluderList& held = mesh_.cell(c).occluders;
+      if (std::none_of(held.begin(), held.end(), listed)) continue;
+      OccluderList& list = mesh_.occludersForWrite(c);
+      list.erase(std::remove_if(list.begin(), list.end(), listed), list.end());
       result.changedCells.push_back(c);
     }
     // Its nodes, top-down: those in a subtree collapsed for re-insertion go with it.

@@ -120,7 +120,7 @@ InsertResult DmTree::insert(const SingleShadow& shadow) {
       const Vec2 p = areaCentroid(mesh_.polygon(piece));
       if (!strictlyInside(tree.penumbra, p)) continue;
       const bool umbra = strictlyInside(tree.umbra, p);
-      OccluderList& list = mesh_.cell(piece).occluders;
+      OccluderList& list = mesh_.occludersForWrite(piece);
       const OccluderEntry entry{shadow.light, shadow.occluder, umbra};
       if (umbra)
         list.insert(std::find_if(list.begin(), list.end(), [](const OccluderEntry& e) { return !e.umbra; }), entry);

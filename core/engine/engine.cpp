@@ -256,7 +256,8 @@ void Engine::illuminate(Receiver& receiver) {
 void Engine::relightVertex(Receiver& receiver, VertexId v) const {
   const DmTree& tree = receiver.tree;
   std::vector<const OccluderList*> lists;
-  for (CellId c : tree.cellsAround(v)) lists.push_back(&tree.occluders(c));
+  const std::vector<CellId> around = tree.cellsAround(v);
+  for (CellId c : around) lists.push_back(&tree.occluders(c));
   const Vec3 p = receiver.frame.to3D(tree.position(v));
   auto& perLight = receiver.perLight[v.index];
   perLight.clear();
@@ -264,6 +265,7 @@ void Engine::relightVertex(Receiver& receiver, VertexId v) const {
     perLight.push_back(illuminateVertex(scene_, l, p, receiver.frame.normal, lists));
   receiver.values[v.index] = sumLights(scene_, perLight);
   receiver.litAt[v.index] = tree.position(v);
+  for (CellId c : around) receiver.tree.touch(c);  // their corner values may have changed
 }
 
 void Engine::compactReceivers(const std::vector<bool>& dropped) {
@@ -387,6 +389,9 @@ void Engine::CellMeshMemo::clearInputs() {
   cornerValues.clear();
   emitted.clear();
   triangles.clear();
+  pieceChunks.clear();
+  pieceEmitted.clear();
+  pieceTriangles.clear();
 }
 
 bool Engine::CellMeshMemo::sameInputs(const CellMeshMemo& o) const {
@@ -435,19 +440,31 @@ ReceiverMesh Engine::meshOf(FaceId face) {
 ReceiverMesh Engine::meshReceiver(const Receiver& receiver) {
   const double eps = scene_.tolerance().length();
   const double spacing = meshSpacing();
+  const int chunkSquares = spacing > 0 ? std::max(settings_.meshChunkSquares, 0) : 0;
+  const double chunkSide = spacing * chunkSquares;  // 0: one chunk
   const size_t lightCount = scene_.lights().size();
   const DmTree& tree = receiver.tree;
   const HalfEdgeMesh& halfEdges = tree.mesh();
   const Vec3 normal = receiver.frame.normal;
 
-  // The memo is only valid for the same face frame, lattice and tolerance.
+  // The memo is only valid for the same face frame, lattice, chunks and tolerance.
   ReceiverMeshMemo& memo = meshMemo_[receiver.face];
-  if (!sameFrame(memo.frame, receiver.frame) || memo.spacing != spacing || memo.eps != eps) {
-    memo.cells.clear();
+  if (!sameFrame(memo.frame, receiver.frame) || memo.spacing != spacing || memo.eps != eps ||
+      memo.chunkSquares != chunkSquares) {
+    memo = ReceiverMeshMemo{};
     memo.frame = receiver.frame;
     memo.spacing = spacing;
     memo.eps = eps;
+    memo.chunkSquares = chunkSquares;
   }
+  const uint64_t stamp = HalfEdgeMesh::stampNow();
+
+  // Chunks whose cells changed; the memo's old pieces and the new ones both count.
+  std::set<MeshChunkKey> dirty;
+  auto markChunks = [&](const CellMeshMemo& m) {
+    if (m.valid) dirty.insert(m.pieceChunks.begin(), m.pieceChunks.end());
+  };
+  for (size_t i = halfEdges.cellSlots(); i < memo.cells.size(); ++i) markChunks(memo.cells[i]);  // a smaller rebuilt tree
   memo.cells.resize(halfEdges.cellSlots());
 
   // A point is on a value discontinuity (D0) when an occluder of a cell around it
@@ -465,34 +482,46 @@ ReceiverMesh Engine::meshReceiver(const Receiver& receiver) {
     }
     return false;
   };
-  // Every cell's loop once (the cells around a vertex are those whose loop holds it).
-  const std::vector<CellId> cells = tree.cells();
-  std::vector<VertexId> loops;
-  std::vector<size_t> loopStart{0};
-  std::vector<bool> treeVertexOnContact(halfEdges.vertexSlots(), false);
-  for (CellId c : cells) {
-    const OccluderList& list = tree.occluders(c);
-    for (HalfEdgeId h : halfEdges.loop(c)) {
-      const VertexId v = halfEdges.halfEdge(h).origin;
-      loops.push_back(v);
-      if (!list.empty() && !treeVertexOnContact[v.index] &&
-          onContact(receiver.frame.to3D(tree.position(v)), list))
-        treeVertexOnContact[v.index] = true;
+  std::vector<int8_t> vertexContact(halfEdges.vertexSlots(), -1);  // -1: not asked yet
+  auto onContactAround = [&](VertexId v) {
+    int8_t& known = vertexContact[v.index];
+    if (known < 0) {
+      known = 0;
+      const Vec3 p = receiver.frame.to3D(tree.position(v));
+      for (CellId c : tree.cellsAround(v))
+        if (onContact(p, tree.occluders(c))) {
+          known = 1;
+          break;
+        }
     }
-    loopStart.push_back(loops.size());
-  }
+    return known == 1;
+  };
+  auto chunkOf = [&](const Polygon2& piece) {
+    if (!(chunkSide > 0)) return MeshChunkKey{};
+    Vec2 middle{0.0};
+    for (const Vec2& q : piece) middle += q;
+    middle /= double(piece.size());
+    return MeshChunkKey{int64_t(std::floor(middle.x / chunkSide)), int64_t(std::floor(middle.y / chunkSide))};
+  };
 
-  ReceiverMesh result;
-  result.face = receiver.face;
-  result.normal = normal;
-  ReceiverMeshBuilder builder(result, receiver.frame, eps);
-
+  // Cells touched since the last call: lit again unless every input is equal.
   CellMeshMemo inputs;  // this cell's inputs; swapped into the memo when lit afresh
   std::vector<bool> dark(lightCount);
-  std::vector<uint32_t> ids;
-  for (size_t k = 0; k < cells.size(); ++k) {
-    const CellId c = cells[k];
-    const OccluderList& list = tree.occluders(c);
+  std::vector<VertexId> corners;
+  for (uint32_t index = 0; index < halfEdges.cellSlots(); ++index) {
+    const CellId c(index);
+    const HalfEdgeMesh::Cell& cell = halfEdges.cell(c);
+    CellMeshMemo& slot = memo.cells[index];
+    if (cell.touched <= memo.stamp && (slot.valid || !cell.alive)) {
+      if (cell.alive) ++meshCounters_.cellsReused;
+      continue;
+    }
+    if (!cell.alive) {
+      markChunks(slot);
+      slot = CellMeshMemo{};
+      continue;
+    }
+    const OccluderList& list = cell.occluders;
     std::fill(dark.begin(), dark.end(), false);
     for (const OccluderEntry& entry : list)
       if (entry.umbra) dark[entry.light] = true;
@@ -500,72 +529,123 @@ ReceiverMesh Engine::meshReceiver(const Receiver& receiver) {
 
     // The inputs this cell's triangles depend on.
     inputs.clearInputs();
-    for (size_t i = loopStart[k]; i < loopStart[k + 1]; ++i) inputs.outline.push_back(tree.position(loops[i]));
+    corners.clear();
+    for (HalfEdgeId h : halfEdges.loop(c)) corners.push_back(halfEdges.halfEdge(h).origin);
+    for (VertexId v : corners) inputs.outline.push_back(tree.position(v));
     inputs.occluders = list;
     for (const OccluderEntry& entry : list) {
       const Face* face = findFace(scene_, entry.face);
       inputs.occluderSizes.push_back(face ? uint32_t(face->polygon.size()) : 0);
       if (face) inputs.occluderPoints.insert(inputs.occluderPoints.end(), face->polygon.begin(), face->polygon.end());
     }
-    for (size_t i = loopStart[k]; i < loopStart[k + 1]; ++i) {
-      const VertexId v = loops[i];
-      const bool fromCell = treeVertexOnContact[v.index];
+    for (VertexId v : corners) {
+      const bool fromCell = onContactAround(v);
       inputs.cornerFromCell.push_back(fromCell ? 1 : 0);
       inputs.cornerValues.push_back(fromCell ? VertexIrradiance{}
                                     : anyDark ? sumLights(scene_, receiver.perLight[v.index], &dark)
                                               : receiver.values[v.index]);
     }
-
-    CellMeshMemo& slot = memo.cells[c.index];
     if (slot.sameInputs(inputs)) {
       ++meshCounters_.cellsReused;
-    } else {
-      ++meshCounters_.cellsLit;
-      const Polygon2& polygon = inputs.outline;
-      Vec3 centre{0.0};
-      for (const Vec2& q : polygon) centre += receiver.frame.to3D(q);
-      centre /= double(polygon.size());
-
-      // The value of a point of this cell's closure, as seen from this cell.
-      auto valueAt = [&](const Vec2& q) {
-        const Vec3 p = receiver.frame.to3D(q);
-        for (size_t i = 0; i < polygon.size(); ++i) {
-          if (polygon[i] != q) continue;
-          if (inputs.cornerFromCell[i]) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
-          return inputs.cornerValues[i];
-        }
-        // A lattice point: lit exactly from this cell's list (cases 2 and 3 keep it
-        // dark in a light's umbra).
-        if (onContact(p, list)) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
-        return illuminatePoint(scene_, p, normal, {&list});
-      };
-
-      for (const Polygon2& piece : splitByLattice(polygon, spacing, eps)) {
-        std::vector<uint32_t> corners;
-        for (const Vec2& q : piece) {
-          corners.push_back(uint32_t(inputs.emitted.size()));
-          inputs.emitted.push_back({q, valueAt(q)});
-        }
-        const CellTriangulation triangulation = triangulateConvexCell(piece, eps);
-        if (triangulation.usesCentre) {
-          Vec2 middle{0.0};
-          for (const Vec2& q : piece) middle += q;
-          middle /= double(piece.size());
-          corners.push_back(uint32_t(inputs.emitted.size()));
-          inputs.emitted.push_back(
-              {middle, illuminatePoint(scene_, receiver.frame.to3D(middle), normal, {&list})});
-        }
-        for (const auto& t : triangulation.triangles)
-          inputs.triangles.push_back({corners[t[0]], corners[t[1]], corners[t[2]]});
-      }
-      inputs.valid = true;
-      std::swap(slot, inputs);  // the old slot's buffers are reused for the next cell
+      continue;
     }
+    ++meshCounters_.cellsLit;
+    markChunks(slot);
+    const Polygon2& polygon = inputs.outline;
+    Vec3 centre{0.0};
+    for (const Vec2& q : polygon) centre += receiver.frame.to3D(q);
+    centre /= double(polygon.size());
 
-    // Fresh or replayed, the builder sees the same calls in the same order.
-    ids.clear();
-    for (const auto& [at, value] : slot.emitted) ids.push_back(builder.vertex(at, value));
-    for (const auto& t : slot.triangles) result.triangles.push_back({ids[t[0]], ids[t[1]], ids[t[2]]});
+    // The value of a point of this cell's closure, as seen from this cell.
+    auto valueAt = [&](const Vec2& q) {
+      const Vec3 p = receiver.frame.to3D(q);
+      for (size_t i = 0; i < polygon.size(); ++i) {
+        if (polygon[i] != q) continue;
+        if (inputs.cornerFromCell[i]) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
+        return inputs.cornerValues[i];
+      }
+      // A lattice point: lit exactly from this cell's list (cases 2 and 3 keep it
+      // dark in a light's umbra).
+      if (onContact(p, list)) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
+      return illuminatePoint(scene_, p, normal, {&list});
+    };
+
+    for (const Polygon2& piece : splitByLattice(polygon, spacing, eps)) {
+      inputs.pieceChunks.push_back(chunkOf(piece));
+      inputs.pieceEmitted.push_back(uint32_t(inputs.emitted.size()));
+      inputs.pieceTriangles.push_back(uint32_t(inputs.triangles.size()));
+      std::vector<uint32_t> pieceCorners;
+      for (const Vec2& q : piece) {
+        pieceCorners.push_back(uint32_t(inputs.emitted.size()));
+        inputs.emitted.push_back({q, valueAt(q)});
+      }
+      const CellTriangulation triangulation = triangulateConvexCell(piece, eps);
+      if (triangulation.usesCentre) {
+        Vec2 middle{0.0};
+        for (const Vec2& q : piece) middle += q;
+        middle /= double(piece.size());
+        pieceCorners.push_back(uint32_t(inputs.emitted.size()));
+        inputs.emitted.push_back(
+            {middle, illuminatePoint(scene_, receiver.frame.to3D(middle), normal, {&list})});
+      }
+      for (const auto& t : triangulation.triangles)
+        inputs.triangles.push_back({pieceCorners[t[0]], pieceCorners[t[1]], pieceCorners[t[2]]});
+    }
+    inputs.pieceEmitted.push_back(uint32_t(inputs.emitted.size()));
+    inputs.pieceTriangles.push_back(uint32_t(inputs.triangles.size()));
+    inputs.valid = true;
+    std::swap(slot, inputs);  // the old slot's buffers are reused for the next cell
+    markChunks(slot);
+  }
+  memo.stamp = stamp;
+
+  // The changed chunks are assembled again from their cells' pieces, in cell order;
+  // the builder sees the same calls in the same order as for a fresh mesh.
+  if (!dirty.empty()) {
+    struct ChunkAssembly {
+      ReceiverMesh mesh;
+      ReceiverMeshBuilder builder;
+      ChunkAssembly(const Receiver& r, double eps) : builder(mesh, r.frame, eps) {
+        mesh.face = r.face;
+        mesh.normal = r.frame.normal;
+      }
+    };
+    std::map<MeshChunkKey, ChunkAssembly> assemblies;
+    for (const MeshChunkKey& key : dirty) assemblies.try_emplace(key, receiver, eps);
+    std::vector<uint32_t> ids;
+    for (const CellMeshMemo& m : memo.cells) {
+      if (!m.valid) continue;
+      for (size_t j = 0; j < m.pieceChunks.size(); ++j) {
+        const auto it = assemblies.find(m.pieceChunks[j]);
+        if (it == assemblies.end()) continue;
+        ids.resize(m.emitted.size());
+        for (uint32_t e = m.pieceEmitted[j]; e < m.pieceEmitted[j + 1]; ++e)
+          ids[e] = it->second.builder.vertex(m.emitted[e].first, m.emitted[e].second);
+        std::vector<std::array<uint32_t, 3>>& out = it->second.mesh.triangles;
+        for (uint32_t t = m.pieceTriangles[j]; t < m.pieceTriangles[j + 1]; ++t)
+          out.push_back({ids[m.triangles[t][0]], ids[m.triangles[t][1]], ids[m.triangles[t][2]]});
+      }
+    }
+    for (auto& [key, assembly] : assemblies) {
+      if (assembly.mesh.triangles.empty())
+        memo.chunks.erase(key);
+      else
+        memo.chunks[key] = std::move(assembly.mesh);
+    }
+  }
+  meshCounters_.chunksMeshed += dirty.size();
+  meshCounters_.chunksKept += memo.chunks.size() - std::min(memo.chunks.size(), dirty.size());
+
+  // The receiver's mesh: its chunks one after the other.
+  ReceiverMesh result;
+  result.face = receiver.face;
+  result.normal = normal;
+  for (const auto& [key, chunk] : memo.chunks) {
+    const uint32_t offset = uint32_t(result.positions.size());
+    result.positions.insert(result.positions.end(), chunk.positions.begin(), chunk.positions.end());
+    result.irradiance.insert(result.irradiance.end(), chunk.irradiance.begin(), chunk.irradiance.end());
+    result.classes.insert(result.classes.end(), chunk.classes.begin(), chunk.classes.end());
+    for (const auto& t : chunk.triangles) result.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
   }
   return result;
 }

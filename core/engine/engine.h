@@ -30,6 +30,10 @@ struct EngineSettings {
   // diagonal / kDefaultSpacingDivisions, negative = none (the bare DM cells).
   double meshSpacing = 0;
   static constexpr double kDefaultSpacingDivisions = 32;
+  // Display chunks: with a lattice, a receiver's mesh is assembled from square blocks
+  // of this many lattice squares a side, each with its own vertices; a later mesh
+  // call assembles again only the blocks whose cells changed. <= 0: one block.
+  int meshChunkSquares = 4;
 };
 
 // Called with (step name, done, total) as a long build proceeds; may be empty.
@@ -90,11 +94,16 @@ class Engine {
   // One receiver's part of mesh(). Throws std::out_of_range if `face` is not a receiver.
   ReceiverMesh meshOf(FaceId face);
   // Meshing keeps, per receiver and per cell, the cell's triangles and the inputs they
-  // came from (outline, occluder list and those faces' polygons, corner values); a cell
-  // whose inputs are all equal is replayed instead of lit again, so the result is bit
-  // for bit what a fresh triangulation gives. Counters of the last mesh call:
+  // came from (outline, occluder list and those faces' polygons, corner values); only
+  // cells the tree touched since the last call are looked at, and one whose inputs are
+  // all equal is kept instead of lit again. A receiver's mesh is the concatenation of
+  // its display chunks (EngineSettings::meshChunkSquares; vertices on a chunk border
+  // repeat in each chunk); only chunks holding a changed cell are assembled again, in
+  // cell order, so the result is bit for bit what a fresh mesh() gives. Counters of
+  // the last mesh call:
   struct MeshCacheCounters {
-    size_t cellsReused = 0, cellsLit = 0;
+    size_t cellsReused = 0, cellsLit = 0;     // live cells kept / lit afresh
+    size_t chunksMeshed = 0, chunksKept = 0;  // display chunks assembled again / kept
   };
   const MeshCacheCounters& lastMeshCounters() const { return meshCounters_; }
   // Drops the memo: the next mesh call lights every cell afresh.
@@ -126,6 +135,11 @@ class Engine {
   // Whether every vertex of the face lies in each light's overlap cube.
   bool insideEditVolume(const Face& face) const;
 
+  // A display chunk of a receiver's mesh: lattice-aligned block (x, y) of its 2D frame.
+  struct MeshChunkKey {
+    int64_t x = 0, y = 0;
+    auto operator<=>(const MeshChunkKey&) const = default;
+  };
   // Per-cell memo of the meshing (see mesh()): what a cell emitted, and what that
   // depends on. Buffers are reused from cell to cell.
   struct CellMeshMemo {
@@ -137,16 +151,23 @@ class Engine {
     // Per loop corner: 1 if lit from the cell (a contact vertex), else 0 and its value.
     std::vector<uint8_t> cornerFromCell;
     std::vector<VertexIrradiance> cornerValues;
-    // The output: builder calls (point, value) in order, and triangles into them.
+    // The output: builder calls (point, value) in order, and triangles into them,
+    // per piece (a lattice square's part of the cell): its chunk and where its
+    // points and triangles start (one more entry closes the last piece).
     std::vector<std::pair<Vec2, VertexIrradiance>> emitted;
     std::vector<std::array<uint32_t, 3>> triangles;
+    std::vector<MeshChunkKey> pieceChunks;
+    std::vector<uint32_t> pieceEmitted, pieceTriangles;
     void clearInputs();
     bool sameInputs(const CellMeshMemo& inputs) const;  // valid, and every input equal
   };
   struct ReceiverMeshMemo {
     PlaneFrame frame;
     double spacing = 0, eps = 0;
+    int chunkSquares = 0;
+    uint64_t stamp = 0;  // HalfEdgeMesh::stampNow() at the last call: cells touched later changed
     std::vector<CellMeshMemo> cells;  // by CellId index
+    std::map<MeshChunkKey, ReceiverMesh> chunks;  // the non-empty chunks' meshes
   };
   void pruneMeshMemo();  // drops the memos of faces that are no longer receivers
   ReceiverMesh meshReceiver(const Receiver& receiver);
