@@ -139,7 +139,7 @@ std::optional<std::string> firstDifference(const Engine& incremental, const Engi
 
 struct Totals {
   FrameTimings seconds;
-  size_t relit = 0, changed = 0, created = 0, rebuilds = 0, verified = 0;
+  size_t relit = 0, changed = 0, created = 0, rebuilds = 0, fullRebuilds = 0, verified = 0;
   double rebuildSeconds = 0, editSecondsVerified = 0;
 };
 
@@ -206,6 +206,7 @@ int runReplay(const Args& args) {
     entry["frame"] = i + 1;
     entry["line"] = frames[i].line;
     entry["wall_seconds"] = wallSeconds;
+    entry["full_rebuild"] = result.fullRebuild;  // a large frame: the engine was rebuilt
     totals.seconds.remove += result.seconds.remove;
     totals.seconds.add += result.seconds.add;
     totals.seconds.relight += result.seconds.relight;
@@ -213,6 +214,7 @@ int runReplay(const Args& args) {
     totals.changed += result.verticesChanged;
     totals.created += result.verticesCreated;
     totals.rebuilds += result.treeRebuilds;
+    totals.fullRebuilds += result.fullRebuild ? 1 : 0;
 
     const bool verifyThis =
         verify && (engine.scene().faces().size() <= kVerifyAllMaxFaces ||
@@ -256,6 +258,7 @@ int runReplay(const Args& args) {
       {"vertices",
        {{"relit", totals.relit}, {"changed", totals.changed}, {"created", totals.created}}},
       {"tree_rebuilds", totals.rebuilds},
+      {"full_rebuild_frames", totals.fullRebuilds},
       {"verified_frames", totals.verified},
       {"rebuild_seconds_verified", totals.rebuildSeconds},
       {"edit_seconds_verified", totals.editSecondsVerified},
@@ -265,9 +268,10 @@ int runReplay(const Args& args) {
   report["verify_failure"] = failure ? json(*failure) : json(nullptr);
   std::printf(
       "total: %zu frames, %.3f s (remove %.3f, add %.3f, relight %.3f); %zu relit, %zu changed, "
-      "%zu created; %zu tree rebuilds (fallback)",
+      "%zu created; %zu tree rebuilds (fallback), %zu frames fully rebuilt",
       report["frames"].size(), totals.seconds.total(), totals.seconds.remove, totals.seconds.add,
-      totals.seconds.relight, totals.relit, totals.changed, totals.created, totals.rebuilds);
+      totals.seconds.relight, totals.relit, totals.changed, totals.created, totals.rebuilds,
+      totals.fullRebuilds);
   if (totals.verified)
     std::printf("; %zu frames verified, edit / rebuild = %.3f", totals.verified,
                 totals.editSecondsVerified / totals.rebuildSeconds);

@@ -195,7 +195,7 @@ json sceneSummaryJson(const SceneSnapshot& s) {
           {"version", s.version},
           {"objects", s.scene.objects().size()},
           {"faces", s.scene.faces().size()},
-          {"receivers", s.mesh.receivers.size()},
+          {"receivers", s.receiverCount()},
           {"url", "/api/scenes/" + s.id}};
 }
 
@@ -203,7 +203,7 @@ json sceneSummaryJson(const SceneSnapshot& s) {
 json changedAtJson(const SceneSnapshot& s, uint64_t after) {
   const MeshSelection selection = s.select(after);
   json changed = json::array(), removed = json::array();
-  for (size_t i : selection.receivers) changed.push_back(toJson(s.receiverKeys[i]));
+  for (const ReceiverKey& key : selection.receivers) changed.push_back(toJson(key));
   for (const ReceiverKey& key : selection.removed) removed.push_back(toJson(key));
   return {{"version", s.version}, {"changed", std::move(changed)}, {"removed", std::move(removed)}};
 }
@@ -495,7 +495,9 @@ void HttpServer::registerRoutes() {
         body200["mesh_seconds"] = applied.meshSeconds;
         body200["meshed_receivers_count"] = applied.meshedReceivers;
         body200["mesh_cells"] = {{"reused", applied.meshCells.cellsReused},
-                                 {"lit", applied.meshCells.cellsLit}};
+                                 {"lit", applied.meshCells.cellsLit},
+                                 {"chunks_meshed", applied.meshCells.chunksMeshed},
+                                 {"chunks_kept", applied.meshCells.chunksKept}};
         sendJson(res, 200, body200);
       }));
 
@@ -541,7 +543,7 @@ void HttpServer::registerRoutes() {
             glbOptions.colorScale = *scale;
           }
           const interchange::GlbFile glb =
-              interchange::meshToGlb(snapshot->scene, snapshot->mesh, glbOptions);
+              interchange::meshToGlb(snapshot->scene, snapshot->mesh(), glbOptions);
           res.status = 200;
           res.set_header("Cache-Control", "no-store");
           res.set_header("X-Penumbra-Color-Scale", json(glb.colorScale).dump());
@@ -574,7 +576,7 @@ void HttpServer::registerRoutes() {
         settings.camera = cameraFromQuery(req, snapshot->scene);
         RenderedImage image;
         try {
-          image = render(snapshot->scene, snapshot->mesh, settings);
+          image = render(snapshot->scene, snapshot->mesh(), settings);
         } catch (const std::invalid_argument& error) {  // e.g. a degenerate camera
           throw ApiError(400, error_code::kBadParameter, "query", error.what());
         }
@@ -604,9 +606,10 @@ void HttpServer::registerRoutes() {
                   {"version", snapshot->version},
                   {"build", buildStatsJson(snapshot->buildStats)},
                   {"mesh",
-                   {{"receivers", snapshot->mesh.receivers.size()},
-                    {"vertices", snapshot->mesh.vertexCount()},
-                    {"triangles", snapshot->mesh.triangleCount()}}},
+                   {{"receivers", snapshot->receiverCount()},
+                    {"parts", snapshot->parts.size()},
+                    {"vertices", snapshot->vertexCount()},
+                    {"triangles", snapshot->triangleCount()}}},
                   {"last_frame", snapshot->lastFrame ? protocol::frameResultToJson(
                                                            *snapshot->lastFrame, snapshot->scene)
                                                      : json(nullptr)},

@@ -20,6 +20,10 @@ class Writer {
     if (value > UINT32_MAX) throw std::overflow_error("binary mesh: value does not fit 32 bits");
     put(static_cast<uint32_t>(value));
   }
+  void i32(int64_t value) {
+    if (value < INT32_MIN || value > INT32_MAX) throw std::overflow_error("binary mesh: value does not fit 32 bits");
+    put(static_cast<int32_t>(value));
+  }
   void f32(double value) { put(static_cast<float>(value)); }
   void u8(uint8_t value) { bytes_.push_back(static_cast<char>(value)); }
   void raw(const void* data, size_t size) { bytes_.append(static_cast<const char*>(data), size); }
@@ -53,7 +57,7 @@ uint8_t classCode(LightClass c) {
 }  // namespace
 
 std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection) {
-  // Object names: each named once, receivers refer to them by index.
+  // Object names: each named once, parts refer to them by index.
   std::vector<std::string> names;
   std::map<std::string, uint32_t> nameIndex;
   auto indexOf = [&](const std::string& name) {
@@ -61,20 +65,21 @@ std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection
     if (inserted) names.push_back(name);
     return it->second;
   };
-  std::vector<uint32_t> receiverObjects, removedObjects;
+  std::vector<uint32_t> partObjects, removedObjects;
   size_t vertices = 0, triangles = 0;
-  for (size_t i : selection.receivers) {
-    receiverObjects.push_back(indexOf(snapshot.receiverKeys[i].object));
-    vertices += snapshot.mesh.receivers[i].positions.size();
-    triangles += snapshot.mesh.receivers[i].triangles.size();
+  for (size_t i : selection.parts) {
+    const MeshPart& part = snapshot.parts[i];
+    partObjects.push_back(indexOf(part.key.receiver.object));
+    vertices += part.mesh->positions.size();
+    triangles += part.mesh->triangles.size();
   }
-  for (const ReceiverKey& key : selection.removed) removedObjects.push_back(indexOf(key.object));
+  for (const PartKey& key : selection.removedParts) removedObjects.push_back(indexOf(key.receiver.object));
 
   size_t namesBytes = 0;
   for (const std::string& n : names) namesBytes += 4 + (n.size() + 3) / 4 * 4;
-  Writer out(kHeaderBytes + namesBytes + selection.receivers.size() * kReceiverRecordBytes +
-             selection.removed.size() * kRemovedRecordBytes + vertices * 25 + triangles * 12 +
-             selection.receivers.size() * 4);
+  Writer out(kHeaderBytes + namesBytes + selection.parts.size() * kPartRecordBytes +
+             selection.removedParts.size() * kRemovedRecordBytes + vertices * 25 + triangles * 12 +
+             selection.parts.size() * 4);
 
   out.raw(kMagic, 4);
   out.u32(kLayoutVersion);
@@ -82,8 +87,8 @@ std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection
   out.u32(selection.since ? kFlagDelta : 0);
   out.u32(selection.since.value_or(0));
   out.u32(names.size());
-  out.u32(selection.receivers.size());
-  out.u32(selection.removed.size());
+  out.u32(selection.parts.size());
+  out.u32(selection.removedParts.size());
   out.u32(vertices);
   out.u32(triangles);
 
@@ -92,22 +97,27 @@ std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection
     out.raw(n.data(), n.size());
     out.padTo4();
   }
-  for (size_t k = 0; k < selection.receivers.size(); ++k) {
-    const size_t i = selection.receivers[k];
-    const ReceiverMesh& r = snapshot.mesh.receivers[i];
-    out.u32(receiverObjects[k]);
-    out.u32(snapshot.receiverKeys[i].face);
+  for (size_t k = 0; k < selection.parts.size(); ++k) {
+    const MeshPart& part = snapshot.parts[selection.parts[k]];
+    const ReceiverMesh& r = *part.mesh;
+    out.u32(partObjects[k]);
+    out.u32(part.key.receiver.face);
+    out.i32(part.key.x);
+    out.i32(part.key.y);
     out.u32(r.positions.size());
     out.u32(r.triangles.size());
-    out.u32(snapshot.receiverVersions[i]);
+    out.u32(part.version);
     for (int c = 0; c < 3; ++c) out.f32(r.normal[c]);
   }
-  for (size_t k = 0; k < selection.removed.size(); ++k) {
+  for (size_t k = 0; k < selection.removedParts.size(); ++k) {
+    const PartKey& key = selection.removedParts[k];
     out.u32(removedObjects[k]);
-    out.u32(selection.removed[k].face);
+    out.u32(key.receiver.face);
+    out.i32(key.x);
+    out.i32(key.y);
   }
-  for (size_t i : selection.receivers) {
-    const ReceiverMesh& r = snapshot.mesh.receivers[i];
+  for (size_t i : selection.parts) {
+    const ReceiverMesh& r = *snapshot.parts[i].mesh;
     for (const Vec3& p : r.positions)
       for (int c = 0; c < 3; ++c) out.f32(p[c]);
     for (const Vec3& e : r.irradiance)

@@ -10,15 +10,15 @@
 namespace penumbra::server::mesh_binary {
 
 inline constexpr char kMagic[4] = {'P', 'N', 'M', 'B'};
-inline constexpr uint32_t kLayoutVersion = 1;
+inline constexpr uint32_t kLayoutVersion = 2;
 inline constexpr size_t kHeaderBytes = 40;
-inline constexpr size_t kReceiverRecordBytes = 32;
-inline constexpr size_t kRemovedRecordBytes = 8;
+inline constexpr size_t kPartRecordBytes = 40;
+inline constexpr size_t kRemovedRecordBytes = 16;
 inline constexpr uint32_t kFlagDelta = 1;  // header flags: a `since` delta, not the whole mesh
 // Class codes in the classes array.
 inline constexpr uint8_t kLit = 0, kPenumbra = 1, kUmbra = 2;
 
-// Encodes the selected receivers of a snapshot. Throws std::overflow_error if a
+// Encodes the selected parts (receivers' display chunks) of a snapshot. Throws std::overflow_error if a
 // count or version does not fit 32 bits.
 std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection);
 

@@ -11,17 +11,24 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::vector<ReceiverKey> receiverKeysOf(const Scene& scene, const Mesh& mesh) {
-  std::vector<ReceiverKey> keys;
-  keys.reserve(mesh.receivers.size());
-  for (const ReceiverMesh& r : mesh.receivers)
-    keys.push_back({scene.object(r.face.object).id, r.face.face});
-  return keys;
-}
-
 bool sameMesh(const ReceiverMesh& a, const ReceiverMesh& b) {
   return a.normal == b.normal && a.positions == b.positions && a.irradiance == b.irradiance &&
          a.classes == b.classes && a.triangles == b.triangles;
+}
+
+// The engine's chunks of some receivers as parts, all at `version`.
+std::vector<MeshPart> partsOf(const Scene& scene, const Engine::ReceiverChunks& receiver, uint64_t version) {
+  std::vector<MeshPart> out;
+  const ReceiverKey key{scene.object(receiver.face.object).id, receiver.face.face};
+  for (const Engine::MeshChunk& chunk : receiver.chunks)
+    out.push_back({{key, chunk.key.x, chunk.key.y}, chunk.mesh, version});
+  return out;
+}
+
+std::vector<FaceId> receiverFaces(const Engine& engine) {
+  std::vector<FaceId> faces;
+  for (const Engine::Receiver& r : engine.receivers()) faces.push_back(r.face);
+  return faces;
 }
 
 }  // namespace
@@ -33,11 +40,12 @@ SceneSession::SceneSession(std::string id, std::string name, Scene scene, Engine
   first->id = id_;
   first->name = std::move(name);
   first->version = engine_->version();
-  first->mesh = engine_->mesh();
   first->buildStats = engine_->stats();
   first->scene = engine_->scene();
-  first->receiverKeys = receiverKeysOf(first->scene, first->mesh);
-  first->receiverVersions.assign(first->mesh.receivers.size(), first->version);
+  for (const Engine::ReceiverChunks& r : engine_->meshChunks(receiverFaces(*engine_))) {
+    std::vector<MeshPart> parts = partsOf(first->scene, r, first->version);
+    first->parts.insert(first->parts.end(), parts.begin(), parts.end());
+  }
   current_ = std::move(first);
 }
 
@@ -59,44 +67,49 @@ SceneSession::Applied SceneSession::apply(const Frame& frame) {
   next->buildStats = previous->buildStats;
   next->scene = engine_->scene();
 
-  // Only the receivers the frame changed (and new ones) are meshed again; the others
-  // keep the previous version's mesh, which is what a fresh mesh() would give them.
+  // Only the receivers the frame changed (and new ones) are meshed again, and in them
+  // only the chunks that changed; the others keep the previous version's parts, which
+  // are what a fresh mesh would give them.
   const auto meshStart = std::chrono::steady_clock::now();
-  std::map<FaceId, size_t> previousByFace;
-  for (size_t i = 0; i < previous->mesh.receivers.size(); ++i)
-    previousByFace.emplace(previous->mesh.receivers[i].face, i);
+  std::map<ReceiverKey, std::pair<size_t, size_t>> previousRuns;  // receiver → its parts [begin, end)
+  for (size_t i = 0; i < previous->parts.size(); ++i) {
+    auto [it, added] = previousRuns.try_emplace(previous->parts[i].key.receiver, i, i + 1);
+    if (!added) it->second.second = i + 1;
+  }
   const std::set<FaceId> changed(result.changedReceivers.begin(), result.changedReceivers.end());
   std::vector<FaceId> remesh;
-  for (const Engine::Receiver& r : engine_->receivers())
-    if (changed.count(r.face) || !previousByFace.count(r.face)) remesh.push_back(r.face);
-  Mesh remeshed = engine_->mesh(remesh);
+  for (const Engine::Receiver& r : engine_->receivers()) {
+    const ReceiverKey key{next->scene.object(r.face.object).id, r.face.face};
+    if (changed.count(r.face) || !previousRuns.count(key)) remesh.push_back(r.face);
+  }
+  const std::vector<Engine::ReceiverChunks> remeshed = engine_->meshChunks(remesh);
   const Engine::MeshCacheCounters cells = engine_->lastMeshCounters();
-  next->mesh.receivers.reserve(engine_->receivers().size());
   size_t fresh = 0;
   for (const Engine::Receiver& r : engine_->receivers()) {
-    if (fresh < remeshed.receivers.size() && remeshed.receivers[fresh].face == r.face)
-      next->mesh.receivers.push_back(std::move(remeshed.receivers[fresh++]));
-    else
-      next->mesh.receivers.push_back(previous->mesh.receivers[previousByFace.at(r.face)]);
+    if (fresh < remeshed.size() && remeshed[fresh].face == r.face) {
+      std::vector<MeshPart> parts = partsOf(next->scene, remeshed[fresh++], next->version);
+      next->parts.insert(next->parts.end(), parts.begin(), parts.end());
+    } else {
+      const auto [begin, end] = previousRuns.at({next->scene.object(r.face.object).id, r.face.face});
+      next->parts.insert(next->parts.end(), previous->parts.begin() + long(begin), previous->parts.begin() + long(end));
+    }
+  }
+
+  // A part's version moves only when its mesh data really changed, so `since` deltas
+  // carry what a client must redraw, whatever the engine recomputed.
+  std::map<PartKey, size_t> before;
+  for (size_t i = 0; i < previous->parts.size(); ++i) before.emplace(previous->parts[i].key, i);
+  for (MeshPart& part : next->parts) {
+    const auto it = before.find(part.key);
+    if (it == before.end()) continue;
+    const MeshPart& old = previous->parts[it->second];
+    if (old.mesh == part.mesh || sameMesh(*old.mesh, *part.mesh)) part.version = old.version;
+    before.erase(it);
   }
   const double meshSeconds = secondsSince(meshStart);
-  next->receiverKeys = receiverKeysOf(next->scene, next->mesh);
-
-  // A receiver's version moves only when its mesh data really changed, so `since`
-  // deltas carry what a client must redraw, whatever the engine recomputed.
-  std::map<ReceiverKey, size_t> before;
-  for (size_t i = 0; i < previous->receiverKeys.size(); ++i)
-    before.emplace(previous->receiverKeys[i], i);
-  next->receiverVersions.resize(next->mesh.receivers.size());
-  for (size_t i = 0; i < next->receiverKeys.size(); ++i) {
-    const auto it = before.find(next->receiverKeys[i]);
-    const bool unchanged = it != before.end() &&
-                           sameMesh(previous->mesh.receivers[it->second], next->mesh.receivers[i]);
-    next->receiverVersions[i] = unchanged ? previous->receiverVersions[it->second] : next->version;
-    if (it != before.end()) before.erase(it);
-  }
-  // What is left in `before` has left the scene; a key that came back is live again.
-  const std::set<ReceiverKey> live(next->receiverKeys.begin(), next->receiverKeys.end());
+  // What is left in `before` has left; a key that came back is live again.
+  std::set<PartKey> live;
+  for (const MeshPart& part : next->parts) live.insert(part.key);
   for (const auto& [key, removedAt] : previous->removed)
     if (!live.count(key)) next->removed.emplace_back(key, removedAt);
   for (const auto& [key, index] : before) next->removed.emplace_back(key, next->version);
@@ -129,8 +142,8 @@ RebuildReport SceneSession::rebuild() {
   report.stats = fresh.stats();
   report.meshVertices = mesh.vertexCount();
   report.meshTriangles = mesh.triangleCount();
-  report.servedVertices = served->mesh.vertexCount();
-  report.servedTriangles = served->mesh.triangleCount();
+  report.servedVertices = served->vertexCount();
+  report.servedTriangles = served->triangleCount();
   {
     std::lock_guard published(publishMutex_);
     lastRebuild_ = report;

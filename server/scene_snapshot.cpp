@@ -1,5 +1,9 @@
 #include "server/scene_snapshot.h"
 
+#include <algorithm>
+#include <map>
+#include <set>
+
 #include "protocol/mesh_json.h"
 
 namespace penumbra::server {
@@ -8,30 +12,101 @@ nlohmann::json toJson(const ReceiverKey& key) {
   return {{"object", key.object}, {"face", key.face}};
 }
 
+nlohmann::json toJson(const PartKey& key) {
+  return {{"object", key.receiver.object}, {"face", key.receiver.face}, {"chunk", {key.x, key.y}}};
+}
+
+namespace {
+
+// Calls visit(receiver key, first part, end part) for each receiver's run of parts.
+template <class Visit>
+void forEachReceiver(const std::vector<MeshPart>& parts, Visit visit) {
+  for (size_t begin = 0; begin < parts.size();) {
+    size_t end = begin + 1;
+    while (end < parts.size() && parts[end].key.receiver == parts[begin].key.receiver) ++end;
+    visit(parts[begin].key.receiver, begin, end);
+    begin = end;
+  }
+}
+
+ReceiverMesh wholeReceiver(const std::vector<MeshPart>& parts, size_t begin, size_t end) {
+  ReceiverMesh out;
+  out.face = parts[begin].mesh->face;
+  out.normal = parts[begin].mesh->normal;
+  for (size_t i = begin; i < end; ++i) appendMesh(out, *parts[i].mesh);
+  return out;
+}
+
+}  // namespace
+
 MeshSelection SceneSnapshot::select(std::optional<uint64_t> since) const {
   MeshSelection selection;
   selection.since = since;
-  for (size_t i = 0; i < mesh.receivers.size(); ++i)
-    if (!since || receiverVersions[i] > *since) selection.receivers.push_back(i);
+  std::set<ReceiverKey> lostPart;  // receivers with a part removed after `since`
   if (since)
     for (const auto& [key, removedAt] : removed)
-      if (removedAt > *since) selection.removed.push_back(key);
+      if (removedAt > *since) {
+        selection.removedParts.push_back(key);
+        lostPart.insert(key.receiver);
+      }
+  forEachReceiver(parts, [&](const ReceiverKey& key, size_t begin, size_t end) {
+    bool changed = !since || lostPart.erase(key) > 0;
+    for (size_t i = begin; i < end; ++i)
+      if (!since || parts[i].version > *since) {
+        selection.parts.push_back(i);
+        changed = true;
+      }
+    if (changed) selection.receivers.push_back(key);
+  });
+  // What is left lost a part and has none now: the receiver has left.
+  selection.removed.assign(lostPart.begin(), lostPart.end());
   return selection;
 }
 
+const Mesh& SceneSnapshot::mesh() const {
+  std::call_once(meshOnce_, [this] {
+    forEachReceiver(parts, [&](const ReceiverKey&, size_t begin, size_t end) {
+      mesh_.receivers.push_back(wholeReceiver(parts, begin, end));
+    });
+  });
+  return mesh_;
+}
+
+size_t SceneSnapshot::receiverCount() const {
+  size_t n = 0;
+  forEachReceiver(parts, [&](const ReceiverKey&, size_t, size_t) { ++n; });
+  return n;
+}
+
+size_t SceneSnapshot::vertexCount() const {
+  size_t n = 0;
+  for (const MeshPart& part : parts) n += part.mesh->positions.size();
+  return n;
+}
+
+size_t SceneSnapshot::triangleCount() const {
+  size_t n = 0;
+  for (const MeshPart& part : parts) n += part.mesh->triangles.size();
+  return n;
+}
+
 nlohmann::json SceneSnapshot::meshJson(const MeshSelection& selection) const {
-  nlohmann::json root;
-  if (selection.receivers.size() == mesh.receivers.size()) {
-    root = protocol::meshToJson(scene, mesh, name);
-  } else {
-    Mesh part;
-    part.receivers.reserve(selection.receivers.size());
-    for (size_t i : selection.receivers) part.receivers.push_back(mesh.receivers[i]);
-    root = protocol::meshToJson(scene, part, name);
-  }
+  const std::set<ReceiverKey> wanted(selection.receivers.begin(), selection.receivers.end());
+  Mesh chosen;
+  std::vector<uint64_t> versions;
+  forEachReceiver(parts, [&](const ReceiverKey& key, size_t begin, size_t end) {
+    if (!wanted.count(key)) return;
+    chosen.receivers.push_back(wholeReceiver(parts, begin, end));
+    uint64_t newest = 0;
+    for (size_t i = begin; i < end; ++i) newest = std::max(newest, parts[i].version);
+    if (selection.since)  // a receiver that only lost a chunk changed at that version
+      for (const auto& [removedKey, removedAt] : removed)
+        if (removedKey.receiver == key) newest = std::max(newest, removedAt);
+    versions.push_back(newest);
+  });
+  nlohmann::json root = protocol::meshToJson(scene, chosen, name);
   nlohmann::json& receivers = root["receivers"];
-  for (size_t k = 0; k < selection.receivers.size(); ++k)
-    receivers[k]["scene_version"] = receiverVersions[selection.receivers[k]];
+  for (size_t k = 0; k < versions.size(); ++k) receivers[k]["scene_version"] = versions[k];
   root["id"] = id;
   root["scene_version"] = version;
   root["since"] = selection.since ? nlohmann::json(*selection.since) : nlohmann::json(nullptr);

@@ -1,8 +1,10 @@
-// One whole version of a served scene: scene, lit mesh, and per receiver the version of its
-// last change. Immutable once published; shared read-only by any number of threads.
+// One whole version of a served scene: scene, lit mesh in parts, and per part the version of
+// its last change. Immutable once published; shared read-only by any number of threads.
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -22,12 +24,29 @@ struct ReceiverKey {
   auto operator<=>(const ReceiverKey&) const = default;
 };
 
-// Which receivers a mesh response carries (indices into SceneSnapshot::mesh.receivers,
-// ascending) and which receivers left the scene since the asked version.
+// A display chunk of a receiver's mesh as clients name it (Engine::MeshChunkKey).
+struct PartKey {
+  ReceiverKey receiver;
+  int64_t x = 0, y = 0;
+  auto operator<=>(const PartKey&) const = default;
+};
+
+// One part of the lit mesh: a receiver's chunk, shared read-only between versions
+// while it does not change.
+struct MeshPart {
+  PartKey key;
+  std::shared_ptr<const ReceiverMesh> mesh;
+  uint64_t version = 0;  // the scene version of its last change
+};
+
+// What a mesh response carries: parts (the binary form) and, for mesh JSON, whole
+// receivers. Indices are into SceneSnapshot::parts, ascending.
 struct MeshSelection {
   std::optional<uint64_t> since;  // empty: the whole mesh
-  std::vector<size_t> receivers;
-  std::vector<ReceiverKey> removed;
+  std::vector<size_t> parts;            // changed after `since`
+  std::vector<PartKey> removedParts;    // gone after `since`
+  std::vector<ReceiverKey> receivers;   // receivers with a changed part (scene order)
+  std::vector<ReceiverKey> removed;     // receivers gone after `since` (no part left)
 };
 
 struct SceneSnapshot {
@@ -35,22 +54,34 @@ struct SceneSnapshot {
   std::string name;  // the scene file's name, or the name given at creation
   uint64_t version = 0;
   Scene scene;
-  Mesh mesh;
-  std::vector<ReceiverKey> receiverKeys;   // parallel to mesh.receivers
-  std::vector<uint64_t> receiverVersions;  // parallel: version of the last change
-  // Receivers that have left the scene, with the version that removed them.
-  std::vector<std::pair<ReceiverKey, uint64_t>> removed;
+  // The lit mesh in parts: receivers in Scene::faces() order, each its chunks in key order.
+  std::vector<MeshPart> parts;
+  // Parts that have left (a receiver left the scene, or a chunk became empty), with the
+  // version that removed them.
+  std::vector<std::pair<PartKey, uint64_t>> removed;
   BuildStats buildStats;                 // of the initial build
   std::optional<FrameResult> lastFrame;  // the frame that made this version
 
   // Everything (since empty) or only what changed after `since`.
   MeshSelection select(std::optional<uint64_t> since) const;
 
-  // Mesh JSON v1 (SCENE_FORMAT.md) of the selection, plus "id", "scene_version",
-  // "since", per receiver "scene_version", and "removed" (docs/API.md).
+  // The whole lit mesh, each receiver its parts concatenated (as Engine::mesh()); made
+  // on first use (thread-safe), for mesh JSON, GLB and images.
+  const Mesh& mesh() const;
+  size_t receiverCount() const;
+  size_t vertexCount() const;
+  size_t triangleCount() const;
+
+  // Mesh JSON v1 (SCENE_FORMAT.md) of the selection's receivers, plus "id",
+  // "scene_version", "since", per receiver "scene_version", and "removed" (docs/API.md).
   nlohmann::json meshJson(const MeshSelection& selection) const;
+
+ private:
+  mutable std::once_flag meshOnce_;
+  mutable Mesh mesh_;
 };
 
 nlohmann::json toJson(const ReceiverKey& key);
+nlohmann::json toJson(const PartKey& key);
 
 }  // namespace penumbra::server

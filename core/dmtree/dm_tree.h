@@ -38,6 +38,7 @@ struct InsertResult {
 
 struct RemoveResult {
   bool found = false;                     // the occluder had been inserted
+  Polygon2 penumbra;                      // its penumbra as merged: outside it no value changed
   // Cells that lost the occluder or whose outline changed (re-split, extended or
   // merged); some may have died later in the same removal: check cell(c).alive.
   std::vector<CellId> changedCells;

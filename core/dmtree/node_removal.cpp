@@ -485,6 +485,7 @@ RemoveResult DmTree::removeOccluder(uint32_t light, FaceId occluder) {
   if (it == inserted_.end()) return result;
   result.found = true;
   const Polygon2 penumbra = it->second.penumbra;
+  result.penumbra = penumbra;
   inserted_.erase(it);
   const size_t firstVertex = mesh_.vertexSlots();
   removing_ = key;

@@ -88,6 +88,40 @@ Scene Engine::sceneAfter(const Frame& frame) const {
   return next;
 }
 
+void Engine::relightAfterRemoval(FaceId target, Receiver& receiver, const RemoveResult& removed, DirtySet& dirty) {
+  const DmTree& tree = receiver.tree;
+  const HalfEdgeMesh& mesh = tree.mesh();
+  const double eps = scene_.tolerance().length();
+  dirty.noteValueSlots(target, receiver.values.size());
+  growSlots(receiver);
+  dirty.touch(target);
+  // Deleted vertices that held a current value for their position (not waiting to be
+  // relit after an earlier deletion of this frame), by exact position.
+  std::map<std::pair<double, double>, uint32_t> deleted;
+  for (VertexId v : removed.removedVertices) {
+    const Vec2 p = tree.position(v);
+    if (v.index < receiver.litAt.size() && receiver.litAt[v.index] == p && !dirty.pending(target, v))
+      deleted.emplace(std::pair(p.x, p.y), v.index);
+  }
+  auto settle = [&](VertexId v) {
+    if (v.index >= mesh.vertexSlots() || !mesh.vertex(v).alive) return;
+    const Vec2 p = tree.position(v);
+    if (removed.penumbra.empty() || contains(removed.penumbra, p, eps)) return dirty.addVertex(target, v);
+    if (receiver.litAt[v.index] == p) return;  // a survivor: its value stands
+    const auto was = deleted.find(std::pair(p.x, p.y));
+    if (was == deleted.end()) return dirty.addVertex(target, v);
+    receiver.values[v.index] = receiver.values[was->second];
+    receiver.perLight[v.index] = receiver.perLight[was->second];
+    receiver.litAt[v.index] = p;
+    for (CellId c : tree.cellsAround(v)) receiver.tree.touch(c);  // corner values for meshing
+  };
+  for (CellId c : removed.changedCells) {
+    if (c.index >= mesh.cellSlots() || !mesh.cell(c).alive) continue;
+    for (HalfEdgeId h : mesh.loop(c)) settle(mesh.halfEdge(h).origin);
+  }
+  for (VertexId v : removed.newVertices) settle(v);
+}
+
 FrameResult Engine::apply(const Frame& frame) {
   Scene next = sceneAfter(frame);  // throws before anything changes
 
@@ -184,8 +218,7 @@ FrameResult Engine::apply(const Frame& frame) {
               receiver.litAt.assign(receiver.litAt.size(), Vec2(std::numeric_limits<double>::quiet_NaN()));
               continue;
             }
-            dirty.addCells(target, tree, removed.changedCells);
-            dirty.addVertices(target, removed.newVertices);
+            relightAfterRemoval(target, receiver, removed, dirty);
           }
         } catch (const std::exception&) {
           rebuild.insert(target);
@@ -297,7 +330,7 @@ FrameResult Engine::apply(const Frame& frame) {
     for (const auto& [face, vertices] : dirty.receivers()) {
       Receiver& receiver = receivers_[receiverIndex_.at(face)];
       const HalfEdgeMesh& mesh = receiver.tree.mesh();
-      const size_t known = receiver.values.size();
+      const size_t known = dirty.valueSlots(face, receiver.values.size());
       growSlots(receiver);
       std::set<VertexId> relight;
       for (VertexId v : vertices)

@@ -30,18 +30,31 @@ class DirtySet {
       for (HalfEdgeId h : mesh.loop(c)) out.insert(mesh.halfEdge(h).origin);
     }
   }
+  // How many vertex slots held values when the frame first touched the receiver (the
+  // first note counts): slots past it may hold vertices nobody reported.
+  void noteValueSlots(FaceId receiver, size_t slots) { valueSlots_.emplace(receiver, slots); }
+  size_t valueSlots(FaceId receiver, size_t otherwise) const {
+    const auto it = valueSlots_.find(receiver);
+    return it == valueSlots_.end() ? otherwise : it->second;
+  }
   // A receiver whose tree is gone or rebuilt: its pending vertices mean nothing now.
   void forget(FaceId receiver) {
     receivers_.erase(receiver);
     topology_.erase(receiver);
+    valueSlots_.erase(receiver);
   }
 
   const std::map<FaceId, std::set<VertexId>>& receivers() const { return receivers_; }
+  bool pending(FaceId receiver, VertexId v) const {
+    const auto it = receivers_.find(receiver);
+    return it != receivers_.end() && it->second.count(v) != 0;
+  }
   bool topologyChanged(FaceId receiver) const { return topology_.count(receiver) != 0; }
 
  private:
   std::map<FaceId, std::set<VertexId>> receivers_;
   std::set<FaceId> topology_;
+  std::map<FaceId, size_t> valueSlots_;
 };
 
 }  // namespace penumbra

@@ -416,16 +416,34 @@ Mesh Engine::mesh() {
   return out;
 }
 
-Mesh Engine::mesh(const std::vector<FaceId>& only) {
-  meshCounters_ = {};
+std::vector<size_t> Engine::receiverIndices(const std::vector<FaceId>& only) const {
   std::vector<size_t> indices;
   for (FaceId face : only)
     if (const auto it = receiverIndex_.find(face); it != receiverIndex_.end()) indices.push_back(it->second);
   std::sort(indices.begin(), indices.end());
   indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+  return indices;
+}
+
+Mesh Engine::mesh(const std::vector<FaceId>& only) {
+  meshCounters_ = {};
+  const std::vector<size_t> indices = receiverIndices(only);
   Mesh out;
   out.receivers.reserve(indices.size());
   for (size_t i : indices) out.receivers.push_back(meshReceiver(receivers_[i]));
+  pruneMeshMemo();
+  return out;
+}
+
+std::vector<Engine::ReceiverChunks> Engine::meshChunks(const std::vector<FaceId>& only) {
+  meshCounters_ = {};
+  std::vector<ReceiverChunks> out;
+  for (size_t i : receiverIndices(only)) {
+    const ReceiverMeshMemo& memo = updateMeshMemo(receivers_[i]);
+    ReceiverChunks& entry = out.emplace_back();
+    entry.face = receivers_[i].face;
+    for (const auto& [key, chunk] : memo.chunks) entry.chunks.push_back({key, chunk});
+  }
   pruneMeshMemo();
   return out;
 }
@@ -438,6 +456,15 @@ ReceiverMesh Engine::meshOf(FaceId face) {
 }
 
 ReceiverMesh Engine::meshReceiver(const Receiver& receiver) {
+  const ReceiverMeshMemo& memo = updateMeshMemo(receiver);
+  ReceiverMesh result;
+  result.face = receiver.face;
+  result.normal = receiver.frame.normal;
+  for (const auto& [key, chunk] : memo.chunks) appendMesh(result, *chunk);
+  return result;
+}
+
+const Engine::ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver) {
   const double eps = scene_.tolerance().length();
   const double spacing = meshSpacing();
   const int chunkSquares = spacing > 0 ? std::max(settings_.meshChunkSquares, 0) : 0;
@@ -630,24 +657,12 @@ ReceiverMesh Engine::meshReceiver(const Receiver& receiver) {
       if (assembly.mesh.triangles.empty())
         memo.chunks.erase(key);
       else
-        memo.chunks[key] = std::move(assembly.mesh);
+        memo.chunks[key] = std::make_shared<const ReceiverMesh>(std::move(assembly.mesh));
     }
   }
   meshCounters_.chunksMeshed += dirty.size();
-  meshCounters_.chunksKept += memo.chunks.size() - std::min(memo.chunks.size(), dirty.size());
-
-  // The receiver's mesh: its chunks one after the other.
-  ReceiverMesh result;
-  result.face = receiver.face;
-  result.normal = normal;
-  for (const auto& [key, chunk] : memo.chunks) {
-    const uint32_t offset = uint32_t(result.positions.size());
-    result.positions.insert(result.positions.end(), chunk.positions.begin(), chunk.positions.end());
-    result.irradiance.insert(result.irradiance.end(), chunk.irradiance.begin(), chunk.irradiance.end());
-    result.classes.insert(result.classes.end(), chunk.classes.begin(), chunk.classes.end());
-    for (const auto& t : chunk.triangles) result.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-  }
-  return result;
+  for (const auto& entry : memo.chunks) meshCounters_.chunksKept += dirty.count(entry.first) ? 0 : 1;
+  return memo;
 }
 
 double Engine::meshSpacing() const {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/dmtree/dm_tree.h"
+#include "core/engine/dirty_set.h"
 #include "core/engine/build_stats.h"
 #include "core/engine/frame.h"
 #include "core/geom/plane_frame.h"
@@ -106,6 +107,25 @@ class Engine {
     size_t chunksMeshed = 0, chunksKept = 0;  // display chunks assembled again / kept
   };
   const MeshCacheCounters& lastMeshCounters() const { return meshCounters_; }
+  // A display chunk of a receiver's mesh: the lattice-aligned block (x, y) of its 2D
+  // frame (side meshChunkSquares · meshSpacing()) and the chunk's own mesh.
+  struct MeshChunkKey {
+    int64_t x = 0, y = 0;
+    auto operator<=>(const MeshChunkKey&) const = default;
+  };
+  struct MeshChunk {
+    MeshChunkKey key;
+    std::shared_ptr<const ReceiverMesh> mesh;  // immutable; shared while the chunk is unchanged
+  };
+  struct ReceiverChunks {
+    FaceId face;
+    std::vector<MeshChunk> chunks;  // non-empty chunks, in key order
+  };
+  // The listed receivers' meshes as their chunks (as mesh(only): Scene::faces() order,
+  // each once, non-receivers skipped). A receiver's mesh(only) entry is its chunks'
+  // meshes concatenated; a chunk this call did not assemble again is the same object
+  // the previous call returned, so a caller can tell what changed without comparing.
+  std::vector<ReceiverChunks> meshChunks(const std::vector<FaceId>& only);
   // Drops the memo: the next mesh call lights every cell afresh.
   void forgetMeshMemo() { meshMemo_.clear(); }
 
@@ -130,16 +150,17 @@ class Engine {
   static void growSlots(Receiver& receiver);
   void illuminate(Receiver& receiver);
   void relightVertex(Receiver& receiver, VertexId v) const;
+  // Adds to `dirty` what one occluder's node deletion on `receiver` must have relit:
+  // the vertices of its changed cells and its new vertices inside the removed
+  // penumbra. Outside it the scene did not change for this receiver: a surviving
+  // vertex keeps its value, and one re-made at a deleted vertex's exact position
+  // takes that vertex's value (node deletion re-splits cells far from the shadow).
+  void relightAfterRemoval(FaceId target, Receiver& receiver, const RemoveResult& removed, DirtySet& dirty);
   // Sorts receivers_ by face (Scene::faces() order), drops `dropped`, reindexes.
   void compactReceivers(const std::vector<bool>& dropped);
   // Whether every vertex of the face lies in each light's overlap cube.
   bool insideEditVolume(const Face& face) const;
 
-  // A display chunk of a receiver's mesh: lattice-aligned block (x, y) of its 2D frame.
-  struct MeshChunkKey {
-    int64_t x = 0, y = 0;
-    auto operator<=>(const MeshChunkKey&) const = default;
-  };
   // Per-cell memo of the meshing (see mesh()): what a cell emitted, and what that
   // depends on. Buffers are reused from cell to cell.
   struct CellMeshMemo {
@@ -167,10 +188,13 @@ class Engine {
     int chunkSquares = 0;
     uint64_t stamp = 0;  // HalfEdgeMesh::stampNow() at the last call: cells touched later changed
     std::vector<CellMeshMemo> cells;  // by CellId index
-    std::map<MeshChunkKey, ReceiverMesh> chunks;  // the non-empty chunks' meshes
+    std::map<MeshChunkKey, std::shared_ptr<const ReceiverMesh>> chunks;  // the non-empty chunks' meshes
   };
   void pruneMeshMemo();  // drops the memos of faces that are no longer receivers
+  // Brings a receiver's memo (cells and chunks) up to date with its tree.
+  const ReceiverMeshMemo& updateMeshMemo(const Receiver& receiver);
   ReceiverMesh meshReceiver(const Receiver& receiver);
+  std::vector<size_t> receiverIndices(const std::vector<FaceId>& only) const;
 
   Scene scene_;
   EngineSettings settings_;

@@ -27,6 +27,10 @@ struct ReceiverMesh {
   std::vector<std::array<uint32_t, 3>> triangles;  // CCW seen from the front
 };
 
+// Appends `part`'s vertices and triangles to `into` (indices shifted): a receiver's
+// mesh from its display chunks.
+void appendMesh(ReceiverMesh& into, const ReceiverMesh& part);
+
 struct Mesh {
   std::vector<ReceiverMesh> receivers;
   size_t vertexCount() const;

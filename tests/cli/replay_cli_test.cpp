@@ -71,6 +71,7 @@ TEST(ReplayCli, ShippedScriptVerifiesAndReportsEveryFrame) {
       EXPECT_TRUE(f["vertices"][key].is_number()) << key;
     EXPECT_TRUE(f["changed_receivers_count"].is_number());
     EXPECT_TRUE(f["tree_rebuilds"].is_number());
+    EXPECT_EQ(f["full_rebuild"], false);  // 96 faces: below the full-rebuild threshold
     EXPECT_EQ(f["verified"], true);  // 96 faces: every frame
     EXPECT_GT(f["rebuild_seconds"].get<double>(), 0);
     EXPECT_TRUE(f["edit_over_rebuild"].is_number());
@@ -78,6 +79,7 @@ TEST(ReplayCli, ShippedScriptVerifiesAndReportsEveryFrame) {
   }
   EXPECT_EQ(out["totals"]["frames"], frames);
   EXPECT_EQ(out["totals"]["verified_frames"], frames);
+  EXPECT_EQ(out["totals"]["full_rebuild_frames"], 0);
   EXPECT_TRUE(out["verify_failure"].is_null());
   const json meshJson = json::parse(readFile(mesh));
   EXPECT_EQ(meshJson["format"], "penumbra.mesh");

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 
 #include "server_fixture.h"
 
@@ -144,15 +145,21 @@ TEST(ServerApi, RemovedObjectsAppearInDeltas) {
 struct BinaryMesh {
   uint32_t layout = 0, version = 0, flags = 0, since = 0;
   std::vector<std::string> objects;
-  struct Receiver {
-    uint32_t object, face, vertices, triangles, version;
+  struct Part {  // one display chunk of a receiver
+    uint32_t object, face;
+    int32_t x, y;
+    uint32_t vertices, triangles, version;
     float normal[3];
     std::vector<float> positions, irradiance;
     std::vector<uint8_t> classes;
     std::vector<uint32_t> indices;
   };
-  std::vector<Receiver> receivers;
-  std::vector<std::pair<uint32_t, uint32_t>> removed;
+  std::vector<Part> parts;
+  struct Removed {
+    uint32_t object, face;
+    int32_t x, y;
+  };
+  std::vector<Removed> removed;
   uint32_t totalVertices = 0, totalTriangles = 0;
 };
 
@@ -169,6 +176,11 @@ BinaryMesh parseBinary(const std::string& bytes) {
     take(&v, 4);
     return v;
   };
+  auto i32 = [&] {
+    int32_t v;
+    take(&v, 4);
+    return v;
+  };
   auto f32 = [&] {
     float v;
     take(&v, 4);
@@ -180,7 +192,7 @@ BinaryMesh parseBinary(const std::string& bytes) {
   take(magic, 4);
   if (std::string(magic, 4) != "PNMB") throw std::runtime_error("bad magic");
   m.layout = u32(), m.version = u32(), m.flags = u32(), m.since = u32();
-  const uint32_t objects = u32(), receivers = u32(), removed = u32();
+  const uint32_t objects = u32(), parts = u32(), removed = u32();
   m.totalVertices = u32(), m.totalTriangles = u32();
   EXPECT_EQ(at, 40u);
   for (uint32_t i = 0; i < objects; ++i) {
@@ -190,13 +202,17 @@ BinaryMesh parseBinary(const std::string& bytes) {
     align();
     m.objects.push_back(name);
   }
-  m.receivers.resize(receivers);
-  for (auto& r : m.receivers) {
-    r.object = u32(), r.face = u32(), r.vertices = u32(), r.triangles = u32(), r.version = u32();
+  m.parts.resize(parts);
+  for (auto& r : m.parts) {
+    r.object = u32(), r.face = u32(), r.x = i32(), r.y = i32();
+    r.vertices = u32(), r.triangles = u32(), r.version = u32();
     for (float& n : r.normal) n = f32();
   }
-  for (uint32_t i = 0; i < removed; ++i) m.removed.emplace_back(u32(), u32());
-  for (auto& r : m.receivers) {
+  for (uint32_t i = 0; i < removed; ++i) {
+    BinaryMesh::Removed& gone = m.removed.emplace_back();
+    gone.object = u32(), gone.face = u32(), gone.x = i32(), gone.y = i32();
+  }
+  for (auto& r : m.parts) {
     EXPECT_EQ(at % 4, 0u);
     r.positions.resize(3 * r.vertices);
     take(r.positions.data(), 4 * r.positions.size());
@@ -222,14 +238,31 @@ TEST(ServerApi, BinaryMeshMatchesJsonMesh) {
   ASSERT_EQ(res->status, 200);
   EXPECT_EQ(res->get_header_value("Content-Type"), "application/octet-stream");
   const BinaryMesh bin = parseBinary(res->body);
-  EXPECT_EQ(bin.layout, 1u);
+  EXPECT_EQ(bin.layout, 2u);
   EXPECT_EQ(bin.version, 0u);
   EXPECT_EQ(bin.flags, 0u);
-  ASSERT_EQ(bin.receivers.size(), mesh["receivers"].size());
+  // A receiver is its parts one after the other (chunks in order, distinct).
+  std::vector<BinaryMesh::Part> whole;
+  for (const auto& p : bin.parts) {
+    if (!whole.empty() && whole.back().object == p.object && whole.back().face == p.face) {
+      auto& r = whole.back();
+      EXPECT_LT(std::pair(r.x, r.y), std::pair(p.x, p.y));
+      for (uint32_t index : p.indices) r.indices.push_back(index + r.vertices);
+      r.positions.insert(r.positions.end(), p.positions.begin(), p.positions.end());
+      r.irradiance.insert(r.irradiance.end(), p.irradiance.begin(), p.irradiance.end());
+      r.classes.insert(r.classes.end(), p.classes.begin(), p.classes.end());
+      r.vertices += p.vertices;
+      r.triangles += p.triangles;
+      r.x = p.x, r.y = p.y;
+    } else {
+      whole.push_back(p);
+    }
+  }
+  ASSERT_EQ(whole.size(), mesh["receivers"].size());
   size_t vertices = 0, triangles = 0;
   const std::map<std::string, uint8_t> classCode = {{"lit", 0}, {"penumbra", 1}, {"umbra", 2}};
-  for (size_t i = 0; i < bin.receivers.size(); ++i) {
-    const auto& r = bin.receivers[i];
+  for (size_t i = 0; i < whole.size(); ++i) {
+    const auto& r = whole[i];
     const json& j = mesh["receivers"][i];
     EXPECT_EQ(bin.objects.at(r.object), j["object"]);
     EXPECT_EQ(r.face, j["face"]);
@@ -251,7 +284,8 @@ TEST(ServerApi, BinaryMeshMatchesJsonMesh) {
   EXPECT_EQ(bin.totalVertices, vertices);
   EXPECT_EQ(bin.totalTriangles, triangles);
 
-  // A delta in binary: flags and since set, only the changed receivers.
+  // A delta in binary: flags and since set, only changed parts, each of a receiver the
+  // JSON delta lists.
   ASSERT_EQ(client
                 .Post((base + "/edits").c_str(), moveFrame("tall_block", 3.9, 0, 3.6, 17).dump(),
                       "application/json")
@@ -263,11 +297,14 @@ TEST(ServerApi, BinaryMeshMatchesJsonMesh) {
   EXPECT_EQ(binDelta.flags, 1u);
   EXPECT_EQ(binDelta.since, 0u);
   EXPECT_EQ(binDelta.version, 1u);
-  ASSERT_EQ(binDelta.receivers.size(), delta["receivers"].size());
-  for (size_t i = 0; i < binDelta.receivers.size(); ++i) {
-    EXPECT_EQ(binDelta.objects.at(binDelta.receivers[i].object), delta["receivers"][i]["object"]);
-    EXPECT_EQ(binDelta.receivers[i].version, 1u);
+  ASSERT_FALSE(binDelta.parts.empty());
+  std::set<std::pair<std::string, uint32_t>> listed;
+  for (const json& r : delta["receivers"]) listed.insert({r["object"].get<std::string>(), r["face"].get<uint32_t>()});
+  for (const auto& p : binDelta.parts) {
+    EXPECT_TRUE(listed.count({binDelta.objects.at(p.object), p.face})) << binDelta.objects.at(p.object);
+    EXPECT_EQ(p.version, 1u);
   }
+  EXPECT_LT(binDelta.parts.size(), bin.parts.size());
 }
 
 uint32_t bigEndian32(const std::string& bytes, size_t at) {

@@ -46,7 +46,7 @@ def main():
 
     mesh_headers = {"Accept-Encoding": "gzip" if args.gzip else "identity"}
     step_seconds, edit_seconds, get_seconds, engine_seconds, mesh_seconds = [], [], [], [], []
-    wire_bytes, raw_bytes, meshed, reused, lit = [], [], [], [], []
+    wire_bytes, raw_bytes, gzip_bytes, meshed, reused, lit, chunks = [], [], [], [], [], [], []
     t_all = time.perf_counter()
     for i in range(args.steps):
         # Out and back, so the cube stays near where it started.
@@ -78,8 +78,13 @@ def main():
         if cells:
             reused.append(cells["reused"])
             lit.append(cells["lit"])
+            if "chunks_meshed" in cells:
+                chunks.append((cells["chunks_meshed"], cells["chunks_kept"]))
         wire_bytes.append(len(body))
         raw_bytes.append(raw)
+        # What a remote client (gzip, level 1 as the server sends it) would receive.
+        gzip_bytes.append(len(body) if res.getheader("Content-Encoding") == "gzip"
+                          else len(gzip.compress(body, compresslevel=1)))
     total = time.perf_counter() - t_all
 
     def ms(xs):
@@ -92,11 +97,15 @@ def main():
           f"re-mesh {ms(mesh_seconds) if mesh_seconds[0] == mesh_seconds[0] else 'n/a'}")
     print(f"  GET mesh     {ms(get_seconds)}")
     print(f"bytes/frame on the wire: mean {statistics.mean(wire_bytes) / 1e3:.1f} kB, "
-          f"max {max(wire_bytes) / 1e3:.1f} kB; uncompressed mean {statistics.mean(raw_bytes) / 1e3:.1f} kB")
+          f"max {max(wire_bytes) / 1e3:.1f} kB; uncompressed mean {statistics.mean(raw_bytes) / 1e3:.1f} kB; "
+          f"gzip-compressed mean {statistics.mean(gzip_bytes) / 1e3:.1f} kB")
     if meshed[0] == meshed[0]:
         print(f"receivers re-meshed per frame: mean {statistics.mean(meshed):.1f}")
     if reused:
-        print(f"their cells per frame: replayed mean {statistics.mean(reused):.0f}, lit afresh mean {statistics.mean(lit):.0f}")
+        print(f"their cells per frame: kept mean {statistics.mean(reused):.0f}, lit afresh mean {statistics.mean(lit):.0f}")
+    if chunks:
+        print(f"their display chunks per frame: assembled again mean {statistics.mean(c[0] for c in chunks):.1f}, "
+              f"kept mean {statistics.mean(c[1] for c in chunks):.0f}")
 
 
 if __name__ == "__main__":

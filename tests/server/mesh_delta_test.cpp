@@ -7,6 +7,7 @@
 
 #include <map>
 #include <random>
+#include <tuple>
 
 #include "bench/lib/cubes_scene.h"
 #include "protocol/mesh_json.h"
@@ -84,7 +85,7 @@ TEST(MeshDelta, DeltasAppliedToTheWholeMeshEqualAFreshMeshAfterEachFrame) {
     const SceneSession::Applied applied = session.apply(frame);
     reference.apply(frame);
     meshed += applied.meshedReceivers;
-    receivers += applied.snapshot->mesh.receivers.size();
+    receivers += applied.snapshot->receiverCount();
     reused += applied.meshCells.cellsReused;
     lit += applied.meshCells.cellsLit;
 
@@ -110,6 +111,60 @@ TEST(MeshDelta, DeltasAppliedToTheWholeMeshEqualAFreshMeshAfterEachFrame) {
   // most are replayed from the memo.
   EXPECT_LT(meshed * 2, receivers);
   EXPECT_GT(reused, lit);
+}
+
+// The binary form's view: parts. Following each frame's part delta (changed parts
+// replaced, removed ones dropped) holds exactly a fresh engine's chunks, and a drag
+// sends only some of the floor's chunks.
+TEST(MeshDelta, PartDeltasAppliedToTheWholeMeshEqualAFreshEnginesChunks) {
+  CubesSceneOptions options;
+  options.cubes = 8;
+  options.seed = 4;
+  const Scene scene = makeCubesScene(options);
+  SceneSession session("t", "cubes8", scene);
+  Engine reference(scene);
+  auto contentOf = [](const ReceiverMesh& m) {
+    return std::tuple(m.positions, m.irradiance, m.classes, m.triangles, m.normal);
+  };
+  using Content = decltype(contentOf(std::declval<ReceiverMesh>()));
+  std::map<PartKey, Content> held;
+  {
+    const auto first = session.snapshot();
+    for (size_t i : first->select(std::nullopt).parts) held[first->parts[i].key] = contentOf(*first->parts[i].mesh);
+  }
+  std::mt19937_64 rng(29);
+  bool added = false;
+  size_t floorSent = 0, floorHeld = 0;
+  for (int step = 0; step < 12; ++step) {
+    SCOPED_TRACE("step " + std::to_string(step));
+    const Frame frame = randomFrame(reference.scene(), rng, step, added);
+    const SceneSnapshot& s = *session.apply(frame).snapshot;
+    reference.apply(frame);
+    const MeshSelection delta = s.select(s.version - 1);
+    for (const PartKey& key : delta.removedParts) held.erase(key);
+    for (size_t i : delta.parts) {
+      held[s.parts[i].key] = contentOf(*s.parts[i].mesh);
+      floorSent += s.parts[i].key.receiver.object == "floor";
+    }
+    for (const MeshPart& part : s.parts) floorHeld += part.key.receiver.object == "floor";
+
+    reference.forgetMeshMemo();
+    std::vector<FaceId> faces;
+    for (const Engine::Receiver& r : reference.receivers()) faces.push_back(r.face);
+    std::map<PartKey, Content> want;
+    for (const Engine::ReceiverChunks& r : reference.meshChunks(faces))
+      for (const Engine::MeshChunk& chunk : r.chunks)
+        want[{{reference.scene().object(r.face.object).id, r.face.face}, chunk.key.x, chunk.key.y}] =
+            contentOf(*chunk.mesh);
+    ASSERT_EQ(held.size(), want.size());
+    for (const auto& [key, content] : want) {
+      ASSERT_TRUE(held.count(key)) << key.receiver.object << "/" << key.receiver.face << " " << key.x << "," << key.y;
+      EXPECT_TRUE(held.at(key) == content) << key.receiver.object << "/" << key.receiver.face;
+    }
+    if (HasFailure()) return;
+  }
+  EXPECT_GT(floorHeld, 12u * 4);       // the floor is several chunks
+  EXPECT_LT(floorSent * 2, floorHeld);  // of which a frame sends a few
 }
 
 TEST(MeshDelta, AcceptEncodingParsing) {

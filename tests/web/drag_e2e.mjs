@@ -4,7 +4,8 @@
 // against the C++ renderer's images, selects a cube with a real click, drags the translate
 // gizmo's X handle with real mouse events, and asserts the version advanced, the floor's shadow
 // moved, undo/redo re-sent the transforms, and no error was shown; saves a screenshot. With
-// --measure SCENE it instead drags one cube for a few seconds and prints edits/s and bytes.
+// --measure SCENE it instead drags one cube for a few seconds and prints edits/s, bytes, round
+// trips and frames drawn, then times drawing the view (orbiting) with and without antialiasing.
 //
 // usage: node tests/web/drag_e2e.mjs --penumbra build/penumbra [--scene scenes/cubes15.scene.json]
 //          [--screenshot build/web-e2e.png] [--measure build/cubes150.scene.json --seconds 5]
@@ -199,10 +200,45 @@ async function clickObject(page, id) {
   return page.evaluate(() => window.penumbra.state().selected);
 }
 
+// In the page: the served whole binary mesh (layout 2, parts) decoded afresh by the page's decoder
+// must equal what the page holds after its deltas: the same parts, receivers, vertices, and the
+// floor's merged arrays; and the decoder must refuse a buffer of another layout version.
+async function meshConsistency(page, sceneId, label) {
+  const r = await page.evaluate(async (sceneId) => {
+    const { decodeMeshBinary } = await import('/src/mesh_binary.js');
+    const response = await fetch(`/api/scenes/${sceneId}/mesh?format=bin`);
+    const buffer = await response.arrayBuffer();
+    const whole = decodeMeshBinary(buffer);
+    const state = window.penumbra.state();
+    const floorParts = whole.parts.filter((p) => p.receiverKey === 'floor/0')
+      .sort((a, b) => a.chunk[1] - b.chunk[1] || a.chunk[0] - b.chunk[0]);
+    const concat = (key) => floorParts.flatMap((p) => Array.from(p[key]));
+    const floor = window.penumbra.receiver('floor', 0);
+    const old = buffer.slice(0);
+    new DataView(old).setUint32(4, 1, true);
+    let refused = '';
+    try { decodeMeshBinary(old); } catch (error) { refused = error.message; }
+    return { served: whole.sceneVersion, held: state.version, parts: [whole.parts.length, state.parts],
+      receivers: [new Set(whole.parts.map((p) => p.receiverKey)).size, state.receivers],
+      vertices: [whole.totalVertices, state.vertices], triangles: [whole.totalTriangles, state.triangles],
+      floorParts: floorParts.length, floorSame: !!floor && floor.vertexCount === concat('classes').length
+        && JSON.stringify(floor.irradiance) === JSON.stringify(concat('irradiance'))
+        && JSON.stringify(floor.positions) === JSON.stringify(concat('positions')), refused };
+  }, sceneId);
+  const same = ([a, b]) => a === b;
+  check(r.served === r.held && same(r.parts) && same(r.receivers) && same(r.vertices) && same(r.triangles) && r.floorSame,
+    `${label}: the page's parts equal the served whole mesh decoded afresh (counts, the floor's ${r.floorParts} parts merged)`, JSON.stringify(r));
+  if (label === 'at load') check(/unsupported layout version 1/.test(r.refused), 'the decoder refuses layout 1 by name', r.refused);
+}
+
 async function dragTest(page, pageErrors, base, sceneId, screenshot) {
   const initial = await page.evaluate(() => window.penumbra.state());
   check(initial.receivers > 0 && initial.vertices > 0, 'the mesh loaded', JSON.stringify(initial));
   check(initial.version === 0, 'the page holds version 0 at start', String(initial.version));
+  check(initial.parts >= initial.receivers, 'every receiver held is made of parts (display chunks)', `${initial.parts} parts, ${initial.receivers} receivers`);
+  // The harness runs chromium on SwiftShader: the page must see a software GL and not antialias.
+  check(initial.gl.software && !initial.gl.antialias, 'on a software GL the page draws without antialiasing', JSON.stringify(initial.gl));
+  await meshConsistency(page, sceneId, 'at load');
   const scene = (await serverScene(base, sceneId)).scene;
   await projectionChecks(page, base, sceneId, scene);
 
@@ -254,6 +290,28 @@ async function dragTest(page, pageErrors, base, sceneId, screenshot) {
   const redone = await serverScene(base, sceneId);
   const redoneAt = redone.scene.objects.find((o) => o.id === cubeId).transform.translate;
   check(redoneAt.every((x, k) => Math.abs(x - moved[k]) < 1e-9), 'Ctrl+Shift+Z moves it again', `${redoneAt}`);
+  await meshConsistency(page, sceneId, 'after the drag, undo and redo (deltas)');
+
+  // Another client removes the cube (its parts arrive as removed parts through the event stream), then adds it back.
+  const postFrame = async (edits) => {
+    const response = await fetch(`${base}/api/scenes/${sceneId}/edits`, { method: 'POST', body: JSON.stringify({ edits }) });
+    if (!response.ok) throw new Error(`POST edits: ${response.status} ${await response.text()}`);
+    return (await response.json()).version;
+  };
+  const beforeRemoval = await page.evaluate(() => window.penumbra.state());
+  const cubeObject = redone.scene.objects.find((o) => o.id === cubeId);
+  const removedAt = await postFrame([{ op: 'remove', id: cubeId }]);
+  await page.waitForFunction((v) => window.penumbra.state().version >= v, removedAt, { timeout: 30000 }).catch(() => {});
+  await page.evaluate(() => window.penumbra.idle());
+  const afterRemoval = await page.evaluate(() => window.penumbra.state());
+  const cubeFaces = await page.evaluate((id) => [0, 1, 2, 3, 4, 5].filter((f) => window.penumbra.receiver(id, f)).length, cubeId);
+  check(afterRemoval.version === removedAt && afterRemoval.parts < beforeRemoval.parts && cubeFaces === 0,
+    'another client\'s removal reaches the page: the cube\'s parts are dropped', `${beforeRemoval.parts} → ${afterRemoval.parts} parts, ${cubeFaces} cube faces held`);
+  await meshConsistency(page, sceneId, 'after another client removed the cube');
+  const addedAt = await postFrame([{ op: 'add', object: cubeObject }]);
+  await page.waitForFunction((v) => window.penumbra.state().version >= v, addedAt, { timeout: 30000 }).catch(() => {});
+  await page.evaluate(() => window.penumbra.idle());
+  await meshConsistency(page, sceneId, 'after another client added it back');
 
   await page.check('#toggle-edges');
   await page.waitForFunction((v) => window.penumbra.state().renderVersion === v, redone.version, { timeout: 30000 }).catch(() => {});
@@ -274,38 +332,60 @@ async function dragTest(page, pageErrors, base, sceneId, screenshot) {
     'a refused scene file shows the server\'s error (code and key path) in the banner', banner.text);
 }
 
-// Drags one cube back and forth for `seconds`, a mouse move every 16 ms (a 60 Hz pointer), and
-// reports frames applied end to end (edit answered and its mesh delta applied) and bytes.
+// What the page did between two states over `seconds`: frames (edits) sent and applied end to
+// end (edit answered and its version's mesh applied), mesh bytes, round trips, frames drawn.
+function tally(state0, state, seconds) {
+  const frames = state.editsSent - state0.editsSent;
+  const meshBytes = state.mesh.totalBytes - state0.mesh.totalBytes;
+  const fetches = state.mesh.fetches - state0.mesh.fetches;
+  const report = { seconds, frames_sent: frames, coalesced_away: state.editsReplaced - state0.editsReplaced,
+    edits_per_second: frames / seconds, mesh_fetches: fetches, mesh_bytes_per_fetch: fetches ? meshBytes / fetches : 0,
+    mesh_bytes_per_edit: frames ? meshBytes / frames : 0, frames_drawn_per_second: (state.frames - state0.frames) / seconds,
+    last_frame_engine_seconds: state.lastFrame && state.lastFrame.seconds, last_round_trip_seconds: state.roundTrip };
+  const t = state.totals, t0 = state0.totals, n = t.frames - t0.frames;
+  if (n > 0) {
+    // Mean seconds per frame: edit sent → answered (engine and display meshing inside it),
+    // answered → its version's mesh applied.
+    report.mean_seconds = { round_trip: (t.roundTrip - t0.roundTrip) / n, edit_answer: (t.edit - t0.edit) / n,
+      engine: (t.engine - t0.engine) / n, server_display_meshing: (t.meshing - t0.meshing) / n,
+      mesh_wait_fetch_and_apply: (t.mesh - t0.mesh) / n };
+  }
+  return report;
+}
+
+// Drags one cube for `seconds`, a mouse move every 16 ms (a 60 Hz pointer; the browser delivers
+// them no faster than it draws), then moves it back from a 16 ms timer in the page (the edit
+// pipeline alone), and reports each; then times drawing with and without antialiasing.
 async function measure(page, base, sceneId, seconds) {
   const scene = (await serverScene(base, sceneId)).scene;
-  const state0 = await page.evaluate(() => window.penumbra.state());
   // A movable cube near the middle of the room, so its shadow falls on many receivers.
   const cubes = scene.objects.filter((o) => !o.static && o.transform);
   cubes.sort((a, b) => Math.hypot(a.transform.translate[0], a.transform.translate[2]) - Math.hypot(b.transform.translate[0], b.transform.translate[2]));
   let selected = null;
   for (const cube of cubes.slice(0, 10)) if ((selected = await clickObject(page, cube.id)) === cube.id) break;
   if (!selected) throw new Error('could not select a cube');
+  const state0 = await page.evaluate(() => window.penumbra.state());
   const steps = Math.round(seconds * 1000 / 16);
-  const start = Date.now();
+  let start = Date.now();
   await dragXHandle(page, 0.8, steps, 16);
   await page.evaluate(() => window.penumbra.idle());
-  const elapsed = (Date.now() - start) / 1000;
-  const state = await page.evaluate(() => window.penumbra.state());
-  const frames = state.editsSent - state0.editsSent;
-  const meshBytes = state.mesh.totalBytes - state0.mesh.totalBytes;
-  const fetches = state.mesh.fetches - state0.mesh.fetches;
-  const report = { scene: sceneId, cube: selected, receivers: state.receivers, vertices: state.vertices, seconds: elapsed,
-    mouse_moves: steps, frames_sent: frames, coalesced_away: state.editsReplaced, edits_per_second: frames / elapsed,
-    mesh_fetches: fetches, mesh_bytes_per_frame: fetches ? meshBytes / fetches : 0,
-    last_frame_engine_seconds: state.lastFrame && state.lastFrame.seconds, last_round_trip_seconds: state.roundTrip };
-  const t = state.totals, t0 = state0.totals, n = t.frames - t0.frames;
-  if (n > 0) {
-    // Mean seconds per frame: the edit's answer (engine inside it), the delta fetched + applied.
-    report.mean_seconds = { round_trip: (t.roundTrip - t0.roundTrip) / n, edit_answer: (t.edit - t0.edit) / n,
-      engine: (t.engine - t0.engine) / n, mesh_fetch_and_apply: (t.mesh - t0.mesh) / n };
-  }
+  const state1 = await page.evaluate(() => window.penumbra.state());
+  const mouse = { mouse_moves: steps, ...tally(state0, state1, (Date.now() - start) / 1000) };
+  start = Date.now();
+  const timerSteps = await page.evaluate(({ id, seconds }) => window.penumbra.drive(id, -0.8, seconds, 16), { id: selected, seconds });
+  const state2 = await page.evaluate(() => window.penumbra.state());
+  const timer = { timer_steps: timerSteps, ...tally(state1, state2, (Date.now() - start) / 1000) };
+  const report = { scene: sceneId, cube: selected, receivers: state2.receivers, parts: state2.parts, vertices: state2.vertices,
+    gl: state2.gl, canvas: state2.canvas, mouse_drag: mouse, timer_drag: timer };
   console.log(JSON.stringify(report, null, 2));
-  check(frames > 0 && !state.bannerVisible, 'frames applied while dragging, no error', JSON.stringify(state.errors));
+  check(mouse.frames_sent > 0 && timer.frames_sent > 0 && !state2.bannerVisible, 'frames applied while dragging, no error', JSON.stringify(state2.errors));
+  // Drawing alone, orbiting: this page (antialiasing as chosen by GL renderer), then a page forced the other way.
+  const draw = { [state2.gl.antialias ? 'antialias' : 'no_antialias']: (await page.evaluate(() => window.penumbra.timeFrames(20))).msPerFrame };
+  const other = await openPage(page.context().browser(), `${page.url()}&antialias=${state2.gl.antialias ? 'off' : 'on'}`);
+  draw[state2.gl.antialias ? 'no_antialias' : 'antialias'] = (await other.page.evaluate(() => window.penumbra.timeFrames(20))).msPerFrame;
+  await other.page.close();
+  console.log(JSON.stringify({ draw_ms_per_frame: draw }));
+  check(!state2.gl.software || !state2.gl.antialias, 'a software GL draws without antialiasing', JSON.stringify(state2.gl));
 }
 
 async function main() {

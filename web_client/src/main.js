@@ -27,13 +27,18 @@ class App {
   constructor() {
     this.api = new ApiClient();
     this.banner = new ErrorBanner($('error-banner'), $('error-text'), $('error-close'));
-    this.view = new SceneView($('viewport'));
+    // ?antialias=on|off overrides the choice by GL renderer (to compare frame times).
+    const antialias = new URLSearchParams(window.location.search).get('antialias');
+    this.view = new SceneView($('viewport'), { antialias: ['on', 'off'].includes(antialias) ? antialias : 'auto' });
     this.objects = new SceneObjects(this.view.scene);
     this.receivers = new ReceiverLayer(this.view.scene);
     this.timings = new TimingsPanel($('timings'));
+    this.timings.gl = this.view.gl;
+    this.timings.draw();
     this.history = new UndoHistory();
     this.ownVersions = new Set();
     this.dragStart = null;
+    this.meshFollows = new Set(); // edits answered whose version's mesh the page does not hold yet
     this.announced = 0; // the newest version the event stream announced
     this.fail = (error) => this.banner.show(error);
     installSceneFileLoader($('scene-file'), this.api, this.fail, { scale: $('import-scale'), radiance: $('import-radiance') });
@@ -63,7 +68,7 @@ class App {
       this.view.requestRender();
     });
     const whole = await this.meshSync.loadWhole();
-    this.toneMap.calibrate(whole.receivers);
+    this.toneMap.calibrate(whole.parts);
     this.receivers.apply({ ...whole, delta: false }, this.toneMap); // recolour with the calibrated exposure
     this.objects.build(wrapped.scene, (id) => this.toneMap.ambientColour(id));
 
@@ -132,19 +137,30 @@ class App {
     $('mode-rotate').classList.toggle('active', mode === 'rotate');
   }
 
-  // One frame: the edit, then the mesh delta it made (so frames go at the server's pace).
+  // One frame: the edit, at the server's pace. Once it is answered the coalescer may send the
+  // next edit while this one's mesh delta is fetched (MeshSync fetches one at a time and folds the
+  // requests made meanwhile into its next fetch), so edits run at the rate of the slower of the two.
   async sendFrame(frame) {
     const start = performance.now();
-    const bytesBefore = this.meshSync.totalBytes;
     const result = await this.api.postEdits(this.sceneId, frame);
     const answered = performance.now();
     this.ownVersions.add(result.version);
-    await this.meshSync.refresh(Math.max(result.version, this.announced));
-    const end = performance.now();
-    this.timings.edited(result, (end - start) / 1000, this.meshSync.totalBytes - bytesBefore,
-      { edit: (answered - start) / 1000, mesh: (end - answered) / 1000 });
-    // The server's image waits for the drag's end: it would compete with the edits for the server.
-    if (!this.gizmo.dragging) this.renderPanel.schedule();
+    const follow = this.followMesh(result, start, answered);
+    this.meshFollows.add(follow);
+    follow.finally(() => this.meshFollows.delete(follow));
+  }
+
+  // Waits until the page holds the edit's version; the round trip is edit sent → that mesh applied.
+  async followMesh(result, start, answered) {
+    try {
+      const fetched = await this.meshSync.refresh(Math.max(result.version, this.announced));
+      const end = performance.now();
+      this.timings.edited(result, (end - start) / 1000, fetched.bytes, { edit: (answered - start) / 1000, mesh: (end - answered) / 1000 });
+      // The server's image waits for the drag's end: it would compete with the edits for the server.
+      if (!this.gizmo.dragging) this.renderPanel.schedule();
+    } catch (error) {
+      this.fail(error);
+    }
   }
 
   // A refused frame leaves the server as it was: show why, and put the stand-ins back.
@@ -162,6 +178,7 @@ class App {
     this.renderPanel.schedule();
     const start = this.dragStart;
     this.dragStart = null;
+    this.meshFollows = new Set(); // edits answered whose version's mesh the page does not hold yet
     if (!start || start.id !== id) return;
     const after = transformOf(this.gizmo.holder());
     if (!sameTransform(start.before, after)) this.history.push({ id, before: start.before, after });
@@ -197,8 +214,10 @@ class App {
   async versionAnnounced(version) {
     this.announced = Math.max(this.announced, version);
     try {
-      // While a frame of ours is in flight, its own refresh fetches up to `announced`.
-      if (this.meshSync.version === null || version <= this.meshSync.version || this.coalescer.busy()) return;
+      // While a frame of ours is in flight, its own refresh fetches up to `announced`; our own
+      // versions are fetched by the frames that made them.
+      if (this.meshSync.version === null || version <= this.meshSync.version || this.coalescer.busy()
+          || this.ownVersions.has(version)) return;
       await this.meshSync.refresh(version);
       this.renderPanel.schedule();
       if (this.ownVersions.has(version) || this.coalescer.busy()) return;
@@ -216,13 +235,15 @@ class App {
   }
 
   busy() {
-    return !!(this.coalescer && this.coalescer.busy()) || !!(this.meshSync && this.meshSync.running);
+    return !!(this.coalescer && this.coalescer.busy()) || !!(this.meshSync && this.meshSync.running) || this.meshFollows.size > 0;
   }
 
+  // Resolves once no edit is pending or in flight and the page holds (and has timed) every version it made.
   async idle() {
     while (this.busy()) {
       await this.coalescer.idle();
-      if (this.meshSync.running) await this.meshSync.running.catch(() => {});
+      if (this.meshSync.running) await this.meshSync.running;
+      await Promise.all([...this.meshFollows]);
     }
   }
 }

@@ -1,18 +1,24 @@
-// Decodes the server's binary mesh (docs/API.md "Binary", magic PNMB, layout 1) into typed
-// arrays viewing the response buffer in place. Throws an Error naming what is malformed.
+// Decodes the server's binary mesh (docs/API.md "Binary", magic PNMB, layout 2: parts, each one display
+// chunk of one receiver) into typed arrays viewing the response buffer in place. Throws an Error naming what is malformed.
 
 const MAGIC = 'PNMB';
-const LAYOUT_VERSION = 1;
+const LAYOUT_VERSION = 2;
 const HEADER_BYTES = 40;
-const RECEIVER_RECORD_BYTES = 32;
-const REMOVED_RECORD_BYTES = 8;
+const PART_RECORD_BYTES = 40;
+const REMOVED_RECORD_BYTES = 16;
 
 export const CLASS_LIT = 0;
 export const CLASS_PENUMBRA = 1;
 export const CLASS_UMBRA = 2;
 
+// A receiver is one face of one object; the union of its parts.
 export function receiverKey(object, face) {
   return `${object}/${face}`;
+}
+
+// A part is the receiver's mesh inside one chunk (x, y) of the face's plane.
+export function partKey(object, face, x, y) {
+  return `${object}/${face}/${x}/${y}`;
 }
 
 const pad4 = (n) => (n + 3) & ~3;
@@ -27,10 +33,12 @@ export function decodeMeshBinary(buffer) {
   const magic = String.fromCharCode(...new Uint8Array(buffer, 0, 4));
   if (magic !== MAGIC) throw new Error(`binary mesh: bad magic '${magic}'`);
   const u32 = (offset) => view.getUint32(offset, true);
-  if (u32(4) !== LAYOUT_VERSION) throw new Error(`binary mesh: unsupported layout version ${u32(4)}`);
+  const i32 = (offset) => view.getInt32(offset, true);
+  if (u32(4) !== LAYOUT_VERSION)
+    throw new Error(`binary mesh: unsupported layout version ${u32(4)} (this page reads layout ${LAYOUT_VERSION})`);
   const header = {
     sceneVersion: u32(8), delta: (u32(12) & 1) !== 0, since: u32(16),
-    names: u32(20), receivers: u32(24), removed: u32(28), totalVertices: u32(32), totalTriangles: u32(36),
+    names: u32(20), partCount: u32(24), removedCount: u32(28), totalVertices: u32(32), totalTriangles: u32(36),
   };
 
   let offset = HEADER_BYTES;
@@ -48,38 +56,45 @@ export function decodeMeshBinary(buffer) {
     return names[index];
   };
 
-  need(offset, header.receivers * RECEIVER_RECORD_BYTES + header.removed * REMOVED_RECORD_BYTES, 'records');
-  const receivers = [];
-  for (let r = 0; r < header.receivers; ++r, offset += RECEIVER_RECORD_BYTES) {
-    const object = name(u32(offset), `receiver ${r}`);
+  need(offset, header.partCount * PART_RECORD_BYTES + header.removedCount * REMOVED_RECORD_BYTES, 'records');
+  const parts = [];
+  for (let p = 0; p < header.partCount; ++p, offset += PART_RECORD_BYTES) {
+    const object = name(u32(offset), `part ${p}`);
     const face = u32(offset + 4);
-    receivers.push({
-      object, face, key: receiverKey(object, face),
-      vertexCount: u32(offset + 8), triangleCount: u32(offset + 12), sceneVersion: u32(offset + 16),
-      normal: [view.getFloat32(offset + 20, true), view.getFloat32(offset + 24, true), view.getFloat32(offset + 28, true)],
+    const chunk = [i32(offset + 8), i32(offset + 12)];
+    parts.push({
+      object, face, chunk, key: partKey(object, face, ...chunk), receiverKey: receiverKey(object, face),
+      vertexCount: u32(offset + 16), triangleCount: u32(offset + 20), sceneVersion: u32(offset + 24),
+      normal: [view.getFloat32(offset + 28, true), view.getFloat32(offset + 32, true), view.getFloat32(offset + 36, true)],
     });
   }
-  const removed = [];
-  for (let d = 0; d < header.removed; ++d, offset += REMOVED_RECORD_BYTES) {
+  const removedParts = [];
+  for (let d = 0; d < header.removedCount; ++d, offset += REMOVED_RECORD_BYTES) {
     const object = name(u32(offset), `removed ${d}`);
     const face = u32(offset + 4);
-    removed.push({ object, face, key: receiverKey(object, face) });
+    const chunk = [i32(offset + 8), i32(offset + 12)];
+    removedParts.push({ object, face, chunk, key: partKey(object, face, ...chunk), receiverKey: receiverKey(object, face) });
   }
-  for (const receiver of receivers) {
-    const v = receiver.vertexCount;
-    const t = receiver.triangleCount;
-    need(offset, 24 * v + pad4(v) + 12 * t, `receiver ${receiver.key} arrays`);
-    receiver.positions = new Float32Array(buffer, offset, 3 * v);
+  let vertices = 0, triangles = 0;
+  for (const part of parts) {
+    const v = part.vertexCount;
+    const t = part.triangleCount;
+    need(offset, 24 * v + pad4(v) + 12 * t, `part ${part.key} arrays`);
+    part.positions = new Float32Array(buffer, offset, 3 * v);
     offset += 12 * v;
-    receiver.irradiance = new Float32Array(buffer, offset, 3 * v);
+    part.irradiance = new Float32Array(buffer, offset, 3 * v);
     offset += 12 * v;
-    receiver.classes = new Uint8Array(buffer, offset, v);
+    part.classes = new Uint8Array(buffer, offset, v);
     offset += pad4(v);
-    receiver.indices = new Uint32Array(buffer, offset, 3 * t);
+    part.indices = new Uint32Array(buffer, offset, 3 * t);
     offset += 12 * t;
-    for (let i = 0; i < receiver.indices.length; ++i)
-      if (receiver.indices[i] >= v) throw new Error(`binary mesh: receiver ${receiver.key} index ${receiver.indices[i]} ≥ ${v} vertices`);
+    for (let i = 0; i < part.indices.length; ++i)
+      if (part.indices[i] >= v) throw new Error(`binary mesh: part ${part.key} index ${part.indices[i]} ≥ ${v} vertices`);
+    vertices += v;
+    triangles += t;
   }
-  if (offset !== buffer.byteLength) throw new Error(`binary mesh: ${buffer.byteLength - offset} bytes after the last receiver`);
-  return { ...header, receivers, removedReceivers: removed, bytes: buffer.byteLength };
+  if (offset !== buffer.byteLength) throw new Error(`binary mesh: ${buffer.byteLength - offset} bytes after the last part`);
+  if (vertices !== header.totalVertices || triangles !== header.totalTriangles)
+    throw new Error(`binary mesh: header totals ${header.totalVertices} vertices, ${header.totalTriangles} triangles; parts hold ${vertices}, ${triangles}`);
+  return { ...header, parts, removedParts, bytes: buffer.byteLength };
 }

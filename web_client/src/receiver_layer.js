@@ -1,6 +1,7 @@
-// The lit discontinuity mesh in three.js: one Mesh per receiver (world-space positions,
-// vertex colours from the tone map), replaced one receiver at a time as deltas arrive, and an
-// optional overlay of the mesh's edges coloured by vertex class (see discontinuityEdges).
+// The lit discontinuity mesh in three.js: one Mesh per part (one display chunk of one receiver:
+// world-space positions, vertex colours from the tone map), replaced one part at a time as deltas
+// arrive, and an optional overlay of the mesh's edges coloured by vertex class (see
+// discontinuityEdges). A receiver is read back as one merged view of its parts.
 import * as THREE from 'three';
 import { CLASS_PENUMBRA, CLASS_UMBRA } from './mesh_binary.js';
 
@@ -13,8 +14,8 @@ const EDGE_COLOURS = {
 // classes, coloured by the darker end (umbra blue over penumbra orange). Lit–lit and umbra–umbra
 // edges (the triangulation inside fully lit or fully dark regions) are left out, so what remains
 // is the penumbrae the mesh resolved, filled with their discontinuity edges, and the umbrae's borders.
-export function discontinuityEdges(receiver) {
-  const { positions, classes, indices } = receiver;
+export function discontinuityEdges(part) {
+  const { positions, classes, indices } = part;
   const seen = new Set();
   const points = [];
   const colours = [];
@@ -41,6 +42,29 @@ export function discontinuityEdges(receiver) {
   return geometry;
 }
 
+// One receiver as a single mesh: its parts' arrays concatenated (in chunk order), indices offset;
+// sceneVersion is the newest of its parts'. Border vertices repeat, as they do in the parts.
+function mergeParts(parts) {
+  parts.sort((a, b) => a.chunk[1] - b.chunk[1] || a.chunk[0] - b.chunk[0]);
+  let v = 0, t = 0;
+  for (const p of parts) { v += p.vertexCount; t += p.triangleCount; }
+  const merged = {
+    object: parts[0].object, face: parts[0].face, key: parts[0].receiverKey, normal: parts[0].normal,
+    vertexCount: v, triangleCount: t, parts: parts.length, sceneVersion: Math.max(...parts.map((p) => p.sceneVersion)),
+    positions: new Float32Array(3 * v), irradiance: new Float32Array(3 * v), classes: new Uint8Array(v), indices: new Uint32Array(3 * t),
+  };
+  let vertexBase = 0, indexBase = 0;
+  for (const p of parts) {
+    merged.positions.set(p.positions, 3 * vertexBase);
+    merged.irradiance.set(p.irradiance, 3 * vertexBase);
+    merged.classes.set(p.classes, vertexBase);
+    for (let i = 0; i < p.indices.length; ++i) merged.indices[indexBase + i] = p.indices[i] + vertexBase;
+    vertexBase += p.vertexCount;
+    indexBase += p.indices.length;
+  }
+  return merged;
+}
+
 export class ReceiverLayer {
   constructor(parent) {
     this.group = new THREE.Group();
@@ -51,32 +75,42 @@ export class ReceiverLayer {
     parent.add(this.group, this.edgeGroup);
     this.material = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.FrontSide });
     this.edgeMaterial = new THREE.LineBasicMaterial({ vertexColors: true, depthTest: true });
-    this.entries = new Map(); // key → {receiver, mesh, edges}
+    this.entries = new Map(); // part key → {part, mesh, edges}
+    this.byReceiver = new Map(); // receiver key → Set of part keys (never empty)
+    this.merged = new Map(); // receiver key → merged view, until one of its parts changes
+    this.vertices = 0;
+    this.triangles = 0;
   }
 
-  // Replaces the listed receivers and drops the removed ones (decoded binary mesh).
+  // Replaces the listed parts and drops the removed ones (decoded binary mesh); a whole
+  // (non-delta) mesh replaces everything.
   apply(decoded, toneMap) {
     if (!decoded.delta) this.clear();
-    for (const removed of decoded.removedReceivers) this.remove(removed.key);
-    for (const receiver of decoded.receivers) {
-      this.remove(receiver.key);
+    for (const removed of decoded.removedParts) this.remove(removed.key);
+    for (const part of decoded.parts) {
+      this.remove(part.key);
       const geometry = new THREE.BufferGeometry();
-      geometry.setAttribute('position', new THREE.BufferAttribute(receiver.positions, 3));
-      geometry.setAttribute('color', new THREE.BufferAttribute(toneMap.colours(receiver.object, receiver.irradiance), 3));
-      geometry.setIndex(new THREE.BufferAttribute(receiver.indices, 1));
+      geometry.setAttribute('position', new THREE.BufferAttribute(part.positions, 3));
+      geometry.setAttribute('color', new THREE.BufferAttribute(toneMap.colours(part.object, part.irradiance), 3));
+      geometry.setIndex(new THREE.BufferAttribute(part.indices, 1));
       geometry.computeBoundingSphere();
       const mesh = new THREE.Mesh(geometry, this.material);
-      mesh.name = receiver.key;
-      mesh.userData.objectId = receiver.object;
+      mesh.name = part.key;
+      mesh.userData.objectId = part.object;
       this.group.add(mesh);
-      const entry = { receiver, mesh, edges: null };
+      const entry = { part, mesh, edges: null };
       if (this.edgeGroup.visible) this.addEdges(entry);
-      this.entries.set(receiver.key, entry);
+      this.entries.set(part.key, entry);
+      if (!this.byReceiver.has(part.receiverKey)) this.byReceiver.set(part.receiverKey, new Set());
+      this.byReceiver.get(part.receiverKey).add(part.key);
+      this.merged.delete(part.receiverKey);
+      this.vertices += part.vertexCount;
+      this.triangles += part.triangleCount;
     }
   }
 
   addEdges(entry) {
-    entry.edges = new THREE.LineSegments(discontinuityEdges(entry.receiver), this.edgeMaterial);
+    entry.edges = new THREE.LineSegments(discontinuityEdges(entry.part), this.edgeMaterial);
     this.edgeGroup.add(entry.edges);
   }
 
@@ -95,23 +129,33 @@ export class ReceiverLayer {
       entry.edges.geometry.dispose();
     }
     this.entries.delete(key);
+    const { receiverKey, vertexCount, triangleCount } = entry.part;
+    const keys = this.byReceiver.get(receiverKey);
+    keys.delete(key);
+    if (keys.size === 0) this.byReceiver.delete(receiverKey);
+    this.merged.delete(receiverKey);
+    this.vertices -= vertexCount;
+    this.triangles -= triangleCount;
   }
 
   clear() {
     for (const key of [...this.entries.keys()]) this.remove(key);
   }
 
+  // Every part held (for the tone map's calibration).
+  parts() {
+    return [...this.entries.values()].map((entry) => entry.part);
+  }
+
+  // The receiver (object/face key) as one merged mesh, or null when no part of it is held.
   receiver(key) {
-    const entry = this.entries.get(key);
-    return entry ? entry.receiver : null;
+    const keys = this.byReceiver.get(key);
+    if (!keys) return null;
+    if (!this.merged.has(key)) this.merged.set(key, mergeParts([...keys].map((k) => this.entries.get(k).part)));
+    return this.merged.get(key);
   }
 
   counts() {
-    let vertices = 0, triangles = 0;
-    for (const { receiver } of this.entries.values()) {
-      vertices += receiver.vertexCount;
-      triangles += receiver.triangleCount;
-    }
-    return { receivers: this.entries.size, vertices, triangles };
+    return { receivers: this.byReceiver.size, parts: this.entries.size, vertices: this.vertices, triangles: this.triangles };
   }
 }

@@ -1,5 +1,6 @@
-// window.penumbra: a small read-only view of the page's state for tests (tests/web) and for
-// people at the console: counts, versions, a receiver's arrays, projections to the screen.
+// window.penumbra: a small view of the page's state for tests (tests/web) and for people at the
+// console: counts, versions, a receiver's arrays (its parts merged), projections to the screen;
+// and, for measuring, a timer-driven move of an object and a timed orbit of the camera.
 import * as THREE from 'three';
 import { receiverKey } from './mesh_binary.js';
 import { transformOf } from './scene_transform.js';
@@ -39,12 +40,12 @@ export function installTestHook(app) {
         lastFrame: app.timings.frame, roundTrip: app.timings.roundTrip, phases: app.timings.phases || null, totals: { ...app.timings.totals }, frames: app.view.frames,
         mesh: app.meshSync ? { lastBytes: app.meshSync.lastBytes, totalBytes: app.meshSync.totalBytes, fetches: app.meshSync.fetches } : null,
         events: app.events ? app.events.events : 0,
-        canvas: { width: app.view.renderer.domElement.clientWidth, height: app.view.renderer.domElement.clientHeight },
+        gl: app.view.gl, canvas: { width: app.view.renderer.domElement.clientWidth, height: app.view.renderer.domElement.clientHeight },
       };
     },
     receiver(object, face) {
       const r = app.receivers.receiver(receiverKey(object, face));
-      return r && { sceneVersion: r.sceneVersion, vertexCount: r.vertexCount, irradiance: Array.from(r.irradiance),
+      return r && { sceneVersion: r.sceneVersion, vertexCount: r.vertexCount, parts: r.parts, irradiance: Array.from(r.irradiance),
         classes: Array.from(r.classes), positions: Array.from(r.positions) };
     },
     irradianceAt(object, face, point) {
@@ -82,6 +83,47 @@ export function installTestHook(app) {
     },
     idle() {
       return app.idle();
+    },
+    // Moves object `id` along x by `dx` metres over `seconds`, one step every `stepMs` from a timer
+    // in the page (as the gizmo would, without a pointer's delivery rate), then waits for idle:
+    // measures the edit pipeline alone. Returns the steps taken.
+    async drive(id, dx, seconds, stepMs) {
+      const from = transformOf(app.objects.byId.get(id));
+      const steps = Math.max(1, Math.round(seconds * 1000 / stepMs));
+      for (let s = 1; s <= steps; ++s) {
+        await new Promise((resolve) => setTimeout(resolve, stepMs));
+        const translate = [...from.translate];
+        translate[0] += dx * s / steps;
+        app.moveTo(id, { ...from, translate });
+        app.view.requestRender();
+      }
+      await app.idle();
+      return steps;
+    },
+    // Draws `frames` frames back to back while orbiting the camera a little (as a user would),
+    // each waited for by a 1-pixel readPixels, and puts the camera back: {msPerFrame, gl}.
+    timeFrames(frames) {
+      const { renderer, scene, camera, controls } = app.view;
+      const gl = renderer.getContext();
+      const pixel = new Uint8Array(4);
+      const draw = () => {
+        renderer.render(scene, camera);
+        gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
+      };
+      const from = camera.position.clone();
+      draw(); // warm-up: shaders compiled, buffers uploaded
+      const start = performance.now();
+      for (let i = 1; i <= frames; ++i) {
+        const offset = from.clone().sub(controls.target).applyAxisAngle(camera.up, 0.3 * i / frames);
+        camera.position.copy(controls.target).add(offset);
+        camera.lookAt(controls.target);
+        draw();
+      }
+      const msPerFrame = (performance.now() - start) / frames;
+      camera.position.copy(from);
+      camera.lookAt(controls.target);
+      app.view.requestRender();
+      return { msPerFrame, gl: app.view.gl, width: renderer.domElement.width, height: renderer.domElement.height };
     },
   };
   window.penumbra = hook;

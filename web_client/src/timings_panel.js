@@ -1,7 +1,8 @@
 // The readout: the last edit's engine timings (remove / add / relight / total), vertices relit
-// / changed / created, receivers changed, the page's round trip (edit answer + mesh delta fetched
-// and applied) and bytes
-// of the delta, edits per second over the last seconds, beside the full-rebuild time.
+// / changed / created, receivers changed, the server's display meshing, the page's round trip
+// (edit sent → the page holds its version's mesh: the edit's answer, then the wait for the delta,
+// which overlaps the next edit) and bytes of the fetch that brought it, edits per second over the
+// last seconds, beside the full-rebuild time, and the WebGL renderer (software or not, antialiased or not).
 
 const ms = (s) => (s === undefined || s === null ? '–' : `${(1000 * s).toFixed(1)} ms`);
 
@@ -13,12 +14,13 @@ export class TimingsPanel {
     this.bytes = null;
     this.rebuild = null;
     this.initialBuild = null;
+    this.gl = null; // {renderer, software, antialias} from SceneView
     this.stamps = [];
-    this.totals = { frames: 0, roundTrip: 0, edit: 0, mesh: 0, engine: 0 }; // sums, seconds
+    this.totals = { frames: 0, roundTrip: 0, edit: 0, mesh: 0, engine: 0, meshing: 0 }; // sums, seconds
     this.draw();
   }
 
-  // phases: {edit, mesh} seconds — the edit's answer, then fetching and applying its delta.
+  // phases: {edit, mesh} seconds — the edit's answer, then until its version's delta is applied.
   edited(frame, roundTripSeconds, bytes, phases) {
     this.frame = frame;
     this.phases = phases;
@@ -27,6 +29,7 @@ export class TimingsPanel {
     this.totals.edit += phases.edit;
     this.totals.mesh += phases.mesh;
     this.totals.engine += frame.seconds ? frame.seconds.total : 0;
+    this.totals.meshing += frame.mesh_seconds || 0;
     this.roundTrip = roundTripSeconds;
     this.bytes = bytes;
     const now = performance.now();
@@ -48,11 +51,15 @@ export class TimingsPanel {
       ['remove', ms(s.remove)], ['add', ms(s.add)], ['relight', ms(s.relight)], ['engine total', ms(s.total)],
       ['vertices relit / changed / created', f.vertices ? `${v.relit} / ${v.changed} / ${v.created}` : '–'],
       ['receivers changed', f.changed_receivers_count ?? '–'],
+      // The server meshes the changed display chunks before it answers (absent from older servers).
+      ['display meshing (chunks meshed / kept)', f.mesh_seconds === undefined ? '–'
+        : `${ms(f.mesh_seconds)}${f.mesh_cells ? ` (${f.mesh_cells.chunks_meshed} / ${f.mesh_cells.chunks_kept})` : ''}`],
       ['round trip (edit + mesh)', this.phases ? `${ms(this.roundTrip)} (${ms(this.phases.edit)} + ${ms(this.phases.mesh)})` : ms(this.roundTrip)],
-      ['mesh delta', this.bytes === null ? '–' : `${(this.bytes / 1024).toFixed(1)} KiB`],
+      ['mesh delta (fetch)', this.bytes === null ? '–' : `${(this.bytes / 1024).toFixed(1)} KiB`],
       ['edits / s (last 2 s)', this.editsPerSecond().toFixed(1)],
       ['initial build', ms(this.initialBuild)],
       ['full rebuild', this.rebuild ? `${ms(this.rebuild.seconds.total)} (build ${ms(this.rebuild.seconds.build)})` : '–'],
+      ['WebGL', this.gl ? `${this.gl.software ? 'software GL' : 'GL'}: antialiasing ${this.gl.antialias ? 'on' : 'off'} (${this.gl.name})` : '–'],
     ];
     this.table.replaceChildren(...rows.map(([k, value]) => {
       const tr = document.createElement('tr');

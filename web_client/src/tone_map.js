@@ -39,10 +39,11 @@ export class ToneMap {
     this.exposure = 1;
   }
 
-  // Sets the exposure from receivers ({object, irradiance: Float32Array}); call on load.
-  calibrate(receivers) {
+  // Sets the exposure from the mesh's parts ({object, irradiance: Float32Array}); call on load.
+  // (A chunk-border vertex counts once per part holding it: too few to move the percentile.)
+  calibrate(parts) {
     const values = [];
-    for (const r of receivers) {
+    for (const r of parts) {
       const albedo = this.albedoOf(r.object);
       for (let i = 0; i < r.irradiance.length; i += 3) {
         let m = 0;
