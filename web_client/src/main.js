@@ -27,9 +27,11 @@ class App {
   constructor() {
     this.api = new ApiClient();
     this.banner = new ErrorBanner($('error-banner'), $('error-text'), $('error-close'));
-    // ?antialias=on|off overrides the choice by GL renderer (to compare frame times).
-    const antialias = new URLSearchParams(window.location.search).get('antialias');
-    this.view = new SceneView($('viewport'), { antialias: ['on', 'off'].includes(antialias) ? antialias : 'auto' });
+    // ?antialias=on|off and ?drag_scale=0.25..1 override the choices by GL renderer (to compare frame times).
+    const query = new URLSearchParams(window.location.search);
+    const antialias = query.get('antialias');
+    this.view = new SceneView($('viewport'), { antialias: ['on', 'off'].includes(antialias) ? antialias : 'auto',
+      dragScale: query.get('drag_scale') || 'auto' });
     this.objects = new SceneObjects(this.view.scene);
     this.receivers = new ReceiverLayer(this.view.scene);
     this.timings = new TimingsPanel($('timings'));
@@ -75,7 +77,10 @@ class App {
     this.coalescer = new EditCoalescer((frame) => this.sendFrame(frame), { onError: (error) => this.editFailed(error) });
     this.gizmo = new SelectionGizmo(this.view, this.objects, {
       onSelect: (id) => { $('selection').textContent = id ? `selected ${id}` : 'click an object'; },
-      onDragStart: (id) => { this.dragStart = { id, before: transformOf(this.gizmo.holder()) }; },
+      onDragStart: (id) => {
+        this.dragStart = { id, before: transformOf(this.gizmo.holder()) };
+        this.view.setInteracting('drag', true);
+      },
       onChange: (id) => this.coalescer.move(id, transformOf(this.gizmo.holder())),
       onDragEnd: (id) => this.dragEnded(id),
       onMode: (mode) => this.showMode(mode),
@@ -175,10 +180,10 @@ class App {
   }
 
   dragEnded(id) {
+    this.view.setInteracting('drag', false);
     this.renderPanel.schedule();
     const start = this.dragStart;
     this.dragStart = null;
-    this.meshFollows = new Set(); // edits answered whose version's mesh the page does not hold yet
     if (!start || start.id !== id) return;
     const after = transformOf(this.gizmo.holder());
     if (!sameTransform(start.before, after)) this.history.push({ id, before: start.before, after });

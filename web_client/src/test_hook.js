@@ -90,6 +90,7 @@ export function installTestHook(app) {
     async drive(id, dx, seconds, stepMs) {
       const from = transformOf(app.objects.byId.get(id));
       const steps = Math.max(1, Math.round(seconds * 1000 / stepMs));
+      app.view.setInteracting('drag', true); // as a gizmo drag does
       for (let s = 1; s <= steps; ++s) {
         await new Promise((resolve) => setTimeout(resolve, stepMs));
         const translate = [...from.translate];
@@ -97,6 +98,7 @@ export function installTestHook(app) {
         app.moveTo(id, { ...from, translate });
         app.view.requestRender();
       }
+      app.view.setInteracting('drag', false);
       await app.idle();
       return steps;
     },
