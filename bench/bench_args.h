@@ -19,8 +19,11 @@ struct BenchArgs {
   std::string jsonOut;  // empty: no JSON file
   // edits: --cubes given (else 150,1500,5000), --frames (drag frames, 0 = by size),
   // --html OUT, --write-scripts DIR --scene FILE (write that scene's scripts only).
+  // --rebuild-every K: time the full rebuild on the first frame, every K-th and
+  // the last (0 = by size: every frame up to 2000 cubes, else every 10th).
   bool cubesGiven = false;
   int frames = 0;
+  int rebuildEvery = 0;
   std::string htmlOut, writeScripts, scenePath;
 };
 

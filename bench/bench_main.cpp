@@ -34,6 +34,9 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first) {
         args.qualityMaxCubes = std::stoi(value);
       } else if (name == "--frames") {
         args.frames = std::stoi(value);
+      } else if (name == "--rebuild-every") {
+        args.rebuildEvery = std::stoi(value);
+        if (args.rebuildEvery < 0) throw std::invalid_argument("must be >= 0");
       } else if (name == "--html") {
         args.htmlOut = value;
       } else if (name == "--write-scripts") {
@@ -59,7 +62,8 @@ int main(int argc, char** argv) {
   constexpr const char* kUsage =
       "usage: penumbra-bench reference|build|edits [--cubes 15,150,1500] [--seed S] [--light-scale F]\n"
       "                      [--points K] [--max-samples N] [--quality-max-cubes N] [--json OUT]\n"
-      "                      edits: [--frames F] [--html OUT] | --write-scripts DIR --scene FILE\n"
+      "                      edits: [--frames F] [--rebuild-every K] [--html OUT]\n"
+      "                             | --write-scripts DIR --scene FILE\n"
       "  reference: exact reference and Monte Carlo cost per point\n"
       "  build:     DM build times and counters at light scales 1 and 0.2, Monte Carlo cost for\n"
       "             1% RMS on the same penumbra vertices, DM vs equal-vertex grid error\n"

@@ -1,14 +1,17 @@
 // `penumbra-bench edits`: edit scripts (bench/lib/edit_scripts) applied frame by
-// frame with Engine::apply on generated 'N cubes in a room' scenes, each frame
-// against a full rebuild of the same scene (an Engine built from scratch, timed
-// in the same run); JSON and a self-contained HTML report. With --write-scripts
+// frame with Engine::apply on generated 'N cubes in a room' scenes (with the
+// subject cube, so the drag moves the same cube at every N), against a full
+// rebuild of the same scene (an Engine built from scratch, timed in the same run)
+// on every frame or every K-th; JSON and a self-contained HTML report. With --write-scripts
 // DIR --scene FILE it only writes that scene's standard scripts as .edits.jsonl.
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <numeric>
+#include <vector>
 
 #include "bench/bench_args.h"
 #include "bench/lib/cubes_scene.h"
@@ -30,6 +33,15 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// The middle value (the mean of the two middle ones for an even count); 0 if empty.
+double median(std::vector<double> values) {
+  if (values.empty()) return 0;
+  const size_t half = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + half, values.end());
+  if (values.size() % 2) return values[half];
+  return 0.5 * (values[half] + *std::max_element(values.begin(), values.begin() + half));
+}
+
 // Frames per script by scene size: every frame costs a full rebuild (and, until
 // the incremental apply lands, a second one inside apply).
 // Large moved shares cost minutes per frame at N = 1500 (2026-11: 30% took 5 min),
@@ -47,21 +59,41 @@ Budget budgetFor(int cubes, const BenchArgs& args) {
   return b;
 }
 
-json runScript(Engine& engine, const EditScript& script) {
+// Frames between timed full rebuilds: every frame up to 2000 cubes; beyond, a
+// rebuild costs ~30 s (5000 cubes, 2026-11), so every 10th.
+int rebuildEveryFor(int cubes, const BenchArgs& args) {
+  if (args.rebuildEvery > 0) return args.rebuildEvery;
+  return cubes <= 2000 ? 1 : 10;
+}
+
+// Runs the script on the engine, timing a full rebuild after the first frame,
+// every `rebuildEvery`-th and the last (other frames: rebuild_seconds null).
+json runScript(Engine& engine, const EditScript& script, int rebuildEvery) {
   json frames = json::array();
   double edit = 0, rebuild = 0, relit = 0, changed = 0, treeRebuilds = 0;
+  std::vector<double> edits, walls, rebuilds;
+  size_t fullRebuilds = 0;
   for (size_t i = 0; i < script.frames.size(); ++i) {
     const auto wallStart = Clock::now();
     const FrameResult result = engine.apply(script.frames[i]);
     const double wall = secondsSince(wallStart);
-    const auto rebuildStart = Clock::now();
-    { const Engine rebuilt(engine.scene()); }
-    const double rebuildSeconds = secondsSince(rebuildStart);
+    json rebuildSeconds = nullptr, editOverRebuild = nullptr;
+    if (i % size_t(rebuildEvery) == 0 || i + 1 == script.frames.size()) {
+      const auto rebuildStart = Clock::now();
+      { const Engine rebuilt(engine.scene()); }
+      const double seconds = secondsSince(rebuildStart);
+      rebuildSeconds = seconds;
+      editOverRebuild = result.seconds.total() / seconds;
+      rebuild += seconds;
+      rebuilds.push_back(seconds);
+    }
     edit += result.seconds.total();
-    rebuild += rebuildSeconds;
     relit += double(result.verticesRelit);
     changed += double(result.verticesChanged);
     treeRebuilds += double(result.treeRebuilds);
+    edits.push_back(result.seconds.total());
+    walls.push_back(wall);
+    fullRebuilds += result.fullRebuild ? 1 : 0;
     frames.push_back({{"frame", i + 1},
                       {"seconds",
                        {{"remove", result.seconds.remove},
@@ -70,29 +102,45 @@ json runScript(Engine& engine, const EditScript& script) {
                         {"total", result.seconds.total()}}},
                       {"wall_seconds", wall},
                       {"rebuild_seconds", rebuildSeconds},
-                      {"edit_over_rebuild", result.seconds.total() / rebuildSeconds},
+                      {"edit_over_rebuild", editOverRebuild},
                       {"vertices",
                        {{"relit", result.verticesRelit},
                         {"changed", result.verticesChanged},
                         {"created", result.verticesCreated}}},
                       {"changed_receivers", result.changedReceivers.size()},
                       {"tree_rebuilds", result.treeRebuilds},
+                      {"full_rebuild", result.fullRebuild},
                       {"nodes_deleted", result.nodesDeleted}});
   }
   const double n = std::max<double>(1, double(script.frames.size()));
+  const double timed = std::max<double>(1, double(rebuilds.size()));
+  const double meanEdit = edit / n, meanRebuild = rebuild / timed;
+  const double first = edits.empty() ? 0 : edits.front();
+  const double medianEdit = median(edits), medianRebuild = median(rebuilds);
   std::printf(
       "  %-12s %4zu frames  %6zu faces (%5.1f%%)  edit %9.2f ms  rebuild %9.2f ms  ratio %6.3f  "
-      "relit %9.0f  changed %9.0f\n",
+      "relit %9.0f  changed %9.0f\n"
+      "  %-12s first %9.2f ms  median %9.2f ms  median rebuild %9.2f ms (%zu timed)  full rebuilds "
+      "%zu%s%s\n",
       script.name.c_str(), script.frames.size(), script.editedFaces, 100 * script.faceShare,
-      1e3 * edit / n, 1e3 * rebuild / n, rebuild > 0 ? edit / rebuild : 0.0, relit / n,
-      changed / n);
+      1e3 * meanEdit, 1e3 * meanRebuild, meanRebuild > 0 ? meanEdit / meanRebuild : 0.0, relit / n,
+      changed / n, "", 1e3 * first, 1e3 * medianEdit, 1e3 * medianRebuild, rebuilds.size(),
+      fullRebuilds,
+      script.subject.empty() ? "" : "  ", script.subject.c_str());
   std::fflush(stdout);
   return {{"name", script.name},
+          {"subject", script.subject},
+          {"first_edit_seconds", first},
+          {"median_edit_seconds", medianEdit},
+          {"median_wall_seconds", median(walls)},
+          {"median_rebuild_seconds", medianRebuild},
+          {"rebuild_frames", rebuilds.size()},
+          {"full_rebuild_frames", fullRebuilds},
           {"edited_faces", script.editedFaces},
           {"face_share", script.faceShare},
-          {"mean_edit_seconds", edit / n},
-          {"mean_rebuild_seconds", rebuild / n},
-          {"edit_over_rebuild", rebuild > 0 ? edit / rebuild : 0.0},
+          {"mean_edit_seconds", meanEdit},
+          {"mean_rebuild_seconds", meanRebuild},
+          {"edit_over_rebuild", meanRebuild > 0 ? meanEdit / meanRebuild : 0.0},
           {"mean_relit", relit / n},
           {"mean_changed", changed / n},
           {"mean_tree_rebuilds", treeRebuilds / n},
@@ -118,6 +166,45 @@ json writeScripts(const BenchArgs& args) {
   return {{"benchmark", "edits"}, {"written", written}};
 }
 
+// Issue 4's measure: the drag's edit time per scene size (first frame, median,
+// mean) and the median of the largest N over the median of the smallest.
+json dragVsSize(const json& scenes) {
+  json sizes = json::array();
+  for (const json& scene : scenes)
+    for (const json& script : scene["scripts"])
+      if (script["name"] == "drag")
+        sizes.push_back({{"cubes", scene["cubes"]},
+                         {"subject", script["subject"]},
+                         {"frames", script["frames"].size()},
+                         {"first_edit_seconds", script["first_edit_seconds"]},
+                         {"median_edit_seconds", script["median_edit_seconds"]},
+                         {"median_wall_seconds", script["median_wall_seconds"]},
+                         {"mean_edit_seconds", script["mean_edit_seconds"]},
+                         {"median_rebuild_seconds", script["median_rebuild_seconds"]},
+                         {"rebuild_frames", script["rebuild_frames"]}});
+  json out = {{"sizes", sizes}, {"median_ratio", nullptr}};
+  if (sizes.size() >= 2) {
+    const auto [smallest, largest] = std::minmax_element(
+        sizes.begin(), sizes.end(),
+        [](const json& a, const json& b) { return a["cubes"].get<int>() < b["cubes"].get<int>(); });
+    const double from = (*smallest)["median_edit_seconds"].get<double>();
+    const double to = (*largest)["median_edit_seconds"].get<double>();
+    const double wallFrom = (*smallest)["median_wall_seconds"].get<double>();
+    const double wallTo = (*largest)["median_wall_seconds"].get<double>();
+    out["median_ratio"] = {{"from_cubes", (*smallest)["cubes"]},
+                           {"to_cubes", (*largest)["cubes"]},
+                           {"ratio", from > 0 ? json(to / from) : json(nullptr)},
+                           {"wall_ratio", wallFrom > 0 ? json(wallTo / wallFrom) : json(nullptr)}};
+    std::printf(
+        "drag median edit time, N = %d → %d: %.2f ms → %.2f ms, ratio %.2f (wall, with the "
+        "frame check and scene copy: %.2f ms → %.2f ms, ratio %.2f)\n",
+        (*smallest)["cubes"].get<int>(), (*largest)["cubes"].get<int>(), 1e3 * from, 1e3 * to,
+        from > 0 ? to / from : 0.0, 1e3 * wallFrom, 1e3 * wallTo,
+        wallFrom > 0 ? wallTo / wallFrom : 0.0);
+  }
+  return out;
+}
+
 }  // namespace
 
 json runEditsBench(const BenchArgs& args) {
@@ -130,6 +217,7 @@ json runEditsBench(const BenchArgs& args) {
     options.cubes = cubes;
     options.seed = args.seed;
     options.lightScale = args.lightScale;
+    options.subjectCube = true;  // every script runs on this scene; the drag moves the subject
     const Scene scene = makeCubesScene(options);
     const auto buildStart = Clock::now();
     Engine engine(scene);
@@ -151,8 +239,12 @@ json runEditsBench(const BenchArgs& args) {
     // Scripts run one after the other on the same engine; each was generated from
     // the original scene and uses absolute transforms, so each applies as written.
     json results = json::array();
-    for (const EditScript& script : scripts) results.push_back(runScript(engine, script));
+    const int rebuildEvery = rebuildEveryFor(cubes, args);
+    for (const EditScript& script : scripts)
+      results.push_back(runScript(engine, script, rebuildEvery));
     scenes.push_back({{"cubes", cubes},
+                      {"subject_cube", true},
+                      {"rebuild_every", rebuildEvery},
                       {"faces", scene.faces().size()},
                       {"receivers", engine.receivers().size()},
                       {"build_seconds", buildSeconds},
@@ -161,7 +253,8 @@ json runEditsBench(const BenchArgs& args) {
   json result = {{"benchmark", "edits"},
                  {"seed", args.seed},
                  {"light_scale", args.lightScale},
-                 {"scenes", scenes}};
+                 {"scenes", scenes},
+                 {"drag_vs_size", dragVsSize(scenes)}};
   if (!args.htmlOut.empty()) {
     protocol::writeTextFile(args.htmlOut, editsReportHtml(result));
     std::printf("wrote %s\n", args.htmlOut.c_str());

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -33,7 +34,16 @@ struct Cube {
   double x = 0, z = 0, angleDeg = 0;
   double size = 0, base = 0;  // y of the bottom face
   bool covered = false;       // another cube rests on it
+  size_t root = 0;            // index of the floor footprint its stack stands on
 };
+
+// Distance from point p to the segment a→b (in xz).
+double segmentDistance(double px, double pz, double ax, double az, double bx, double bz) {
+  const double abx = bx - ax, abz = bz - az;
+  const double t =
+      std::clamp(((px - ax) * abx + (pz - az) * abz) / std::max(abx * abx + abz * abz, 1e-300), 0.0, 1.0);
+  return std::hypot(px - (ax + t * abx), pz - (az + t * abz));
+}
 
 double uniform(std::mt19937_64& rng, double lo, double hi) {
   return std::uniform_real_distribution<double>(lo, hi)(rng);
@@ -157,6 +167,7 @@ Scene makeCubesScene(const CubesSceneOptions& options) {
                                {1, 0, 0}));
 
   std::vector<Footprint> footprints;  // of everything standing on the floor
+  std::vector<size_t> objectRoot(objects.size(), SIZE_MAX);  // footprint each object stands on
   std::vector<Cube> cubes;
   auto placeOnFloor = [&](double radius) -> Footprint {
     const double range = half - radius - kGap;
@@ -196,6 +207,7 @@ Scene makeCubesScene(const CubesSceneOptions& options) {
       object.transform.translate = Vec3(f.x, 0, f.z);
       object.transform.rotateDeg = Vec3(0, angle, 0);
       objects.push_back(std::move(object));
+      objectRoot.push_back(footprints.size() - 1);
       continue;
     }
 
@@ -219,6 +231,7 @@ Scene makeCubesScene(const CubesSceneOptions& options) {
       cube.x = lower.x + r * std::cos(phi);
       cube.z = lower.z + r * std::sin(phi);
       cube.base = lower.base + lower.size;
+      cube.root = lower.root;
       lower.covered = true;
     } else {
       cube.size = units(rng, 26, 64);
@@ -226,6 +239,7 @@ Scene makeCubesScene(const CubesSceneOptions& options) {
       cube.x = f.x;
       cube.z = f.z;
       cube.base = 0;
+      cube.root = footprints.size() - 1;
     }
     cubes.push_back(cube);
 
@@ -235,6 +249,56 @@ Scene makeCubesScene(const CubesSceneOptions& options) {
     object.transform.rotateDeg = Vec3(0, cube.angleDeg, 0);
     object.transform.scale = Vec3(cube.size);
     objects.push_back(std::move(object));
+    objectRoot.push_back(cube.root);
+  }
+
+  if (options.subjectCube) {
+    // The subject and its corridor; after every other object so that the main
+    // generator's draws (and so the rest of the scene) are the same as without it.
+    const double radius = kSubjectSide / std::sqrt(2.0);
+    const double x = lights[0].polygon.empty() ? 0 : centroid(lights[0].polygon).x;
+    const Vec3 centre(std::round((x + kSubjectLightOffset) / kUnit) * kUnit, kSubjectSide / 2, 0);
+    const double travel = std::min(kSubjectTravel, half - radius - kGap - kSubjectMargin);
+    if (centre.x + radius + kGap + kSubjectMargin > half || travel <= 0)
+      throw std::invalid_argument("makeCubesScene: the room is too small for the subject cube");
+    const double corridor = radius + kSubjectMargin;
+    auto blocks = [&](const Footprint& f) {
+      return segmentDistance(f.x, f.z, centre.x, -travel, centre.x, travel) <
+             f.radius + corridor + kGap;
+    };
+    std::mt19937_64 moveRng(options.seed ^ 0x5b7ec7c0be5eedULL);
+    for (size_t k = 0; k < footprints.size(); ++k) {
+      if (!blocks(footprints[k])) continue;
+      const double range = half - footprints[k].radius - kGap;
+      bool moved = false;
+      for (int attempt = 0; attempt < kPlacementTries && !moved; ++attempt) {
+        const Footprint f{uniform(moveRng, -range, range), uniform(moveRng, -range, range),
+                          footprints[k].radius};
+        bool clear = !blocks(f);
+        for (size_t j = 0; clear && j < footprints.size(); ++j)
+          clear = j == k || std::hypot(f.x - footprints[j].x, f.z - footprints[j].z) >=
+                                f.radius + footprints[j].radius + kGap;
+        if (!clear) continue;
+        // The stack moves as one: only x and z change, so contacts stay exact.
+        for (size_t o = 0; o < objects.size(); ++o)
+          if (objectRoot[o] == k) {
+            objects[o].transform.translate.x += f.x - footprints[k].x;
+            objects[o].transform.translate.z += f.z - footprints[k].z;
+          }
+        footprints[k] = f;
+        moved = true;
+      }
+      if (!moved)
+        throw std::runtime_error("makeCubesScene: could not clear the subject cube's corridor");
+    }
+    Object subject;
+    subject.id = kSubjectCubeId;
+    subject.material = "clay";
+    addBox(subject, Vec3(-0.5), Vec3(0.5));
+    subject.transform.translate = centre;
+    subject.transform.rotateDeg = Vec3(0, 20, 0);
+    subject.transform.scale = Vec3(kSubjectSide);
+    objects.push_back(std::move(subject));
   }
 
   Camera camera;

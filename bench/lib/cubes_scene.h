@@ -16,14 +16,32 @@ struct CubesSceneOptions {
   bool tiltedLight = false;     // tilt the light(s) by 25°, still facing down-ish
   bool twoLights = false;
   double thinTables = 0.0;      // share of objects that are tables (slab on 4 legs)
+  // Adds kSubjectCubeId: the same cube at every count and seed (see below), with
+  // its drag corridor kept clear. Off: the scene is exactly as without the field.
+  bool subjectCube = false;
 };
+
+// The subject cube (CubesSceneOptions::subjectCube): a 0.5 m cube standing on the
+// floor, centre kSubjectLightOffset m along +x from the first light's centre,
+// turned 20° about y, material "clay", not static, listed after every other
+// object. Its corridor — the segment kSubjectTravel m both ways along z (tangential
+// to the circle round the light; clipped to stay kSubjectMargin + 1/16 m inside
+// the walls), widened by its footprint radius + kSubjectMargin — is kept clear:
+// every floor object (with whatever is stacked on it) whose footprint comes within
+// 1/16 m of the corridor is moved to a free spot drawn from a second seeded
+// generator; everything else is exactly where it is without the subject.
+inline constexpr const char* kSubjectCubeId = "cube_subject";
+inline constexpr double kSubjectSide = 0.5;
+inline constexpr double kSubjectLightOffset = 1.5;
+inline constexpr double kSubjectTravel = 8.0;  // 100 drag frames of 8 cm
+inline constexpr double kSubjectMargin = 0.05;
 
 // The room is centred on x = z = 0 with its floor at y = 0; its side grows with
 // sqrt(cubes) so the floor density stays the same from 15 to 5000 objects.
 // Sizes and heights are multiples of 1/64 m, so "resting on" is exact in double:
 // cube bottoms lie exactly at y = 0 or exactly at the top of the cube below.
 // Object ids: "floor", "ceiling", "wall_n", "wall_s", "wall_e", "wall_w",
-// "cube_<i>", "table_<i>"; lights "light" (and "light_2"); materials "white", "clay".
+// "cube_<i>", "table_<i>" (and kSubjectCubeId); lights "light" (and "light_2"); materials "white", "clay".
 // Every object is placed with a transform (translate, rotate about y, scale).
 Scene makeCubesScene(const CubesSceneOptions& options);
 

@@ -2,16 +2,24 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <random>
 #include <stdexcept>
+
+#include "bench/lib/cubes_scene.h"
+#include "core/geom/polygon.h"
 
 namespace penumbra {
 
 namespace {
 
-constexpr double kDragStep = 0.08;       // metres per frame at most: a small move
-constexpr double kDragTurnDeg = 0.5;     // the dragged cube turns a little per frame
+constexpr double kDragStep = 0.08;    // metres per frame at most: a small move
+constexpr double kDragTurnDeg = 0.5;  // the dragged cube turns a little per frame
+// Horizontal distance from the first light's centre to the dragged cube's centre:
+// a cube near the light's edge (side 1.5 m in makeCubesScene), well inside the
+// smallest room (5 m), so the same situation exists at every scene size.
+constexpr double kDragLightDistance = 1.5;
 constexpr double kWiggleRadius = 0.025;  // share moves stay inside the generator's 1/16 m gaps
 constexpr int kWiggleSteps = 12;         // frames per circle
 
@@ -19,19 +27,25 @@ bool isRoom(const Object& object) {
   return object.id == "floor" || object.id == "ceiling" || object.id.rfind("wall_", 0) == 0;
 }
 
+// An object's world bounding box and the smallest disc about the box's centre
+// holding its footprint (tighter than the box's half-diagonal for a turned cube).
 struct WorldBox {
   Vec3 min{0.0}, max{0.0};
-  double footprintRadius() const { return 0.5 * std::hypot(max.x - min.x, max.z - min.z); }
+  double radius = 0;
+  double footprintRadius() const { return radius; }
   Vec2 footprintCentre() const { return {0.5 * (min.x + max.x), 0.5 * (min.z + max.z)}; }
 };
 
 WorldBox worldBox(const Object& object) {
   WorldBox box{Vec3(INFINITY), Vec3(-INFINITY)};
+  std::vector<Vec3> world;
   for (const Vec3& v : object.vertices) {
-    const Vec3 p = object.transform.apply(v);
-    box.min = glm::min(box.min, p);
-    box.max = glm::max(box.max, p);
+    world.push_back(object.transform.apply(v));
+    box.min = glm::min(box.min, world.back());
+    box.max = glm::max(box.max, world.back());
   }
+  for (const Vec3& p : world)
+    box.radius = std::max(box.radius, glm::length(Vec2{p.x, p.z} - box.footprintCentre()));
   return box;
 }
 
@@ -77,8 +91,18 @@ EditScript dragScript(const Scene& scene, int frames, uint64_t seed) {
   std::vector<WorldBox> boxes;
   for (size_t i : movable) boxes.push_back(worldBox(scene.objects()[i]));
 
-  // Free cubes standing on the floor first (nothing rests on them), in seeded order.
-  const double eps = 1e-9 * scene.bounds().diagonal();
+  // The first light's centre on the floor (the room's centre without a light).
+  const Bounds room = scene.bounds();
+  const Vec3 lightCentre =
+      scene.lights().empty() ? 0.5 * (room.min + room.max) : centroid(scene.lights()[0].polygon);
+  const Vec2 lightOnFloor{lightCentre.x, lightCentre.z};
+  auto lightDistance = [&](size_t k) {
+    return glm::length(boxes[k].footprintCentre() - lightOnFloor);
+  };
+
+  // Free cubes standing on the floor (nothing rests on them) first, closest to
+  // kDragLightDistance first: the same situation whatever the room's size.
+  const double eps = 1e-9 * room.diagonal();
   auto isFree = [&](size_t k) {
     for (size_t j = 0; j < boxes.size(); ++j) {
       if (j == k || std::abs(boxes[j].min.y - boxes[k].max.y) > eps) continue;
@@ -89,17 +113,27 @@ EditScript dragScript(const Scene& scene, int frames, uint64_t seed) {
   };
   std::vector<size_t> candidates(movable.size());
   std::iota(candidates.begin(), candidates.end(), 0);
-  std::mt19937_64 rng(seed);
-  std::shuffle(candidates.begin(), candidates.end(), rng);
+  std::stable_sort(candidates.begin(), candidates.end(), [&](size_t a, size_t b) {
+    return std::abs(lightDistance(a) - kDragLightDistance) <
+           std::abs(lightDistance(b) - kDragLightDistance);
+  });
   std::stable_partition(candidates.begin(), candidates.end(), [&](size_t k) {
     return isFree(k) && std::abs(boxes[k].min.y) <= eps &&
            scene.objects()[movable[k]].id.rfind("cube_", 0) == 0;
   });
+  // A generated scene's subject cube is literally the same cube at every size.
+  for (size_t k = 0; k < movable.size(); ++k)
+    if (scene.objects()[movable[k]].id == kSubjectCubeId) candidates = {k};
 
-  // The longest clear straight path (of the wanted length at most) among the
-  // first candidates and eight directions: the swept footprint stays in the room
-  // and off every other footprint.
-  const Bounds room = scene.bounds();
+  // Sixteen directions relative to the light, the closest to round it first (the
+  // light distance stays about the same); the seed's parity picks which way round.
+  const double turn = seed % 2 ? -1.0 : 1.0;
+  const double kRelativeDeg[16] = {90,  -90,  67.5, -67.5, 112.5, -112.5, 45, -45,
+                                   135, -135, 22.5, -22.5, 157.5, -157.5, 0,  180};
+
+  // Among the first candidates, the first with a clear path of the wanted length
+  // (else the longest clear path, halving the length): the swept footprint stays
+  // in the room and off every other footprint.
   const double wanted = kDragStep * frames;
   size_t best = candidates.front();
   Vec2 bestDirection{1, 0};
@@ -108,8 +142,10 @@ EditScript dragScript(const Scene& scene, int frames, uint64_t seed) {
     const size_t k = candidates[c];
     const Vec2 start = boxes[k].footprintCentre();
     const double radius = boxes[k].footprintRadius();
-    for (int d = 0; d < 8; ++d) {
-      const double angle = M_PI / 4 * d;
+    const Vec2 outwards = start - lightOnFloor;
+    const double radial = glm::length(outwards) > eps ? std::atan2(outwards.y, outwards.x) : 0.0;
+    for (double relativeDeg : kRelativeDeg) {
+      const double angle = radial + turn * glm::radians(relativeDeg);
       const Vec2 direction{std::cos(angle), std::sin(angle)};
       double length = wanted;
       for (int halving = 0; halving < 8 && length > bestLength; ++halving, length *= 0.5) {
@@ -127,6 +163,7 @@ EditScript dragScript(const Scene& scene, int frames, uint64_t seed) {
           break;
         }
       }
+      if (bestLength >= wanted) break;
     }
     if (bestLength >= wanted) break;
   }
@@ -141,6 +178,11 @@ EditScript dragScript(const Scene& scene, int frames, uint64_t seed) {
   }
   script.editedFaces = cube.faces.size();
   script.faceShare = double(script.editedFaces) / double(faceCount(scene));
+  char subject[160];
+  std::snprintf(
+      subject, sizeof subject, "%s: %.3g m cube, %.3g m from the light on the floor, moved %.3g m",
+      cube.id.c_str(), boxes[best].max.y - boxes[best].min.y, lightDistance(best), bestLength);
+  script.subject = subject;
   return script;
 }
 

@@ -48,35 +48,42 @@ bool sameValue(const VertexIrradiance& a, const VertexIrradiance& b) {
 
 }  // namespace
 
-Scene Engine::sceneAfter(const Frame& frame) const {
-  // The overlap cubes are sound only for faces inside them (OverlapCube::insertFace).
-  auto checkEditVolume = [&](const Scene& next, uint32_t handle, size_t i, const char* path) {
-    for (const Face& face : facesOfObject(next, handle))
-      if (!insideEditVolume(face))
-        throw EditError(i, path, "object '" + next.object(handle).id + "' would leave the edit volume");
+void Engine::checkFrame(const Frame& frame) const {
+  // The ids the frame has edited so far, as the earlier edits leave them (empty: removed).
+  std::map<std::string, std::optional<Object>, std::less<>> edited;
+  auto current = [&](const std::string& id) -> std::optional<Object> {
+    if (const auto it = edited.find(id); it != edited.end()) return it->second;
+    if (const auto index = scene_.findObject(id)) return scene_.objects()[*index];
+    return std::nullopt;
   };
-  Scene next = scene_;
+  // Faces as Scene::addObject / setTransform would make them (throws std::invalid_argument);
+  // the overlap cubes are sound only for faces inside them (OverlapCube::insertFace).
+  auto checkFaces = [&](const Object& object, size_t i, const char* path) {
+    for (const Face& face : scene_.facesOf(object, 0))
+      if (!insideEditVolume(face))
+        throw EditError(i, path, "object '" + object.id + "' would leave the edit volume");
+  };
   for (size_t i = 0; i < frame.edits.size(); ++i) {
     const Edit& edit = frame.edits[i];
     try {
       switch (edit.op) {
         case Edit::Op::Move: {
-          const auto index = next.findObject(edit.id);
-          if (!index) throw EditError(i, "id", "unknown object '" + edit.id + "'");
-          next.setTransform(next.handleOf(*index), edit.transform);
-          checkEditVolume(next, next.handleOf(*index), i, "transform");
+          std::optional<Object> object = current(edit.id);
+          if (!object) throw EditError(i, "id", "unknown object '" + edit.id + "'");
+          object->transform = edit.transform;
+          checkFaces(*object, i, "transform");
+          edited[edit.id] = std::move(object);
           break;
         }
-        case Edit::Op::Remove: {
-          const auto index = next.findObject(edit.id);
-          if (!index) throw EditError(i, "id", "unknown object '" + edit.id + "'");
-          next.removeObject(next.handleOf(*index));
+        case Edit::Op::Remove:
+          if (!current(edit.id)) throw EditError(i, "id", "unknown object '" + edit.id + "'");
+          edited[edit.id] = std::nullopt;
           break;
-        }
         case Edit::Op::Add:
-          if (next.findObject(edit.object.id))
+          if (current(edit.object.id))
             throw EditError(i, "object.id", "duplicate object id '" + edit.object.id + "'");
-          checkEditVolume(next, next.addObject(edit.object), i, "object");
+          checkFaces(edit.object, i, "object");
+          edited[edit.object.id] = edit.object;
           break;
       }
     } catch (const EditError&) {
@@ -85,6 +92,40 @@ Scene Engine::sceneAfter(const Frame& frame) const {
       throw EditError(i, edit.op == Edit::Op::Add ? "object" : "transform", error.what());
     }
   }
+}
+
+namespace {
+
+// Applies a checked frame's edits to `scene` in order.
+void applyEdits(Scene& scene, const Frame& frame) {
+  for (const Edit& edit : frame.edits) switch (edit.op) {
+      case Edit::Op::Move:
+        scene.setTransform(scene.handleOf(*scene.findObject(edit.id)), edit.transform);
+        break;
+      case Edit::Op::Remove:
+        scene.removeObject(scene.handleOf(*scene.findObject(edit.id)));
+        break;
+      case Edit::Op::Add:
+        scene.addObject(edit.object);
+        break;
+    }
+}
+
+// The handles of the objects a frame's edits name, in `scene` (those it holds).
+std::set<uint32_t> namedHandles(const Scene& scene, const Frame& frame) {
+  std::set<uint32_t> out;
+  for (const Edit& edit : frame.edits)
+    if (const auto index = scene.findObject(edit.op == Edit::Op::Add ? edit.object.id : edit.id))
+      out.insert(scene.handleOf(*index));
+  return out;
+}
+
+}  // namespace
+
+Scene Engine::sceneAfter(const Frame& frame) const {
+  checkFrame(frame);
+  Scene next = scene_;
+  applyEdits(next, frame);
   return next;
 }
 
@@ -123,23 +164,13 @@ void Engine::relightAfterRemoval(FaceId target, Receiver& receiver, const Remove
 }
 
 FrameResult Engine::apply(const Frame& frame) {
-  Scene next = sceneAfter(frame);  // throws before anything changes
+  checkFrame(frame);  // throws before anything changes
 
   // The frame's net effect per object handle (a move is remove + add, §3), from the
-  // handles its edits name: nothing here scans the whole scene.
-  std::set<uint32_t> touched, moved;
-  for (const Edit& edit : frame.edits) {
-    const std::string& id = edit.op == Edit::Op::Add ? edit.object.id : edit.id;
-    if (const auto index = scene_.findObject(id)) touched.insert(scene_.handleOf(*index));
-    if (const auto index = next.findObject(id)) touched.insert(next.handleOf(*index));
-  }
-  std::set<uint32_t> leaving, entering;  // handles whose faces leave / enter
-  for (uint32_t h : touched) {
-    const bool inOld = scene_.indexOfHandle(h).has_value(), inNew = next.indexOfHandle(h).has_value();
-    if (inOld) leaving.insert(h);  // moved or removed (a no-op move is still re-cast)
-    if (inNew) entering.insert(h);
-    if (inOld && inNew) moved.insert(h);
-  }
+  // objects its edits name: the scene is edited in place, nothing here scans or copies
+  // the whole scene. Every named object that was there leaves (a no-op move is still
+  // re-cast); every named object there afterwards enters.
+  const std::set<uint32_t> leaving = namedHandles(scene_, frame);
   std::vector<FaceId> leavingFaces;
   for (uint32_t h : leaving)
     for (const Face& face : facesOfObject(scene_, h)) leavingFaces.push_back(face.id);
@@ -149,7 +180,8 @@ FrameResult Engine::apply(const Frame& frame) {
   std::vector<FaceId> leavingReceivers;  // leaving faces that had a DM-tree
   for (FaceId face : leavingFaces)
     if (receiverIndex_.count(face)) leavingReceivers.push_back(face);
-  scene_ = std::move(next);
+  applyEdits(scene_, frame);
+  const std::set<uint32_t> entering = namedHandles(scene_, frame);
   // Builds the whole engine for the new scene and reports every receiver as rebuilt.
   auto rebuildAll = [&] {
     const auto start = Clock::now();

@@ -64,6 +64,11 @@ class Engine {
   // The DM vertices the last apply() relit, per receiver (sorted ids).
   const std::map<FaceId, std::vector<VertexId>>& lastRelit() const { return lastRelit_; }
 
+  // Checks every edit of a frame in order against the scene as the earlier edits leave
+  // it, without copying the scene: ids, transforms and added objects (faces as
+  // Scene::addObject makes them), and that moved and added objects stay in the overlap
+  // cubes' edit volume. Throws EditError naming the edit and key path.
+  void checkFrame(const Frame& frame) const;
   // The scene after a frame, without changing anything (throws EditError).
   Scene sceneAfter(const Frame& frame) const;
 

@@ -4,6 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <string>
+
+#include "protocol/json_text.h"
+#include "protocol/scene_json.h"
 
 namespace penumbra {
 namespace {
@@ -193,10 +198,11 @@ TEST(CubesScene, FacesAndLightsAreValid) {
   }
 }
 
-TEST(CubesScene, ObjectsDoNotInterpenetrateAndRestOnSomething) {
+// Checks no two standing objects interpenetrate and each rests exactly on the
+// floor or on a cube's top; returns how many rest on a cube.
+size_t expectStandingProperly(const Scene& scene) {
   size_t stackedSeen = 0;
-  for (const CubesSceneOptions& options : variedOptions()) {
-    const Scene scene = makeCubesScene(options);
+  {
     const double eps = scene.tolerance().length();
     const auto standing = standingObjects(scene);
     for (size_t i = 0; i < standing.size(); ++i) {
@@ -222,6 +228,13 @@ TEST(CubesScene, ObjectsDoNotInterpenetrateAndRestOnSomething) {
       ++stackedSeen;
     }
   }
+  return stackedSeen;
+}
+
+TEST(CubesScene, ObjectsDoNotInterpenetrateAndRestOnSomething) {
+  size_t stackedSeen = 0;
+  for (const CubesSceneOptions& options : variedOptions())
+    stackedSeen += expectStandingProperly(makeCubesScene(options));
   EXPECT_GT(stackedSeen, 0u);  // stacking is exercised
 }
 
@@ -232,6 +245,112 @@ TEST(CubesScene, RoomGrowsWithCount) {
   EXPECT_LT(cubesRoom(small).side, cubesRoom(large).side);
   const Scene scene = makeCubesScene(large);
   EXPECT_EQ(scene.objects().size(), 606u);
+}
+
+// The subject cube (issue 4's "same cube at every N"): the same object at every
+// count and seed, 1.5 m along +x from the light, standing on the floor.
+TEST(CubesSceneSubject, SameCubeAtTheSamePlaceAtEverySize) {
+  std::string first;
+  for (uint64_t seed : {1u, 2u})
+    for (int cubes : {150, 1500, 5000}) {
+      SCOPED_TRACE(std::to_string(cubes) + " cubes, seed " + std::to_string(seed));
+      CubesSceneOptions options;
+      options.cubes = cubes;
+      options.seed = seed;
+      options.subjectCube = true;
+      const Scene scene = makeCubesScene(options);
+      const auto index = scene.findObject(kSubjectCubeId);
+      ASSERT_TRUE(index);
+      EXPECT_EQ(*index, scene.objects().size() - 1);  // listed last
+      const Object& subject = scene.objects()[*index];
+      EXPECT_FALSE(subject.isStatic);
+      EXPECT_EQ(subject.material, "clay");
+      EXPECT_EQ(subject.transform.translate, Vec3(1.5, 0.25, 0));
+      EXPECT_EQ(subject.transform.scale, Vec3(0.5));
+      // Its faces in world space: a 0.5 m cube from y = 0 to 0.5, centred 1.5 m
+      // from the light's centre (x = z = 0) — and identical at every size.
+      double minY = INFINITY, maxY = -INFINITY;
+      Vec2 sum{0.0};
+      int count = 0;
+      for (const Face& face : scene.faces())
+        if (face.id.object == *index)
+          for (const Vec3& v : face.polygon) {
+            minY = std::min(minY, v.y), maxY = std::max(maxY, v.y);
+            sum += Vec2(v.x, v.z), ++count;
+          }
+      EXPECT_EQ(count, 24);
+      EXPECT_EQ(minY, 0);
+      EXPECT_EQ(maxY, 0.5);
+      EXPECT_NEAR(glm::length(sum / double(count) - Vec2(1.5, 0)), 0, 1e-12);
+      const std::string json = protocol::sceneToJson(Scene({}, scene.materials(), {subject}, std::nullopt)).dump();
+      if (first.empty()) first = json;
+      EXPECT_EQ(json, first);
+      // And the objects around it still stand properly (moved stacks included).
+      if (cubes <= 1500) expectStandingProperly(scene);
+    }
+}
+
+// Switching the subject on adds it, moves the floor objects (with their stacks,
+// in x and z only) that were in its corridor, and changes nothing else.
+TEST(CubesSceneSubject, OnlyAddsTheSubjectAndMovesWhatBlocksItsCorridor) {
+  size_t movedSeen = 0;
+  std::vector<CubesSceneOptions> all = variedOptions();
+  for (int cubes : {150, 1500}) {
+    CubesSceneOptions o;
+    o.cubes = cubes;
+    all.push_back(o);
+  }
+  for (CubesSceneOptions options : all) {
+    SCOPED_TRACE(std::to_string(options.cubes) + " cubes, seed " + std::to_string(options.seed));
+    const Scene off = makeCubesScene(options);
+    options.subjectCube = true;
+    const Scene on = makeCubesScene(options);
+    ASSERT_EQ(on.objects().size(), off.objects().size() + 1);
+    EXPECT_EQ(on.objects().back().id, kSubjectCubeId);
+    EXPECT_EQ(protocol::sceneToJson(Scene(on.lights(), on.materials(), {}, on.camera())),
+              protocol::sceneToJson(Scene(off.lights(), off.materials(), {}, off.camera())));
+    std::map<std::string, Vec3> shifts;  // moved object → its shift
+    for (size_t i = 0; i < off.objects().size(); ++i) {
+      const Object& a = off.objects()[i];
+      const Object& b = on.objects()[i];
+      ASSERT_EQ(a.id, b.id);
+      EXPECT_EQ(a.vertices, b.vertices);
+      EXPECT_EQ(a.faces, b.faces);
+      EXPECT_EQ(a.material, b.material);
+      EXPECT_EQ(a.transform.rotateDeg, b.transform.rotateDeg);
+      EXPECT_EQ(a.transform.scale, b.transform.scale);
+      EXPECT_EQ(a.transform.translate.y, b.transform.translate.y);
+      if (a.transform.translate != b.transform.translate)
+        shifts[a.id] = b.transform.translate - a.transform.translate;
+    }
+    // A moved cube resting on another moved with it, by the same shift.
+    for (const auto& [id, shift] : shifts) {
+      const Object& object = on.objects()[*on.findObject(id)];
+      const bool onFloor = startsWith(id, "table_") ||  // tables' origin is at the floor
+                           object.transform.translate.y == 0.5 * object.transform.scale.y;
+      if (onFloor) continue;
+      bool withItsSupport = false;
+      for (const auto& [other, otherShift] : shifts)
+        withItsSupport |= other != id && glm::length(otherShift - shift) < 1e-12;
+      EXPECT_TRUE(withItsSupport) << id;
+    }
+    movedSeen += shifts.size();
+    expectStandingProperly(on);
+  }
+  EXPECT_GT(movedSeen, 0u);  // the corridor did have to be cleared somewhere
+}
+
+// The option off is the generator's output as shipped: scenes/cubes15.scene.json
+// was written by `penumbra generate --cubes 15 --seed 15`.
+TEST(CubesSceneSubject, OffIsTheShippedGeneratorOutput) {
+  CubesSceneOptions options;
+  options.cubes = 15;
+  options.seed = 15;
+  options.subjectCube = false;
+  const Scene generated = makeCubesScene(options);
+  const Scene shipped =
+      protocol::loadSceneFile(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/cubes15.scene.json");
+  EXPECT_EQ(protocol::sceneToJson(generated), protocol::sceneToJson(shipped));
 }
 
 }  // namespace
