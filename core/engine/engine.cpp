@@ -86,6 +86,15 @@ std::optional<SingleShadow> lightPlaneShadow(const Scene& scene, size_t light, c
 
 Engine::Engine(Scene scene, EngineSettings settings, const EngineProgress& progress)
     : scene_(std::move(scene)), settings_(settings) {
+  if (meshSpacing() > 0 && settings_.meshChunkSquares > 0) {
+    meshChunkSquares_ = settings_.meshChunkSquares;
+  } else if (meshSpacing() > 0 && settings_.meshChunkSquares == 0) {
+    // Cells grow with the faces per lattice square (150 cubes: ~1 face a square and
+    // ~40 cells; 1500 cubes: ~9 and ~700): denser scenes get smaller chunks.
+    const double squares = EngineSettings::kDefaultSpacingDivisions * EngineSettings::kDefaultSpacingDivisions;
+    const double facesPerSquare = double(scene_.faces().size()) / squares;
+    meshChunkSquares_ = facesPerSquare <= 1.5 ? 4 : facesPerSquare <= 6 ? 2 : 1;
+  }
   build(progress);
 }
 
@@ -467,7 +476,7 @@ ReceiverMesh Engine::meshReceiver(const Receiver& receiver) {
 const Engine::ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver) {
   const double eps = scene_.tolerance().length();
   const double spacing = meshSpacing();
-  const int chunkSquares = spacing > 0 ? std::max(settings_.meshChunkSquares, 0) : 0;
+  const int chunkSquares = meshChunkSquares_;
   const double chunkSide = spacing * chunkSquares;  // 0: one chunk
   const size_t lightCount = scene_.lights().size();
   const DmTree& tree = receiver.tree;
@@ -487,11 +496,27 @@ const Engine::ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver)
   const uint64_t stamp = HalfEdgeMesh::stampNow();
 
   // Chunks whose cells changed; the memo's old pieces and the new ones both count.
+  // A cell's pieces leave or enter the chunks' cell lists (kept in cell order).
   std::set<MeshChunkKey> dirty;
-  auto markChunks = [&](const CellMeshMemo& m) {
-    if (m.valid) dirty.insert(m.pieceChunks.begin(), m.pieceChunks.end());
+  auto leaveChunks = [&](uint32_t index) {
+    const CellMeshMemo& m = memo.cells[index];
+    if (!m.valid) return;
+    for (const MeshChunkKey& key : std::set<MeshChunkKey>(m.pieceChunks.begin(), m.pieceChunks.end())) {
+      dirty.insert(key);
+      std::vector<uint32_t>& cells = memo.chunkCells[key];
+      const auto at = std::lower_bound(cells.begin(), cells.end(), index);
+      if (at != cells.end() && *at == index) cells.erase(at);
+    }
   };
-  for (size_t i = halfEdges.cellSlots(); i < memo.cells.size(); ++i) markChunks(memo.cells[i]);  // a smaller rebuilt tree
+  auto enterChunks = [&](uint32_t index) {
+    const CellMeshMemo& m = memo.cells[index];
+    for (const MeshChunkKey& key : std::set<MeshChunkKey>(m.pieceChunks.begin(), m.pieceChunks.end())) {
+      dirty.insert(key);
+      std::vector<uint32_t>& cells = memo.chunkCells[key];
+      cells.insert(std::lower_bound(cells.begin(), cells.end(), index), index);
+    }
+  };
+  for (size_t i = halfEdges.cellSlots(); i < memo.cells.size(); ++i) leaveChunks(uint32_t(i));  // a smaller rebuilt tree
   memo.cells.resize(halfEdges.cellSlots());
 
   // A point is on a value discontinuity (D0) when an occluder of a cell around it
@@ -544,7 +569,7 @@ const Engine::ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver)
       continue;
     }
     if (!cell.alive) {
-      markChunks(slot);
+      leaveChunks(index);
       slot = CellMeshMemo{};
       continue;
     }
@@ -577,7 +602,7 @@ const Engine::ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver)
       continue;
     }
     ++meshCounters_.cellsLit;
-    markChunks(slot);
+    leaveChunks(index);
     const Polygon2& polygon = inputs.outline;
     Vec3 centre{0.0};
     for (const Vec2& q : polygon) centre += receiver.frame.to3D(q);
@@ -622,7 +647,7 @@ const Engine::ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver)
     inputs.pieceTriangles.push_back(uint32_t(inputs.triangles.size()));
     inputs.valid = true;
     std::swap(slot, inputs);  // the old slot's buffers are reused for the next cell
-    markChunks(slot);
+    enterChunks(index);
   }
   memo.stamp = stamp;
 
@@ -637,23 +662,23 @@ const Engine::ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver)
         mesh.normal = r.frame.normal;
       }
     };
-    std::map<MeshChunkKey, ChunkAssembly> assemblies;
-    for (const MeshChunkKey& key : dirty) assemblies.try_emplace(key, receiver, eps);
     std::vector<uint32_t> ids;
-    for (const CellMeshMemo& m : memo.cells) {
-      if (!m.valid) continue;
-      for (size_t j = 0; j < m.pieceChunks.size(); ++j) {
-        const auto it = assemblies.find(m.pieceChunks[j]);
-        if (it == assemblies.end()) continue;
-        ids.resize(m.emitted.size());
-        for (uint32_t e = m.pieceEmitted[j]; e < m.pieceEmitted[j + 1]; ++e)
-          ids[e] = it->second.builder.vertex(m.emitted[e].first, m.emitted[e].second);
-        std::vector<std::array<uint32_t, 3>>& out = it->second.mesh.triangles;
-        for (uint32_t t = m.pieceTriangles[j]; t < m.pieceTriangles[j + 1]; ++t)
-          out.push_back({ids[m.triangles[t][0]], ids[m.triangles[t][1]], ids[m.triangles[t][2]]});
-      }
-    }
-    for (auto& [key, assembly] : assemblies) {
+    for (const MeshChunkKey& key : dirty) {
+      ChunkAssembly assembly(receiver, eps);
+      auto listed = memo.chunkCells.find(key);
+      if (listed != memo.chunkCells.end())
+        for (uint32_t index : listed->second) {
+          const CellMeshMemo& m = memo.cells[index];
+          for (size_t j = 0; j < m.pieceChunks.size(); ++j) {
+            if (m.pieceChunks[j] != key) continue;
+            ids.resize(m.emitted.size());
+            for (uint32_t e = m.pieceEmitted[j]; e < m.pieceEmitted[j + 1]; ++e)
+              ids[e] = assembly.builder.vertex(m.emitted[e].first, m.emitted[e].second);
+            for (uint32_t t = m.pieceTriangles[j]; t < m.pieceTriangles[j + 1]; ++t)
+              assembly.mesh.triangles.push_back({ids[m.triangles[t][0]], ids[m.triangles[t][1]], ids[m.triangles[t][2]]});
+          }
+        }
+      if (listed != memo.chunkCells.end() && listed->second.empty()) memo.chunkCells.erase(listed);
       if (assembly.mesh.triangles.empty())
         memo.chunks.erase(key);
       else

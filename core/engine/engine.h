@@ -33,8 +33,10 @@ struct EngineSettings {
   static constexpr double kDefaultSpacingDivisions = 32;
   // Display chunks: with a lattice, a receiver's mesh is assembled from square blocks
   // of this many lattice squares a side, each with its own vertices; a later mesh
-  // call assembles again only the blocks whose cells changed. <= 0: one block.
-  int meshChunkSquares = 4;
+  // call assembles again only the blocks whose cells changed. 0: chosen at
+  // construction from the scene's faces per lattice square (4, 2 or 1, so a block
+  // holds some hundreds of cells), < 0: one block.
+  int meshChunkSquares = 0;
 };
 
 // Called with (step name, done, total) as a long build proceeds; may be empty.
@@ -134,8 +136,10 @@ class Engine {
   // Drops the memo: the next mesh call lights every cell afresh.
   void forgetMeshMemo() { meshMemo_.clear(); }
 
-  // The lattice spacing mesh() uses (0: none).
+  // The lattice spacing mesh() uses (0: none), and the side of its display chunks in
+  // lattice squares (0: one chunk per receiver).
   double meshSpacing() const;
+  int meshChunkSquares() const { return meshChunkSquares_; }
 
   // Checks every structure the engine holds; throws std::logic_error.
   void validate() const;
@@ -194,6 +198,7 @@ class Engine {
     uint64_t stamp = 0;  // HalfEdgeMesh::stampNow() at the last call: cells touched later changed
     std::vector<CellMeshMemo> cells;  // by CellId index
     std::map<MeshChunkKey, std::shared_ptr<const ReceiverMesh>> chunks;  // the non-empty chunks' meshes
+    std::map<MeshChunkKey, std::vector<uint32_t>> chunkCells;  // cells with a piece in each chunk, ascending
   };
   void pruneMeshMemo();  // drops the memos of faces that are no longer receivers
   // Brings a receiver's memo (cells and chunks) up to date with its tree.
@@ -203,6 +208,7 @@ class Engine {
 
   Scene scene_;
   EngineSettings settings_;
+  int meshChunkSquares_ = 0;  // fixed at construction: chunks stay comparable across edits
   uint64_t version_ = 0;
   std::vector<std::unique_ptr<FaceOrder>> orders_;   // per light
   std::vector<std::unique_ptr<OverlapCube>> cubes_;  // per light
