@@ -130,7 +130,6 @@ class DmTree {
   bool chordOf(NodeId n, double& lo, double& hi) const;
   const SingleTreeNode* liveSegmentOn(NodeId n, double lo, double hi, const std::vector<OccluderKey>& keys,
                                       OccluderKey* owner) const;
-  void leavesOf(NodeId n, std::vector<NodeId>& out) const;
   void leavesAlong(NodeId n, const Vec2& p, const Vec2& q, std::vector<NodeId>& out) const;
   void deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result);
   void collapse(NodeId n, RemoveResult& result);

@@ -62,20 +62,6 @@ void DmTree::killNode(NodeId n) {
   --liveNodes_;
 }
 
-void DmTree::leavesOf(NodeId n, std::vector<NodeId>& out) const {
-  std::vector<NodeId> stack{n};
-  while (!stack.empty()) {
-    const NodeId k = stack.back();
-    stack.pop_back();
-    if (node(k).isLeaf()) {
-      out.push_back(k);
-    } else {
-      stack.push_back(node(k).back);
-      stack.push_back(node(k).front);
-    }
-  }
-}
-
 // The leaves below n whose cells touch the segment p→q with positive length.
 void DmTree::leavesAlong(NodeId n, const Vec2& p, const Vec2& q, std::vector<NodeId>& out) const {
   const double eps = tolerance_.length();
@@ -344,25 +330,44 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
         const NodeId other = mesh_.halfEdge(mesh_.halfEdge(h).prev).node;
         if (other != e && t > lo + eps && t < hi - eps) ++dangling[side];  // not at the edge's ends
       }
-  // Step 2: the basis a minimises E[cost_a] = (D_a + 1)·size_b (the paper's D_a·size_b;
-  // the +1 counts re-inserting b even when a has nothing to extend).
-  std::vector<NodeId> leaves[2];
-  leavesOf(front, leaves[0]);
-  leavesOf(back, leaves[1]);
-  // Live internal nodes per side (the removed occluder's own vanish with a collapse).
-  size_t size[2] = {leaves[0].size() - 1, leaves[1].size() - 1};
-  for (int side = 0; side < 2; ++side) {
-    std::vector<NodeId> stack{side == 0 ? front : back};
-    while (!stack.empty()) {
-      const DmNode& d = node(stack.back());
-      stack.pop_back();
-      if (d.isLeaf()) continue;
-      if (d.light == key.first && d.occluder == key.second) --size[side];
-      stack.push_back(d.front);
-      stack.push_back(d.back);
+  // Live internal nodes per side (the removed occluder's own vanish with a collapse),
+  // counted on both sides in turn and only until the choice is certain: the side to
+  // re-insert is usually small, the other may be most of the tree.
+  struct Count {
+    std::vector<NodeId> stack;
+    size_t size = 0;
+    bool done() const { return stack.empty(); }
+  };
+  Count count[2] = {{{front}}, {{back}}};
+  auto step = [&](Count& c) {
+    const DmNode& d = node(c.stack.back());
+    c.stack.pop_back();
+    if (d.isLeaf()) return;
+    if (!(d.light == key.first && d.occluder == key.second)) ++c.size;
+    c.stack.push_back(d.front);
+    c.stack.push_back(d.back);
+  };
+  // cost(side as basis) = (D_side + 1)·size_other; an unfinished count bounds its side's size
+  // from below. A finished side is surely the one to re-insert once keeping it as basis
+  // would cost more: (D_mine + 1)·size_other > (D_other + 1)·size_mine.
+  auto certain = [&] {
+    for (int side = 0; side < 2; ++side) {
+      const Count &mine = count[side], &other = count[1 - side];
+      if (mine.done() && (dangling[side] + 1) * other.size > (dangling[1 - side] + 1) * mine.size) return true;
     }
+    return count[0].done() && count[1].done();
+  };
+  while (!certain()) {
+    if (!count[0].done()) step(count[0]);
+    if (!count[1].done()) step(count[1]);
   }
-  const bool frontBasis = (dangling[0] + 1) * size[1] <= (dangling[1] + 1) * size[0];
+  // Step 2: the basis a minimises E[cost_a] = (D_a + 1)·size_b (the paper's D_a·size_b;
+  // the +1 counts re-inserting b even when a has nothing to extend). With one side
+  // unfinished, its true size only makes the other side the cheaper basis.
+  const size_t size[2] = {count[0].size, count[1].size};
+  const bool frontBasis = count[0].done() && count[1].done()
+                              ? (dangling[0] + 1) * size[1] <= (dangling[1] + 1) * size[0]
+                              : !count[0].done();
   const NodeId a = frontBasis ? front : back, b = frontBasis ? back : front;
   const double basisSide = frontBasis ? 1.0 : -1.0;
 

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
+#include <tuple>
 
 #include "core/engine/dirty_set.h"
 #include "core/engine/engine.h"
@@ -138,27 +140,54 @@ void Engine::relightAfterRemoval(FaceId target, Receiver& receiver, const Remove
   dirty.touch(target);
   // Deleted vertices that held a current value for their position (not waiting to be
   // relit after an earlier deletion of this frame), by exact position.
-  std::map<std::pair<double, double>, uint32_t> deleted;
+  std::vector<std::tuple<double, double, uint32_t>> deleted;  // (x, y, slot), sorted
   for (VertexId v : removed.removedVertices) {
     const Vec2 p = tree.position(v);
     if (v.index < receiver.litAt.size() && receiver.litAt[v.index] == p && !dirty.pending(target, v))
-      deleted.emplace(std::pair(p.x, p.y), v.index);
+      deleted.emplace_back(p.x, p.y, v.index);
   }
+  std::sort(deleted.begin(), deleted.end());
+  auto deletedAt = [&](const Vec2& p) -> std::optional<uint32_t> {
+    const auto it = std::lower_bound(deleted.begin(), deleted.end(), std::tuple(p.x, p.y, uint32_t(0)));
+    if (it == deleted.end() || std::get<0>(*it) != p.x || std::get<1>(*it) != p.y) return std::nullopt;
+    return std::get<2>(*it);
+  };
+  // The penumbra's box first: most re-split cells lie far from it.
+  Vec2 boxMin(INFINITY), boxMax(-INFINITY);
+  for (const Vec2& q : removed.penumbra) {
+    boxMin = glm::min(boxMin, q - Vec2(eps));
+    boxMax = glm::max(boxMax, q + Vec2(eps));
+  }
+  auto inPenumbra = [&](const Vec2& p) {
+    if (removed.penumbra.empty()) return true;
+    if (glm::any(glm::lessThan(p, boxMin)) || glm::any(glm::greaterThan(p, boxMax))) return false;
+    return contains(removed.penumbra, p, eps);
+  };
+  std::vector<bool> seen(mesh.vertexSlots(), false);
   auto settle = [&](VertexId v) {
-    if (v.index >= mesh.vertexSlots() || !mesh.vertex(v).alive) return;
+    if (v.index >= mesh.vertexSlots() || seen[v.index] || !mesh.vertex(v).alive) return;
+    seen[v.index] = true;
     const Vec2 p = tree.position(v);
-    if (removed.penumbra.empty() || contains(removed.penumbra, p, eps)) return dirty.addVertex(target, v);
+    if (inPenumbra(p)) return dirty.addVertex(target, v);
     if (receiver.litAt[v.index] == p) return;  // a survivor: its value stands
-    const auto was = deleted.find(std::pair(p.x, p.y));
-    if (was == deleted.end()) return dirty.addVertex(target, v);
-    receiver.values[v.index] = receiver.values[was->second];
-    receiver.perLight[v.index] = receiver.perLight[was->second];
+    const std::optional<uint32_t> was = deletedAt(p);
+    if (!was) return dirty.addVertex(target, v);
+    receiver.values[v.index] = receiver.values[*was];
+    receiver.perLight[v.index] = receiver.perLight[*was];
     receiver.litAt[v.index] = p;
     for (CellId c : tree.cellsAround(v)) receiver.tree.touch(c);  // corner values for meshing
   };
-  for (CellId c : removed.changedCells) {
+  std::vector<CellId> cells = removed.changedCells;
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  for (CellId c : cells) {
     if (c.index >= mesh.cellSlots() || !mesh.cell(c).alive) continue;
-    for (HalfEdgeId h : mesh.loop(c)) settle(mesh.halfEdge(h).origin);
+    const HalfEdgeId first = mesh.cell(c).edge;
+    HalfEdgeId h = first;
+    do {
+      settle(mesh.halfEdge(h).origin);
+      h = mesh.halfEdge(h).next;
+    } while (h != first);
   }
   for (VertexId v : removed.newVertices) settle(v);
 }
