@@ -197,7 +197,7 @@ json dragVsSize(const json& scenes) {
                            {"wall_ratio", wallFrom > 0 ? json(wallTo / wallFrom) : json(nullptr)}};
     std::printf(
         "drag median edit time, N = %d → %d: %.2f ms → %.2f ms, ratio %.2f (wall, with the "
-        "frame check and scene copy: %.2f ms → %.2f ms, ratio %.2f)\n",
+        "frame check: %.2f ms → %.2f ms, ratio %.2f)\n",
         (*smallest)["cubes"].get<int>(), (*largest)["cubes"].get<int>(), 1e3 * from, 1e3 * to,
         from > 0 ? to / from : 0.0, 1e3 * wallFrom, 1e3 * wallTo,
         wallFrom > 0 ? wallTo / wallFrom : 0.0);

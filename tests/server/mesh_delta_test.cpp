@@ -66,11 +66,15 @@ Frame randomFrame(const Scene& scene, std::mt19937_64& rng, int step, bool& adde
   return frame;
 }
 
-TEST(MeshDelta, DeltasAppliedToTheWholeMeshEqualAFreshMeshAfterEachFrame) {
+Scene eightCubes() {
   CubesSceneOptions options;
   options.cubes = 8;
   options.seed = 4;
-  const Scene scene = makeCubesScene(options);
+  return makeCubesScene(options);
+}
+
+TEST(MeshDelta, DeltasAppliedToTheWholeMeshEqualAFreshMeshAfterEachFrame) {
+  const Scene scene = eightCubes();
   SceneSession session("t", "cubes8", scene);
   Engine reference(scene);
   const auto first = session.snapshot();
@@ -117,10 +121,7 @@ TEST(MeshDelta, DeltasAppliedToTheWholeMeshEqualAFreshMeshAfterEachFrame) {
 // replaced, removed ones dropped) holds exactly a fresh engine's chunks, and a drag
 // sends only some of the floor's chunks.
 TEST(MeshDelta, PartDeltasAppliedToTheWholeMeshEqualAFreshEnginesChunks) {
-  CubesSceneOptions options;
-  options.cubes = 8;
-  options.seed = 4;
-  const Scene scene = makeCubesScene(options);
+  const Scene scene = eightCubes();
   SceneSession session("t", "cubes8", scene);
   Engine reference(scene);
   auto contentOf = [](const ReceiverMesh& m) {
