@@ -1,6 +1,7 @@
 // Engine::apply on hand-made frames: invalid frames change nothing (version, scene
 // and mesh byte-identical), a move relights only near the moved object, receivers
-// of removed objects are reported, and undoing a move restores the values.
+// of removed objects are reported, undoing a move restores the values, and edits of
+// one id within a frame follow each other.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -113,6 +114,53 @@ TEST(IncrementalFrame, RemoveReportsReceiversAndAddBringsThemBack) {
   const testing::EngineDiff diff = testing::compareEngines(engine, rebuilt, testing::peakIrradiance(rebuilt), 100, 2);
   EXPECT_EQ(diff.errors(), 0u) << diff.firstProblem;
   EXPECT_NO_THROW(engine.validate());
+}
+
+// Frames naming one id several times: the check follows the earlier edits of the
+// frame (sceneAfter gives the scene apply makes), and the result equals a rebuild.
+TEST(IncrementalFrame, EditsOfOneIdWithinAFrameFollowEachOther) {
+  Engine engine(makeCubesScene(CubesSceneOptions{6, 9}));
+  const Object cube = engine.scene().objects()[*engine.scene().findObject("cube_2")];
+  Edit remove;
+  remove.op = Edit::Op::Remove;
+  remove.id = "cube_2";
+  Edit addBack;
+  addBack.op = Edit::Op::Add;
+  addBack.object = cube;
+  addBack.object.transform.translate += Vec3(0.05, 0, 0.03);
+  Edit addNew;
+  addNew.op = Edit::Op::Add;
+  addNew.object = cube;
+  addNew.object.id = "cube_new";
+  addNew.object.transform.translate += Vec3(-0.3, 0, 0.2);
+  Edit moveNew;
+  moveNew.op = Edit::Op::Move;
+  moveNew.id = "cube_new";
+  moveNew.transform = addNew.object.transform;
+  moveNew.transform.translate += Vec3(0.04, 0, 0);
+  Edit removeNew;
+  removeNew.op = Edit::Op::Remove;
+  removeNew.id = "cube_new";
+
+  const std::vector<Frame> frames = {
+      Frame{{remove, addBack}},                                                        // same id, new object
+      Frame{{addNew, moveNew}},                                                        // added, then moved
+      Frame{{moveEdit(engine, "cube_1", Vec3(0.03, 0, 0)), moveEdit(engine, "cube_1", Vec3(0, 0, 0.03))}},
+      Frame{{removeNew, addNew, removeNew}},                                           // net: gone
+  };
+  for (size_t f = 0; f < frames.size(); ++f) {
+    SCOPED_TRACE("frame " + std::to_string(f));
+    const std::string expected = protocol::sceneToJson(engine.sceneAfter(frames[f])).dump();
+    engine.apply(frames[f]);
+    EXPECT_EQ(sceneText(engine), expected);
+    EXPECT_NO_THROW(engine.validate());
+    const Engine rebuilt(engine.scene());
+    const testing::EngineDiff diff = testing::compareEngines(engine, rebuilt, testing::peakIrradiance(rebuilt), 100, f);
+    EXPECT_EQ(diff.errors(), 0u) << diff.firstProblem;
+  }
+  EXPECT_FALSE(engine.scene().findObject("cube_new"));
+  // A later edit of the frame names an id an earlier one removed: refused, nothing changed.
+  expectRefusedUnchanged(engine, Frame{{remove, moveEdit(engine, "cube_2", Vec3(0.01, 0, 0))}}, 1, "id");
 }
 
 }  // namespace
