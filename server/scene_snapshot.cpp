@@ -92,11 +92,12 @@ size_t SceneSnapshot::triangleCount() const {
 
 nlohmann::json SceneSnapshot::meshJson(const MeshSelection& selection) const {
   const std::set<ReceiverKey> wanted(selection.receivers.begin(), selection.receivers.end());
+  const bool whole = !selection.since;  // every receiver: the cached whole mesh
   Mesh chosen;
   std::vector<uint64_t> versions;
   forEachReceiver(parts, [&](const ReceiverKey& key, size_t begin, size_t end) {
     if (!wanted.count(key)) return;
-    chosen.receivers.push_back(wholeReceiver(parts, begin, end));
+    if (!whole) chosen.receivers.push_back(wholeReceiver(parts, begin, end));
     uint64_t newest = 0;
     for (size_t i = begin; i < end; ++i) newest = std::max(newest, parts[i].version);
     if (selection.since)  // a receiver that only lost a chunk changed at that version
@@ -104,7 +105,7 @@ nlohmann::json SceneSnapshot::meshJson(const MeshSelection& selection) const {
         if (removedKey.receiver == key) newest = std::max(newest, removedAt);
     versions.push_back(newest);
   });
-  nlohmann::json root = protocol::meshToJson(scene, chosen, name);
+  nlohmann::json root = protocol::meshToJson(scene, whole ? mesh() : chosen, name);
   nlohmann::json& receivers = root["receivers"];
   for (size_t k = 0; k < versions.size(); ++k) receivers[k]["scene_version"] = versions[k];
   root["id"] = id;

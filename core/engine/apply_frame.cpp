@@ -40,14 +40,6 @@ std::vector<Face> facesOfObject(const Scene& scene, uint32_t handle) {
 constexpr double kFullRebuildShare = 0.15;
 constexpr size_t kFullRebuildMinFaces = 400;
 
-bool sameValue(const VertexIrradiance& a, const VertexIrradiance& b) {
-  if (a.lightClass != b.lightClass) return false;
-  for (int c = 0; c < 3; ++c)
-    if (std::abs(a.irradiance[c] - b.irradiance[c]) > 1e-12 * std::max(std::abs(a.irradiance[c]), std::abs(b.irradiance[c])))
-      return false;
-  return true;
-}
-
 }  // namespace
 
 void Engine::checkFrame(const Frame& frame) const {

@@ -372,14 +372,10 @@ class ReceiverMeshBuilder {
   std::unordered_map<Key, uint32_t, KeyHash> index_;
 };
 
-bool sameValue(const VertexIrradiance& a, const VertexIrradiance& b) {
-  return a.irradiance == b.irradiance && a.lightClass == b.lightClass;
-}
-
 bool sameValues(const std::vector<VertexIrradiance>& a, const std::vector<VertexIrradiance>& b) {
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i)
-    if (!sameValue(a[i], b[i])) return false;
+    if (!identicalValue(a[i], b[i])) return false;
   return true;
 }
 
@@ -498,10 +494,12 @@ const Engine::ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver)
   // Chunks whose cells changed; the memo's old pieces and the new ones both count.
   // A cell's pieces leave or enter the chunks' cell lists (kept in cell order).
   std::set<MeshChunkKey> dirty;
-  auto leaveChunks = [&](uint32_t index) {
+  auto chunksOf = [&](uint32_t index) {
     const CellMeshMemo& m = memo.cells[index];
-    if (!m.valid) return;
-    for (const MeshChunkKey& key : std::set<MeshChunkKey>(m.pieceChunks.begin(), m.pieceChunks.end())) {
+    return m.valid ? std::set<MeshChunkKey>(m.pieceChunks.begin(), m.pieceChunks.end()) : std::set<MeshChunkKey>{};
+  };
+  auto leaveChunks = [&](uint32_t index) {
+    for (const MeshChunkKey& key : chunksOf(index)) {
       dirty.insert(key);
       std::vector<uint32_t>& cells = memo.chunkCells[key];
       const auto at = std::lower_bound(cells.begin(), cells.end(), index);
@@ -509,8 +507,7 @@ const Engine::ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver)
     }
   };
   auto enterChunks = [&](uint32_t index) {
-    const CellMeshMemo& m = memo.cells[index];
-    for (const MeshChunkKey& key : std::set<MeshChunkKey>(m.pieceChunks.begin(), m.pieceChunks.end())) {
+    for (const MeshChunkKey& key : chunksOf(index)) {
       dirty.insert(key);
       std::vector<uint32_t>& cells = memo.chunkCells[key];
       cells.insert(std::lower_bound(cells.begin(), cells.end(), index), index);

@@ -1,12 +1,25 @@
 #include "core/illum/vertex_illumination.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "core/illum/backprojection.h"
 #include "core/illum/face_lookup.h"
 
 namespace penumbra {
+
+bool identicalValue(const VertexIrradiance& a, const VertexIrradiance& b) {
+  return a.irradiance == b.irradiance && a.lightClass == b.lightClass;
+}
+
+bool sameValue(const VertexIrradiance& a, const VertexIrradiance& b) {
+  if (a.lightClass != b.lightClass) return false;
+  for (int c = 0; c < 3; ++c)
+    if (std::abs(a.irradiance[c] - b.irradiance[c]) > 1e-12 * std::max(std::abs(a.irradiance[c]), std::abs(b.irradiance[c])))
+      return false;
+  return true;
+}
 
 namespace {
 

@@ -39,6 +39,12 @@ struct VertexIrradiance {
   size_t comparisons = 0;
 };
 
+// Bit for bit the same irradiance and class (the mesh memo's test).
+bool identicalValue(const VertexIrradiance& a, const VertexIrradiance& b);
+// The same class and each channel within 1e-12 relative: what counts as a changed
+// value for relight counters (a vertex lit again from other cells may move the last bits).
+bool sameValue(const VertexIrradiance& a, const VertexIrradiance& b);
+
 // Light `light` at p (unit front normal n) from the occluder lists of the cells
 // around p (entries of other lights are ignored). The cases in order:
 // (1) a cell without entry for the light → the whole front part, Lit;
