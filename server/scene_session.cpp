@@ -78,17 +78,23 @@ SceneSession::Applied SceneSession::apply(const Frame& frame) {
   }
   const std::set<FaceId> changed(result.changedReceivers.begin(), result.changedReceivers.end());
   std::vector<FaceId> remesh;
+  std::set<ReceiverKey> redone;  // receivers meshed again or gone: only their parts are compared
+  for (const auto& [key, run] : previousRuns) redone.insert(key);
   for (const Engine::Receiver& r : engine_->receivers()) {
     const ReceiverKey key{next->scene.object(r.face.object).id, r.face.face};
     if (changed.count(r.face) || !previousRuns.count(key)) remesh.push_back(r.face);
+    else redone.erase(key);  // kept as it was
   }
   const std::vector<Engine::ReceiverChunks> remeshed = engine_->meshChunks(remesh);
   const Engine::MeshCacheCounters cells = engine_->lastMeshCounters();
   size_t fresh = 0;
+  std::vector<size_t> freshParts;  // indices into next->parts of the parts meshed again
   for (const Engine::Receiver& r : engine_->receivers()) {
     if (fresh < remeshed.size() && remeshed[fresh].face == r.face) {
-      std::vector<MeshPart> parts = partsOf(next->scene, remeshed[fresh++], next->version);
-      next->parts.insert(next->parts.end(), parts.begin(), parts.end());
+      for (MeshPart& part : partsOf(next->scene, remeshed[fresh++], next->version)) {
+        freshParts.push_back(next->parts.size());
+        next->parts.push_back(std::move(part));
+      }
     } else {
       const auto [begin, end] = previousRuns.at({next->scene.object(r.face.object).id, r.face.face});
       next->parts.insert(next->parts.end(), previous->parts.begin() + long(begin), previous->parts.begin() + long(end));
@@ -96,10 +102,17 @@ SceneSession::Applied SceneSession::apply(const Frame& frame) {
   }
 
   // A part's version moves only when its mesh data really changed, so `since` deltas
-  // carry what a client must redraw, whatever the engine recomputed.
+  // carry what a client must redraw, whatever the engine recomputed. Receivers kept as
+  // they were keep their parts and versions.
   std::map<PartKey, size_t> before;
-  for (size_t i = 0; i < previous->parts.size(); ++i) before.emplace(previous->parts[i].key, i);
-  for (MeshPart& part : next->parts) {
+  for (const ReceiverKey& key : redone) {
+    const auto [begin, end] = previousRuns.at(key);
+    for (size_t i = begin; i < end; ++i) before.emplace(previous->parts[i].key, i);
+  }
+  std::set<PartKey> live;  // the parts meshed again: a removed key can only come back among them
+  for (size_t i : freshParts) {
+    MeshPart& part = next->parts[i];
+    live.insert(part.key);
     const auto it = before.find(part.key);
     if (it == before.end()) continue;
     const MeshPart& old = previous->parts[it->second];
@@ -108,8 +121,6 @@ SceneSession::Applied SceneSession::apply(const Frame& frame) {
   }
   const double meshSeconds = secondsSince(meshStart);
   // What is left in `before` has left; a key that came back is live again.
-  std::set<PartKey> live;
-  for (const MeshPart& part : next->parts) live.insert(part.key);
   for (const auto& [key, removedAt] : previous->removed)
     if (!live.count(key)) next->removed.emplace_back(key, removedAt);
   for (const auto& [key, index] : before) next->removed.emplace_back(key, next->version);
