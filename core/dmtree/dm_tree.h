@@ -26,6 +26,7 @@ struct DmNode {
   Vec2 a{0.0}, b{0.0};   // the generating segment, clipped to the cell it split
   bool partial = false;  // the segment did not span that cell: construction edges extend it
   bool orphan = false;   // its occluder was removed but the node could not be condensed yet
+  bool copy = false;     // made by splitting a node in two where an extended edge crossed it
   bool alive = true;
   bool isLeaf() const { return cell.is_valid(); }
 };
@@ -47,8 +48,8 @@ struct RemoveResult {
   size_t nodesRemoved = 0;    // the occluder's splitting nodes deleted (paper §3.1)
   size_t nodesRelabeled = 0;  // its nodes kept because a live occluder's segment lies on them
   size_t nodesKept = 0;       // its nodes left as orphan construction edges (0 unless a step failed)
-  size_t nodesCollapsed = 0;  // other occluders' nodes merged away in a re-inserted subtree
-  size_t nodesReinserted = 0; // nodes made re-inserting that subtree's live segments
+  size_t nodesSplit = 0;      // nodes copied where an extended edge crossed them
+  size_t copiesRemoved = 0;   // copies of its nodes (DmNode::copy) deleted
   size_t nodesCondensed = 0;  // splits of homogeneous cells removed afterwards
   // A geometric step failed and the tree was rebuilt from its stored shadows: every
   // earlier CellId/VertexId is invalid (the caller relights everything).
@@ -68,10 +69,11 @@ class DmTree {
   // cells under its penumbra) and its nodes, top-down (paper §3.1; those inside a
   // collapsed subtree go with it). A node with two subtrees is deleted in three steps:
   // unlink its edge; take as basis the subtree a minimising E[cost_a] = (D_a + 1)·size_b
-  // (D_a: dangling edges on a's side, size_b: live occluders' nodes in the other) and
-  // extend a's dangling edges across the freed cell; re-insert b's live discontinuity
-  // segments (b collapsed into one cell, each new cell's list read from the old cell
-  // around one point); then condense extended splits of homogeneous cells. A node on
+  // (D_a: dangling edges on a's side, size_b: live occluders' nodes in the other);
+  // insert b into a: a's dangling edges extend across b's side, splitting only b's cells
+  // they cross (b's other subtrees move whole, placed by their region's corners), and
+  // each of a's leaves along the edge takes its share of b, b's dangling edges extending
+  // across the leaf's cell; then condense extended splits of homogeneous cells. A node on
   // which a still-inserted occluder's segment lies is relabeled to it, not deleted. If
   // a geometric step fails (std::logic_error) the tree is rebuilt from the stored
   // shadows and `rebuilt` is set (a counted fallback, never the normal path).
@@ -132,11 +134,17 @@ class DmTree {
                                       OccluderKey* owner) const;
   void leavesAlong(NodeId n, const Vec2& p, const Vec2& q, std::vector<NodeId>& out) const;
   void deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result);
-  void collapse(NodeId n, RemoveResult& result);
-  void extendInto(NodeId n, CellId piece, std::vector<NodeId>& extended, RemoveResult& result);
-  void filterSegment(NodeId n, const Vec2& p, const Vec2& q, const SingleTreeNode& seg, const OccluderKey& key,
-                     RemoveResult& result);
-  void condenseLeafPair(NodeId n, const std::vector<OccluderKey>& keys, RemoveResult& result);
+  struct SplitTree {
+    NodeId front, back;  // either invalid if nothing lies on that side
+  };
+  SplitTree partition(NodeId t, NodeId cutter, const Polygon2& region, RemoveResult& result);
+  void mergeInto(NodeId n, NodeId t, const Polygon2& region, const Line2& deleted,
+                 std::vector<NodeId>& extended, RemoveResult& result);
+  void extendInto(NodeId n, CellId piece, const Line2& deleted, std::vector<NodeId>& extended,
+                  RemoveResult& result);
+  NodeId copyOf(NodeId n);
+  void relabelEdges(NodeId from, NodeId to, NodeId under, const Polygon2& region);
+  void condenseLeafPair(NodeId n, RemoveResult& result);
   void killNode(NodeId n);
   void rebuild();
 
@@ -159,6 +167,10 @@ class DmTree {
   std::map<OccluderKey, Inserted> inserted_;
   uint64_t nextSequence_ = 0;
   OccluderKey removing_{};  // the occluder removeOccluder is deleting (counts its nodes apart)
+  // Nodes split in two (original and copy) by an extended edge, by generator: their
+  // regions may miss the generator's penumbra. Dead or relabeled ones are skipped
+  // when read (node slots are not reused).
+  std::map<OccluderKey, std::vector<NodeId>> splitNodes_;
 };
 
 }  // namespace penumbra

@@ -86,6 +86,11 @@ class HalfEdgeMesh {
     return cells_[c.index].occluders;
   }
   void setLeaf(CellId c, NodeId leaf) { cells_[c.index].leaf = leaf; }
+  // The edge pair of h now belongs to `node` (a copy of its node, same line).
+  void relabel(HalfEdgeId h, NodeId node) {
+    halfEdges_[h.index].node = node;
+    halfEdges_[twin(h).index].node = node;
+  }
   // Marks a cell changed, so meshing looks at it again (see Cell::touched).
   void touch(CellId c) { cells_[c.index].touched = nextStamp(); }
   // One clock shared by every mesh in the process, so a stamp read before meshing

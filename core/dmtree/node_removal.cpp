@@ -1,6 +1,7 @@
 // DmTree::removeOccluder: deleting one occluder's list entries and tree nodes (paper
-// §3.1): unlink a node's edge, extend the basis subtree across the freed cell,
-// re-insert the other subtree's live segments, condense what no longer separates.
+// §3.1): unlink a node's edge, extend the basis subtree's dangling edges across the other
+// side, insert the other subtree split only where they cross it, condense what no
+// longer separates.
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -11,23 +12,6 @@
 namespace penumbra {
 
 namespace {
-
-// Clips p→q to the convex CCW polygon grown by eps; false if less than eps is left.
-bool clipSegment(const Polygon2& poly, Vec2& p, Vec2& q, double eps) {
-  double t0 = 0, t1 = 1;
-  for (size_t i = 0; i < poly.size(); ++i) {
-    const Vec2 a = poly[i], b = poly[(i + 1) % poly.size()];
-    const double dp = lineDistance(a, b, p) + eps, dq = lineDistance(a, b, q) + eps;
-    if (dp < 0 && dq < 0) return false;
-    if (dp < 0) t0 = std::max(t0, dp / (dp - dq));
-    else if (dq < 0) t1 = std::min(t1, dp / (dp - dq));
-  }
-  if (!(t1 > t0)) return false;
-  const Vec2 a = p + t0 * (q - p), b = p + t1 * (q - p);
-  p = a;
-  q = b;
-  return glm::length(q - p) > eps;
-}
 
 Vec2 along(const Line2& line) { return {-line.normal.y, line.normal.x}; }
 
@@ -50,6 +34,24 @@ bool chordExtent(const Line2& line, const Polygon2& region, double eps, double& 
     }
   }
   return hi - lo > eps;
+}
+
+// Where a convex region lies against a line: +1 / -1 wholly in front / behind (within
+// eps), 0 across it. Classifying the region's corners decides for every cell inside it.
+int sideOf(const Polygon2& region, const Line2& line, double eps) {
+  bool front = false, back = false;
+  for (const Vec2& p : region) {
+    const double d = line.distance(p);
+    front |= d > eps;
+    back |= d < -eps;
+  }
+  return front && back ? 0 : back ? -1 : 1;
+}
+
+// The two sides of a region cut by a line: {right = front, left = back}.
+Split2 splitRegion(const Polygon2& region, const Line2& line, double eps) {
+  const Vec2 a = -line.offset * line.normal;
+  return splitByLine(region, a, a + along(line), eps);
 }
 
 }  // namespace
@@ -162,90 +164,168 @@ void DmTree::collectOccluderNodes(NodeId n, const Polygon2& region, const Occlud
   if (d.light == key.first && d.occluder == key.second) out.push_back(n);
 }
 
-// Merges every cell below n into one; n becomes its leaf.
-void DmTree::collapse(NodeId n, RemoveResult& result) {
-  if (node(n).isLeaf()) return;
-  const NodeId front = node(n).front, back = node(n).back;
-  collapse(front, result);
-  collapse(back, result);
-  const CellId keep = node(front).cell, drop = node(back).cell;
-  const std::vector<VertexId> removed = mesh_.mergeCells(keep, drop, tolerance_.length());
-  result.removedVertices.insert(result.removedVertices.end(), removed.begin(), removed.end());
-  killNode(front);
-  killNode(back);
-  DmNode& d = nodes_[n.index];
-  d.cell = keep;
-  mesh_.setLeaf(keep, n);
-  if (d.light == removing_.first && d.occluder == removing_.second) ++result.nodesRemoved;
-  else ++result.nodesCollapsed;
-}
-
-// Step 2: the piece of the freed cell under basis node n is cut by n's line (the
-// dangling edge extended) until it reaches a leaf, then joins that leaf's cell across
-// the deleted edge. Only lines that crossed the deleted edge can cut a piece.
-void DmTree::extendInto(NodeId n, CellId piece, std::vector<NodeId>& extended, RemoveResult& result) {
+// Step 2 (the other side): the piece of a basis leaf's cell is cut by the lines of the
+// subtree t grafted in its place until it reaches a leaf, then joins that leaf's cell
+// across the deleted edge. The joined cell keeps the list of the part holding its
+// centroid (the two agree unless the deleted edge separated a numerical disagreement).
+void DmTree::extendInto(NodeId n, CellId piece, const Line2& deleted, std::vector<NodeId>& extended,
+                        RemoveResult& result) {
   const double eps = tolerance_.length();
   if (node(n).isLeaf()) {
     const CellId keep = node(n).cell;
+    const OccluderList pieceList = mesh_.cell(piece).occluders;
+    const double pieceSide = deleted.distance(areaCentroid(mesh_.polygon(piece)));
     const std::vector<VertexId> removed = mesh_.mergeCells(keep, piece, eps);
     result.removedVertices.insert(result.removedVertices.end(), removed.begin(), removed.end());
     result.changedCells.push_back(keep);
+    if (pieceSide * deleted.distance(areaCentroid(mesh_.polygon(keep))) > 0 &&
+        mesh_.cell(keep).occluders != pieceList)
+      mesh_.occludersForWrite(keep) = pieceList;
     return;
   }
   const HalfEdgeMesh::CutPlan plan = mesh_.planCut(piece, node(n).line, eps);
-  if (plan.side > 0) return extendInto(node(n).front, piece, extended, result);
-  if (plan.side < 0) return extendInto(node(n).back, piece, extended, result);
+  if (plan.side > 0) return extendInto(node(n).front, piece, deleted, extended, result);
+  if (plan.side < 0) return extendInto(node(n).back, piece, deleted, extended, result);
   const HalfEdgeMesh::CutResult cut = mesh_.applyCut(plan, n);
   result.newVertices.insert(result.newVertices.end(), cut.newVertices.begin(), cut.newVertices.end());
   nodes_[n.index].partial = true;
   extended.push_back(n);
   const NodeId front = node(n).front, back = node(n).back;
-  extendInto(front, cut.front, extended, result);
-  extendInto(back, cut.back, extended, result);
+  extendInto(front, cut.front, deleted, extended, result);
+  extendInto(back, cut.back, deleted, extended, result);
 }
 
-// Step 3: filters the live segment piece p→q down from n; where it crosses a leaf
-// cell's interior the cell is split along it (the split spans the cell).
-void DmTree::filterSegment(NodeId n, const Vec2& p, const Vec2& q, const SingleTreeNode& seg, const OccluderKey& key,
-                           RemoveResult& result) {
+// A copy of internal node n (same line and generator) for the other side of a split.
+// Both are remembered by generator: either may now lie outside that occluder's
+// penumbra, where removing it would not look.
+NodeId DmTree::copyOf(NodeId n) {
+  DmNode copy = node(n);
+  copy.front = copy.back = copy.parent = NodeId();
+  copy.partial = copy.copy = true;
+  nodes_.push_back(copy);
+  ++liveNodes_;
+  const NodeId id(static_cast<uint32_t>(nodes_.size() - 1));
+  std::vector<NodeId>& split = splitNodes_[{copy.light, copy.occluder}];
+  split.push_back(n);
+  split.push_back(id);
+  return id;
+}
+
+// The mesh edges of `from` along its line among the cells below `under` now belong to `to`.
+void DmTree::relabelEdges(NodeId from, NodeId to, NodeId under, const Polygon2& region) {
+  double lo, hi;
+  const Line2& line = node(from).line;
+  if (!chordExtent(line, region, tolerance_.length(), lo, hi)) return;
+  const Vec2 origin = -line.offset * line.normal, dir = along(line);
+  std::vector<NodeId> leaves;
+  leavesAlong(under, origin + lo * dir, origin + hi * dir, leaves);
+  for (NodeId leaf : leaves)
+    for (HalfEdgeId h : mesh_.loop(node(leaf).cell))
+      if (mesh_.halfEdge(h).node == from) mesh_.relabel(h, to);
+}
+
+// Step 3: splits subtree t (covering `region`) by the line of basis node `cutter`. Only
+// cells the line crosses are cut; a subtree whose region lies on one side goes whole,
+// found by classifying its region's corners. A node needed on both sides is copied.
+DmTree::SplitTree DmTree::partition(NodeId t, NodeId cutter, const Polygon2& region,
+                                    RemoveResult& result) {
   const double eps = tolerance_.length();
-  if (!node(n).isLeaf()) {
-    const Line2 line = node(n).line;
-    const NodeId front = node(n).front, back = node(n).back;
-    const double dp = line.distance(p), dq = line.distance(q);
-    if (std::abs(dp) <= eps && std::abs(dq) <= eps) return;  // on n's edge already
-    if (dp >= -eps && dq >= -eps) return filterSegment(front, p, q, seg, key, result);
-    if (dp <= eps && dq <= eps) return filterSegment(back, p, q, seg, key, result);
-    const Vec2 x = p + (dp / (dp - dq)) * (q - p);
-    filterSegment(dp > 0 ? front : back, p, x, seg, key, result);
-    filterSegment(dq > 0 ? front : back, x, q, seg, key, result);
+  const Line2 line = node(cutter).line;
+  const int side = sideOf(region, line, eps);
+  if (side > 0) return {t, NodeId()};
+  if (side < 0) return {NodeId(), t};
+  if (node(t).isLeaf()) {
+    const HalfEdgeMesh::CutPlan plan = mesh_.planCut(node(t).cell, line, eps);
+    if (plan.side > 0) return {t, NodeId()};
+    if (plan.side < 0) return {NodeId(), t};
+    const HalfEdgeMesh::CutResult cut =
+        mesh_.applyCut(plan, cutter);  // the front part keeps t's cell
+    result.newVertices.insert(result.newVertices.end(), cut.newVertices.begin(),
+                              cut.newVertices.end());
+    result.changedCells.push_back(cut.front);
+    result.changedCells.push_back(cut.back);
+    return {t, addNode(NodeId(), cut.back)};
+  }
+  const Line2 own = node(t).line;
+  const NodeId tFront = node(t).front, tBack = node(t).back;
+  const Split2 halves = splitRegion(region, own, eps);
+  const SplitTree f = partition(tFront, cutter, halves.right, result);
+  const SplitTree b = partition(tBack, cutter, halves.left, result);
+  const bool frontNeedsT = f.front.is_valid() && b.front.is_valid();
+  const bool backNeedsT = f.back.is_valid() && b.back.is_valid();
+  NodeId backNode = t;
+  if (frontNeedsT && backNeedsT) {
+    backNode = copyOf(t);
+    ++result.nodesSplit;
+  }
+  auto join = [&](NodeId n, NodeId x, NodeId y) {
+    if (!x.is_valid()) return y;
+    if (!y.is_valid()) return x;
+    DmNode& d = nodes_[n.index];
+    d.front = x;
+    d.back = y;
+    d.partial = true;
+    nodes_[x.index].parent = n;
+    nodes_[y.index].parent = n;
+    return n;
+  };
+  const SplitTree out{join(t, f.front, b.front), join(backNode, f.back, b.back)};
+  if (backNode != t) {
+    relabelEdges(t, backNode, out.back, splitRegion(region, line, eps).left);
+  } else if (!frontNeedsT && !backNeedsT) {
+    // t's line separated the same cells as the cutter's (the two are collinear here).
+    relabelEdges(t, cutter, tFront, region);
+    relabelEdges(t, cutter, tBack, region);
+    killNode(t);
+  }
+  return out;
+}
+
+// Step 3: basis node n takes b's subtree t (covering `region`, on b's side of the
+// deleted edge). A basis line crossing the region splits t (the line is extended); at
+// a basis leaf, t takes the leaf's place and the leaf's cell joins t's cells.
+void DmTree::mergeInto(NodeId n, NodeId t, const Polygon2& region, const Line2& deleted,
+                       std::vector<NodeId>& extended, RemoveResult& result) {
+  const double eps = tolerance_.length();
+  if (node(n).isLeaf()) {
+    const NodeId parent = node(n).parent;
+    nodes_[t.index].parent = parent;
+    if (!parent.is_valid())
+      root_ = t;
+    else if (node(parent).front == n)
+      nodes_[parent.index].front = t;
+    else
+      nodes_[parent.index].back = t;
+    const CellId piece = node(n).cell;
+    killNode(n);
+    extendInto(t, piece, deleted, extended, result);
     return;
   }
-  const CellId c = node(n).cell;
-  const HalfEdgeMesh::CutPlan plan = mesh_.planCut(c, seg.line, eps);
-  if (plan.side != 0) return;
-  const double length = glm::length(seg.b - seg.a);
-  const Vec2 dir = (seg.b - seg.a) / length;
-  const double t0 = glm::dot(plan.entry.point - seg.a, dir), t1 = glm::dot(plan.exit.point - seg.a, dir);
-  const double tp = glm::dot(p - seg.a, dir), tq = glm::dot(q - seg.a, dir);
-  const double chordLo = std::min(t0, t1), chordHi = std::max(t0, t1);
-  const double lo = std::max(chordLo, std::min(tp, tq)), hi = std::min(chordHi, std::max(tp, tq));
-  if (hi - lo <= eps) return;
-  const HalfEdgeMesh::CutResult cut =
-      splitLeaf(n, plan, seg, key, lo, hi, lo > chordLo + eps || hi < chordHi - eps);
-  result.newVertices.insert(result.newVertices.end(), cut.newVertices.begin(), cut.newVertices.end());
-  result.changedCells.push_back(cut.front);
-  result.changedCells.push_back(cut.back);
-  ++result.nodesReinserted;
+  const Line2 line = node(n).line;
+  const NodeId front = node(n).front, back = node(n).back;
+  const int side = sideOf(region, line, eps);
+  if (side > 0) return mergeInto(front, t, region, deleted, extended, result);
+  if (side < 0) return mergeInto(back, t, region, deleted, extended, result);
+  const SplitTree parts = partition(t, n, region, result);
+  nodes_[n.index].partial = true;
+  extended.push_back(n);
+  const Split2 halves = splitRegion(region, line, eps);
+  if (parts.front.is_valid())
+    mergeInto(front, parts.front, halves.right, deleted, extended, result);
+  if (parts.back.is_valid()) mergeInto(back, parts.back, halves.left, deleted, extended, result);
 }
 
 // Removes n's split if its two cells are leaves with equal lists and its edge carries
-// no live discontinuity (paper: "the subtrees created are condensed", edge 14b).
-void DmTree::condenseLeafPair(NodeId n, const std::vector<OccluderKey>& keys, RemoveResult& result) {
+// no live discontinuity (paper: "the subtrees created are condensed", edge 14b). Only
+// occluders listed in the two cells can have a segment on the edge.
+void DmTree::condenseLeafPair(NodeId n, RemoveResult& result) {
   const DmNode& d = node(n);
   if (!d.alive || d.isLeaf() || !node(d.front).isLeaf() || !node(d.back).isLeaf()) return;
   const CellId keep = node(d.front).cell, drop = node(d.back).cell;
   if (mesh_.cell(keep).occluders != mesh_.cell(drop).occluders) return;
+  std::vector<OccluderKey> keys;
+  for (const OccluderEntry& entry : mesh_.cell(keep).occluders)
+    keys.push_back({entry.light, entry.face});
   double lo, hi;
   if (chordOf(n, lo, hi) && liveSegmentOn(n, lo, hi, keys, nullptr)) return;
   const std::vector<VertexId> removed = mesh_.mergeCells(keep, drop, tolerance_.length());
@@ -258,7 +338,8 @@ void DmTree::condenseLeafPair(NodeId n, const std::vector<OccluderKey>& keys, Re
   m.cell = keep;
   m.partial = m.orphan = false;
   mesh_.setLeaf(keep, n);
-  if (m.light == removing_.first && m.occluder == removing_.second) ++result.nodesRemoved;
+  if (m.light == removing_.first && m.occluder == removing_.second)
+    ++(m.copy ? result.copiesRemoved : result.nodesRemoved);
   else ++result.nodesCondensed;
 }
 
@@ -330,9 +411,9 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
         const NodeId other = mesh_.halfEdge(mesh_.halfEdge(h).prev).node;
         if (other != e && t > lo + eps && t < hi - eps) ++dangling[side];  // not at the edge's ends
       }
-  // Live internal nodes per side (the removed occluder's own vanish with a collapse),
-  // counted on both sides in turn and only until the choice is certain: the side to
-  // re-insert is usually small, the other may be most of the tree.
+  // Live internal nodes per side (the removed occluder's own go anyway), counted on both
+  // sides in turn and only until the choice is certain: the side to insert is usually
+  // small, the other may be most of the tree.
   struct Count {
     std::vector<NodeId> stack;
     size_t size = 0;
@@ -348,7 +429,7 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
     c.stack.push_back(d.back);
   };
   // cost(side as basis) = (D_side + 1)·size_other; an unfinished count bounds its side's size
-  // from below. A finished side is surely the one to re-insert once keeping it as basis
+  // from below. A finished side is surely the one to insert once keeping it as basis
   // would cost more: (D_mine + 1)·size_other > (D_other + 1)·size_mine.
   auto certain = [&] {
     for (int side = 0; side < 2; ++side) {
@@ -362,69 +443,16 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
     if (!count[1].done()) step(count[1]);
   }
   // Step 2: the basis a minimises E[cost_a] = (D_a + 1)·size_b (the paper's D_a·size_b;
-  // the +1 counts re-inserting b even when a has nothing to extend). With one side
+  // the +1 counts inserting b even when a has nothing to extend). With one side
   // unfinished, its true size only makes the other side the cheaper basis.
   const size_t size[2] = {count[0].size, count[1].size};
   const bool frontBasis = count[0].done() && count[1].done()
                               ? (dangling[0] + 1) * size[1] <= (dangling[1] + 1) * size[0]
                               : !count[0].done();
   const NodeId a = frontBasis ? front : back, b = frontBasis ? back : front;
-  const double basisSide = frontBasis ? 1.0 : -1.0;
-
-  // b's cells (one point of each new cell is classified against them, by descending
-  // a copy of b's lines: paper step 3, "classifying one point will suffice") and
-  // generators.
-  struct SavedNode {
-    Line2 line;
-    int front = -1, back = -1;
-    int list = -1;  // leaves: index into oldLists
-  };
-  std::vector<SavedNode> saved;
-  std::vector<OccluderList> oldLists;
-  {
-    std::vector<std::pair<NodeId, int>> stack{{b, -1}};  // node, saved parent slot (front first)
-    while (!stack.empty()) {
-      const auto [k, parentSlot] = stack.back();
-      stack.pop_back();
-      const int slot = int(saved.size());
-      saved.emplace_back();
-      if (parentSlot >= 0) {
-        SavedNode& parent = saved[size_t(parentSlot)];
-        if (parent.front < 0) parent.front = slot;
-        else parent.back = slot;
-      }
-      const DmNode& d = node(k);
-      if (d.isLeaf()) {
-        saved[size_t(slot)].list = int(oldLists.size());
-        oldLists.push_back(mesh_.cell(d.cell).occluders);
-        addListed(k);
-        continue;
-      }
-      saved[size_t(slot)].line = d.line;
-      stack.push_back({d.back, slot});   // popped second: the back child
-      stack.push_back({d.front, slot});  // popped first: the front child
-    }
-  }
-  {
-    std::vector<NodeId> stack{b};
-    while (!stack.empty()) {
-      const DmNode& d = node(stack.back());
-      stack.pop_back();
-      if (d.isLeaf()) continue;
-      keySet.insert({d.light, d.occluder});
-      stack.push_back(d.front);
-      stack.push_back(d.back);
-    }
-  }
-  const std::vector<OccluderKey> keys = sortedKeys();
-
-  collapse(b, result);
-  const CellId freed = node(b).cell;
-  const Polygon2 freedPolygon = mesh_.polygon(freed);
-  const size_t firstChanged = result.changedCells.size();
-  std::vector<NodeId> extended;
-  extendInto(a, freed, extended, result);
-  killNode(b);
+  // b's part of e's region, before e is unlinked.
+  const Split2 halves = splitRegion(regionOf(e), deletedLine, eps);
+  const Polygon2 bRegion = frontBasis ? halves.left : halves.right;
 
   // Unlink e: a takes its place.
   const NodeId parent = node(e).parent;
@@ -432,43 +460,25 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
   if (!parent.is_valid()) root_ = a;
   else if (node(parent).front == e) nodes_[parent.index].front = a;
   else nodes_[parent.index].back = a;
+  ++(node(e).copy ? result.copiesRemoved : result.nodesRemoved);
   killNode(e);
-  ++result.nodesRemoved;
-  for (NodeId leaf : along[frontBasis ? 0 : 1])
-    for (HalfEdgeId h : mesh_.loop(node(leaf).cell))
-      if (mesh_.halfEdge(h).node == e) throw std::logic_error("DM-tree: an edge of a deleted node is left");
 
-  // Step 3: b's live discontinuities (and any on e's line) go back in, in insertion order.
-  // A bounding-box test first: most of an occluder's segments lie far from the cell.
-  Vec2 boxMin = freedPolygon[0], boxMax = freedPolygon[0];
-  for (const Vec2& v : freedPolygon) {
-    boxMin = glm::min(boxMin, v);
-    boxMax = glm::max(boxMax, v);
-  }
-  boxMin -= Vec2(2 * eps);
-  boxMax += Vec2(2 * eps);
-  for (const OccluderKey& k : keys)
-    for (const SingleTreeNode& seg : inserted_.at(k).segments) {
-      const Vec2 segMin = glm::min(seg.a, seg.b), segMax = glm::max(seg.a, seg.b);
-      if (glm::any(glm::lessThan(segMax, boxMin)) || glm::any(glm::greaterThan(segMin, boxMax))) continue;
-      Vec2 p = seg.a, q = seg.b;
-      if (clipSegment(freedPolygon, p, q, eps)) filterSegment(a, p, q, seg, k, result);
-    }
-  // Cells reaching into b's former half take the list of the old cell around their centroid.
-  std::vector<CellId> touched(result.changedCells.begin() + firstChanged, result.changedCells.end());
-  std::sort(touched.begin(), touched.end());
-  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-  for (CellId c : touched) {
-    if (!mesh_.cell(c).alive) continue;
-    const Vec2 p = areaCentroid(mesh_.polygon(c));
-    if (!(basisSide * deletedLine.distance(p) < 0) || saved.empty()) continue;
-    size_t k = 0;
-    while (saved[k].list < 0) k = size_t(saved[k].line.distance(p) >= 0 ? saved[k].front : saved[k].back);
-    const OccluderList& old = oldLists[size_t(saved[k].list)];
-    if (mesh_.cell(c).occluders != old) mesh_.occludersForWrite(c) = old;
+  // Steps 2 and 3: a's dangling lines extend across b's region, splitting b's subtree
+  // where they cross it; each of a's leaves along e takes its share of b.
+  const size_t firstChanged = result.changedCells.size();
+  std::vector<NodeId> extended;
+  mergeInto(a, b, bRegion, deletedLine, extended, result);
+  std::vector<CellId> check(result.changedCells.begin() + firstChanged, result.changedCells.end());
+  for (const auto& side : along)
+    for (NodeId leaf : side) check.push_back(node(leaf).cell);
+  for (CellId c : check) {
+    if (!c.is_valid() || !mesh_.cell(c).alive) continue;
+    for (HalfEdgeId h : mesh_.loop(c))
+      if (mesh_.halfEdge(h).node == e)
+        throw std::logic_error("DM-tree: an edge of a deleted node is left");
   }
   // Extended splits, deepest first (they were found top-down).
-  for (auto it = extended.rbegin(); it != extended.rend(); ++it) condenseLeafPair(*it, keys, result);
+  for (auto it = extended.rbegin(); it != extended.rend(); ++it) condenseLeafPair(*it, result);
 }
 
 void DmTree::rebuild() {
@@ -477,6 +487,7 @@ void DmTree::rebuild() {
   std::sort(ordered.begin(), ordered.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   inserted_.clear();
   nodes_.clear();
+  splitNodes_.clear();
   liveNodes_ = 0;
   const CellId c = mesh_.reset(receiver_, tolerance_.length());
   root_ = addNode(NodeId(), c);
@@ -506,11 +517,19 @@ RemoveResult DmTree::removeOccluder(uint32_t light, FaceId occluder) {
       list.erase(std::remove_if(list.begin(), list.end(), listed), list.end());
       result.changedCells.push_back(c);
     }
-    // Its nodes, top-down: those in a subtree collapsed for re-insertion go with it.
+    // Its nodes, top-down, then those split by an extended edge (before or during this
+    // removal; they may lie outside the penumbra), copies among them.
     std::vector<NodeId> doomed;
     if (!penumbra.empty()) collectOccluderNodes(root_, penumbra, key, doomed);
     std::reverse(doomed.begin(), doomed.end());
-    for (NodeId e : doomed) {
+    for (size_t i = 0;; ++i) {
+      if (i == doomed.size()) {
+        const auto split = splitNodes_.find(key);
+        if (split == splitNodes_.end()) break;
+        doomed.insert(doomed.end(), split->second.begin(), split->second.end());
+        splitNodes_.erase(split);
+      }
+      const NodeId e = doomed[i];
       const DmNode& d = node(e);
       if (!d.alive || d.isLeaf() || d.light != light || d.occluder != occluder) continue;
       deleteNode(e, key, result);

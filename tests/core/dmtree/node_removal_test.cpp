@@ -90,7 +90,7 @@ struct SizeFactor {
 TEST(DmTreeRemoval, RandomEditSequencesMatchAFreshBuild) {
   SizeFactor factor;
   double removeSeconds = 0, rebuildSeconds = 0;
-  size_t removals = 0, deleted = 0, relabeled = 0, collapsed = 0, reinserted = 0, condensed = 0, withTwoSubtrees = 0;
+  size_t removals = 0, deleted = 0, relabeled = 0, split = 0, condensed = 0, withTwoSubtrees = 0;
   for (uint64_t seed = 1; seed <= 48; ++seed) {
     Rng rng(seed * 7919);
     const Polygon2 receiver = randomConvex(rng, {0, 0}, uniform(rng, 0.8, 1.2), 3 + int(rng() % 8));
@@ -125,8 +125,7 @@ TEST(DmTreeRemoval, RandomEditSequencesMatchAFreshBuild) {
       EXPECT_EQ(r.nodesKept, 0u) << "seed " << seed << " op " << op;
       deleted += r.nodesRemoved;
       relabeled += r.nodesRelabeled;
-      collapsed += r.nodesCollapsed;
-      reinserted += r.nodesReinserted;
+      split += r.nodesSplit;
       condensed += r.nodesCondensed;
       for (VertexId v : r.newVertices) ASSERT_TRUE(tree.mesh().vertex(v).alive);
       for (VertexId v : r.removedVertices) ASSERT_FALSE(tree.mesh().vertex(v).alive);
@@ -145,9 +144,10 @@ TEST(DmTreeRemoval, RandomEditSequencesMatchAFreshBuild) {
     expectQueries(tree);
     if (HasFatalFailure()) FAIL() << "seed " << seed;
   }
-  std::printf("%zu removals: %zu nodes deleted (%zu with two internal subtrees before), %zu relabeled, "
-              "%zu collapsed + %zu re-inserted, %zu condensed\n",
-              removals, deleted, withTwoSubtrees, relabeled, collapsed, reinserted, condensed);
+  std::printf(
+      "%zu removals: %zu nodes deleted (%zu with two internal subtrees before), %zu relabeled, "
+      "%zu split, %zu condensed\n",
+      removals, deleted, withTwoSubtrees, relabeled, split, condensed);
   std::printf("size vs fresh build: internal nodes max %.2fx mean %.2fx, cells max %.2fx mean %.2fx\n",
               factor.maxNodes, factor.sumNodes / factor.count, factor.maxCells, factor.sumCells / factor.count);
   std::printf("mean removal %.1f us vs mean fresh build of the remaining shadows %.1f us (%.1f%%)\n",
