@@ -438,17 +438,18 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
     }
     return count[0].done() && count[1].done();
   };
-  while (!certain()) {
+  // Past kCountLimit nodes a side both are large: the partial counts (equal then) leave
+  // the choice to the dangling edges.
+  constexpr size_t kCountLimit = 1024;
+  for (size_t steps = 0; steps < kCountLimit && !certain(); ++steps) {
     if (!count[0].done()) step(count[0]);
     if (!count[1].done()) step(count[1]);
   }
   // Step 2: the basis a minimises E[cost_a] = (D_a + 1)·size_b (the paper's D_a·size_b;
-  // the +1 counts inserting b even when a has nothing to extend). With one side
-  // unfinished, its true size only makes the other side the cheaper basis.
+  // the +1 counts inserting b even when a has nothing to extend). An unfinished count
+  // is a lower bound: when the choice was certain it only favours the same side.
   const size_t size[2] = {count[0].size, count[1].size};
-  const bool frontBasis = count[0].done() && count[1].done()
-                              ? (dangling[0] + 1) * size[1] <= (dangling[1] + 1) * size[0]
-                              : !count[0].done();
+  const bool frontBasis = (dangling[0] + 1) * size[1] <= (dangling[1] + 1) * size[0];
   const NodeId a = frontBasis ? front : back, b = frontBasis ? back : front;
   // b's part of e's region, before e is unlinked.
   const Split2 halves = splitRegion(regionOf(e), deletedLine, eps);

@@ -256,6 +256,12 @@ void Engine::growSlots(Receiver& receiver) {
 
 void Engine::illuminate(Receiver& receiver) {
   const size_t slots = receiver.tree.mesh().vertexSlots();
+  // Headroom: a big receiver's first edits then grow its arrays in place instead of
+  // moving every value (untouched capacity costs no memory until used).
+  const size_t capacity = slots + slots / 4 + 64;
+  receiver.values.reserve(capacity);
+  receiver.perLight.reserve(capacity);
+  receiver.litAt.reserve(capacity);
   receiver.values.assign(slots, VertexIrradiance{});
   receiver.perLight.assign(slots, {});
   receiver.litAt.assign(slots, Vec2(std::numeric_limits<double>::quiet_NaN()));
