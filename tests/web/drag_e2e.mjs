@@ -341,6 +341,7 @@ function tally(state0, state, seconds) {
   const report = { seconds, frames_sent: frames, coalesced_away: state.editsReplaced - state0.editsReplaced,
     edits_per_second: frames / seconds, mesh_fetches: fetches, mesh_bytes_per_fetch: fetches ? meshBytes / fetches : 0,
     mesh_bytes_per_edit: frames ? meshBytes / frames : 0, frames_drawn_per_second: (state.frames - state0.frames) / seconds,
+    shadow_updates_drawn_per_second: (state.meshFramesDrawn - state0.meshFramesDrawn) / seconds,
     last_frame_engine_seconds: state.lastFrame && state.lastFrame.seconds, last_round_trip_seconds: state.roundTrip };
   const t = state.totals, t0 = state0.totals, n = t.frames - t0.frames;
   if (n > 0) {

@@ -26,6 +26,14 @@ function irradianceAt(receiver, point) {
 }
 
 export function installTestHook(app) {
+  // Frames drawn that showed a newer mesh version than the frame before: the shadow updates a user sees.
+  let drawnVersion = null;
+  let meshFramesDrawn = 0;
+  app.view.onDraw(() => {
+    const version = app.meshSync ? app.meshSync.version : null;
+    if (version !== drawnVersion) ++meshFramesDrawn;
+    drawnVersion = version;
+  });
   const hook = {
     ready: false,
     state() {
@@ -37,7 +45,7 @@ export function installTestHook(app) {
         dragging: app.gizmo ? app.gizmo.dragging : false,
         errors: [...app.banner.errors], bannerVisible: app.banner.visible(),
         renders: app.renderPanel ? app.renderPanel.renders : 0, renderVersion: app.renderPanel ? app.renderPanel.lastVersion : null,
-        lastFrame: app.timings.frame, roundTrip: app.timings.roundTrip, phases: app.timings.phases || null, totals: { ...app.timings.totals }, frames: app.view.frames,
+        lastFrame: app.timings.frame, roundTrip: app.timings.roundTrip, phases: app.timings.phases || null, totals: { ...app.timings.totals }, frames: app.view.frames, meshFramesDrawn,
         mesh: app.meshSync ? { lastBytes: app.meshSync.lastBytes, totalBytes: app.meshSync.totalBytes, fetches: app.meshSync.fetches } : null,
         events: app.events ? app.events.events : 0,
         gl: app.view.gl, canvas: { width: app.view.renderer.domElement.clientWidth, height: app.view.renderer.domElement.clientHeight },
