@@ -225,6 +225,45 @@ TEST(DmTreeRemoval, DeletesANodeWithTwoNonEmptySubtrees) {
   std::printf("figure 8 case: %zu cells vs %zu in a fresh build\n", tree.cellCount(), fresh.cellCount());
 }
 
+// Step 3 inserts the other subtree split only where extended edges cross it: deleting
+// the nodes of a shadow inserted first (at the top of the tree) leaves most cells
+// away from its penumbra untouched (same cell, same stamp), and the tree equals a
+// fresh one. Collapsing and re-inserting a subtree would change every cell in it.
+TEST(DmTreeRemoval, DeletingTopNodesLeavesCellsAwayFromTheShadowUntouched) {
+  size_t away = 0, untouched = 0;
+  for (uint64_t seed = 500; seed < 520; ++seed) {
+    Rng rng(seed);
+    const Polygon2 receiver = rect(-1, -1, 1, 1);
+    DmTree tree(receiver, kTol);
+    SingleShadow top;
+    top.occluder = {1, 0};
+    top.penumbra = rect(-0.25, -0.2, 0.3, 0.25);
+    addRegionSegments(top, top.penumbra, SegmentKind::Penumbra);
+    tree.insert(top);
+    std::vector<SingleShadow> others;
+    for (uint32_t k = 0; k < 60; ++k) {
+      others.push_back(randomShadow(rng, receiver, k + 2));
+      tree.insert(others.back());
+    }
+    std::map<uint32_t, uint64_t> stamps;  // cells away from top's penumbra
+    const Polygon2 near = rect(-0.35, -0.3, 0.4, 0.35);
+    for (CellId c : tree.cells())
+      if (intersect(tree.cellPolygon(c), near, kTol.length()).empty()) stamps[c.index] = tree.mesh().cell(c).touched;
+    const RemoveResult r = tree.removeOccluder(0, top.occluder);
+    ASSERT_FALSE(r.rebuilt) << "seed " << seed;
+    ASSERT_NO_THROW(tree.validate()) << "seed " << seed;
+    expectNoTraceOf(tree, others);
+    expectSameLists(tree, freshTree(receiver, others), receiver, others, rng);
+    away += stamps.size();
+    for (const auto& [index, stamp] : stamps)
+      if (tree.mesh().cell(CellId(index)).alive && tree.mesh().cell(CellId(index)).touched == stamp) ++untouched;
+    if (HasFatalFailure()) FAIL() << "seed " << seed;
+  }
+  std::printf("cells away from the removed shadow: %zu, untouched %zu (%.0f%%)\n", away, untouched,
+              100.0 * double(untouched) / double(away));
+  EXPECT_GT(double(untouched), 0.75 * double(away));
+}
+
 // A live occluder's segment on the removed node's edge keeps the edge, relabeled.
 TEST(DmTreeRemoval, SharedEdgeIsRelabeledNotDeleted) {
   DmTree tree(rect(0, 0, 4, 4), kTol);
