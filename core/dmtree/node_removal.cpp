@@ -92,8 +92,7 @@ Polygon2 DmTree::regionOf(NodeId n) const {
   Polygon2 region = receiver_;
   for (NodeId child = n, p = node(n).parent; p.is_valid() && !region.empty(); child = p, p = node(p).parent) {
     const DmNode& d = node(p);
-    const Vec2 a = -d.line.offset * d.line.normal;
-    const Split2 split = splitByLine(region, a, a + along(d.line), tolerance_.length());
+    const Split2 split = splitRegion(region, d.line, tolerance_.length());
     region = d.front == child ? split.right : split.left;  // front = right of a→b
   }
   return region;
@@ -155,8 +154,7 @@ void DmTree::collectOccluderNodes(NodeId n, const Polygon2& region, const Occlud
                                   std::vector<NodeId>& out) const {
   const DmNode& d = node(n);
   if (d.isLeaf()) return;
-  const Vec2 a = -d.line.offset * d.line.normal;
-  const Split2 split = splitByLine(region, a, a + along(d.line), tolerance_.length());
+  const Split2 split = splitRegion(region, d.line, tolerance_.length());
   if (split.right.size() >= 3 && signedArea(split.right) > tolerance_.area())
     collectOccluderNodes(d.front, split.right, key, out);
   if (split.left.size() >= 3 && signedArea(split.left) > tolerance_.area())
