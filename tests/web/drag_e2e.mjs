@@ -9,13 +9,14 @@
 //
 // usage: node tests/web/drag_e2e.mjs --penumbra build/penumbra [--scene scenes/cubes15.scene.json]
 //          [--screenshot build/web-e2e.png] [--measure build/cubes150.scene.json --seconds 5]
+//          [--query drag_scale=0.35]   (extra page query parameters, to compare the page's choices)
 import fs from 'node:fs';
 import path from 'node:path';
 
 import { check, parseArgs, repo, runWithServerAndBrowser } from './harness.mjs';
 
 const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'cubes15.scene.json'),
-    screenshot: path.join(repo, 'build', 'web-e2e.png'), measure: null, seconds: 5, startupSeconds: 120 };
+    screenshot: path.join(repo, 'build', 'web-e2e.png'), measure: null, seconds: 5, startupSeconds: 120, query: '' };
 
 async function openPage(browser, url) {
   const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
@@ -376,7 +377,7 @@ async function measure(page, base, sceneId, seconds) {
   const timerSteps = await page.evaluate(({ id, seconds }) => window.penumbra.drive(id, -0.8, seconds, 16), { id: selected, seconds });
   const state2 = await page.evaluate(() => window.penumbra.state());
   const timer = { timer_steps: timerSteps, ...tally(state1, state2, (Date.now() - start) / 1000) };
-  const report = { scene: sceneId, cube: selected, receivers: state2.receivers, parts: state2.parts, vertices: state2.vertices,
+  const report = { scene: sceneId, cube: selected, receivers: state2.receivers, parts: state2.parts, batches: state2.batches, vertices: state2.vertices,
     gl: state2.gl, canvas: state2.canvas, mouse_drag: mouse, timer_drag: timer };
   console.log(JSON.stringify(report, null, 2));
   check(mouse.frames_sent > 0 && timer.frames_sent > 0 && !state2.bannerVisible, 'frames applied while dragging, no error', JSON.stringify(state2.errors));
@@ -392,7 +393,7 @@ async function measure(page, base, sceneId, seconds) {
 async function main() {
   const args = parseArgs(process.argv, defaults);
   await runWithServerAndBrowser({ ...args, scene: args.measure || args.scene }, async ({ browser, url, base, sceneId }) => {
-    const { page, pageErrors } = await openPage(browser, url);
+    const { page, pageErrors } = await openPage(browser, args.query ? `${url}&${args.query}` : url);
     const ready = await page.evaluate(() => window.penumbra.state());
     if (!check(ready.ready, 'the page loaded the scene', JSON.stringify(ready.errors))) throw new Error('page not ready');
     if (args.measure) await measure(page, base, sceneId, args.seconds);

@@ -20,6 +20,7 @@ import { ToneMap } from './tone_map.js';
 import { UndoHistory } from './undo_history.js';
 
 const $ = (id) => document.getElementById(id);
+const MOTION_HOLD_MS = 100;
 // Keys typed into a text field are not commands (checkboxes and buttons keep W/E and Ctrl+Z).
 const isTyping = (target) => target instanceof HTMLInputElement && !['checkbox', 'button', 'file'].includes(target.type);
 
@@ -42,6 +43,9 @@ class App {
     this.dragStart = null;
     this.meshFollows = new Set(); // edits answered whose version's mesh the page does not hold yet
     this.announced = 0; // the newest version the event stream announced
+    // While a drag's edit is on its way on a software GL, a moved stand-in's frame waits (up to
+    // MOTION_HOLD_MS) for that edit's shadows, so the two are drawn together in one frame.
+    this.view.motionHold = () => (this.view.gl.software && this.view.interactions.has('drag') && this.busy() ? MOTION_HOLD_MS : 0);
     this.fail = (error) => this.banner.show(error);
     installSceneFileLoader($('scene-file'), this.api, this.fail, { scale: $('import-scale'), radiance: $('import-radiance') });
   }

@@ -1,7 +1,8 @@
-// The lit discontinuity mesh in three.js: one Mesh per part (one display chunk of one receiver:
-// world-space positions, vertex colours from the tone map), replaced one part at a time as deltas
-// arrive, and an optional overlay of the mesh's edges coloured by vertex class (see
-// discontinuityEdges). A receiver is read back as one merged view of its parts.
+// The lit discontinuity mesh in three.js: parts (one display chunk of one receiver: world-space
+// positions, vertex colours from the tone map) replaced one at a time as deltas arrive, drawn in
+// batches (one Mesh for the parts of one object with the same chunk index, e.g. a room's floor and
+// wall blocks there), and an optional overlay of the mesh's edges coloured by vertex class
+// (see discontinuityEdges). A receiver is read back as one merged view of its parts.
 import * as THREE from 'three';
 import { CLASS_PENUMBRA, CLASS_UMBRA } from './mesh_binary.js';
 
@@ -65,6 +66,31 @@ function mergeParts(parts) {
   return merged;
 }
 
+// A batch: one object's parts with one chunk index. A software GL pays per draw call, and a
+// batch is one (150 cubes: 715 parts in 468 batches); a changed part rebuilds only its batch.
+const batchKey = (part) => `${part.object}#${part.chunk[0]},${part.chunk[1]}`;
+
+// One Mesh of `entries` ({part, colours}): positions, colours and indices concatenated.
+function batchMesh(entries, material) {
+  let v = 0, t = 0;
+  for (const { part } of entries) { v += part.vertexCount; t += part.indices.length; }
+  const positions = new Float32Array(3 * v), colours = new Float32Array(3 * v), indices = new Uint32Array(t);
+  let vertexBase = 0, indexBase = 0;
+  for (const { part, colours: c } of entries) {
+    positions.set(part.positions, 3 * vertexBase);
+    colours.set(c, 3 * vertexBase);
+    for (let i = 0; i < part.indices.length; ++i) indices[indexBase + i] = part.indices[i] + vertexBase;
+    vertexBase += part.vertexCount;
+    indexBase += part.indices.length;
+  }
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+  geometry.setAttribute('color', new THREE.BufferAttribute(colours, 3));
+  geometry.setIndex(new THREE.BufferAttribute(indices, 1));
+  geometry.computeBoundingSphere();
+  return new THREE.Mesh(geometry, material);
+}
+
 export class ReceiverLayer {
   constructor(parent) {
     this.group = new THREE.Group();
@@ -75,7 +101,9 @@ export class ReceiverLayer {
     parent.add(this.group, this.edgeGroup);
     this.material = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.FrontSide });
     this.edgeMaterial = new THREE.LineBasicMaterial({ vertexColors: true, depthTest: true });
-    this.entries = new Map(); // part key → {part, mesh, edges}
+    this.entries = new Map(); // part key → {part, colours, edges}
+    this.batches = new Map(); // batch key → {keys: Set of part keys, mesh}
+    this.stale = new Set(); // batch keys whose mesh no longer matches their parts
     this.byReceiver = new Map(); // receiver key → Set of part keys (never empty)
     this.merged = new Map(); // receiver key → merged view, until one of its parts changes
     this.vertices = 0;
@@ -89,24 +117,40 @@ export class ReceiverLayer {
     for (const removed of decoded.removedParts) this.remove(removed.key);
     for (const part of decoded.parts) {
       this.remove(part.key);
-      const geometry = new THREE.BufferGeometry();
-      geometry.setAttribute('position', new THREE.BufferAttribute(part.positions, 3));
-      geometry.setAttribute('color', new THREE.BufferAttribute(toneMap.colours(part.object, part.irradiance), 3));
-      geometry.setIndex(new THREE.BufferAttribute(part.indices, 1));
-      geometry.computeBoundingSphere();
-      const mesh = new THREE.Mesh(geometry, this.material);
-      mesh.name = part.key;
-      mesh.userData.objectId = part.object;
-      this.group.add(mesh);
-      const entry = { part, mesh, edges: null };
+      const entry = { part, colours: toneMap.colours(part.object, part.irradiance), edges: null };
       if (this.edgeGroup.visible) this.addEdges(entry);
       this.entries.set(part.key, entry);
+      const batch = batchKey(part);
+      if (!this.batches.has(batch)) this.batches.set(batch, { keys: new Set(), mesh: null });
+      this.batches.get(batch).keys.add(part.key);
+      this.stale.add(batch);
       if (!this.byReceiver.has(part.receiverKey)) this.byReceiver.set(part.receiverKey, new Set());
       this.byReceiver.get(part.receiverKey).add(part.key);
       this.merged.delete(part.receiverKey);
       this.vertices += part.vertexCount;
       this.triangles += part.triangleCount;
     }
+    this.rebuildStale();
+  }
+
+  // A new Mesh for each batch whose parts changed; none for a batch left empty.
+  rebuildStale() {
+    for (const key of this.stale) {
+      const batch = this.batches.get(key);
+      if (batch.mesh) {
+        this.group.remove(batch.mesh);
+        batch.mesh.geometry.dispose();
+        batch.mesh = null;
+      }
+      if (batch.keys.size === 0) {
+        this.batches.delete(key);
+        continue;
+      }
+      batch.mesh = batchMesh([...batch.keys].map((k) => this.entries.get(k)), this.material);
+      batch.mesh.name = key;
+      this.group.add(batch.mesh);
+    }
+    this.stale.clear();
   }
 
   addEdges(entry) {
@@ -122,8 +166,9 @@ export class ReceiverLayer {
   remove(key) {
     const entry = this.entries.get(key);
     if (!entry) return;
-    this.group.remove(entry.mesh);
-    entry.mesh.geometry.dispose();
+    const batch = batchKey(entry.part);
+    this.batches.get(batch).keys.delete(key);
+    this.stale.add(batch);
     if (entry.edges) {
       this.edgeGroup.remove(entry.edges);
       entry.edges.geometry.dispose();
@@ -140,6 +185,7 @@ export class ReceiverLayer {
 
   clear() {
     for (const key of [...this.entries.keys()]) this.remove(key);
+    this.rebuildStale();
   }
 
   // Every part held (for the tone map's calibration).
@@ -156,6 +202,6 @@ export class ReceiverLayer {
   }
 
   counts() {
-    return { receivers: this.byReceiver.size, parts: this.entries.size, vertices: this.vertices, triangles: this.triangles };
+    return { receivers: this.byReceiver.size, parts: this.entries.size, batches: this.batches.size, vertices: this.vertices, triangles: this.triangles };
   }
 }

@@ -17,7 +17,7 @@ export class SelectionGizmo {
     this.raycaster = new THREE.Raycaster();
     this.controls = new TransformControls(view.camera, view.renderer.domElement);
     view.scene.add(this.controls.getHelper());
-    this.controls.addEventListener('change', () => view.requestRender());
+    this.controls.addEventListener('change', () => view.requestMotionRender());
     this.controls.addEventListener('dragging-changed', (event) => {
       view.controls.enabled = !event.value;
       this.dragging = event.value;

@@ -104,7 +104,7 @@ export function installTestHook(app) {
         const translate = [...from.translate];
         translate[0] += dx * s / steps;
         app.moveTo(id, { ...from, translate });
-        app.view.requestRender();
+        app.view.requestMotionRender();
       }
       app.view.setInteracting('drag', false);
       await app.idle();
