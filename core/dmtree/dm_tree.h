@@ -124,8 +124,8 @@ class DmTree {
   void record(const OccluderKey& key, const SingleShadow& shadow, const SingleTree& tree);
 
   // Node deletion (node_removal.cpp).
-  void collectOccluderNodes(NodeId n, const Polygon2& region, const OccluderKey& key,
-                            std::vector<NodeId>& out) const;
+  void collectUnder(NodeId n, const Polygon2& region, const OccluderKey& key, std::vector<CellId>& cells,
+                    std::vector<NodeId>& nodes) const;
   Polygon2 regionOf(NodeId n) const;
   // Where n's line crosses n's region, as positions along the line: from the cells
   // below n when they are few (they tile the region), else from regionOf(n).

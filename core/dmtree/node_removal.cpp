@@ -148,18 +148,22 @@ const SingleTreeNode* DmTree::liveSegmentOn(NodeId n, double lo, double hi, cons
   return nullptr;
 }
 
-// Post-order: children before parents (reversed, every node comes before its
-// descendants).
-void DmTree::collectOccluderNodes(NodeId n, const Polygon2& region, const OccluderKey& key,
-                                  std::vector<NodeId>& out) const {
+// In one descent over the parts of n's region overlapping `region`: the cells there,
+// and key's nodes in post-order (children before parents; reversed, every node comes
+// before its descendants).
+void DmTree::collectUnder(NodeId n, const Polygon2& region, const OccluderKey& key, std::vector<CellId>& cells,
+                          std::vector<NodeId>& nodes) const {
   const DmNode& d = node(n);
-  if (d.isLeaf()) return;
+  if (d.isLeaf()) {
+    cells.push_back(d.cell);
+    return;
+  }
   const Split2 split = splitRegion(region, d.line, tolerance_.length());
   if (split.right.size() >= 3 && signedArea(split.right) > tolerance_.area())
-    collectOccluderNodes(d.front, split.right, key, out);
+    collectUnder(d.front, split.right, key, cells, nodes);
   if (split.left.size() >= 3 && signedArea(split.left) > tolerance_.area())
-    collectOccluderNodes(d.back, split.left, key, out);
-  if (d.light == key.first && d.occluder == key.second) out.push_back(n);
+    collectUnder(d.back, split.left, key, cells, nodes);
+  if (d.light == key.first && d.occluder == key.second) nodes.push_back(n);
 }
 
 // Step 2 (the other side): the piece of a basis leaf's cell is cut by the lines of the
@@ -345,8 +349,10 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
   const double eps = tolerance_.length();
   const NodeId front = node(e).front, back = node(e).back;
   const Line2 deletedLine = node(e).line;
+  // e's region: its chord, and later b's side of it.
+  const Polygon2 region = regionOf(e);
   double lo, hi;
-  if (!chordOf(e, lo, hi)) throw std::logic_error("DM-tree: a node without an edge");
+  if (!chordExtent(deletedLine, region, eps, lo, hi)) throw std::logic_error("DM-tree: a node without an edge");
   const Vec2 origin = -deletedLine.offset * deletedLine.normal, dir = along(deletedLine);
   const Vec2 chordP = origin + lo * dir, chordQ = origin + hi * dir;
   // The cells along e's edge, on each side.
@@ -450,7 +456,7 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
   const bool frontBasis = (dangling[0] + 1) * size[1] <= (dangling[1] + 1) * size[0];
   const NodeId a = frontBasis ? front : back, b = frontBasis ? back : front;
   // b's part of e's region, before e is unlinked.
-  const Split2 halves = splitRegion(regionOf(e), deletedLine, eps);
+  const Split2 halves = splitRegion(region, deletedLine, eps);
   const Polygon2 bRegion = frontBasis ? halves.left : halves.right;
 
   // Unlink e: a takes its place.
@@ -507,7 +513,8 @@ RemoveResult DmTree::removeOccluder(uint32_t light, FaceId occluder) {
   try {
     // Its list entries: only cells under its penumbra can hold one.
     std::vector<CellId> covered;
-    if (!penumbra.empty()) collectCells(root_, penumbra, covered);
+    std::vector<NodeId> doomed;
+    if (!penumbra.empty()) collectUnder(root_, penumbra, key, covered, doomed);
     for (CellId c : covered) {
       const auto listed = [&](const OccluderEntry& e) { return e.light == light && e.face == occluder; };
       const OccluderList& held = mesh_.cell(c).occluders;
@@ -518,8 +525,6 @@ RemoveResult DmTree::removeOccluder(uint32_t light, FaceId occluder) {
     }
     // Its nodes, top-down, then those split by an extended edge (before or during this
     // removal; they may lie outside the penumbra), copies among them.
-    std::vector<NodeId> doomed;
-    if (!penumbra.empty()) collectOccluderNodes(root_, penumbra, key, doomed);
     std::reverse(doomed.begin(), doomed.end());
     for (size_t i = 0;; ++i) {
       if (i == doomed.size()) {
