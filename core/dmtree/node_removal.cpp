@@ -530,8 +530,10 @@ RemoveResult DmTree::removeOccluder(uint32_t light, FaceId occluder) {
       if (i == doomed.size()) {
         const auto split = splitNodes_.find(key);
         if (split == splitNodes_.end()) break;
-        doomed.insert(doomed.end(), split->second.begin(), split->second.end());
+        for (NodeId n : split->second)  // a node split twice is listed twice
+          if (std::find(doomed.begin(), doomed.end(), n) == doomed.end()) doomed.push_back(n);
         splitNodes_.erase(split);
+        if (i == doomed.size()) break;
       }
       const NodeId e = doomed[i];
       const DmNode& d = node(e);
