@@ -66,8 +66,8 @@ class DmTree {
   InsertResult insert(const SingleShadow& shadow);
 
   // Removes every trace of one occluder: its occluder-list entries (visiting only the
-  // cells under its penumbra) and its nodes, top-down (paper §3.1; those inside a
-  // collapsed subtree go with it). A node with two subtrees is deleted in three steps:
+  // cells under its penumbra) and its nodes, top-down, then the copies splitting made
+  // (paper §3.1). A node with two subtrees is deleted in three steps:
   // unlink its edge; take as basis the subtree a minimising E[cost_a] = (D_a + 1)·size_b
   // (D_a: dangling edges on a's side, size_b: live occluders' nodes in the other);
   // insert b into a: a's dangling edges extend across b's side, splitting only b's cells

@@ -1,7 +1,8 @@
 // DM-tree node deletion (paper §3.1): seeded random insert/remove sequences checked
 // after every edit against a fresh tree of the remaining shadows (lists at random
 // points, segment coverage, no node or entry of a removed occluder, size factor),
-// remove-then-reinsert, and the paper's Figure 8 case (a node with two subtrees).
+// remove-then-reinsert, the paper's Figure 8 case (a node with two subtrees), and step 3
+// leaving the cells away from a removed top shadow untouched.
 #include <gtest/gtest.h>
 
 #include <chrono>
