@@ -118,14 +118,14 @@ class DmTree {
   // node carrying seg's piece [lo, hi] (positions along a→b) for `owner`.
   HalfEdgeMesh::CutResult splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan& plan, const SingleTreeNode& seg,
                                     const OccluderKey& owner, double lo, double hi, bool partial);
-  void collectCells(NodeId n, const Polygon2& region, std::vector<CellId>& out) const;
+  // The cells below n overlapping `region`, in one descent with (if `nodes`) key's nodes there.
+  void collectCells(NodeId n, const Polygon2& region, std::vector<CellId>& out, const OccluderKey* key = nullptr,
+                    std::vector<NodeId>* nodes = nullptr) const;
   void partition(CellId c, const SingleTree& tree, int s, const Generator& gen, std::vector<CellId>& pieces,
                  InsertResult& result);
   void record(const OccluderKey& key, const SingleShadow& shadow, const SingleTree& tree);
 
   // Node deletion (node_removal.cpp).
-  void collectUnder(NodeId n, const Polygon2& region, const OccluderKey& key, std::vector<CellId>& cells,
-                    std::vector<NodeId>& nodes) const;
   Polygon2 regionOf(NodeId n) const;
   // Where n's line crosses n's region, as positions along the line: from the cells
   // below n when they are few (they tile the region), else from regionOf(n).

@@ -148,24 +148,6 @@ const SingleTreeNode* DmTree::liveSegmentOn(NodeId n, double lo, double hi, cons
   return nullptr;
 }
 
-// In one descent over the parts of n's region overlapping `region`: the cells there,
-// and key's nodes in post-order (children before parents; reversed, every node comes
-// before its descendants).
-void DmTree::collectUnder(NodeId n, const Polygon2& region, const OccluderKey& key, std::vector<CellId>& cells,
-                          std::vector<NodeId>& nodes) const {
-  const DmNode& d = node(n);
-  if (d.isLeaf()) {
-    cells.push_back(d.cell);
-    return;
-  }
-  const Split2 split = splitRegion(region, d.line, tolerance_.length());
-  if (split.right.size() >= 3 && signedArea(split.right) > tolerance_.area())
-    collectUnder(d.front, split.right, key, cells, nodes);
-  if (split.left.size() >= 3 && signedArea(split.left) > tolerance_.area())
-    collectUnder(d.back, split.left, key, cells, nodes);
-  if (d.light == key.first && d.occluder == key.second) nodes.push_back(n);
-}
-
 // Step 2 (the other side): the piece of a basis leaf's cell is cut by the lines of the
 // subtree t grafted in its place until it reaches a leaf, then joins that leaf's cell
 // across the deleted edge. The joined cell keeps the list of the part holding its
@@ -514,7 +496,7 @@ RemoveResult DmTree::removeOccluder(uint32_t light, FaceId occluder) {
     // Its list entries: only cells under its penumbra can hold one.
     std::vector<CellId> covered;
     std::vector<NodeId> doomed;
-    if (!penumbra.empty()) collectUnder(root_, penumbra, key, covered, doomed);
+    if (!penumbra.empty()) collectCells(root_, penumbra, covered, &key, &doomed);
     for (CellId c : covered) {
       const auto listed = [&](const OccluderEntry& e) { return e.light == light && e.face == occluder; };
       const OccluderList& held = mesh_.cell(c).occluders;

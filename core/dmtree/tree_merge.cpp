@@ -18,7 +18,10 @@ bool strictlyInside(const Polygon2& poly, const Vec2& p) {
 
 }  // namespace
 
-void DmTree::collectCells(NodeId n, const Polygon2& region, std::vector<CellId>& out) const {
+// Post-order for the nodes: children before parents (reversed, every node comes
+// before its descendants).
+void DmTree::collectCells(NodeId n, const Polygon2& region, std::vector<CellId>& out, const OccluderKey* key,
+                          std::vector<NodeId>* nodes) const {
   const DmNode& d = node(n);
   if (d.isLeaf()) {
     out.push_back(d.cell);
@@ -28,8 +31,11 @@ void DmTree::collectCells(NodeId n, const Polygon2& region, std::vector<CellId>&
   const Vec2 a = -d.line.offset * d.line.normal;
   const Vec2 b = a + Vec2{-d.line.normal.y, d.line.normal.x};
   const Split2 split = splitByLine(region, a, b, tolerance_.length());
-  if (split.right.size() >= 3 && signedArea(split.right) > tolerance_.area()) collectCells(d.front, split.right, out);
-  if (split.left.size() >= 3 && signedArea(split.left) > tolerance_.area()) collectCells(d.back, split.left, out);
+  if (split.right.size() >= 3 && signedArea(split.right) > tolerance_.area())
+    collectCells(d.front, split.right, out, key, nodes);
+  if (split.left.size() >= 3 && signedArea(split.left) > tolerance_.area())
+    collectCells(d.back, split.left, out, key, nodes);
+  if (nodes && d.light == key->first && d.occluder == key->second) nodes->push_back(n);
 }
 
 HalfEdgeMesh::CutResult DmTree::splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan& plan, const SingleTreeNode& seg,
