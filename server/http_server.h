@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/engine/engine.h"
+#include "server/limits.h"
 #include "server/scene_session.h"
 
 namespace httplib {
@@ -17,14 +18,6 @@ class Server;
 }
 
 namespace penumbra::server {
-
-// Documented limits (docs/API.md "Limits").
-inline constexpr size_t kMaxBodyBytes = size_t(16) << 20;  // 16 MiB request bodies, else 413
-inline constexpr size_t kMaxScenes = 32;                   // served at once, else 429
-inline constexpr int kMaxEventStreams = 8;                 // open /events streams, else 429
-inline constexpr int kRequestWorkers = 16;                 // workers left for ordinary requests
-inline constexpr int kWorkerThreads = kMaxEventStreams + kRequestWorkers;
-inline constexpr int kMaxImageSide = 4096;  // image width/height in [1, 4096]
 
 struct ServerOptions {
   std::string host = "127.0.0.1";
@@ -62,7 +55,13 @@ class HttpServer {
   const ServerOptions& options() const { return options_; }
 
  private:
+  // One per resource, each in its own file (scene_routes.cpp, edit_routes.cpp, ...).
   void registerRoutes();
+  void registerSceneRoutes();
+  void registerEditRoutes();
+  void registerMeshRoutes();
+  void registerImageRoutes();
+  void registerEventRoutes();
   void registerStaticFiles();
   std::shared_ptr<SceneSession> findScene(const std::string& id) const;
   std::string freshId(const std::string& preferred);  // call with scenesMutex_ held

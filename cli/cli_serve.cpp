@@ -10,7 +10,7 @@
 
 #include "protocol/scene_json.h"
 #include "server/api_errors.h"
-#include "server/commands.h"
+#include "cli/commands.h"
 #include "server/http_server.h"
 
 namespace penumbra::cli {

@@ -2,7 +2,7 @@
 
 #include "bench/lib/cubes_scene.h"
 #include "protocol/scene_json.h"
-#include "server/commands.h"
+#include "cli/commands.h"
 
 namespace penumbra::cli {
 

@@ -9,8 +9,8 @@
 #include "interchange/glb_export.h"
 #include "protocol/mesh_json.h"
 #include "protocol/scene_json.h"
-#include "server/commands.h"
-#include "server/progress_bar.h"
+#include "cli/commands.h"
+#include "cli/progress_bar.h"
 
 namespace penumbra::cli {
 

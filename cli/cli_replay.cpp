@@ -22,8 +22,8 @@
 #include "protocol/json_text.h"
 #include "protocol/mesh_json.h"
 #include "protocol/scene_json.h"
-#include "server/commands.h"
-#include "server/progress_bar.h"
+#include "cli/commands.h"
+#include "cli/progress_bar.h"
 
 namespace penumbra::cli {
 

@@ -3,7 +3,7 @@
 #include <sstream>
 
 #include "interchange/scene_import.h"
-#include "server/commands.h"
+#include "cli/commands.h"
 
 namespace penumbra::cli {
 

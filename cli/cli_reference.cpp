@@ -5,8 +5,8 @@
 #include "core/reference/grid_mesh.h"
 #include "protocol/mesh_json.h"
 #include "protocol/scene_json.h"
-#include "server/commands.h"
-#include "server/progress_bar.h"
+#include "cli/commands.h"
+#include "cli/progress_bar.h"
 
 namespace penumbra::cli {
 

@@ -8,9 +8,9 @@
 #include "protocol/json_text.h"
 #include "protocol/mesh_json.h"
 #include "protocol/scene_json.h"
-#include "server/commands.h"
+#include "cli/commands.h"
 #include "server/image_encoding.h"
-#include "server/progress_bar.h"
+#include "cli/progress_bar.h"
 
 namespace penumbra::cli {
 

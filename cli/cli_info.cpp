@@ -1,7 +1,7 @@
 #include <cstdio>
 
 #include "protocol/scene_json.h"
-#include "server/commands.h"
+#include "cli/commands.h"
 
 namespace penumbra::cli {
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "protocol/validation_error.h"
-#include "server/commands.h"
+#include "cli/commands.h"
 
 namespace {
 

@@ -3,7 +3,7 @@
 // progress and errors to stderr.
 #pragma once
 
-#include "server/cli_args.h"
+#include "cli/cli_args.h"
 
 namespace penumbra::cli {
 

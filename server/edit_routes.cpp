@@ -1,0 +1,74 @@
+// POST /api/scenes/{id}/edits: one frame of edits, applied whole or refused.
+#include "server/http_server.h"
+
+#include <httplib.h>
+
+#include <regex>
+
+#include "protocol/edits_json.h"
+#include "protocol/frame_result_json.h"
+#include "server/request_io.h"
+#include "server/response_json.h"
+
+namespace penumbra::server {
+
+using nlohmann::json;
+
+namespace {
+
+// "edits[3].transform" → 3 (the edit a frame error is in), or -1.
+long editIndexOf(const std::string& path) {
+  static const std::regex pattern(R"(^edits\[(\d+)\].*)");
+  std::smatch match;
+  if (std::regex_match(path, match, pattern)) return std::stol(match[1]);
+  return -1;
+}
+
+}  // namespace
+
+void HttpServer::registerEditRoutes() {
+  httplib::Server& http = *http_;
+  const std::string scenePath = std::string("/api/scenes/") + kIdPattern;
+
+  http.Post(
+      scenePath + "/edits", guarded([this](const httplib::Request& req, httplib::Response& res) {
+        const auto session = findScene(req.matches[1]);
+        const json body = parseBody(req);
+        Frame frame;
+        try {
+          const auto materials = session->snapshot()->scene.materials();
+          frame = protocol::frameFromJson(body, &materials);
+        } catch (const protocol::ValidationError& error) {
+          const long edit = editIndexOf(error.path());
+          sendError(res, ApiError(422, error_code::kInvalidFrame, error.path(), error.problem()),
+                    edit >= 0 ? json{{"edit", edit}} : json::object());
+          return;
+        }
+        SceneSession::Applied applied;
+        try {
+          applied = session->apply(frame);
+        } catch (const EditError& error) {
+          const std::string path = "edits[" + std::to_string(error.editIndex()) + "]" +
+                                   (error.path().empty() ? "" : "." + error.path());
+          std::string problem = error.what();
+          if (const size_t colon = problem.find(": "); colon != std::string::npos)
+            problem = problem.substr(colon + 2);
+          sendError(res, ApiError(422, error_code::kInvalidFrame, path, problem),
+                    {{"edit", error.editIndex()}});
+          return;
+        }
+        json body200 = protocol::frameResultToJson(applied.result, applied.snapshot->scene);
+        const json delta = changedAtJson(*applied.snapshot, applied.snapshot->version - 1);
+        body200["mesh_changed"] = delta["changed"];
+        body200["mesh_removed"] = delta["removed"];
+        body200["mesh_seconds"] = applied.meshSeconds;
+        body200["meshed_receivers_count"] = applied.meshedReceivers;
+        body200["mesh_cells"] = {{"reused", applied.meshCells.cellsReused},
+                                 {"lit", applied.meshCells.cellsLit},
+                                 {"chunks_meshed", applied.meshCells.chunksMeshed},
+                                 {"chunks_kept", applied.meshCells.chunksKept}};
+        sendJson(res, 200, body200);
+      }));
+}
+
+}  // namespace penumbra::server

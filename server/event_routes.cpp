@@ -1,0 +1,80 @@
+// GET /api/scenes/{id}/events: server-sent events, one per new version (coalesced).
+#include "server/http_server.h"
+
+#include <httplib.h>
+
+#include <chrono>
+
+#include "server/request_io.h"
+#include "server/response_json.h"
+
+namespace penumbra::server {
+
+using nlohmann::json;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// How often an idle event stream checks for shutdown, and sends a keep-alive comment.
+constexpr std::chrono::milliseconds kStreamPoll{200};
+constexpr std::chrono::seconds kStreamKeepAlive{
+    5};  // also how soon a closed stream frees its worker
+
+}  // namespace
+
+void HttpServer::registerEventRoutes() {
+  httplib::Server& http = *http_;
+  const std::string scenePath = std::string("/api/scenes/") + kIdPattern;
+
+  http.Get(scenePath + "/events",
+           guarded([this](const httplib::Request& req, httplib::Response& res) {
+             const auto session = findScene(req.matches[1]);
+             if (++openStreams_ > kMaxEventStreams) {
+               --openStreams_;
+               throw ApiError(429, error_code::kTooManyStreams, "",
+                              "already " + std::to_string(kMaxEventStreams) +
+                                  " event streams open; close one first");
+             }
+             struct StreamState {
+               std::optional<uint64_t> announced;  // last version sent
+               Clock::time_point lastWrite = Clock::now();
+             };
+             auto state = std::make_shared<StreamState>();
+             res.set_header("Cache-Control", "no-store");
+             res.set_header("X-Accel-Buffering", "no");
+             res.set_chunked_content_provider(
+                 "text/event-stream",
+                 [this, session, state](size_t, httplib::DataSink& sink) {
+                   auto write = [&](const std::string& text) {
+                     state->lastWrite = Clock::now();
+                     return sink.write(text.data(), text.size());
+                   };
+                   if (!state->announced) {  // on connect: the current version, nothing changed
+                     const auto now = session->snapshot();
+                     state->announced = now->version;
+                     json hello = {{"version", now->version},
+                                   {"changed", json::array()},
+                                   {"removed", json::array()}};
+                     return write("retry: 1000\nevent: version\ndata: " + hello.dump() + "\n\n");
+                   }
+                   const auto now = session->waitForVersionAfter(*state->announced, kStreamPoll);
+                   if (stopping_ || session->closed()) {
+                     sink.done();
+                     return true;
+                   }
+                   if (now->version > *state->announced) {
+                     // Coalesced: one event covers every version since the last one sent.
+                     const json event = changedAtJson(*now, *state->announced);
+                     state->announced = now->version;
+                     return write("event: version\ndata: " + event.dump() + "\n\n");
+                   }
+                   if (Clock::now() - state->lastWrite > kStreamKeepAlive)
+                     return write(": keep-alive\n\n");
+                   return true;
+                 },
+                 [this](bool) { --openStreams_; });
+           }));
+}
+
+}  // namespace penumbra::server

@@ -1,0 +1,96 @@
+// GET /api/scenes/{id}/image: the server's render of a scene version for a camera.
+#include "server/http_server.h"
+
+#include <httplib.h>
+
+#include "core/render/renderer.h"
+#include "server/image_encoding.h"
+#include "server/request_io.h"
+
+namespace penumbra::server {
+
+using nlohmann::json;
+
+namespace {
+
+// The camera of an image request: the scene's camera (or the default one) with
+// any of the query's camera parameters replacing its fields.
+Camera cameraFromQuery(const httplib::Request& req, const Scene& scene) {
+  Camera camera = scene.camera().value_or(Camera{});
+  if (auto v = queryVec3(req, "position")) camera.position = *v;
+  if (auto v = queryVec3(req, "target")) camera.target = *v;
+  if (auto v = queryVec3(req, "up")) camera.up = *v;
+  if (auto p = queryText(req, "projection")) {
+    if (*p == "perspective")
+      camera.projection = Camera::Projection::Perspective;
+    else if (*p == "orthographic")
+      camera.projection = Camera::Projection::Orthographic;
+    else
+      throw ApiError(400, error_code::kBadParameter, "query.projection",
+                     "projection must be 'perspective' or 'orthographic', got '" + *p + "'");
+  }
+  if (auto v = queryNumber(req, "fov_y_deg")) {
+    if (!(*v > 0 && *v < 180))
+      throw ApiError(400, error_code::kBadParameter, "query.fov_y_deg",
+                     "fov_y_deg must be in (0, 180)");
+    camera.fovYDeg = *v;
+  }
+  // (`height` is the image's; the orthographic view's height is `ortho_height`.)
+  if (auto v = queryNumber(req, "ortho_height")) {
+    if (!(*v > 0))
+      throw ApiError(400, error_code::kBadParameter, "query.ortho_height",
+                     "ortho_height must be positive");
+    camera.height = *v;
+  }
+  if (auto v = queryNumber(req, "near")) camera.near = *v;
+  if (auto v = queryNumber(req, "far")) camera.far = *v;
+  if (!(camera.near > 0 && camera.far > camera.near))
+    throw ApiError(400, error_code::kBadParameter, "query.near", "need 0 < near < far");
+  if (glm::length(camera.target - camera.position) == 0)
+    throw ApiError(400, error_code::kBadParameter, "query.target",
+                   "target must differ from position");
+  return camera;
+}
+
+}  // namespace
+
+void HttpServer::registerImageRoutes() {
+  httplib::Server& http = *http_;
+  const std::string scenePath = std::string("/api/scenes/") + kIdPattern;
+
+  http.Get(
+      scenePath + "/image", guarded([this](const httplib::Request& req, httplib::Response& res) {
+        const auto snapshot = findScene(req.matches[1])->snapshot();
+        const auto width = queryUnsigned(req, "width", 1, kMaxImageSide);
+        const auto height = queryUnsigned(req, "height", 1, kMaxImageSide);
+        if (!width)
+          throw ApiError(400, error_code::kBadParameter, "query.width",
+                         "width is required (1 to " + std::to_string(kMaxImageSide) + ")");
+        if (!height)
+          throw ApiError(400, error_code::kBadParameter, "query.height",
+                         "height is required (1 to " + std::to_string(kMaxImageSide) + ")");
+        const std::string format = queryText(req, "format").value_or("png");
+        if (format != "png" && format != "exr")
+          throw ApiError(400, error_code::kBadParameter, "query.format",
+                         "format must be 'png' or 'exr', got '" + format + "'");
+        RenderSettings settings;
+        settings.width = int(*width);
+        settings.height = int(*height);
+        settings.camera = cameraFromQuery(req, snapshot->scene);
+        RenderedImage image;
+        try {
+          image = render(snapshot->scene, snapshot->mesh(), settings);
+        } catch (const std::invalid_argument& error) {  // e.g. a degenerate camera
+          throw ApiError(400, error_code::kBadParameter, "query", error.what());
+        }
+        const std::vector<uint8_t> bytes = format == "png" ? encodePng(image) : encodeExr(image);
+        res.status = 200;
+        res.set_header("Cache-Control", "no-store");
+        res.set_header("X-Penumbra-Version", std::to_string(snapshot->version));
+        res.set_header("X-Penumbra-Render-Seconds", std::to_string(image.seconds));
+        res.set_content(std::string(bytes.begin(), bytes.end()),
+                        format == "png" ? "image/png" : "image/x-exr");
+      }));
+}
+
+}  // namespace penumbra::server

@@ -1,0 +1,23 @@
+// JSON bodies of the server's answers built from engine and session values: build statistics,
+// rebuild reports, scene summaries, and which receivers a version changed. Pure; thread-safe.
+#pragma once
+
+#include <cstdint>
+
+#include <nlohmann/json.hpp>
+
+#include "core/engine/build_stats.h"
+#include "server/scene_session.h"
+#include "server/scene_snapshot.h"
+
+namespace penumbra::server {
+
+nlohmann::json buildStatsJson(const BuildStats& s);
+nlohmann::json rebuildJson(const RebuildReport& r);
+// {"id", "name", "version", "objects", "faces", "receivers", "url"}.
+nlohmann::json sceneSummaryJson(const SceneSnapshot& s);
+// Receivers whose mesh changed after version `after`, and those that left the scene since:
+// {"version", "changed", "removed"}.
+nlohmann::json changedAtJson(const SceneSnapshot& s, uint64_t after);
+
+}  // namespace penumbra::server

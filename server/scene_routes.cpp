@@ -1,0 +1,153 @@
+// Scenes as resources: health, list, create (JSON or an imported file), get, delete,
+// rebuild, stats.
+#include "server/http_server.h"
+
+#include <httplib.h>
+
+#include <chrono>
+
+#include "interchange/scene_import.h"
+#include "protocol/frame_result_json.h"
+#include "protocol/scene_json.h"
+#include "server/request_io.h"
+#include "server/response_json.h"
+#include "server/scene_upload.h"
+
+namespace penumbra::server {
+
+using nlohmann::json;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+}  // namespace
+
+void HttpServer::registerSceneRoutes() {
+  httplib::Server& http = *http_;
+  const std::string scenePath = std::string("/api/scenes/") + kIdPattern;
+
+  http.Get("/api/health", guarded([this](const httplib::Request&, httplib::Response& res) {
+             size_t scenes = 0;
+             {
+               std::lock_guard lock(scenesMutex_);
+               scenes = scenes_.size();
+             }
+             sendJson(res, 200,
+                      {{"status", "ok"},
+                       {"scenes", scenes},
+                       {"event_streams", openStreams_.load()},
+                       {"limits",
+                        {{"max_body_bytes", kMaxBodyBytes},
+                         {"max_scenes", kMaxScenes},
+                         {"max_event_streams", kMaxEventStreams},
+                         {"worker_threads", kWorkerThreads},
+                         {"max_image_side", kMaxImageSide}}}});
+           }));
+
+  http.Get("/api/scenes", guarded([this](const httplib::Request&, httplib::Response& res) {
+             std::vector<std::shared_ptr<SceneSession>> sessions;
+             {
+               std::lock_guard lock(scenesMutex_);
+               for (const auto& [id, session] : scenes_)
+                 if (session) sessions.push_back(session);
+             }
+             json list = json::array();
+             for (const auto& session : sessions)
+               list.push_back(sceneSummaryJson(*session->snapshot()));
+             sendJson(res, 200, {{"scenes", std::move(list)}});
+           }));
+
+  http.Post("/api/scenes", guarded([this](const httplib::Request& req, httplib::Response& res) {
+              // Scene JSON as the body, or a file to import (?format=obj|gltf|glb, docs/API.md).
+              const std::optional<SceneUpload> upload = sceneUploadOf(req);
+              Scene scene;
+              std::string name = queryText(req, "name").value_or("scene");
+              json importJson;
+              if (upload) {
+                const auto start = Clock::now();
+                try {
+                  interchange::ImportResult imported = interchange::importSceneBytes(
+                      upload->bytes, upload->fileName, upload->mtlFiles, upload->options);
+                  scene = std::move(imported.scene);
+                  importJson = imported.report.toJson();
+                } catch (const protocol::ValidationError& error) {
+                  throw ApiError(422, error_code::kInvalidScene, error.path(), error.problem());
+                }
+                importJson["seconds"] = std::chrono::duration<double>(Clock::now() - start).count();
+                if (!req.has_param("name")) name = upload->fileName;
+              } else {
+                const json body = parseBody(req);
+                try {
+                  scene = protocol::sceneFromJson(body);
+                } catch (const protocol::ValidationError& error) {
+                  throw ApiError(422, error_code::kInvalidScene, error.path(), error.problem());
+                }
+              }
+              std::string id;
+              try {
+                id = addScene(std::move(scene), name, name);
+              } catch (const std::invalid_argument& error) {  // geometry the engine refuses
+                throw ApiError(422, error_code::kInvalidScene, "", error.what());
+              }
+              const auto snapshot = findScene(id)->snapshot();
+              res.set_header("Location", "/api/scenes/" + id);
+              json body201 = sceneSummaryJson(*snapshot);
+              body201["build_seconds"] = snapshot->buildStats.seconds.total();
+              if (upload) body201["import"] = std::move(importJson);
+              sendJson(res, 201, body201);
+            }));
+
+  http.Get(scenePath, guarded([this](const httplib::Request& req, httplib::Response& res) {
+             const auto snapshot = findScene(req.matches[1])->snapshot();
+             sendJson(res, 200,
+                      {{"id", snapshot->id},
+                       {"name", snapshot->name},
+                       {"version", snapshot->version},
+                       {"scene", protocol::sceneToJson(snapshot->scene)}});
+           }));
+
+  http.Delete(scenePath, guarded([this](const httplib::Request& req, httplib::Response& res) {
+                std::shared_ptr<SceneSession> session;
+                {
+                  std::lock_guard lock(scenesMutex_);
+                  const auto it = scenes_.find(req.matches[1]);
+                  if (it == scenes_.end() || !it->second)
+                    throw ApiError(404, error_code::kNotFound, "id",
+                                   "no scene with id '" + std::string(req.matches[1]) + "'");
+                  session = it->second;
+                  scenes_.erase(it);
+                }
+                session->close();
+                res.status = 204;
+              }));
+
+  http.Post(scenePath + "/rebuild",
+            guarded([this](const httplib::Request& req, httplib::Response& res) {
+              const auto session = findScene(req.matches[1]);
+              sendJson(res, 200, rebuildJson(session->rebuild()));
+            }));
+
+  http.Get(
+      scenePath + "/stats", guarded([this](const httplib::Request& req, httplib::Response& res) {
+        const auto session = findScene(req.matches[1]);
+        const auto snapshot = session->snapshot();
+        const auto rebuild = session->lastRebuild();
+        sendJson(res, 200,
+                 {{"id", snapshot->id},
+                  {"name", snapshot->name},
+                  {"version", snapshot->version},
+                  {"build", buildStatsJson(snapshot->buildStats)},
+                  {"mesh",
+                   {{"receivers", snapshot->receiverCount()},
+                    {"parts", snapshot->parts.size()},
+                    {"vertices", snapshot->vertexCount()},
+                    {"triangles", snapshot->triangleCount()}}},
+                  {"last_frame", snapshot->lastFrame ? protocol::frameResultToJson(
+                                                           *snapshot->lastFrame, snapshot->scene)
+                                                     : json(nullptr)},
+                  {"last_rebuild", rebuild ? rebuildJson(*rebuild) : json(nullptr)}});
+      }));
+}
+
+}  // namespace penumbra::server
