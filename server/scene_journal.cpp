@@ -78,8 +78,8 @@ int64_t SceneJournal::addScene(const std::string& id, const std::string& name,
   std::lock_guard lock(mutex_);
   SqliteTransaction transaction(*db_);
   db_->prepare("INSERT INTO scenes (id, name, base_version, source) VALUES (?, ?, ?, ?)")
-      .bindBlob(1, id)
-      .bindBlob(2, name)
+      .bindText(1, id)
+      .bindText(2, name)
       .bind(3, int64_t(baseVersion))
       .bindBlob(4, source)
       .run();
