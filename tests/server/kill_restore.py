@@ -11,6 +11,7 @@ Exits 1 naming the first acknowledged version lost or changed. Usage:
   python3 tests/server/kill_restore.py --penumbra build/penumbra [--kills 10] [--seed 1]
 """
 import argparse
+import atexit
 import hashlib
 import http.client
 import json
@@ -29,6 +30,10 @@ SCENE_ID = "cubes15"
 OBJECTS = ["cube_0", "cube_1", "cube_2"]
 
 
+CHILDREN = []  # every server started, killed at exit (a failure leaves none running)
+atexit.register(lambda: [child.kill() for child in CHILDREN if child.poll() is None])
+
+
 def fail(message):
     sys.exit(f"kill_restore: FAIL: {message}")
 
@@ -40,6 +45,7 @@ class Server:
         self.proc = subprocess.Popen(
             [penumbra, "serve", scene, "--data", data, "--port", "0"],
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=data)
+        CHILDREN.append(self.proc)
         self.port = None
         self.ready = threading.Event()
         self.stderr = []
