@@ -33,9 +33,8 @@ std::string defaultStaticDir() {
   return "";
 }
 
-}  // namespace
-
-int runServe(const Args& args) {
+// serve's options, checked: a usage error for what cannot work.
+server::ServerOptions serveOptions(const Args& args) {
   args.allowOnly({"host", "port", "static", "grid", "data", "ephemeral", "token", "max-scenes",
                   "max-body-mib"});
   server::ServerOptions options;
@@ -61,17 +60,12 @@ int runServe(const Args& args) {
         stderr, "penumbra serve: no web_client/ found (pass --static DIR); serving the API only\n");
   else if (!fs::is_directory(options.staticDir))
     throw UsageError("--static: no directory '" + options.staticDir + "'");
+  return options;
+}
 
-  // Signals are taken by sigwait below, not by handlers: block them before any
-  // thread starts so every worker inherits the mask.
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGTERM);
-  sigaddset(&signals, SIGUSR1);  // the listener ended by itself
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
-
-  server::HttpServer server(options);
+// The journal's scenes, then the files not already among them; returns the ids served.
+std::vector<std::string> serveScenes(server::HttpServer& server, const Args& args,
+                                     const server::ServerOptions& options) {
   std::vector<std::string> ids;
   for (const server::RestoredScene& restored : server.restore()) {
     if (restored.problem.rfind("not restored", 0) != 0) ids.push_back(restored.id);
@@ -95,6 +89,25 @@ int runServe(const Args& args) {
                  ids.back().c_str(),
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
+  return ids;
+}
+
+}  // namespace
+
+int runServe(const Args& args) {
+  const server::ServerOptions options = serveOptions(args);
+
+  // Signals are taken by sigwait below, not by handlers: block them before any
+  // thread starts so every worker inherits the mask.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGUSR1);  // the listener ended by itself
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  server::HttpServer server(options);
+  const std::vector<std::string> ids = serveScenes(server, args, options);
   const int port = server.bind();
   std::thread listener([&server] {
     server.listen();
