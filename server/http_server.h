@@ -66,7 +66,7 @@ class HttpServer {
   std::string addScene(Scene scene, const std::string& name, const std::string& preferredId = "");
 
   // Rebuilds every journaled scene and replays its frames (no-op when ephemeral). Call once,
-  // before addScene and bind().
+  // before addScene, so that journaled scenes keep their ids.
   std::vector<RestoredScene> restore();
   bool hasScene(const std::string& id) const;
 
