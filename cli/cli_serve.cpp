@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <thread>
@@ -19,6 +20,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Where the journal lives unless --data says otherwise (relative to the working directory).
+constexpr const char* kDefaultDataDir = "penumbra-data";
+
 // The page: ./web_client, else web_client beside the build directory holding this binary.
 std::string defaultStaticDir() {
   if (fs::is_directory("web_client")) return "web_client";
@@ -29,20 +33,69 @@ std::string defaultStaticDir() {
   return "";
 }
 
-}  // namespace
-
-int runServe(const Args& args) {
-  args.allowOnly({"host", "port", "static", "grid"});
+// serve's options, checked: a usage error for what cannot work.
+server::ServerOptions serveOptions(const Args& args) {
+  args.allowOnly({"host", "port", "static", "grid", "data", "ephemeral", "token", "max-scenes",
+                  "max-body-mib"});
   server::ServerOptions options;
   options.host = args.option("host").value_or("127.0.0.1");
   options.port = args.intOption("port", 8080, 0, 65535);
   options.staticDir = args.option("static").value_or(defaultStaticDir());
   options.engine.overlapGrid = args.intOption("grid", 0, 0, 256);
+  options.maxScenes = size_t(args.intOption("max-scenes", int(server::kMaxScenes), 1, 100000));
+  options.maxBodyBytes =
+      size_t(args.intOption("max-body-mib", int(server::kMaxBodyBytes >> 20), 1, 4096)) << 20;
+  const char* envToken = std::getenv("PENUMBRA_TOKEN");
+  options.token = args.option("token").value_or(envToken ? envToken : "");
+  if (!server::isLoopbackHost(options.host) && options.token.empty())
+    throw UsageError("--host " + options.host +
+                     " is reachable from other machines: give a token with --token T or the "
+                     "PENUMBRA_TOKEN environment variable (mutating requests must then send "
+                     "'Authorization: Bearer T'; the page takes ?token=T)");
+  if (args.flag("ephemeral") && args.option("data"))
+    throw UsageError("--ephemeral and --data exclude each other");
+  if (!args.flag("ephemeral")) options.dataDir = args.option("data").value_or(kDefaultDataDir);
   if (options.staticDir.empty())
     std::fprintf(
         stderr, "penumbra serve: no web_client/ found (pass --static DIR); serving the API only\n");
   else if (!fs::is_directory(options.staticDir))
     throw UsageError("--static: no directory '" + options.staticDir + "'");
+  return options;
+}
+
+// The journal's scenes, then the files not already among them; returns the ids served.
+std::vector<std::string> serveScenes(server::HttpServer& server, const Args& args,
+                                     const server::ServerOptions& options) {
+  std::vector<std::string> ids;
+  for (const server::RestoredScene& restored : server.restore()) {
+    if (restored.problem.rfind("not restored", 0) != 0) ids.push_back(restored.id);
+    std::fprintf(stderr, "penumbra serve: restored scene '%s' at version %llu (%zu frames) in %.2f s%s%s\n",
+                 restored.id.c_str(), static_cast<unsigned long long>(restored.version),
+                 restored.frames, restored.seconds, restored.problem.empty() ? "" : ": ",
+                 restored.problem.c_str());
+  }
+  for (const std::string& path : args.positionals()) {
+    const std::string name = fs::path(path).filename().string();
+    // The journal wins: a scene already restored under this file's id keeps the user's edits.
+    if (!options.dataDir.empty() && server.hasScene(server::sceneIdFromName(name))) {
+      std::fprintf(stderr, "penumbra serve: %s: scene '%s' comes from the journal (%s), not the file\n",
+                   path.c_str(), server::sceneIdFromName(name).c_str(), options.dataDir.c_str());
+      continue;
+    }
+    Scene scene = protocol::loadSceneFile(path);
+    const auto start = std::chrono::steady_clock::now();
+    ids.push_back(server.addScene(std::move(scene), name, name));
+    std::fprintf(stderr, "penumbra serve: built %s as scene '%s' in %.2f s\n", path.c_str(),
+                 ids.back().c_str(),
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  return ids;
+}
+
+}  // namespace
+
+int runServe(const Args& args) {
+  const server::ServerOptions options = serveOptions(args);
 
   // Signals are taken by sigwait below, not by handlers: block them before any
   // thread starts so every worker inherits the mask.
@@ -54,16 +107,7 @@ int runServe(const Args& args) {
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
   server::HttpServer server(options);
-  std::vector<std::string> ids;
-  for (const std::string& path : args.positionals()) {
-    Scene scene = protocol::loadSceneFile(path);
-    const auto start = std::chrono::steady_clock::now();
-    const std::string name = fs::path(path).filename().string();
-    ids.push_back(server.addScene(std::move(scene), name, name));
-    std::fprintf(stderr, "penumbra serve: built %s as scene '%s' in %.2f s\n", path.c_str(),
-                 ids.back().c_str(),
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  }
+  const std::vector<std::string> ids = serveScenes(server, args, options);
   const int port = server.bind();
   std::thread listener([&server] {
     server.listen();
@@ -77,7 +121,12 @@ int runServe(const Args& args) {
   const std::string url = "http://" + shownHost + ":" + std::to_string(port) + "/";
   std::printf("penumbra: serving %zu scene%s at %s\n", ids.size(), ids.size() == 1 ? "" : "s",
               url.c_str());
-  for (const std::string& id : ids) std::printf("  open %s?scene=%s\n", url.c_str(), id.c_str());
+  const std::string tokenQuery = options.token.empty() ? "" : "&token=" + options.token;
+  for (const std::string& id : ids)
+    std::printf("  open %s?scene=%s%s\n", url.c_str(), id.c_str(), tokenQuery.c_str());
+  std::printf("  (scenes and edits %s)\n",
+              options.dataDir.empty() ? "are not kept: --ephemeral"
+                                      : ("are kept in " + options.dataDir).c_str());
   std::printf("  (API: %sapi/health; stop with Ctrl-C)\n", url.c_str());
   std::fflush(stdout);
 

@@ -32,6 +32,9 @@ commands:
          [--verify] [--verify-every K] [--report OUT.json] [--out MESH]
   serve [SCENE...] [--host H]          the HTTP API and web page (docs/API.md) on the scenes;
         [--port P] [--static DIR]      default 127.0.0.1:8080 and ./web_client; prints the URL
+        [--data DIR | --ephemeral]     journal of scenes and edits (default ./penumbra-data)
+        [--token T] [--max-scenes N]   token for mutating requests (needed off loopback; or
+        [--max-body-mib M]             PENUMBRA_TOKEN); limits (default 32 scenes, 16 MiB)
   help                                 this text
 )";
 
@@ -49,7 +52,7 @@ int dispatch(int argc, char** argv) {
   if (command == "import") return runImport(Args(argc, argv, 2, {}));
   if (command == "render") return runRender(Args(argc, argv, 2, {"reference", "stats"}));
   if (command == "replay") return runReplay(Args(argc, argv, 2, {"verify"}));
-  if (command == "serve") return runServe(Args(argc, argv, 2, {}));
+  if (command == "serve") return runServe(Args(argc, argv, 2, {"ephemeral"}));
   if (command == "generate") return runGenerate(Args(argc, argv, 2, {"tilted-light", "two-lights"}));
   throw UsageError("unknown command '" + command + "'");
 }

@@ -17,7 +17,8 @@ nlohmann::json errorJsonForStatus(int status, const std::string& method, const s
     case 413:
       return errorJson(
           error_code::kPayloadTooLarge,
-          "request body is larger than the limit of " + std::to_string(maxBodyBytes) + " bytes",
+          "request body is larger than the limit of " + std::to_string(maxBodyBytes) +
+              " bytes (the server's --max-body-mib)",
           "(body)");
     case 400:
       return errorJson(error_code::kBadRequest, "the request could not be read", "(request)");

@@ -21,6 +21,8 @@ inline constexpr const char* kTooManyScenes = "too_many_scenes";      // 429
 inline constexpr const char* kTooManyStreams = "too_many_streams";    // 429
 inline constexpr const char* kInternal = "internal_error";            // 500
 inline constexpr const char* kNotImplemented = "not_implemented";     // 501
+inline constexpr const char* kUnauthorized = "unauthorized";          // 401
+inline constexpr const char* kJournalFailed = "journal_failed";       // 503
 }  // namespace error_code
 
 // Thrown by request handlers; the server turns it into status + errorJson.

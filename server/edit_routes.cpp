@@ -46,7 +46,10 @@ void HttpServer::registerEditRoutes() {
         }
         SceneSession::Applied applied;
         try {
-          applied = session->apply(frame);
+          // Journaled (committed) before it is published and acknowledged.
+          applied = session->apply(frame, [&](const SceneSnapshot& next) {
+            journalFrame(*session, next.version, req.body);
+          });
         } catch (const EditError& error) {
           const std::string path = "edits[" + std::to_string(error.editIndex()) + "]" +
                                    (error.path().empty() ? "" : "." + error.path());

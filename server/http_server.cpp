@@ -5,12 +5,11 @@
 #include <cctype>
 #include <filesystem>
 
+#include "protocol/scene_json.h"
 #include "server/api_errors.h"
 #include "server/request_io.h"
 
 namespace penumbra::server {
-
-namespace {
 
 std::string sceneIdFromName(const std::string& name) {
   std::string id;
@@ -23,14 +22,20 @@ std::string sceneIdFromName(const std::string& name) {
   return id.substr(0, kMaxIdLength);
 }
 
-}  // namespace
+bool isLoopbackHost(const std::string& host) {
+  return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
+}
 
 HttpServer::HttpServer(ServerOptions options)
     : options_(std::move(options)), http_(std::make_unique<httplib::Server>()) {
+  if (!isLoopbackHost(options_.host) && options_.token.empty())
+    throw std::invalid_argument("listening on " + options_.host +
+                                " (not loopback) needs a token: --token T or PENUMBRA_TOKEN");
+  if (!options_.dataDir.empty()) journal_ = std::make_unique<SceneJournal>(options_.dataDir);
   // Every open event stream holds a worker for its lifetime (DEPENDENCIES.md): the
   // pool has one per allowed stream plus kRequestWorkers for everything else.
   http_->new_task_queue = [] { return new httplib::ThreadPool(kWorkerThreads); };
-  http_->set_payload_max_length(kMaxBodyBytes);
+  http_->set_payload_max_length(options_.maxBodyBytes);
   http_->set_keep_alive_max_count(1000);
   http_->set_keep_alive_timeout(2);  // idle keep-alive connections hold a worker too
   http_->set_tcp_nodelay(true);
@@ -38,7 +43,7 @@ HttpServer::HttpServer(ServerOptions options)
   http_->set_file_extension_and_mimetype_mapping("mjs", "text/javascript");
   http_->set_file_extension_and_mimetype_mapping("glb", "model/gltf-binary");
   http_->set_file_extension_and_mimetype_mapping("wasm", "application/wasm");
-  const size_t maxBody = kMaxBodyBytes;
+  const size_t maxBody = options_.maxBodyBytes;
   http_->set_error_handler(httplib::Server::HandlerWithResponse(
       [maxBody](const httplib::Request& req, httplib::Response& res) {
         // Statuses httplib set itself (no route, body too large, unreadable request)
@@ -52,6 +57,7 @@ HttpServer::HttpServer(ServerOptions options)
       [](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
         sendJson(res, 500, errorJson(error_code::kInternal, "internal error", ""));
       });
+  registerAccessControl();
   registerRoutes();
   registerStaticFiles();
 }
@@ -85,25 +91,43 @@ std::string HttpServer::addScene(Scene scene, const std::string& name,
   std::string id;
   {
     std::lock_guard lock(scenesMutex_);
-    if (scenes_.size() >= kMaxScenes)
-      throw ApiError(
-          429, error_code::kTooManyScenes, "",
-          "the server already holds " + std::to_string(kMaxScenes) + " scenes; DELETE one first");
+    if (scenes_.size() >= options_.maxScenes)
+      throw ApiError(429, error_code::kTooManyScenes, "",
+                     "the server already holds " + std::to_string(options_.maxScenes) +
+                         " scenes (--max-scenes); DELETE one first");
     id = freshId(preferredId.empty() ? name : preferredId);
     scenes_.emplace(id, nullptr);  // reserved while it builds
   }
   // Build outside the lock: a large scene takes seconds and other scenes keep serving.
   std::shared_ptr<SceneSession> session;
+  int64_t key = 0;
   try {
+    // The journal keeps the scene as built (sceneFromJson(sceneToJson(s)) == s), committed
+    // before the scene is served or acknowledged.
+    const std::string source = journal_ ? protocol::sceneToJson(scene).dump() : "";
     session = std::make_shared<SceneSession>(id, name, std::move(scene), options_.engine);
+    if (journal_) {
+      try {
+        key = journal_->addScene(id, name, source, session->snapshot()->version);
+      } catch (const std::exception& error) {
+        throw ApiError(503, error_code::kJournalFailed, "",
+                       std::string("the journal could not record the scene: ") + error.what());
+      }
+    }
   } catch (...) {
     std::lock_guard lock(scenesMutex_);
     scenes_.erase(id);
     throw;
   }
   std::lock_guard lock(scenesMutex_);
+  if (journal_) journalKeys_[session.get()] = key;
   scenes_[id] = std::move(session);
   return id;
+}
+
+bool HttpServer::hasScene(const std::string& id) const {
+  std::lock_guard lock(scenesMutex_);
+  return scenes_.count(id) > 0;
 }
 
 int HttpServer::bind() {
@@ -136,9 +160,11 @@ void HttpServer::registerStaticFiles() {
   for (const fs::path& modules : {dir / "node_modules", dir.parent_path() / "node_modules"})
     if (fs::is_directory(modules)) {
       http_->set_mount_point("/node_modules", modules.string());
+      staticRoots_.emplace_back("/node_modules/", fs::canonical(modules).string());
       break;
     }
   http_->set_mount_point("/", dir.string());
+  staticRoots_.emplace_back("/", fs::canonical(dir).string());
 }
 
 void HttpServer::registerRoutes() {

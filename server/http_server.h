@@ -11,6 +11,7 @@
 
 #include "core/engine/engine.h"
 #include "server/limits.h"
+#include "server/scene_journal.h"
 #include "server/scene_session.h"
 
 namespace httplib {
@@ -30,6 +31,27 @@ struct ServerOptions {
   // time than sending the bytes).
   enum class MeshCompression { Auto, Always, Never };
   MeshCompression meshCompression = MeshCompression::Auto;
+  // The journal's directory (README "Durability"); empty: ephemeral, nothing survives a restart.
+  std::string dataDir;
+  // Required (Authorization: Bearer TOKEN) on every POST/PUT/PATCH/DELETE when not empty; a
+  // host other than loopback is refused without one.
+  std::string token;
+  size_t maxScenes = kMaxScenes;        // served at once, else 429
+  size_t maxBodyBytes = kMaxBodyBytes;  // request bodies, else 413
+};
+
+// The id a scene named `name` asks for ("cubes15.scene.json" → "cubes15").
+std::string sceneIdFromName(const std::string& name);
+// 127.0.0.0/8, ::1 and "localhost".
+bool isLoopbackHost(const std::string& host);
+
+// A scene restore() brought back from the journal.
+struct RestoredScene {
+  std::string id;
+  uint64_t version = 0;  // the last acknowledged version it is back at
+  size_t frames = 0;     // frames replayed
+  double seconds = 0;    // build + replay
+  std::string problem;   // not empty: frames after `version` no longer replay and were dropped
 };
 
 class HttpServer {
@@ -42,6 +64,11 @@ class HttpServer {
   // Builds and serves a scene as POST /api/scenes would; `preferredId` is used when
   // free and well-formed. Returns the id. Throws ApiError (e.g. too many scenes).
   std::string addScene(Scene scene, const std::string& name, const std::string& preferredId = "");
+
+  // Rebuilds every journaled scene and replays its frames (no-op when ephemeral). Call once,
+  // before addScene, so that journaled scenes keep their ids.
+  std::vector<RestoredScene> restore();
+  bool hasScene(const std::string& id) const;
 
   // Binds the listening socket; returns the port. Throws std::runtime_error.
   int bind();
@@ -63,6 +90,10 @@ class HttpServer {
   void registerImageRoutes();
   void registerEventRoutes();
   void registerStaticFiles();
+  void registerAccessControl();  // token on mutating requests, static paths kept inside their roots
+  // Journal writes (no-ops when ephemeral); throw ApiError 503 when the journal fails.
+  void journalFrame(const SceneSession& session, uint64_t version, const std::string& frame);
+  void journalRemove(const SceneSession& session);
   std::shared_ptr<SceneSession> findScene(const std::string& id) const;
   std::string freshId(const std::string& preferred);  // call with scenesMutex_ held
 
@@ -71,8 +102,11 @@ class HttpServer {
   int port_ = 0;
   std::atomic<bool> stopping_{false};
   std::atomic<int> openStreams_{0};
-  mutable std::mutex scenesMutex_;  // guards scenes_, nextId_
+  mutable std::mutex scenesMutex_;  // guards scenes_, nextId_, journalKeys_
   std::map<std::string, std::shared_ptr<SceneSession>> scenes_;
+  std::unique_ptr<SceneJournal> journal_;  // null: ephemeral
+  std::map<const SceneSession*, int64_t> journalKeys_;  // guarded by scenesMutex_
+  std::vector<std::pair<std::string, std::string>> staticRoots_;  // URL prefix → canonical dir
   size_t nextId_ = 1;
 };
 

@@ -30,7 +30,8 @@ json parseBody(const httplib::Request& req) {
     throw ApiError(400, error_code::kMalformedJson, "(json)",
                    "the request body is empty; send a JSON document");
   try {
-    return protocol::parseJsonText(req.body, kMaxBodyBytes, protocol::kMaxJsonDepth);
+    // (the server's --max-body-mib may exceed the default)
+    return protocol::parseJsonText(req.body, req.body.size(), protocol::kMaxJsonDepth);
   } catch (const protocol::ValidationError& error) {
     throw ApiError(400, error_code::kMalformedJson, error.path(), error.problem());
   }

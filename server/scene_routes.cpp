@@ -37,9 +37,10 @@ void HttpServer::registerSceneRoutes() {
                       {{"status", "ok"},
                        {"scenes", scenes},
                        {"event_streams", openStreams_.load()},
+                       {"durable", journal_ != nullptr},
                        {"limits",
-                        {{"max_body_bytes", kMaxBodyBytes},
-                         {"max_scenes", kMaxScenes},
+                        {{"max_body_bytes", options_.maxBodyBytes},
+                         {"max_scenes", options_.maxScenes},
                          {"max_event_streams", kMaxEventStreams},
                          {"worker_threads", kWorkerThreads},
                          {"max_image_side", kMaxImageSide}}}});
@@ -108,14 +109,14 @@ void HttpServer::registerSceneRoutes() {
            }));
 
   http.Delete(scenePath, guarded([this](const httplib::Request& req, httplib::Response& res) {
-                std::shared_ptr<SceneSession> session;
+                const auto session = findScene(req.matches[1]);
+                journalRemove(*session);  // first: if it fails, the scene stays
                 {
                   std::lock_guard lock(scenesMutex_);
                   const auto it = scenes_.find(req.matches[1]);
-                  if (it == scenes_.end() || !it->second)
+                  if (it == scenes_.end() || it->second != session)
                     throw ApiError(404, error_code::kNotFound, "id",
                                    "no scene with id '" + std::string(req.matches[1]) + "'");
-                  session = it->second;
                   scenes_.erase(it);
                 }
                 session->close();

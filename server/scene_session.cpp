@@ -54,7 +54,8 @@ std::shared_ptr<const SceneSnapshot> SceneSession::snapshot() const {
   return current_;
 }
 
-SceneSession::Applied SceneSession::apply(const Frame& frame) {
+SceneSession::Applied SceneSession::apply(
+    const Frame& frame, const std::function<void(const SceneSnapshot&)>& beforePublish) {
   std::lock_guard edit(editMutex_);
   const std::shared_ptr<const SceneSnapshot> previous = snapshot();
   FrameResult result = engine_->apply(frame);  // throws EditError before changing anything
@@ -127,6 +128,7 @@ SceneSession::Applied SceneSession::apply(const Frame& frame) {
 
   next->lastFrame = result;
   std::shared_ptr<const SceneSnapshot> published = std::move(next);
+  if (beforePublish) beforePublish(*published);
   publish(published);
   return {std::move(result), std::move(published), meshSeconds, remesh.size(), cells};
 }

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -37,7 +38,9 @@ class SceneSession {
   // Applies one frame, serialised with other frames of this scene, and publishes
   // the new version before returning it with the engine's result. Only the receivers
   // the engine reports changed (and new ones) are meshed again. Throws EditError
-  // (nothing changed) on an invalid frame.
+  // (nothing changed) on an invalid frame. `beforePublish` (the journal) sees the new version
+  // after the engine applied it and before it is published; if it throws, nothing is published
+  // and the exception propagates (the engine keeps the frame: the journal refuses later ones).
   struct Applied {
     FrameResult result;
     std::shared_ptr<const SceneSnapshot> snapshot;  // the version this frame made
@@ -45,7 +48,8 @@ class SceneSession {
     size_t meshedReceivers = 0;  // receivers meshed again (the others kept their mesh)
     Engine::MeshCacheCounters meshCells;  // of those receivers' cells: replayed / lit afresh
   };
-  Applied apply(const Frame& frame);
+  Applied apply(const Frame& frame,
+                const std::function<void(const SceneSnapshot&)>& beforePublish = nullptr);
 
   // A full rebuild of the current version, timed. Serialised with other rebuilds,
   // not with edits (it works on a snapshot's scene).

@@ -37,7 +37,7 @@ export function check(condition, what, detail = '') {
 // Starts the server and resolves with {server, url} once it prints the page's URL.
 export function startServer(penumbra, scene, timeoutSeconds) {
   return new Promise((resolve, reject) => {
-    const server = spawn(penumbra, ['serve', scene, '--port', '0', '--static', path.join(repo, 'web_client')],
+    const server = spawn(penumbra, ['serve', scene, '--port', '0', '--ephemeral', '--static', path.join(repo, 'web_client')],
       { cwd: repo, stdio: ['ignore', 'pipe', 'pipe'] });
     let out = '';
     let err = '';

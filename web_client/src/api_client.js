@@ -22,11 +22,14 @@ async function failure(response) {
 }
 
 export class ApiClient {
-  constructor(base = '') {
+  // token: the server's --token (the page's ?token=), sent on every request that changes something.
+  constructor(base = '', token = null) {
     this.base = base;
+    this.token = token;
   }
 
   async request(method, path, { body, signal, headers } = {}) {
+    if (this.token && method !== 'GET' && method !== 'HEAD') headers = { ...headers, Authorization: `Bearer ${this.token}` };
     let response;
     try {
       response = await fetch(this.base + path, { method, body, signal, headers });

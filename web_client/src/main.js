@@ -26,7 +26,7 @@ const isTyping = (target) => target instanceof HTMLInputElement && !['checkbox',
 
 class App {
   constructor() {
-    this.api = new ApiClient();
+    this.api = new ApiClient('', new URLSearchParams(window.location.search).get('token'));
     this.banner = new ErrorBanner($('error-banner'), $('error-text'), $('error-close'));
     // ?antialias=on|off and ?drag_scale=0.25..1 override the choices by GL renderer (to compare frame times).
     const query = new URLSearchParams(window.location.search);

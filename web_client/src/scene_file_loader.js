@@ -69,7 +69,9 @@ export function installSceneFileLoader(input, api, onError, options) {
         created = await importFile(api, main, mtl, options);
         storeImportReport(created.id, created.name, created.import);
       }
-      window.location.search = `?scene=${encodeURIComponent(created.id)}`;
+      const next = new URLSearchParams({ scene: created.id });
+      if (api.token) next.set('token', api.token); // the new scene's page keeps the token
+      window.location.search = `?${next}`;
     } catch (error) {
       onError(error);
     } finally {

@@ -1,0 +1,152 @@
+// The journal (README "Durability") in-process: a server on a data directory is stopped and a
+// second one restores every scene at its last acknowledged version with the same mesh bytes;
+// a failed journal write acknowledges nothing and changes nothing served. (The SIGKILL test is
+// tests/server/kill_restore.py.)
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <map>
+#include <random>
+
+#include "server_fixture.h"
+
+namespace penumbra::server::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class TempDir {
+ public:
+  TempDir() {
+    path_ = fs::temp_directory_path() /
+            ("penumbra-journal-test-" + std::to_string(getpid()) + "-" + std::to_string(counter_++));
+    fs::remove_all(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  std::string str() const { return path_.string(); }
+
+ private:
+  static inline int counter_ = 0;
+  fs::path path_;
+};
+
+ServerOptions durable(const std::string& dir) {
+  ServerOptions options = RunningServer::loopback();
+  options.dataDir = dir;
+  return options;
+}
+
+std::string meshBin(httplib::Client& client, const std::string& id) {
+  const auto res = client.Get(("/api/scenes/" + id + "/mesh?format=bin").c_str());
+  EXPECT_TRUE(res && res->status == 200);
+  return res ? res->body : "";
+}
+
+// Seeded moves of the first cubes near where they stand; returns the acknowledged version.
+uint64_t drag(httplib::Client& client, const std::string& id, int frames, uint32_t seed) {
+  const json scene = bodyJson(client.Get(("/api/scenes/" + id).c_str()))["scene"];
+  std::map<std::string, json> start;
+  for (const json& object : scene["objects"])
+    if (object["id"].get<std::string>().rfind("cube_", 0) == 0) start[object["id"]] = object;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.05, 0.05);
+  uint64_t version = 0;
+  for (int i = 0; i < frames; ++i) {
+    const std::string cube = "cube_" + std::to_string(rng() % 3);
+    json transform = start.at(cube)["transform"];
+    transform["translate"][0] = transform["translate"][0].get<double>() + jitter(rng);
+    transform["translate"][2] = transform["translate"][2].get<double>() + jitter(rng);
+    const json frame = {{"edits", {{{"op", "move"}, {"id", cube}, {"transform", transform}}}}};
+    const auto res = client.Post(("/api/scenes/" + id + "/edits").c_str(), frame.dump(),
+                                 "application/json");
+    EXPECT_TRUE(res && res->status == 200) << (res ? res->body : "no answer");
+    version = bodyJson(res)["version"];
+  }
+  return version;
+}
+
+TEST(Journal, RestartRestoresEveryScenesLastVersionWithTheSameMeshBytes) {
+  TempDir data;
+  std::map<std::string, std::pair<uint64_t, std::string>> served;  // id → version, mesh
+  {
+    RunningServer first(durable(data.str()));
+    auto client = first.client();
+    const std::string cubes = first.addBundled("cubes15");
+    const uint64_t version = drag(client, cubes, 12, 7);
+    EXPECT_EQ(version, 12u);
+    served[cubes] = {version, meshBin(client, cubes)};
+    // A scene created over HTTP, and one deleted (its rows go with it).
+    const auto created = client.Post("/api/scenes?name=box", sceneText("cornell"), "application/json");
+    ASSERT_EQ(created->status, 201) << created->body;
+    const std::string box = bodyJson(created)["id"];
+    served[box] = {0, meshBin(client, box)};
+    const std::string gone = first.addBundled("cubes15");
+    drag(client, gone, 2, 8);
+    EXPECT_EQ(client.Delete(("/api/scenes/" + gone).c_str())->status, 204);
+  }
+  RunningServer second(durable(data.str()));
+  const std::vector<RestoredScene> restored = second.server().restore();
+  ASSERT_EQ(restored.size(), served.size());
+  auto client = second.client();
+  for (const RestoredScene& scene : restored) {
+    EXPECT_TRUE(scene.problem.empty()) << scene.problem;
+    ASSERT_TRUE(served.count(scene.id)) << scene.id;
+    EXPECT_EQ(scene.version, served[scene.id].first);
+    EXPECT_EQ(bodyJson(client.Get(("/api/scenes/" + scene.id).c_str()))["version"],
+              served[scene.id].first);
+    EXPECT_TRUE(meshBin(client, scene.id) == served[scene.id].second) << scene.id;
+  }
+  // The restored scene keeps taking edits, and the next restart has those too.
+  EXPECT_EQ(drag(client, "cubes15", 3, 9), 15u);
+}
+
+TEST(Journal, FailedWriteAcknowledgesNothingAndTheScenePausesUntilRestart) {
+  TempDir data;
+  std::string mesh;
+  {
+    RunningServer running(durable(data.str()));
+    auto client = running.client();
+    const std::string id = running.addBundled("cubes15");
+    ASSERT_EQ(drag(client, id, 3, 11), 3u);
+    mesh = meshBin(client, id);
+    // Another process holds the database: the server's write times out.
+    sqlite3* other = nullptr;
+    ASSERT_EQ(sqlite3_open((data.str() + "/journal.sqlite3").c_str(), &other), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(other, "BEGIN EXCLUSIVE", nullptr, nullptr, nullptr), SQLITE_OK);
+    json cube0;
+    const json got = bodyJson(client.Get(("/api/scenes/" + id).c_str()));
+    for (const json& object : got["scene"]["objects"])
+      if (object["id"] == "cube_0") cube0 = object;
+    json transform = cube0["transform"];
+    transform["translate"][0] = transform["translate"][0].get<double>() + 0.03;
+    const json frame = {{"edits", {{{"op", "move"}, {"id", "cube_0"}, {"transform", transform}}}}};
+    auto res = client.Post(("/api/scenes/" + id + "/edits").c_str(), frame.dump(), "application/json");
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 503) << res->body;
+    EXPECT_EQ(bodyJson(res)["error"]["code"], "journal_failed");
+    sqlite3_exec(other, "ROLLBACK", nullptr, nullptr, nullptr);
+    sqlite3_close(other);
+    // Nothing published; the engine is a frame ahead, so the scene refuses edits until restart.
+    EXPECT_EQ(bodyJson(client.Get(("/api/scenes/" + id).c_str()))["version"], 3);
+    EXPECT_TRUE(meshBin(client, id) == mesh);
+    res = client.Post(("/api/scenes/" + id + "/edits").c_str(), frame.dump(), "application/json");
+    EXPECT_EQ(res->status, 503) << res->body;
+    EXPECT_EQ(bodyJson(client.Get(("/api/scenes/" + id).c_str()))["version"], 3);
+  }
+  RunningServer second(durable(data.str()));
+  ASSERT_EQ(second.server().restore().at(0).version, 3u);
+  auto client = second.client();
+  EXPECT_TRUE(meshBin(client, "cubes15") == mesh);
+  EXPECT_EQ(drag(client, "cubes15", 1, 12), 4u);
+}
+
+TEST(Journal, EphemeralServerRestoresNothing) {
+  RunningServer running;  // no dataDir
+  EXPECT_TRUE(running.server().restore().empty());
+  EXPECT_EQ(bodyJson(running.client().Get("/api/health"))["durable"], false);
+}
+
+}  // namespace
+}  // namespace penumbra::server::test
