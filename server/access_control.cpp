@@ -38,8 +38,8 @@ bool staysInside(const fs::path& root, const std::string& sub) {
 
 }  // namespace
 
-void HttpServer::registerAccessControl() {
-  http_->set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+bool HttpServer::refuseAccess(const httplib::Request& req, httplib::Response& res) const {
+  {
     if (!options_.token.empty() && isMutating(req.method) &&
         !sameSecret(req.get_header_value("Authorization"), "Bearer " + options_.token)) {
       res.set_header("WWW-Authenticate", "Bearer");
@@ -48,7 +48,7 @@ void HttpServer::registerAccessControl() {
                          "this server needs its token: send 'Authorization: Bearer TOKEN' "
                          "(the page takes it from ?token=)",
                          "(header).Authorization"));
-      return httplib::Server::HandlerResponse::Handled;
+      return true;
     }
     if ((req.method == "GET" || req.method == "HEAD") && req.path.rfind("/api/", 0) != 0) {
       // The mount this path falls under: the longest matching prefix (roots are canonical).
@@ -60,11 +60,11 @@ void HttpServer::registerAccessControl() {
       if (mount && (req.path.find('\\') != std::string::npos ||
                     !staysInside(mount->second, req.path.substr(mount->first.size())))) {
         sendJson(res, 404, errorJson(error_code::kNotFound, "no such file", "(url)"));
-        return httplib::Server::HandlerResponse::Handled;
+        return true;
       }
     }
-    return httplib::Server::HandlerResponse::Unhandled;
-  });
+    return false;
+  }
 }
 
 }  // namespace penumbra::server

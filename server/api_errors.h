@@ -13,6 +13,7 @@ namespace error_code {
 inline constexpr const char* kMalformedJson = "malformed_json";       // 400
 inline constexpr const char* kBadParameter = "bad_parameter";         // 400
 inline constexpr const char* kBadRequest = "bad_request";             // 400
+inline constexpr const char* kInvalidUtf8 = "invalid_utf8";           // 400
 inline constexpr const char* kNotFound = "not_found";                 // 404
 inline constexpr const char* kPayloadTooLarge = "payload_too_large";  // 413
 inline constexpr const char* kInvalidScene = "invalid_scene";         // 422
@@ -20,10 +21,18 @@ inline constexpr const char* kInvalidFrame = "invalid_frame";         // 422
 inline constexpr const char* kTooManyScenes = "too_many_scenes";      // 429
 inline constexpr const char* kTooManyStreams = "too_many_streams";    // 429
 inline constexpr const char* kInternal = "internal_error";            // 500
+inline constexpr const char* kFrameNotApplied = "frame_not_applied";  // 500
+inline constexpr const char* kOutOfMemory = "out_of_memory";          // 507
 inline constexpr const char* kNotImplemented = "not_implemented";     // 501
 inline constexpr const char* kUnauthorized = "unauthorized";          // 401
 inline constexpr const char* kJournalFailed = "journal_failed";       // 503
 }  // namespace error_code
+
+// Fixed bodies for when building one fails (no memory left, or a throwing error path).
+inline constexpr const char* kInternalErrorBody =
+    R"({"error":{"code":"internal_error","message":"internal error","path":""}})";
+inline constexpr const char* kOutOfMemoryBody =
+    R"({"error":{"code":"out_of_memory","message":"out of memory","path":""}})";
 
 // Thrown by request handlers; the server turns it into status + errorJson.
 class ApiError : public std::runtime_error {

@@ -3,6 +3,8 @@
 
 #include <httplib.h>
 
+#include <cstdio>
+#include <new>
 #include <regex>
 
 #include "protocol/edits_json.h"
@@ -22,6 +24,23 @@ long editIndexOf(const std::string& path) {
   std::smatch match;
   if (std::regex_match(path, match, pattern)) return std::stol(match[1]);
   return -1;
+}
+
+// 507 `out_of_memory` / 500 `frame_not_applied` for a frame that failed after its check.
+void sendNotApplied(httplib::Response& res, const SceneSession& session, bool outOfMemory,
+                    const std::string& what) {
+  const uint64_t version = session.snapshot()->version;
+  std::fprintf(stderr, "penumbra serve: scene '%s': frame failed (%s); still at version %llu\n",
+               session.id().c_str(), what.c_str(), (unsigned long long)version);
+  const std::string message = std::string(outOfMemory ? "out of memory" : "internal error") +
+                              " while applying the frame (" + what +
+                              "): the frame was not applied; the scene is unchanged at version " +
+                              std::to_string(version);
+  sendError(res,
+            ApiError(outOfMemory ? 507 : 500,
+                     outOfMemory ? error_code::kOutOfMemory : error_code::kFrameNotApplied, "",
+                     message),
+            {{"applied", false}, {"version", version}});
 }
 
 }  // namespace
@@ -58,6 +77,15 @@ void HttpServer::registerEditRoutes() {
             problem = problem.substr(colon + 2);
           sendError(res, ApiError(422, error_code::kInvalidFrame, path, problem),
                     {{"edit", error.editIndex()}});
+          return;
+        }
+        // Failed inside the engine or while meshing: the session restored the version
+        // before the frame (SceneSession::apply), so say plainly that nothing was applied.
+        catch (const std::bad_alloc&) {
+          sendNotApplied(res, *session, true, "out of memory");
+          return;
+        } catch (const std::exception& error) {
+          sendNotApplied(res, *session, false, error.what());
           return;
         }
         json body200 = protocol::frameResultToJson(applied.result, applied.snapshot->scene);

@@ -45,7 +45,9 @@ void HttpServer::registerEventRoutes() {
              res.set_header("X-Accel-Buffering", "no");
              res.set_chunked_content_provider(
                  "text/event-stream",
-                 [this, session, state](size_t, httplib::DataSink& sink) {
+                 [this, session, state](size_t, httplib::DataSink& sink) noexcept {
+                   // Runs outside guarded(): an exception here (no memory) ends the stream.
+                   try {
                    auto write = [&](const std::string& text) {
                      state->lastWrite = Clock::now();
                      return sink.write(text.data(), text.size());
@@ -56,7 +58,7 @@ void HttpServer::registerEventRoutes() {
                      json hello = {{"version", now->version},
                                    {"changed", json::array()},
                                    {"removed", json::array()}};
-                     return write("retry: 1000\nevent: version\ndata: " + hello.dump() + "\n\n");
+                     return write("retry: 1000\nevent: version\ndata: " + jsonText(hello) + "\n\n");
                    }
                    const auto now = session->waitForVersionAfter(*state->announced, kStreamPoll);
                    if (stopping_ || session->closed()) {
@@ -67,11 +69,14 @@ void HttpServer::registerEventRoutes() {
                      // Coalesced: one event covers every version since the last one sent.
                      const json event = changedAtJson(*now, *state->announced);
                      state->announced = now->version;
-                     return write("event: version\ndata: " + event.dump() + "\n\n");
+                     return write("event: version\ndata: " + jsonText(event) + "\n\n");
                    }
                    if (Clock::now() - state->lastWrite > kStreamKeepAlive)
                      return write(": keep-alive\n\n");
                    return true;
+                   } catch (...) {
+                     return false;
+                   }
                  },
                  [this](bool) { --openStreams_; });
            }));

@@ -2,6 +2,8 @@
 
 #include <httplib.h>
 
+#include <strings.h>
+
 #include <cctype>
 #include <filesystem>
 
@@ -26,6 +28,22 @@ bool isLoopbackHost(const std::string& host) {
   return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
 }
 
+namespace {
+
+// Our request bodies are JSON or files, never HTML forms, but `curl --data-binary @f` labels
+// them application/x-www-form-urlencoded: httplib would then parse the body as query
+// parameters and refuse one over its compiled-in form limit (8 KiB) with 413. The label is
+// changed before the body is read. (httplib's routing owns the Request, which is not const.)
+void bodiesAreNotForms(const httplib::Request& req) noexcept {
+  auto& headers = const_cast<httplib::Request&>(req).headers;
+  for (auto& [name, value] : headers)
+    if (strcasecmp(name.c_str(), "Content-Type") == 0 &&
+        strncasecmp(value.c_str(), "application/x-www-form-urlencoded", 33) == 0)
+      value = "application/octet-stream";
+}
+
+}  // namespace
+
 HttpServer::HttpServer(ServerOptions options)
     : options_(std::move(options)), http_(std::make_unique<httplib::Server>()) {
   if (!isLoopbackHost(options_.host) && options_.token.empty())
@@ -45,19 +63,43 @@ HttpServer::HttpServer(ServerOptions options)
   http_->set_file_extension_and_mimetype_mapping("wasm", "application/wasm");
   const size_t maxBody = options_.maxBodyBytes;
   http_->set_error_handler(httplib::Server::HandlerWithResponse(
-      [maxBody](const httplib::Request& req, httplib::Response& res) {
+      [maxBody](const httplib::Request& req, httplib::Response& res) noexcept {
         // Statuses httplib set itself (no route, body too large, unreadable request)
-        // still answer with the JSON error shape; handler-written bodies are kept.
+        // still answer with the JSON error shape; handler-written bodies are kept. The
+        // path may hold any bytes (`GET /%ff`): sendJson replaces invalid UTF-8.
         if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
-        res.set_content(errorJsonForStatus(res.status, req.method, req.path, maxBody).dump(),
-                        "application/json");
+        try {
+          sendJson(res, res.status, errorJsonForStatus(res.status, req.method, req.path, maxBody));
+        } catch (...) {
+          res.set_content(kInternalErrorBody, "application/json");
+        }
         return httplib::Server::HandlerResponse::Handled;
       }));
   http_->set_exception_handler(
-      [](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
-        sendJson(res, 500, errorJson(error_code::kInternal, "internal error", ""));
+      [](const httplib::Request& req, httplib::Response& res, std::exception_ptr error) noexcept {
+        try {
+          if (error) std::rethrow_exception(error);
+          sendInternalError(req, res, "unknown exception");
+        } catch (const std::bad_alloc&) {
+          sendInternalError(req, res, "out of memory", true);
+        } catch (const std::exception& e) {
+          sendInternalError(req, res, e.what());
+        } catch (...) {
+          sendInternalError(req, res, "unknown exception");
+        }
       });
-  registerAccessControl();
+  http_->set_pre_routing_handler(httplib::Server::HandlerWithResponse(
+      [this](const httplib::Request& req, httplib::Response& res) noexcept {
+        bodiesAreNotForms(req);
+        try {
+          if (refuseAccess(req, res)) return httplib::Server::HandlerResponse::Handled;
+        } catch (...) {
+          res.status = 500;
+          res.set_content(kInternalErrorBody, "application/json");
+          return httplib::Server::HandlerResponse::Handled;
+        }
+        return httplib::Server::HandlerResponse::Unhandled;
+      }));
   registerRoutes();
   registerStaticFiles();
 }

@@ -90,7 +90,9 @@ class HttpServer {
   void registerImageRoutes();
   void registerEventRoutes();
   void registerStaticFiles();
-  void registerAccessControl();  // token on mutating requests, static paths kept inside their roots
+  // Answers (and returns true) when the request may not go on: no token on a mutating
+  // request, a static path leading out of its root (access_control.cpp).
+  bool refuseAccess(const httplib::Request& req, httplib::Response& res) const;
   // Journal writes (no-ops when ephemeral); throw ApiError 503 when the journal fails.
   void journalFrame(const SceneSession& session, uint64_t version, const std::string& frame);
   void journalRemove(const SceneSession& session);

@@ -8,16 +8,21 @@
 #include "protocol/json_reader.h"
 #include "protocol/json_text.h"
 #include "protocol/validation_error.h"
+#include "server/json_error_path.h"
 #include "server/limits.h"
 
 namespace penumbra::server {
 
 using nlohmann::json;
 
+std::string jsonText(const json& value) {
+  return value.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
 void sendJson(httplib::Response& res, int status, const json& body) {
   res.status = status;
   res.set_header("Cache-Control", "no-store");
-  res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
+  res.set_content(jsonText(body), "application/json");
 }
 
 void sendError(httplib::Response& res, const ApiError& error, const json& extra) {
@@ -33,6 +38,10 @@ json parseBody(const httplib::Request& req) {
     // (the server's --max-body-mib may exceed the default)
     return protocol::parseJsonText(req.body, req.body.size(), protocol::kMaxJsonDepth);
   } catch (const protocol::ValidationError& error) {
+    // nlohmann refuses ill-formed UTF-8 in strings and keys; say where it was.
+    if (error.problem().find("UTF-8") != std::string::npos)
+      throw ApiError(400, error_code::kInvalidUtf8, jsonErrorPath(req.body),
+                     "a string or key is not valid UTF-8 (" + error.problem() + ")");
     throw ApiError(400, error_code::kMalformedJson, error.path(), error.problem());
   }
 }
@@ -93,10 +102,21 @@ std::optional<Vec3> queryVec3(const httplib::Request& req, const char* name) {
                  std::string(name) + " must be three finite numbers 'x,y,z', got '" + *text + "'");
 }
 
-void sendInternalError(const httplib::Request& req, httplib::Response& res, const char* what) {
-  std::fprintf(stderr, "penumbra serve: internal error on %s %s: %s\n", req.method.c_str(),
+void sendInternalError(const httplib::Request& req, httplib::Response& res, const char* what,
+                       bool outOfMemory) noexcept {
+  std::fprintf(stderr, "penumbra serve: %s on %s %s: %s\n",
+               outOfMemory ? "out of memory" : "internal error", req.method.c_str(),
                req.path.c_str(), what);
-  sendJson(res, 500, errorJson(error_code::kInternal, std::string("internal error: ") + what, ""));
+  const int status = outOfMemory ? 507 : 500;
+  try {
+    sendJson(res, status,
+             errorJson(outOfMemory ? error_code::kOutOfMemory : error_code::kInternal,
+                       std::string(outOfMemory ? "out of memory: " : "internal error: ") + what,
+                       ""));
+  } catch (...) {  // e.g. no memory for the body: a fixed one
+    res.status = status;
+    res.set_content(outOfMemory ? kOutOfMemoryBody : kInternalErrorBody, "application/json");
+  }
 }
 
 }  // namespace penumbra::server

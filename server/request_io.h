@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <new>
 #include <optional>
 #include <string>
 
@@ -11,6 +12,7 @@
 
 #include "core/geom/vec.h"
 #include "server/api_errors.h"
+#include "server/utf8_boundary.h"
 
 namespace httplib {
 struct Request;
@@ -19,13 +21,17 @@ struct Response;
 
 namespace penumbra::server {
 
+// JSON text that never throws on bad bytes (invalid UTF-8 in a string becomes U+FFFD).
+std::string jsonText(const nlohmann::json& value);
+
 // Writes `body` as the JSON answer with `status`; never throws on bad bytes (invalid UTF-8
 // in a string is replaced by U+FFFD).
 void sendJson(httplib::Response& res, int status, const nlohmann::json& body);
 void sendError(httplib::Response& res, const ApiError& error,
                const nlohmann::json& extra = nlohmann::json::object());
 
-// The request body as JSON: 400 naming the problem when empty, malformed or too deep.
+// The request body as JSON: 400 naming the problem when empty, malformed or too deep;
+// 400 `invalid_utf8` naming the key path when a string or key is not valid UTF-8.
 nlohmann::json parseBody(const httplib::Request& req);
 
 // Query parameters: absent → nullopt; present but not what we need → 400 naming `query.<name>`.
@@ -35,17 +41,27 @@ std::optional<uint64_t> queryUnsigned(const httplib::Request& req, const char* n
 std::optional<double> queryNumber(const httplib::Request& req, const char* name);
 std::optional<Vec3> queryVec3(const httplib::Request& req, const char* name);
 
-// Logs and answers 500 for what a handler did not expect.
-void sendInternalError(const httplib::Request& req, httplib::Response& res, const char* what);
+// Logs and answers 500 for what a handler did not expect (507 `out_of_memory` when
+// `outOfMemory`). Never throws.
+void sendInternalError(const httplib::Request& req, httplib::Response& res, const char* what,
+                       bool outOfMemory = false) noexcept;
 
-// Wraps a handler: ApiError → its status; anything else → 500, never a crash.
+// Wraps a handler: query and form text that is not UTF-8 → 400 before it runs; ApiError →
+// its status; std::bad_alloc → 507; anything else → 500. Never throws, never a crash.
 template <typename Handler>
 auto guarded(Handler handler) {
-  return [handler](const httplib::Request& req, httplib::Response& res) {
+  return [handler](const httplib::Request& req, httplib::Response& res) noexcept {
     try {
+      requireUtf8Request(req);
       handler(req, res);
     } catch (const ApiError& error) {
-      sendError(res, error);
+      try {
+        sendError(res, error);
+      } catch (...) {
+        sendInternalError(req, res, "cannot write the error", true);
+      }
+    } catch (const std::bad_alloc&) {
+      sendInternalError(req, res, "out of memory", true);
     } catch (const std::exception& error) {
       sendInternalError(req, res, error.what());
     } catch (...) {

@@ -12,6 +12,7 @@
 #include "server/request_io.h"
 #include "server/response_json.h"
 #include "server/scene_upload.h"
+#include "server/utf8_boundary.h"
 
 namespace penumbra::server {
 
@@ -71,6 +72,10 @@ void HttpServer::registerSceneRoutes() {
                   interchange::ImportResult imported = interchange::importSceneBytes(
                       upload->bytes, upload->fileName, upload->mtlFiles, upload->options);
                   scene = std::move(imported.scene);
+                  // Names from the file become ids the API answers with: refuse bad bytes.
+                  if (const auto bad = invalidUtf8Path(scene))
+                    throw ApiError(400, error_code::kInvalidUtf8, *bad,
+                                   "a name in the imported file is not valid UTF-8");
                   importJson = imported.report.toJson();
                 } catch (const protocol::ValidationError& error) {
                   throw ApiError(422, error_code::kInvalidScene, error.path(), error.problem());

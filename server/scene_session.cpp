@@ -35,6 +35,7 @@ std::vector<FaceId> receiverFaces(const Engine& engine) {
 
 SceneSession::SceneSession(std::string id, std::string name, Scene scene, EngineSettings settings)
     : id_(std::move(id)), settings_(settings) {
+  baseScene_ = scene;
   engine_ = std::make_unique<Engine>(std::move(scene), settings_);
   auto first = std::make_shared<SceneSnapshot>();
   first->id = id_;
@@ -58,6 +59,25 @@ SceneSession::Applied SceneSession::apply(
     const Frame& frame, const std::function<void(const SceneSnapshot&)>& beforePublish) {
   std::lock_guard edit(editMutex_);
   const std::shared_ptr<const SceneSnapshot> previous = snapshot();
+  if (!engine_) restoreEngine(*previous);  // an earlier restore failed (no memory?): retry
+  try {
+    return applyToEngine(frame, previous);
+  } catch (const EditError&) {
+    throw;  // refused by the check, before anything changed
+  } catch (...) {
+    // Mid-apply or mid-meshing: the engine is half-edited; nothing was published.
+    engine_.reset();  // its memory first
+    try {
+      restoreEngine(*previous);
+    } catch (...) {
+      // engine_ stays null; the next frame tries again. Readers keep `previous`.
+    }
+    throw;
+  }
+}
+
+SceneSession::Applied SceneSession::applyToEngine(
+    const Frame& frame, const std::shared_ptr<const SceneSnapshot>& previous) {
   FrameResult result = engine_->apply(frame);  // throws EditError before changing anything
 
   // Build the next whole version beside the published one, then swap it in.
@@ -87,6 +107,7 @@ SceneSession::Applied SceneSession::apply(
     else redone.erase(key);  // kept as it was
   }
   const std::vector<Engine::ReceiverChunks> remeshed = engine_->meshChunks(remesh);
+  if (settings_.failurePoint) settings_.failurePoint("meshing");
   const Engine::MeshCacheCounters cells = engine_->lastMeshCounters();
   size_t fresh = 0;
   std::vector<size_t> freshParts;  // indices into next->parts of the parts meshed again
@@ -127,6 +148,7 @@ SceneSession::Applied SceneSession::apply(
   for (const auto& [key, index] : before) next->removed.emplace_back(key, next->version);
 
   next->lastFrame = result;
+  noteApplied(frame, result, next->scene);
   std::shared_ptr<const SceneSnapshot> published = std::move(next);
   if (beforePublish) beforePublish(*published);
   publish(published);

@@ -10,6 +10,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/engine/engine.h"
 #include "server/scene_snapshot.h"
@@ -38,9 +39,11 @@ class SceneSession {
   // Applies one frame, serialised with other frames of this scene, and publishes
   // the new version before returning it with the engine's result. Only the receivers
   // the engine reports changed (and new ones) are meshed again. Throws EditError
-  // (nothing changed) on an invalid frame. `beforePublish` (the journal) sees the new version
-  // after the engine applied it and before it is published; if it throws, nothing is published
-  // and the exception propagates (the engine keeps the frame: the journal refuses later ones).
+  // (nothing changed) on an invalid frame. Atomic: on any other exception (no memory, an
+  // internal error) the engine is restored to the published version before the exception
+  // is rethrown, so the scene, engine and version are exactly as before the call.
+  // `beforePublish` (the journal) sees the new version after the engine applied it and
+  // before it is published; if it throws, the frame is undone like any other failure.
   struct Applied {
     FrameResult result;
     std::shared_ptr<const SceneSnapshot> snapshot;  // the version this frame made
@@ -67,11 +70,23 @@ class SceneSession {
 
  private:
   void publish(std::shared_ptr<const SceneSnapshot> next);
+  Applied applyToEngine(const Frame& frame, const std::shared_ptr<const SceneSnapshot>& previous);
+  // Failure path of apply (scene_session_restore.cpp), with editMutex_ held: replaces engine_
+  // by one equal to the engine that made `published` (or leaves it null and throws).
+  void restoreEngine(const SceneSnapshot& published);
+  void noteApplied(const Frame& frame, const FrameResult& result, const Scene& scene);
 
   const std::string id_;
   const EngineSettings settings_;
   std::mutex editMutex_;  // one frame at a time; guards engine_
-  std::unique_ptr<Engine> engine_;
+  std::unique_ptr<Engine> engine_;  // null after a restore that failed: rebuilt on the next frame
+  // How to rebuild engine_ exactly (the engine is deterministic): a fresh build of
+  // baseScene_ numbered baseVersion_, then the frames applied since, replayed. Past
+  // kMaxReplayFrames the log is dropped and a restore rebuilds the published scene instead.
+  Scene baseScene_;
+  uint64_t baseVersion_ = 0;
+  std::vector<Frame> sinceBase_;
+  bool replayable_ = true;
   mutable std::mutex rebuildMutex_;  // one rebuild at a time
 
   mutable std::mutex publishMutex_;  // guards current_, closed_, lastRebuild_

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <new>
 #include <optional>
 #include <set>
 #include <tuple>
@@ -38,6 +39,10 @@ std::vector<Face> facesOfObject(const Scene& scene, uint32_t handle) {
 // 'cubes' scenes (penumbra-bench edits): moving 10% of N = 150 costs ~0.4 of a
 // rebuild, 30% ~2×; at N = 1500 the crossing comes earlier.
 constexpr double kFullRebuildShare = 0.15;
+// EngineSettings::failurePoint, when set (tests).
+void reach(const EngineSettings& settings, const char* point) {
+  if (settings.failurePoint) settings.failurePoint(point);
+}
 constexpr size_t kFullRebuildMinFaces = 400;
 
 }  // namespace
@@ -207,6 +212,7 @@ FrameResult Engine::apply(const Frame& frame) {
   auto rebuildAll = [&] {
     const auto start = Clock::now();
     const uint64_t version = version_;
+    reach(settings_, "rebuild");
     Engine rebuilt(scene_, settings_);
     *this = std::move(rebuilt);
     version_ = version;
@@ -273,6 +279,8 @@ FrameResult Engine::apply(const Frame& frame) {
             }
             relightAfterRemoval(target, receiver, removed, dirty);
           }
+        } catch (const std::bad_alloc&) {
+          throw;  // no memory: a bigger rebuild would not help, the caller restores
         } catch (const std::exception&) {
           rebuild.insert(target);
           dirty.forget(target);
@@ -294,6 +302,7 @@ FrameResult Engine::apply(const Frame& frame) {
     for (FaceId face : rebuiltTrees)
       if (!rebuild.count(face)) ++result.treeRebuilds;
     result.seconds.remove = secondsSince(start);
+    reach(settings_, "removed");
 
     // ADD (§3.2): the entering faces join the orders and cubes, get DM-trees if they
     // receive light, and cast both ways with the faces sharing their tiles.
@@ -375,12 +384,14 @@ FrameResult Engine::apply(const Frame& frame) {
       ++result.treeRebuilds;
     }
     result.seconds.add = secondsSince(start);
+    reach(settings_, "added");
 
     // RELIGHT (§3.3): once, every vertex in the set, plus any live vertex whose slot
     // holds no value for its position (a vertex the tree did not report as new).
     start = Clock::now();
     lastRelit_.clear();
     for (const auto& [face, vertices] : dirty.receivers()) {
+      reach(settings_, "relight");
       Receiver& receiver = receivers_[receiverIndex_.at(face)];
       const HalfEdgeMesh& mesh = receiver.tree.mesh();
       const size_t known = dirty.valueSlots(face, receiver.values.size());
@@ -410,6 +421,8 @@ FrameResult Engine::apply(const Frame& frame) {
     // Compact only if a receiver left for good or one joined out of face order.
     const bool anyDropped = std::find(dropped.begin(), dropped.end(), true) != dropped.end();
     if (anyDropped || appendedOutOfOrder) compactReceivers(dropped);
+  } catch (const std::bad_alloc&) {
+    throw;  // no memory: the caller restores the previous state (SceneSession)
   } catch (const std::exception&) {
     // Unexpected (an insert refused, a cube or order failing): the whole engine is
     // rebuilt for the new scene so no half-edited state survives.

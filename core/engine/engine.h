@@ -37,6 +37,11 @@ struct EngineSettings {
   // construction from the scene's faces per lattice square (4, 2 or 1, so a block
   // holds some hundreds of cells), < 0: one block.
   int meshChunkSquares = 0;
+  // Test hook (failure injection, tests/server/frame_failure_property_test.cpp): called at
+  // named points of apply() ("removed", "added", "relight", "rebuild": its whole-engine
+  // fallback) and of a server session's meshing ("meshing"); it may throw to simulate a
+  // failure there. Empty outside tests.
+  std::function<void(const char* point)> failurePoint;
 };
 
 // Called with (step name, done, total) as a long build proceeds; may be empty.
@@ -53,6 +58,8 @@ class Engine {
   const BuildStats& stats() const { return stats_; }
   // 0 after the build, +1 per applied frame.
   uint64_t version() const { return version_; }
+  // Continues another engine's numbering (a server session rebuilding a failed engine).
+  void setVersion(uint64_t version) { version_ = version; }
 
   // Applies a frame's edits together and relights once (paper §3): the removed and
   // moved objects' faces leave the orders, cubes and the DM-trees they cast on (node
@@ -62,6 +69,8 @@ class Engine {
   // the overlap cubes' edit volume): on any invalid one, throws EditError and changes
   // nothing. A receiver whose node deletion fails is rebuilt alone (counted in
   // FrameResult::treeRebuilds); an unexpected failure mid-frame rebuilds the engine.
+  // If that rebuild throws, or memory runs out (std::bad_alloc is not caught), the
+  // exception leaves the engine half-edited: discard it (SceneSession rebuilds one).
   FrameResult apply(const Frame& frame);
   // The DM vertices the last apply() relit, per receiver (sorted ids).
   const std::map<FaceId, std::vector<VertexId>>& lastRelit() const { return lastRelit_; }

@@ -1,0 +1,65 @@
+// SceneSession's failure path: the log that lets it rebuild its engine exactly as it was
+// before a frame that failed mid-apply, and the rebuild itself.
+#include <cstdio>
+
+#include "server/scene_session.h"
+
+namespace penumbra::server {
+
+namespace {
+
+// Frames kept for an exact restore. A drag frame replays in ~2 ms (README "Incremental
+// edits"), so a restore costs a build plus at most a few seconds; past this a restore
+// rebuilds the published scene instead (same scene and version, fresh DM-trees).
+constexpr size_t kMaxReplayFrames = 1000;
+
+}  // namespace
+
+void SceneSession::noteApplied(const Frame& frame, const FrameResult& result, const Scene& scene) {
+  if (result.fullRebuild) {  // the engine is now a fresh build of `scene`: a new base
+    Scene base = scene;  // copied first: a failed copy leaves the old base whole
+    baseScene_ = std::move(base);
+    baseVersion_ = result.version;
+    sinceBase_.clear();
+    replayable_ = true;
+  } else if (replayable_ && sinceBase_.size() < kMaxReplayFrames) {
+    sinceBase_.push_back(frame);
+  } else {
+    replayable_ = false;
+    sinceBase_ = {};
+  }
+}
+
+void SceneSession::restoreEngine(const SceneSnapshot& published) {
+  engine_.reset();
+  if (replayable_) {
+    try {
+      auto engine = std::make_unique<Engine>(baseScene_, settings_);
+      engine->setVersion(baseVersion_);
+      for (const Frame& frame : sinceBase_) engine->apply(frame);
+      if (engine->version() == published.version) {
+        engine_ = std::move(engine);
+        return;
+      }
+      std::fprintf(stderr, "penumbra serve: scene '%s': replay reached version %llu, not %llu\n",
+                   id_.c_str(), (unsigned long long)engine->version(),
+                   (unsigned long long)published.version);
+    } catch (const std::bad_alloc&) {
+      throw;  // engine_ stays null; the next frame replays again (exact once memory is back)
+    } catch (const std::exception& error) {
+      std::fprintf(stderr, "penumbra serve: scene '%s': replay failed: %s\n", id_.c_str(),
+                   error.what());
+    }
+  }
+  // No exact replay: a fresh build of what is published, which becomes the new base.
+  auto engine = std::make_unique<Engine>(published.scene, settings_);
+  engine->setVersion(published.version);
+  Scene base = published.scene;
+  baseScene_ = std::move(base);
+  baseVersion_ = published.version;
+  sinceBase_.clear();
+  replayable_ = true;
+  engine_ = std::move(engine);
+}
+
+}  // namespace penumbra::server
