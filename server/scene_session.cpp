@@ -61,7 +61,7 @@ SceneSession::Applied SceneSession::apply(
   const std::shared_ptr<const SceneSnapshot> previous = snapshot();
   if (!engine_) restoreEngine(*previous);  // an earlier restore failed (no memory?): retry
   try {
-    return applyToEngine(frame, previous);
+    return applyToEngine(frame, previous, beforePublish);
   } catch (const EditError&) {
     throw;  // refused by the check, before anything changed
   } catch (...) {
@@ -77,7 +77,8 @@ SceneSession::Applied SceneSession::apply(
 }
 
 SceneSession::Applied SceneSession::applyToEngine(
-    const Frame& frame, const std::shared_ptr<const SceneSnapshot>& previous) {
+    const Frame& frame, const std::shared_ptr<const SceneSnapshot>& previous,
+    const std::function<void(const SceneSnapshot&)>& beforePublish) {
   FrameResult result = engine_->apply(frame);  // throws EditError before changing anything
 
   // Build the next whole version beside the published one, then swap it in.

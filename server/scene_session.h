@@ -70,7 +70,8 @@ class SceneSession {
 
  private:
   void publish(std::shared_ptr<const SceneSnapshot> next);
-  Applied applyToEngine(const Frame& frame, const std::shared_ptr<const SceneSnapshot>& previous);
+  Applied applyToEngine(const Frame& frame, const std::shared_ptr<const SceneSnapshot>& previous,
+                        const std::function<void(const SceneSnapshot&)>& beforePublish);
   // Failure path of apply (scene_session_restore.cpp), with editMutex_ held: replaces engine_
   // by one equal to the engine that made `published` (or leaves it null and throws).
   void restoreEngine(const SceneSnapshot& published);
