@@ -68,7 +68,7 @@ std::vector<std::string> serveScenes(server::HttpServer& server, const Args& arg
                                      const server::ServerOptions& options) {
   std::vector<std::string> ids;
   for (const server::RestoredScene& restored : server.restore()) {
-    if (restored.problem.rfind("not restored", 0) != 0) ids.push_back(restored.id);
+    if (restored.served) ids.push_back(restored.id);
     std::fprintf(stderr, "penumbra serve: restored scene '%s' at version %llu (%zu frames) in %.2f s%s%s\n",
                  restored.id.c_str(), static_cast<unsigned long long>(restored.version),
                  restored.frames, restored.seconds, restored.problem.empty() ? "" : ": ",

@@ -53,7 +53,8 @@ struct RestoredScene {
   uint64_t version = 0;  // the last acknowledged version it is back at
   size_t frames = 0;     // frames replayed
   double seconds = 0;    // build + replay
-  std::string problem;   // not empty: frames after `version` no longer replay and were dropped
+  bool served = true;    // false: the scene no longer builds (kept in the journal, not served)
+  std::string problem;   // not empty: why not served, or which frames no longer replay (dropped)
 };
 
 class HttpServer {

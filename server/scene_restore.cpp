@@ -74,6 +74,7 @@ std::vector<RestoredScene> HttpServer::restore() {
                                                           protocol::kMaxJsonDepth)),
           options_.engine);
     } catch (const std::exception& error) {  // kept in the journal, not served
+      report.served = false;
       report.problem = std::string("not restored: the scene no longer builds (") + error.what() + ")";
       restored.push_back(std::move(report));
       continue;
