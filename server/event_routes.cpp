@@ -45,9 +45,7 @@ void HttpServer::registerEventRoutes() {
              res.set_header("X-Accel-Buffering", "no");
              res.set_chunked_content_provider(
                  "text/event-stream",
-                 [this, session, state](size_t, httplib::DataSink& sink) noexcept {
-                   // Runs outside guarded(): an exception here (no memory) ends the stream.
-                   try {
+                 guardedProvider([this, session, state](size_t, httplib::DataSink& sink) {
                    auto write = [&](const std::string& text) {
                      state->lastWrite = Clock::now();
                      return sink.write(text.data(), text.size());
@@ -74,10 +72,7 @@ void HttpServer::registerEventRoutes() {
                    if (Clock::now() - state->lastWrite > kStreamKeepAlive)
                      return write(": keep-alive\n\n");
                    return true;
-                   } catch (...) {
-                     return false;
-                   }
-                 },
+                 }),
                  [this](bool) { --openStreams_; });
            }));
 }

@@ -1,7 +1,6 @@
 #include "server/json_error_path.h"
 
 #include <nlohmann/json.hpp>
-
 #include <vector>
 
 namespace penumbra::server {
@@ -16,8 +15,10 @@ class PathTracker : public nlohmann::json_sax<json> {
   std::string path() const {
     std::string out;
     for (const Level& level : levels_) {
-      if (level.array) out += "[" + std::to_string(level.index) + "]";
-      else if (level.hasKey) out += (out.empty() ? "" : ".") + level.key;
+      if (level.array)
+        out += "[" + std::to_string(level.index) + "]";
+      else if (level.hasKey)
+        out += (out.empty() ? "" : ".") + level.key;
     }
     return out;
   }
@@ -60,8 +61,10 @@ class PathTracker : public nlohmann::json_sax<json> {
   // A value ended: the enclosing array moves to its next element, the object to its next key.
   bool value() {
     if (levels_.empty()) return true;
-    if (levels_.back().array) ++levels_.back().index;
-    else levels_.back().hasKey = false;
+    if (levels_.back().array)
+      ++levels_.back().index;
+    else
+      levels_.back().hasKey = false;
     return true;
   }
   std::vector<Level> levels_;

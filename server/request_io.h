@@ -70,4 +70,17 @@ auto guarded(Handler handler) {
   };
 }
 
+// Wraps a streaming content provider, which httplib calls outside any handler's try:
+// an exception (no memory) ends the stream instead of the server.
+template <typename Provider>
+auto guardedProvider(Provider provider) {
+  return [provider](size_t offset, auto& sink) noexcept {
+    try {
+      return provider(offset, sink);
+    } catch (...) {
+      return false;
+    }
+  };
+}
+
 }  // namespace penumbra::server

@@ -81,9 +81,9 @@ class SceneSession {
   const EngineSettings settings_;
   std::mutex editMutex_;  // one frame at a time; guards engine_
   std::unique_ptr<Engine> engine_;  // null after a restore that failed: rebuilt on the next frame
-  // How to rebuild engine_ exactly (the engine is deterministic): a fresh build of
-  // baseScene_ numbered baseVersion_, then the frames applied since, replayed. Past
-  // kMaxReplayFrames the log is dropped and a restore rebuilds the published scene instead.
+  // How to rebuild engine_ exactly (guarded by editMutex_; the engine is deterministic): a
+  // fresh build of baseScene_ numbered baseVersion_, then the frames applied since, replayed.
+  // Past kMaxReplayFrames the log is dropped and a restore rebuilds the published scene.
   Scene baseScene_;
   uint64_t baseVersion_ = 0;
   std::vector<Frame> sinceBase_;

@@ -17,7 +17,7 @@ constexpr size_t kMaxReplayFrames = 1000;
 
 void SceneSession::noteApplied(const Frame& frame, const FrameResult& result, const Scene& scene) {
   if (result.fullRebuild) {  // the engine is now a fresh build of `scene`: a new base
-    Scene base = scene;  // copied first: a failed copy leaves the old base whole
+    Scene base = scene;      // copied first: a failed copy leaves the old base whole
     baseScene_ = std::move(base);
     baseVersion_ = result.version;
     sinceBase_.clear();

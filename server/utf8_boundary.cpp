@@ -15,11 +15,16 @@ bool isValidUtf8(std::string_view text) {
     const uint8_t lead = byte(i);
     size_t length = 0;
     uint32_t min = 0, code = 0;
-    if (lead < 0x80) length = 1, code = lead;
-    else if ((lead & 0xE0) == 0xC0) length = 2, min = 0x80, code = lead & 0x1F;
-    else if ((lead & 0xF0) == 0xE0) length = 3, min = 0x800, code = lead & 0x0F;
-    else if ((lead & 0xF8) == 0xF0) length = 4, min = 0x10000, code = lead & 0x07;
-    else return false;
+    if (lead < 0x80)
+      length = 1, code = lead;
+    else if ((lead & 0xE0) == 0xC0)
+      length = 2, min = 0x80, code = lead & 0x1F;
+    else if ((lead & 0xF0) == 0xE0)
+      length = 3, min = 0x800, code = lead & 0x0F;
+    else if ((lead & 0xF8) == 0xF0)
+      length = 4, min = 0x10000, code = lead & 0x07;
+    else
+      return false;
     if (text.size() - i < length) return false;
     for (size_t k = 1; k < length; ++k) {
       if ((byte(i + k) & 0xC0) != 0x80) return false;
@@ -47,7 +52,8 @@ void requireUtf8Request(const httplib::Request& req) {
   for (const auto& [part, file] : req.files) {
     const std::string path = "(form)." + part;
     if (!isValidUtf8(part)) refuse(path, "a form part name");
-    if (!isValidUtf8(file.filename)) refuse(path + ".filename", "the file name of form part '" + part + "'");
+    if (!isValidUtf8(file.filename))
+      refuse(path + ".filename", "the file name of form part '" + part + "'");
     if (!isValidUtf8(file.content_type))
       refuse(path + ".content_type", "the content type of form part '" + part + "'");
   }

@@ -39,7 +39,7 @@ class Containment : public ::testing::Test {
         const auto res = client_.Get(path.c_str());
         ASSERT_TRUE(res) << path;
         EXPECT_EQ(res->status, 200) << path << ": " << res->body;
-        EXPECT_NO_THROW((void)json::parse(res->body)) << path;
+        EXPECT_TRUE(json::accept(res->body)) << path;
       }
     }
   }
@@ -74,8 +74,8 @@ TEST_F(Containment, InvalidUtf8InJsonBodyIs400NamingTheKeyPath) {
   };
   expectError(post(R"({"edits": [{"op": "move", "id": "tall)" + kBad + R"("}]})"), 400,
               "invalid_utf8", "edits[0].id");
-  expectError(post(R"({"edits": [{"op": "move", "i)" + kBad + R"(": 1}]})"), 400,
-              "invalid_utf8", "edits[0]");
+  expectError(post(R"({"edits": [{"op": "move", "i)" + kBad + R"(": 1}]})"), 400, "invalid_utf8",
+              "edits[0]");
   std::string scene = sceneText("cornell");
   scene.replace(scene.find("\"tall_block\""), 12, "\"tall" + kBad + "\"");
   const json body = expectError(client_.Post("/api/scenes", scene, "application/json"), 400,
@@ -85,8 +85,9 @@ TEST_F(Containment, InvalidUtf8InJsonBodyIs400NamingTheKeyPath) {
 }
 
 std::string dataText(const std::string& name) {
-  return protocol::readTextFile(std::string(PENUMBRA_SOURCE_DIR) + "/tests/interchange/data/" + name,
-                                protocol::kMaxJsonFileBytes);
+  return protocol::readTextFile(
+      std::string(PENUMBRA_SOURCE_DIR) + "/tests/interchange/data/" + name,
+      protocol::kMaxJsonFileBytes);
 }
 
 // The Cornell box OBJ + MTL (tests/interchange/data), the OBJ named `fileName` and its
@@ -99,8 +100,9 @@ httplib::MultipartFormDataItems objForm(const std::string& fileName, const std::
 }
 
 TEST_F(Containment, ObjUploadWithInvalidUtf8NamesIs400AndCreatesNothing) {
-  expectError(client_.Post("/api/scenes?format=obj&scale=0.001", objForm("fl" + kBad + "or.obj", "floor")),
-              400, "invalid_utf8", "(form).file.filename");
+  expectError(
+      client_.Post("/api/scenes?format=obj&scale=0.001", objForm("fl" + kBad + "or.obj", "floor")),
+      400, "invalid_utf8", "(form).file.filename");
   const auto objectName =
       client_.Post("/api/scenes?format=obj&scale=0.001", objForm("floor.obj", "fl" + kBad));
   ASSERT_TRUE(objectName);

@@ -30,7 +30,8 @@ struct Injector {
   void operator()(const char* point) {
     if (!armed) return;
     if (fired) {
-      if (!outOfMemory && std::string(point) == "rebuild") throw std::logic_error("fallback fails too");
+      if (!outOfMemory && std::string(point) == "rebuild")
+        throw std::logic_error("fallback fails too");
       if (failRestoreToo) {  // the next point is in the restore's replay
         failRestoreToo = false;
         throw std::bad_alloc();
