@@ -81,7 +81,10 @@ void HttpServer::registerEditRoutes() {
         }
         // Failed inside the engine or while meshing: the session restored the version
         // before the frame (SceneSession::apply), so say plainly that nothing was applied.
-        catch (const std::bad_alloc&) {
+        catch (const ApiError& error) {  // the journal could not record it (503)
+          sendError(res, error, {{"applied", false}, {"version", session->snapshot()->version}});
+          return;
+        } catch (const std::bad_alloc&) {
           sendNotApplied(res, *session, true, "out of memory");
           return;
         } catch (const std::exception& error) {

@@ -34,10 +34,9 @@ void HttpServer::journalFrame(const SceneSession& session, uint64_t version,
   try {
     journal_->addFrame(key, version, frame);
   } catch (const std::exception& error) {
-    // The engine holds the frame but it is not published: later frames find a version gap and
-    // are refused too, so the scene stays at its last acknowledged version until a restart.
-    throw journalError("the frame; this scene takes no more edits until the server restarts",
-                       error);
+    // Nothing is published and SceneSession::apply undoes the frame in the engine (atomic
+    // frames): the scene stays at its last acknowledged version and the frame may be sent again.
+    throw journalError("the frame; it was not applied", error);
   }
 }
 

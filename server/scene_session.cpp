@@ -149,9 +149,9 @@ SceneSession::Applied SceneSession::applyToEngine(
   for (const auto& [key, index] : before) next->removed.emplace_back(key, next->version);
 
   next->lastFrame = result;
-  noteApplied(frame, result, next->scene);
   std::shared_ptr<const SceneSnapshot> published = std::move(next);
-  if (beforePublish) beforePublish(*published);
+  if (beforePublish) beforePublish(*published);  // the journal: a throw undoes the frame
+  noteApplied(frame, result, published->scene);
   publish(published);
   return {std::move(result), std::move(published), meshSeconds, remesh.size(), cells};
 }
