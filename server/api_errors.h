@@ -20,6 +20,7 @@ inline constexpr const char* kInvalidFrame = "invalid_frame";         // 422
 inline constexpr const char* kTooManyScenes = "too_many_scenes";      // 429
 inline constexpr const char* kTooManyStreams = "too_many_streams";    // 429
 inline constexpr const char* kInternal = "internal_error";            // 500
+inline constexpr const char* kBusy = "busy";                          // 503, with Retry-After
 inline constexpr const char* kNotImplemented = "not_implemented";     // 501
 }  // namespace error_code
 
