@@ -20,6 +20,7 @@ def summarize(samples, rss, streams, args):
         endpoints[endpoint] = {
             "count": len(rows), "ok": len(ok),
             "busy_503": sum(1 for _, st in rows if st == 503),
+            "statuses": {str(st): sum(1 for _, x in rows if x == st) for st in sorted({x for _, x in rows})},
             "errors": sum(1 for _, st in rows if st >= 400 and st != 503 or st == -2),
             "timeouts": sum(1 for _, st in rows if st == -1),
             "p50_ms": 1e3 * percentile(ok, 0.50), "p95_ms": 1e3 * percentile(ok, 0.95),
@@ -61,6 +62,9 @@ def text(s):
         lines.append(f"{name:<12}{e['count']:>7}{e['p50_ms']:>9.1f}{e['p95_ms']:>9.1f}"
                      f"{e['p99_ms']:>9.1f}{e['max_ms']:>9.1f}{e['errors']:>5}{e['timeouts']:>5}"
                      f"{e['busy_503']:>6}")
+    for name, e in s["endpoints"].items():
+        if e["errors"]:
+            lines.append(f"{name} statuses: {e['statuses']} (-1 timeout, -2 connection error)")
     ev = s["events"]
     lines.append(f"events: {ev['events']} received, {ev['errors']} stream errors, "
                  f"{ev['out_of_order']} out of order")

@@ -43,19 +43,31 @@ class Client:
     def request(self, endpoint, method, path, body=None, headers=None):
         start = time.perf_counter()
         status, data, hdrs = 0, b"", {}
-        try:
-            if self.conn is None:
-                self.conn = http.client.HTTPConnection(self.host, self.port, timeout=TIMEOUT_S)
-            self.conn.request(method, path, body=body, headers=headers or {})
-            res = self.conn.getresponse()
-            data = res.read()
-            status, hdrs = res.status, dict(res.getheaders())
-        except TimeoutError:
-            status = -1  # timeout
-            self.close()
-        except (OSError, http.client.HTTPException):
-            status = -2  # connection error
-            self.close()
+        for attempt in range(2):
+            reused = self.conn is not None
+            try:
+                if self.conn is None:
+                    self.conn = http.client.HTTPConnection(self.host, self.port, timeout=TIMEOUT_S)
+                self.conn.request(method, path, body=body, headers=headers or {})
+                res = self.conn.getresponse()
+                data = res.read()
+                status, hdrs = res.status, dict(res.getheaders())
+                break
+            except TimeoutError:
+                status = -1  # timeout
+                self.close()
+                break
+            except (http.client.RemoteDisconnected, BrokenPipeError, ConnectionResetError):
+                # The server closed an idle keep-alive connection before reading this request
+                # (as browsers do: retry once on a fresh connection).
+                status = -2
+                self.close()
+                if not reused:
+                    break
+            except (OSError, http.client.HTTPException):
+                status = -2  # connection error
+                self.close()
+                break
         self.samples.append((endpoint, start - self.t0, time.perf_counter() - start, status))
         return status, data, hdrs
 
