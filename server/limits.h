@@ -16,9 +16,9 @@ inline constexpr int kMaxEventStreams = 64;                // open /events strea
 inline constexpr int kRequestWorkers = 64;                 // workers left for ordinary requests
 inline constexpr int kWorkerThreads = kMaxEventStreams + kRequestWorkers;
 // Edits waiting for their scene's turn: per scene, and over all scenes (so waiting edits
-// never hold more than half the request workers); beyond either, 503 busy.
+// never hold more than three quarters of the request workers); beyond either, 503 busy.
 inline constexpr size_t kMaxQueuedEdits = 16;
-inline constexpr int kMaxWaitingEdits = kRequestWorkers / 2;
+inline constexpr int kMaxWaitingEdits = kRequestWorkers * 3 / 4;
 // How often freed heap memory is given back to the system while requests come (malloc_trim),
 // and the malloc arenas `penumbra serve` allows (glibc's default is 8 per core).
 inline constexpr std::chrono::milliseconds kTrimInterval{1000};
