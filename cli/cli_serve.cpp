@@ -106,6 +106,7 @@ int runServe(const Args& args) {
   sigaddset(&signals, SIGUSR1);  // the listener ended by itself
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
+  server::limitMallocArenas(server::kMallocArenas);  // before the server's threads start
   server::HttpServer server(options);
   const std::vector<std::string> ids = serveScenes(server, args, options);
   const int port = server.bind();

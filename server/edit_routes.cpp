@@ -5,6 +5,8 @@
 
 #include <cstdio>
 #include <new>
+#include <atomic>
+#include <optional>
 #include <regex>
 
 #include "protocol/edits_json.h"
@@ -43,6 +45,34 @@ void sendNotApplied(httplib::Response& res, const SceneSession& session, bool ou
             {{"applied", false}, {"version", version}});
 }
 
+
+// Who takes turns in a scene's edit queue: the X-Penumbra-Client header, else the
+// connection (HTTP/1.1 carries one request at a time per connection).
+std::string clientOf(const httplib::Request& req) {
+  const std::string named = req.get_header_value("X-Penumbra-Client");
+  if (!named.empty() && named.size() <= kMaxIdLength) return "h:" + named;
+  return "c:" + req.remote_addr + ":" + std::to_string(req.remote_port);
+}
+
+void sendBusy(httplib::Response& res, const std::string& why) {
+  sendError(res, ApiError(503, error_code::kBusy, "", why + "; retry after 1 s"));
+  res.set_header("Retry-After", "1");
+}
+
+// Counts a waiting edit while it lives.
+class WaitingEdit {
+ public:
+  explicit WaitingEdit(std::atomic<int>& count) : count_(count) { admitted_ = ++count_ <= kMaxWaitingEdits; }
+  ~WaitingEdit() { --count_; }
+  WaitingEdit(const WaitingEdit&) = delete;
+  WaitingEdit& operator=(const WaitingEdit&) = delete;
+  bool admitted() const { return admitted_; }
+
+ private:
+  std::atomic<int>& count_;
+  bool admitted_ = false;
+};
+
 }  // namespace
 
 void HttpServer::registerEditRoutes() {
@@ -63,12 +93,24 @@ void HttpServer::registerEditRoutes() {
                     edit >= 0 ? json{{"edit", edit}} : json::object());
           return;
         }
+        // Wait for this client's turn (round-robin between clients, bounded: docs/API.md "Load").
+        std::optional<EditScheduler::Turn> turn;
+        {
+          WaitingEdit waiting(waitingEdits_);
+          if (!waiting.admitted()) return sendBusy(res, "too many edits waiting on this server");
+          try {
+            turn.emplace(session->editQueue().wait(clientOf(req)));
+          } catch (const EditQueueFull&) {
+            return sendBusy(res, "too many edits waiting for this scene");
+          }
+        }
         SceneSession::Applied applied;
         try {
           // Journaled (committed) before it is published and acknowledged.
           applied = session->apply(frame, [&](const SceneSnapshot& next) {
             journalFrame(*session, next.version, req.body);
           });
+          turn.reset();  // the next client's frame applies while this answer is written
         } catch (const EditError& error) {
           const std::string path = "edits[" + std::to_string(error.editIndex()) + "]" +
                                    (error.path().empty() ? "" : "." + error.path());

@@ -57,6 +57,9 @@ HttpServer::HttpServer(ServerOptions options)
   http_->set_keep_alive_max_count(1000);
   http_->set_keep_alive_timeout(2);  // idle keep-alive connections hold a worker too
   http_->set_tcp_nodelay(true);
+  http_->set_logger([this](const httplib::Request&, const httplib::Response&) {
+    trimmer_.noteActivity();
+  });
   http_->set_file_extension_and_mimetype_mapping("js", "text/javascript");
   http_->set_file_extension_and_mimetype_mapping("mjs", "text/javascript");
   http_->set_file_extension_and_mimetype_mapping("glb", "model/gltf-binary");

@@ -12,6 +12,7 @@
 #include "core/engine/engine.h"
 #include "server/limits.h"
 #include "server/scene_journal.h"
+#include "server/memory_trim.h"
 #include "server/scene_session.h"
 
 namespace httplib {
@@ -103,10 +104,12 @@ class HttpServer {
   std::string freshId(const std::string& preferred);  // call with scenesMutex_ held
 
   ServerOptions options_;
+  MemoryTrimmer trimmer_{kTrimInterval};  // gives freed memory back after requests (outlives http_)
   std::unique_ptr<httplib::Server> http_;
   int port_ = 0;
   std::atomic<bool> stopping_{false};
   std::atomic<int> openStreams_{0};
+  std::atomic<int> waitingEdits_{0};  // edits waiting for their scene's turn, all scenes
   mutable std::mutex scenesMutex_;  // guards scenes_, nextId_, journalKeys_
   std::map<std::string, std::shared_ptr<SceneSession>> scenes_;
   std::unique_ptr<SceneJournal> journal_;  // null: ephemeral

@@ -1,16 +1,30 @@
 // The server's documented limits (docs/API.md "Limits") and URL id syntax. Constants only.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
+#include <cstdint>
 
 namespace penumbra::server {
 
 // Documented limits (docs/API.md "Limits").
 inline constexpr size_t kMaxBodyBytes = size_t(16) << 20;  // 16 MiB request bodies, else 413
 inline constexpr size_t kMaxScenes = 32;                   // served at once, else 429
-inline constexpr int kMaxEventStreams = 8;                 // open /events streams, else 429
-inline constexpr int kRequestWorkers = 16;                 // workers left for ordinary requests
+// cpp-httplib serves a connection on one worker until it closes (keep-alive included), so
+// the pool is sized for the connections of the clients served at once (docs/API.md "Load").
+inline constexpr int kMaxEventStreams = 64;                // open /events streams, else 429
+inline constexpr int kRequestWorkers = 64;                 // workers left for ordinary requests
 inline constexpr int kWorkerThreads = kMaxEventStreams + kRequestWorkers;
+// Edits waiting for their scene's turn: per scene, and over all scenes (so waiting edits
+// never hold more than three quarters of the request workers); beyond either, 503 busy.
+inline constexpr size_t kMaxQueuedEdits = 16;
+inline constexpr int kMaxWaitingEdits = kRequestWorkers * 3 / 4;
+// How often freed heap memory is given back to the system while requests come (malloc_trim),
+// and the malloc arenas `penumbra serve` allows (glibc's default is 8 per core).
+inline constexpr std::chrono::milliseconds kTrimInterval{1000};
+inline constexpr int kMallocArenas = 2;
+// Versions back that mesh deltas name removed parts for; an older `since` gets the whole mesh.
+inline constexpr uint64_t kSinceWindow = 256;
 inline constexpr int kMaxImageSide = 4096;  // image width/height in [1, 4096]
 // Scene ids in URLs: letters, digits, '_', '-', '.' (so file stems work).
 inline constexpr const char* kIdPattern = "([A-Za-z0-9_.-]+)";

@@ -3,6 +3,8 @@
 #include <map>
 #include <set>
 
+#include "server/limits.h"
+
 namespace penumbra::server {
 
 namespace {
@@ -80,6 +82,9 @@ SceneSession::Applied SceneSession::applyToEngine(
     const Frame& frame, const std::shared_ptr<const SceneSnapshot>& previous,
     const std::function<void(const SceneSnapshot&)>& beforePublish) {
   FrameResult result = engine_->apply(frame);  // throws EditError before changing anything
+  // Trees the frame changed are cast afresh when mostly dead slots: bounded memory. They
+  // are among the changed receivers, so they are meshed again below anyway.
+  engine_->compactTrees(result.changedReceivers);
 
   // Build the next whole version beside the published one, then swap it in.
   auto next = std::make_shared<SceneSnapshot>();
@@ -147,6 +152,8 @@ SceneSession::Applied SceneSession::applyToEngine(
   for (const auto& [key, removedAt] : previous->removed)
     if (!live.count(key)) next->removed.emplace_back(key, removedAt);
   for (const auto& [key, index] : before) next->removed.emplace_back(key, next->version);
+  next->removedFloor = previous->removedFloor;
+  if (next->version > kSinceWindow) next->forgetRemovedUpTo(next->version - kSinceWindow);
 
   next->lastFrame = result;
   std::shared_ptr<const SceneSnapshot> published = std::move(next);

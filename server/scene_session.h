@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "core/engine/engine.h"
+#include "server/edit_scheduler.h"
+#include "server/limits.h"
 #include "server/scene_snapshot.h"
 
 namespace penumbra::server {
@@ -64,6 +66,10 @@ class SceneSession {
   std::shared_ptr<const SceneSnapshot> waitForVersionAfter(uint64_t after,
                                                            std::chrono::milliseconds timeout) const;
 
+  // The scene's edit queue: callers of apply() take a turn here first (edit_routes.cpp),
+  // so waiting frames are bounded and clients take turns.
+  EditScheduler& editQueue() { return editQueue_; }
+
   // Marks the session deleted: waiters wake, event streams end.
   void close();
   bool closed() const;
@@ -79,6 +85,7 @@ class SceneSession {
 
   const std::string id_;
   const EngineSettings settings_;
+  EditScheduler editQueue_{kMaxQueuedEdits};
   std::mutex editMutex_;  // one frame at a time; guards engine_
   std::unique_ptr<Engine> engine_;  // null after a restore that failed: rebuilt on the next frame
   // How to rebuild engine_ exactly (guarded by editMutex_; the engine is deterministic): a

@@ -36,7 +36,8 @@ void SceneSession::restoreEngine(const SceneSnapshot& published) {
     try {
       auto engine = std::make_unique<Engine>(baseScene_, settings_);
       engine->setVersion(baseVersion_);
-      for (const Frame& frame : sinceBase_) engine->apply(frame);
+      for (const Frame& frame : sinceBase_)  // as applyToEngine does: apply, then compact
+        engine->compactTrees(engine->apply(frame).changedReceivers);
       if (engine->version() == published.version) {
         engine_ = std::move(engine);
         return;

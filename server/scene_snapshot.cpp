@@ -41,6 +41,7 @@ ReceiverMesh wholeReceiver(const std::vector<MeshPart>& parts, size_t begin, siz
 
 MeshSelection SceneSnapshot::select(std::optional<uint64_t> since) const {
   MeshSelection selection;
+  if (since && *since < removedFloor) since.reset();  // what left before is forgotten
   selection.since = since;
   std::set<ReceiverKey> lostPart;  // receivers with a part removed after `since`
   if (since)
@@ -61,6 +62,12 @@ MeshSelection SceneSnapshot::select(std::optional<uint64_t> since) const {
   // What is left lost a part and has none now: the receiver has left.
   selection.removed.assign(lostPart.begin(), lostPart.end());
   return selection;
+}
+
+void SceneSnapshot::forgetRemovedUpTo(uint64_t floor) {
+  if (floor <= removedFloor) return;
+  removedFloor = floor;
+  std::erase_if(removed, [&](const auto& entry) { return entry.second <= floor; });
 }
 
 const Mesh& SceneSnapshot::mesh() const {

@@ -57,13 +57,18 @@ struct SceneSnapshot {
   // The lit mesh in parts: receivers in Scene::faces() order, each its chunks in key order.
   std::vector<MeshPart> parts;
   // Parts that have left (a receiver left the scene, or a chunk became empty), with the
-  // version that removed them.
+  // version that removed them: every part removed after removedFloor (older ones are
+  // forgotten, so the list stays bounded; a `since` older than the floor gets the whole mesh).
   std::vector<std::pair<PartKey, uint64_t>> removed;
+  uint64_t removedFloor = 0;
   BuildStats buildStats;                 // of the initial build
   std::optional<FrameResult> lastFrame;  // the frame that made this version
 
-  // Everything (since empty) or only what changed after `since`.
+  // Everything (since empty) or only what changed after `since`; the whole mesh too when
+  // `since` is older than removedFloor (the selection's `since` is then empty).
   MeshSelection select(std::optional<uint64_t> since) const;
+  // Forgets removed parts at or before `floor` (docs/API.md "Deltas and old versions").
+  void forgetRemovedUpTo(uint64_t floor);
 
   // The whole lit mesh, each receiver its parts concatenated (as Engine::mesh()); made
   // on first use (thread-safe), for mesh JSON, GLB and images.

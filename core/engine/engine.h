@@ -150,6 +150,15 @@ class Engine {
   double meshSpacing() const;
   int meshChunkSquares() const { return meshChunkSquares_; }
 
+  // Casts afresh (and lights) the listed receivers' trees when dead slots dominate them:
+  // node deletion leaves dead nodes, vertices and cells behind (the tree and its mesh only
+  // append), so a receiver edited again and again would grow without bound. A receiver is
+  // cast afresh when its slots exceed kCompactSlotRatio × its live ones (+ a small floor).
+  // Its light values are the same; its cells (so its triangulation) may differ. Returns the
+  // faces cast afresh (their mesh memo is dropped: the next mesh call re-meshes them).
+  static constexpr size_t kCompactSlotRatio = 3;
+  std::vector<FaceId> compactTrees(const std::vector<FaceId>& faces);
+
   // Checks every structure the engine holds; throws std::logic_error.
   void validate() const;
 
