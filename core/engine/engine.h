@@ -18,6 +18,7 @@
 #include "core/geom/plane_frame.h"
 #include "core/illum/vertex_illumination.h"
 #include "core/mesh/mesh.h"
+#include "core/mesh/mesh_memo.h"
 #include "core/order/face_order.h"
 #include "core/overlap/overlap_cube.h"
 #include "core/scene/scene.h"
@@ -109,17 +110,11 @@ class Engine {
   // repeat in each chunk); only chunks holding a changed cell are assembled again, in
   // cell order, so the result is bit for bit what a fresh mesh() gives. Counters of
   // the last mesh call:
-  struct MeshCacheCounters {
-    size_t cellsReused = 0, cellsLit = 0;     // live cells kept / lit afresh
-    size_t chunksMeshed = 0, chunksKept = 0;  // display chunks assembled again / kept
-  };
+  using MeshCacheCounters = MeshMemoCounters;
   const MeshCacheCounters& lastMeshCounters() const { return meshCounters_; }
   // A display chunk of a receiver's mesh: the lattice-aligned block (x, y) of its 2D
   // frame (side meshChunkSquares · meshSpacing()) and the chunk's own mesh.
-  struct MeshChunkKey {
-    int64_t x = 0, y = 0;
-    auto operator<=>(const MeshChunkKey&) const = default;
-  };
+  using MeshChunkKey = penumbra::MeshChunkKey;
   struct MeshChunk {
     MeshChunkKey key;
     std::shared_ptr<const ReceiverMesh> mesh;  // immutable; shared while the chunk is unchanged
@@ -170,39 +165,9 @@ class Engine {
   // Whether every vertex of the face lies in each light's overlap cube.
   bool insideEditVolume(const Face& face) const;
 
-  // Per-cell memo of the meshing (see mesh()): what a cell emitted, and what that
-  // depends on. Buffers are reused from cell to cell.
-  struct CellMeshMemo {
-    bool valid = false;
-    Polygon2 outline;                     // the cell's loop positions
-    OccluderList occluders;               // its list
-    std::vector<Vec3> occluderPoints;     // the listed faces' world polygons, concatenated
-    std::vector<uint32_t> occluderSizes;  // their vertex counts (0: not a scene face)
-    // Per loop corner: 1 if lit from the cell (a contact vertex), else 0 and its value.
-    std::vector<uint8_t> cornerFromCell;
-    std::vector<VertexIrradiance> cornerValues;
-    // The output: builder calls (point, value) in order, and triangles into them,
-    // per piece (a lattice square's part of the cell): its chunk and where its
-    // points and triangles start (one more entry closes the last piece).
-    std::vector<std::pair<Vec2, VertexIrradiance>> emitted;
-    std::vector<std::array<uint32_t, 3>> triangles;
-    std::vector<MeshChunkKey> pieceChunks;
-    std::vector<uint32_t> pieceEmitted, pieceTriangles;
-    void clearInputs();
-    bool sameInputs(const CellMeshMemo& inputs) const;  // valid, and every input equal
-  };
-  struct ReceiverMeshMemo {
-    PlaneFrame frame;
-    double spacing = 0, eps = 0;
-    int chunkSquares = 0;
-    uint64_t stamp = 0;  // HalfEdgeMesh::stampNow() at the last call: cells touched later changed
-    std::vector<CellMeshMemo> cells;  // by CellId index
-    std::map<MeshChunkKey, std::shared_ptr<const ReceiverMesh>> chunks;  // the non-empty chunks' meshes
-    std::map<MeshChunkKey, std::vector<uint32_t>> chunkCells;  // cells with a piece in each chunk, ascending
-  };
   void pruneMeshMemo();  // drops the memos of faces that are no longer receivers
   // Brings a receiver's memo (cells and chunks) up to date with its tree.
-  const ReceiverMeshMemo& updateMeshMemo(const Receiver& receiver);
+  const ReceiverMeshMemo& updateMeshMemo(const Receiver& receiver, MeshMemoCounters& counters);
   ReceiverMesh meshReceiver(const Receiver& receiver);
   std::vector<size_t> receiverIndices(const std::vector<FaceId>& only) const;
 
