@@ -32,12 +32,13 @@ std::string defaultStaticDir() {
 }  // namespace
 
 int runServe(const Args& args) {
-  args.allowOnly({"host", "port", "static", "grid"});
+  args.allowOnly({"host", "port", "static", "grid", "threads"});
   server::ServerOptions options;
   options.host = args.option("host").value_or("127.0.0.1");
   options.port = args.intOption("port", 8080, 0, 65535);
   options.staticDir = args.option("static").value_or(defaultStaticDir());
   options.engine.overlapGrid = args.intOption("grid", 0, 0, 256);
+  options.engine.threads = args.intOption("threads", 0, 0, 1024);
   if (options.staticDir.empty())
     std::fprintf(
         stderr, "penumbra serve: no web_client/ found (pass --static DIR); serving the API only\n");

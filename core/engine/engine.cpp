@@ -1,6 +1,8 @@
 #include "core/engine/engine.h"
 
 #include <algorithm>
+#include <atomic>
+#include <mutex>
 #include <cmath>
 #include <limits>
 #include <chrono>
@@ -24,6 +26,34 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
+
+// A step's progress counted from several threads: the callback runs on one thread at a time,
+// with `done` rising, about every `every` items (and at the start and the end).
+class SharedProgress {
+ public:
+  SharedProgress(const EngineProgress& progress, const char* step, size_t total, size_t every)
+      : progress_(progress), step_(step), total_(total), every_(every) {
+    if (progress_) progress_(step_, 0, total_);
+  }
+  void add(size_t items) {
+    if (!progress_ || !items) return;
+    const size_t done = done_.fetch_add(items) + items;
+    if (done / every_ == (done - items) / every_ || done == total_) return;
+    std::lock_guard lock(mutex_);
+    if (done > reported_) progress_(step_, reported_ = done, total_);
+  }
+  void finish() {
+    if (progress_) progress_(step_, total_, total_);
+  }
+
+ private:
+  const EngineProgress& progress_;
+  const char* step_;
+  size_t total_, every_;
+  std::atomic<size_t> done_{0};
+  std::mutex mutex_;
+  size_t reported_ = 0;
+};
 
 Polygon2 polygonInFrame(const Polygon3& polygon, const PlaneFrame& frame) {
   Polygon2 out;
@@ -63,7 +93,7 @@ std::optional<SingleShadow> lightPlaneShadow(const Scene& scene, size_t light, c
 }  // namespace
 
 Engine::Engine(Scene scene, EngineSettings settings, const EngineProgress& progress)
-    : scene_(std::move(scene)), settings_(settings) {
+    : scene_(std::move(scene)), settings_(settings), parallel_(settings.threads) {
   if (meshSpacing() > 0 && settings_.meshChunkSquares > 0) {
     meshChunkSquares_ = settings_.meshChunkSquares;
   } else if (meshSpacing() > 0 && settings_.meshChunkSquares == 0) {
@@ -88,43 +118,59 @@ const std::set<FaceId>& Engine::castOn(FaceId occluder) const {
 }
 
 void Engine::build(const EngineProgress& progress) {
-  const size_t lightCount = scene_.lights().size();
   stats_ = BuildStats{};
   stats_.faces = scene_.faces().size();
-  stats_.lights = lightCount;
+  stats_.lights = scene_.lights().size();
+  buildOrdersAndCubes();
 
-  // Front-to-back orders (§2.1).
+  // One DM-tree per receiving face.
   auto start = Clock::now();
-  for (size_t l = 0; l < lightCount; ++l) {
-    orders_.push_back(std::make_unique<FaceOrder>(scene_, l));
-    stats_.orderFragments += orders_.back()->counters().fragments;
+  for (const Face& face : scene_.faces()) {
+    if (!scene_.receivesLight(face)) continue;
+    receiverIndex_[face.id] = receivers_.size();
+    receivers_.push_back(makeReceiver(face));
   }
+  stats_.receivers = receivers_.size();
+  castAllPairs(progress);
+  stats_.seconds.castingAndMerging = secondsSince(start);
+
+  // Illuminate every vertex (§2.4).
+  start = Clock::now();
+  illuminateAll(progress);
+  stats_.seconds.illumination = secondsSince(start);
+  countBuild();
+}
+
+void Engine::buildOrdersAndCubes() {
+  const size_t lightCount = scene_.lights().size();
+  // Front-to-back orders (§2.1), one light per thread.
+  auto start = Clock::now();
+  orders_.resize(lightCount);
+  parallel_.forEach(lightCount, [&](size_t l) { orders_[l] = std::make_unique<FaceOrder>(scene_, l); });
+  for (const auto& order : orders_) stats_.orderFragments += order->counters().fragments;
   stats_.seconds.ordering = secondsSince(start);
 
   // Shadow overlap cubes (§2.2).
   start = Clock::now();
   OverlapCubeSettings cubeSettings;
   cubeSettings.grid = settings_.overlapGrid;
-  for (size_t l = 0; l < lightCount; ++l) {
-    cubes_.push_back(std::make_unique<OverlapCube>(scene_, l, cubeSettings));
-    stats_.tiles += cubes_.back()->tileCount();
-  }
+  cubes_.resize(lightCount);
+  parallel_.forEach(lightCount, [&](size_t l) { cubes_[l] = std::make_unique<OverlapCube>(scene_, l, cubeSettings); });
+  for (const auto& cube : cubes_) stats_.tiles += cube->tileCount();
   stats_.seconds.cube = secondsSince(start);
+}
 
-  // One DM-tree per receiving face.
-  start = Clock::now();
-  const auto& faces = scene_.faces();
-  std::map<FaceId, const Face*> faceById;
-  for (const Face& face : faces) {
-    faceById[face.id] = &face;
-    if (!scene_.receivesLight(face)) continue;
-    receiverIndex_[face.id] = receivers_.size();
-    receivers_.push_back(makeReceiver(face));
-  }
-  stats_.receivers = receivers_.size();
-
-  // Cast every candidate pair both ways (§2.3), occluders in front-to-back order.
-  for (size_t l = 0; l < lightCount; ++l) {
+void Engine::castAllPairs(const EngineProgress& progress) {
+  // Every candidate pair both ways (§2.3), occluders in front-to-back order, light by light.
+  // A receiver's tree depends only on the sequence of shadows it receives, so each receiver
+  // takes its own part of that sequence, in order, and receivers cast in parallel.
+  struct Cast {
+    uint32_t light;
+    const Face* occluder;
+  };
+  std::vector<std::vector<Cast>> casts(receivers_.size());
+  size_t total = 0;
+  for (size_t l = 0; l < scene_.lights().size(); ++l) {
     const auto pairs = cubes_[l]->candidatePairs();
     stats_.candidatePairs += pairs.size();
     struct Attempt {
@@ -141,28 +187,43 @@ void Engine::build(const EngineProgress& progress) {
     std::sort(attempts.begin(), attempts.end(), [](const Attempt& x, const Attempt& y) {
       return std::tie(x.occluderRank, x.receiverRank) < std::tie(y.occluderRank, y.receiverRank);
     });
-    for (size_t i = 0; i < attempts.size(); ++i) {
-      const Attempt& attempt = attempts[i];
-      if (progress && i % 4096 == 0) progress("casting", i, attempts.size());
+    for (const Attempt& attempt : attempts) {
       const auto found = receiverIndex_.find(attempt.receiver);
       if (found == receiverIndex_.end()) continue;
-      Receiver& receiver = receivers_[found->second];
-      ++stats_.castAttempts;
-      if (castPair(l, *faceById.at(attempt.occluder), receiver)) ++stats_.pairsWithShadow;
+      casts[found->second].push_back({uint32_t(l), findFace(scene_, attempt.occluder)});
+      ++total;
     }
-    if (progress) progress("casting", attempts.size(), attempts.size());
   }
-  stats_.seconds.castingAndMerging = secondsSince(start);
+  stats_.castAttempts = total;
 
-  // Illuminate every vertex (§2.4).
-  start = Clock::now();
+  std::vector<std::vector<FaceId>> shadowedBy(receivers_.size());  // occluders that cast, per receiver
+  SharedProgress report(progress, "casting", total, 4096);
+  parallel_.forEach(receivers_.size(), [&](size_t r) {
+    for (const Cast& cast : casts[r])
+      if (castInto(cast.light, *cast.occluder, receivers_[r])) shadowedBy[r].push_back(cast.occluder->id);
+    report.add(casts[r].size());
+    std::vector<Cast>().swap(casts[r]);
+  });
+  report.finish();
   for (size_t r = 0; r < receivers_.size(); ++r) {
-    if (progress) progress("illumination", r, receivers_.size());
-    illuminate(receivers_[r]);
+    stats_.pairsWithShadow += shadowedBy[r].size();
+    for (FaceId occluder : shadowedBy[r]) {
+      castOn_[occluder].insert(receivers_[r].face);
+      castBy_[receivers_[r].face].insert(occluder);
+    }
   }
-  if (progress) progress("illumination", receivers_.size(), receivers_.size());
-  stats_.seconds.illumination = secondsSince(start);
+}
 
+void Engine::illuminateAll(const EngineProgress& progress) {
+  SharedProgress report(progress, "illumination", receivers_.size(), 1);
+  parallel_.forEach(receivers_.size(), [&](size_t r) {
+    illuminate(receivers_[r]);
+    report.add(1);
+  });
+  report.finish();
+}
+
+void Engine::countBuild() {
   for (const Receiver& receiver : receivers_) {
     stats_.treeNodes += receiver.tree.internalNodeCount();
     stats_.cells += receiver.tree.cellCount();
@@ -187,12 +248,17 @@ Engine::Receiver Engine::makeReceiver(const Face& face) const {
   return receiver;
 }
 
-std::optional<InsertResult> Engine::castPair(size_t light, const Face& occluder, Receiver& receiver) {
+std::optional<InsertResult> Engine::castInto(size_t light, const Face& occluder, Receiver& receiver) const {
   const Face* face = findFace(scene_, receiver.face);
   if (!face) throw std::logic_error("Engine: receiver without a scene face");
   const auto shadow = castShadow(scene_, light, occluder, *face, receiver.frame);
   if (!shadow) return std::nullopt;
-  InsertResult inserted = receiver.tree.insert(*shadow);
+  return receiver.tree.insert(*shadow);
+}
+
+std::optional<InsertResult> Engine::castPair(size_t light, const Face& occluder, Receiver& receiver) {
+  auto inserted = castInto(light, occluder, receiver);
+  if (!inserted) return std::nullopt;
   castOn_[occluder.id].insert(receiver.face);
   castBy_[receiver.face].insert(occluder.id);
   return inserted;
@@ -232,7 +298,7 @@ void Engine::growSlots(Receiver& receiver) {
   receiver.litAt.resize(slots, Vec2(std::numeric_limits<double>::quiet_NaN()));
 }
 
-void Engine::illuminate(Receiver& receiver) {
+void Engine::illuminate(Receiver& receiver) const {
   const size_t slots = receiver.tree.mesh().vertexSlots();
   // Headroom: a big receiver's first edits then grow its arrays in place instead of
   // moving every value (untouched capacity costs no memory until used).
@@ -243,14 +309,23 @@ void Engine::illuminate(Receiver& receiver) {
   receiver.values.assign(slots, VertexIrradiance{});
   receiver.perLight.assign(slots, {});
   receiver.litAt.assign(slots, Vec2(std::numeric_limits<double>::quiet_NaN()));
-  for (VertexId v : receiver.tree.vertices()) relightVertex(receiver, v);
+  // Vertices in parallel (a dense scene's floor holds most of them); each writes its own slots.
+  const std::vector<VertexId> vertices = receiver.tree.vertices();
+  parallel_.forEach(vertices.size(), [&](size_t i) { computeVertex(receiver, vertices[i]); }, 16);
+  // Every cell is new, so its corner values changed: the memo's test is the stamp.
+  for (VertexId v : vertices)
+    for (CellId c : receiver.tree.cellsAround(v)) receiver.tree.touch(c);
 }
 
 void Engine::relightVertex(Receiver& receiver, VertexId v) const {
+  computeVertex(receiver, v);
+  for (CellId c : receiver.tree.cellsAround(v)) receiver.tree.touch(c);  // their corner values may have changed
+}
+
+void Engine::computeVertex(Receiver& receiver, VertexId v) const {
   const DmTree& tree = receiver.tree;
   std::vector<const OccluderList*> lists;
-  const std::vector<CellId> around = tree.cellsAround(v);
-  for (CellId c : around) lists.push_back(&tree.occluders(c));
+  for (CellId c : tree.cellsAround(v)) lists.push_back(&tree.occluders(c));
   const Vec3 p = receiver.frame.to3D(tree.position(v));
   auto& perLight = receiver.perLight[v.index];
   perLight.clear();
@@ -258,7 +333,6 @@ void Engine::relightVertex(Receiver& receiver, VertexId v) const {
     perLight.push_back(illuminateVertex(scene_, l, p, receiver.frame.normal, lists));
   receiver.values[v.index] = sumLights(scene_, perLight);
   receiver.litAt[v.index] = tree.position(v);
-  for (CellId c : around) receiver.tree.touch(c);  // their corner values may have changed
 }
 
 void Engine::compactReceivers(const std::vector<bool>& dropped) {
@@ -290,10 +364,12 @@ void Engine::pruneMeshMemo() {
 
 Mesh Engine::mesh() {
   const auto start = Clock::now();
-  meshCounters_ = {};
+  std::vector<size_t> all(receivers_.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  updateMeshMemos(all);
   Mesh out;
   out.receivers.reserve(receivers_.size());
-  for (const Receiver& receiver : receivers_) out.receivers.push_back(meshReceiver(receiver));
+  for (const Receiver& receiver : receivers_) out.receivers.push_back(memoMesh(receiver));
   pruneMeshMemo();
   stats_.seconds.triangulation = secondsSince(start);
   return out;
@@ -308,24 +384,37 @@ std::vector<size_t> Engine::receiverIndices(const std::vector<FaceId>& only) con
   return indices;
 }
 
-Mesh Engine::mesh(const std::vector<FaceId>& only) {
+void Engine::updateMeshMemos(const std::vector<size_t>& indices) {
   meshCounters_ = {};
+  std::vector<ReceiverMeshMemo*> memos;  // created here: the map is not changed in parallel
+  for (size_t i : indices) memos.push_back(&meshMemo_[receivers_[i].face]);
+  std::vector<MeshMemoCounters> counters(indices.size());
+  parallel_.forEach(indices.size(), [&](size_t k) {
+    const Receiver& receiver = receivers_[indices[k]];
+    const MeshSource source{receiver.face, receiver.frame, receiver.tree, receiver.values, receiver.perLight};
+    memos[k]->update(scene_, source, MeshGrid{meshSpacing(), meshChunkSquares_}, counters[k]);
+  });
+  for (const MeshMemoCounters& c : counters) meshCounters_ += c;
+}
+
+Mesh Engine::mesh(const std::vector<FaceId>& only) {
   const std::vector<size_t> indices = receiverIndices(only);
+  updateMeshMemos(indices);
   Mesh out;
   out.receivers.reserve(indices.size());
-  for (size_t i : indices) out.receivers.push_back(meshReceiver(receivers_[i]));
+  for (size_t i : indices) out.receivers.push_back(memoMesh(receivers_[i]));
   pruneMeshMemo();
   return out;
 }
 
 std::vector<Engine::ReceiverChunks> Engine::meshChunks(const std::vector<FaceId>& only) {
-  meshCounters_ = {};
+  const std::vector<size_t> indices = receiverIndices(only);
+  updateMeshMemos(indices);
   std::vector<ReceiverChunks> out;
-  for (size_t i : receiverIndices(only)) {
-    const ReceiverMeshMemo& memo = updateMeshMemo(receivers_[i], meshCounters_);
+  for (size_t i : indices) {
     ReceiverChunks& entry = out.emplace_back();
     entry.face = receivers_[i].face;
-    for (const auto& [key, chunk] : memo.chunks()) entry.chunks.push_back({key, chunk});
+    for (const auto& [key, chunk] : meshMemo_.at(entry.face).chunks()) entry.chunks.push_back({key, chunk});
   }
   pruneMeshMemo();
   return out;
@@ -335,11 +424,12 @@ ReceiverMesh Engine::meshOf(FaceId face) {
   const auto it = receiverIndex_.find(face);
   if (it == receiverIndex_.end()) throw std::out_of_range("Engine::meshOf: the face is not a receiver");
   meshCounters_ = {};
-  return meshReceiver(receivers_[it->second]);
+  updateMeshMemo(receivers_[it->second], meshCounters_);
+  return memoMesh(receivers_[it->second]);
 }
 
-ReceiverMesh Engine::meshReceiver(const Receiver& receiver) {
-  const ReceiverMeshMemo& memo = updateMeshMemo(receiver, meshCounters_);
+ReceiverMesh Engine::memoMesh(const Receiver& receiver) const {
+  const ReceiverMeshMemo& memo = meshMemo_.at(receiver.face);
   ReceiverMesh result;
   result.face = receiver.face;
   result.normal = receiver.frame.normal;

@@ -15,6 +15,7 @@
 #include "core/engine/dirty_set.h"
 #include "core/engine/build_stats.h"
 #include "core/engine/frame.h"
+#include "core/engine/parallel.h"
 #include "core/geom/plane_frame.h"
 #include "core/illum/vertex_illumination.h"
 #include "core/mesh/mesh.h"
@@ -38,6 +39,10 @@ struct EngineSettings {
   // construction from the scene's faces per lattice square (4, 2 or 1, so a block
   // holds some hundreds of cells), < 0: one block.
   int meshChunkSquares = 0;
+  // Threads for the build (orders and cubes per light, casting per receiver, illumination per
+  // vertex) and for meshing (per receiver): 0 = every core, 1 = the calling thread only. The
+  // results are bit for bit the same for any count.
+  int threads = 0;
 };
 
 // Called with (step name, done, total) as a long build proceeds; may be empty.
@@ -146,14 +151,24 @@ class Engine {
   // Casts `occluder` on `receiver` from `light` and merges the shadow; records the
   // pair in castOn_/castBy_. Returns nullopt when nothing is shadowed.
   std::optional<InsertResult> castPair(size_t light, const Face& occluder, Receiver& receiver);
+  // The same without recording: touches `receiver` only, so receivers may cast in parallel.
+  std::optional<InsertResult> castInto(size_t light, const Face& occluder, Receiver& receiver) const;
+  // The build's steps (§2.1–2.4); each fills its part of stats_.
+  void buildOrdersAndCubes();
+  void castAllPairs(const EngineProgress& progress);
+  void illuminateAll(const EngineProgress& progress);
+  void countBuild();
   // Casts every candidate occluder of the overlap cubes on one (fresh) receiver.
   void castAllOn(Receiver& receiver);
   // Forgets every cast relation with `face` as receiver.
   void forgetReceived(FaceId face);
   // Sizes the per-slot arrays to the tree's vertex slots.
   static void growSlots(Receiver& receiver);
-  void illuminate(Receiver& receiver);
+  // Lights every vertex of a fresh tree (in parallel over vertices).
+  void illuminate(Receiver& receiver) const;
   void relightVertex(Receiver& receiver, VertexId v) const;
+  // relightVertex's value alone: writes v's slots only, touches no cell.
+  void computeVertex(Receiver& receiver, VertexId v) const;
   // Adds to `dirty` what one occluder's node deletion on `receiver` must have relit:
   // the vertices of its changed cells and its new vertices inside the removed
   // penumbra. Outside it the scene did not change for this receiver: a surviving
@@ -168,11 +183,15 @@ class Engine {
   void pruneMeshMemo();  // drops the memos of faces that are no longer receivers
   // Brings a receiver's memo (cells and chunks) up to date with its tree.
   const ReceiverMeshMemo& updateMeshMemo(const Receiver& receiver, MeshMemoCounters& counters);
-  ReceiverMesh meshReceiver(const Receiver& receiver);
+  // A receiver's up-to-date memo as one mesh: its chunks concatenated.
+  ReceiverMesh memoMesh(const Receiver& receiver) const;
+  // The listed receivers' memos brought up to date, in parallel; counters summed in order.
+  void updateMeshMemos(const std::vector<size_t>& indices);
   std::vector<size_t> receiverIndices(const std::vector<FaceId>& only) const;
 
   Scene scene_;
   EngineSettings settings_;
+  Parallel parallel_;
   int meshChunkSquares_ = 0;  // fixed at construction: chunks stay comparable across edits
   uint64_t version_ = 0;
   std::vector<std::unique_ptr<FaceOrder>> orders_;   // per light
