@@ -15,6 +15,7 @@ struct BenchArgs {
   double lightScale = 1.0;
   size_t points = 2000;
   int maxSamples = 1 << 16;
+  int threads = 1;  // engine build threads (EngineSettings::threads; 0 = every core)
   int qualityMaxCubes = 150;  // mesh-quality comparison only up to this scene size
   std::string jsonOut;  // empty: no JSON file
   // edits: --cubes given (else 150,1500,5000), --frames (drag frames, 0 = by size),

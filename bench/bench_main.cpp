@@ -32,6 +32,9 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first) {
         args.maxSamples = std::stoi(value);
       } else if (name == "--quality-max-cubes") {
         args.qualityMaxCubes = std::stoi(value);
+      } else if (name == "--threads") {
+        args.threads = std::stoi(value);
+        if (args.threads < 0) throw std::invalid_argument("must be >= 0");
       } else if (name == "--frames") {
         args.frames = std::stoi(value);
       } else if (name == "--rebuild-every") {
@@ -62,6 +65,7 @@ int main(int argc, char** argv) {
   constexpr const char* kUsage =
       "usage: penumbra-bench reference|build|edits [--cubes 15,150,1500] [--seed S] [--light-scale F]\n"
       "                      [--points K] [--max-samples N] [--quality-max-cubes N] [--json OUT]\n"
+      "                      [--threads N] (engine threads, default 1; 0 = every core)\n"
       "                      edits: [--frames F] [--rebuild-every K] [--html OUT]\n"
       "                             | --write-scripts DIR --scene FILE\n"
       "  reference: exact reference and Monte Carlo cost per point\n"

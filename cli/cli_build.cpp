@@ -53,12 +53,13 @@ nlohmann::json statsJson(const BuildStats& s, const Mesh& mesh) {
 }  // namespace
 
 int runBuild(const Args& args) {
-  args.allowOnly({"out", "grid", "color-scale"});
+  args.allowOnly({"out", "grid", "color-scale", "threads"});
   const std::string scenePath = args.positional(0, "SCENE");
   const auto out = args.option("out");
   if (!out) throw UsageError("build needs --out MESH");
   EngineSettings settings;
   settings.overlapGrid = args.intOption("grid", 0, 0, 256);
+  settings.threads = args.intOption("threads", 0, 0, 1024);
   const Scene scene = protocol::loadSceneFile(scenePath);
 
   ProgressBar casting("casting"), illumination("illumination");

@@ -46,6 +46,7 @@ int runRender(const Args& args) {
   } catch (const std::invalid_argument& error) {
     throw UsageError(error.what());
   }
+  server::loadImageModule();  // a missing image module fails now, not after the build
   RenderSettings settings;
   settings.width = args.intOption("width", 512, 1, RenderSettings::kMaxSize);
   settings.height = args.intOption("height", 512, 1, RenderSettings::kMaxSize);

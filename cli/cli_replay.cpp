@@ -146,7 +146,7 @@ struct Totals {
 }  // namespace
 
 int runReplay(const Args& args) {
-  args.allowOnly({"verify-every", "report", "out"});
+  args.allowOnly({"verify-every", "report", "out", "threads"});
   const std::string scenePath = args.positional(0, "SCENE");
   const std::string scriptPath = args.positional(1, "EDITS.jsonl");
   const bool verify = args.flag("verify") || args.option("verify-every");
@@ -170,7 +170,9 @@ int runReplay(const Args& args) {
 
   ProgressBar building("building");
   const auto buildStart = Clock::now();
-  Engine engine(scene, {},
+  EngineSettings settings;
+  settings.threads = args.intOption("threads", 0, 0, 1024);
+  Engine engine(scene, settings,
                 [&](const char*, size_t done, size_t total) { building.update(done, total); });
   const double buildSeconds = secondsSince(buildStart);
   building.finish();
@@ -223,7 +225,7 @@ int runReplay(const Args& args) {
     double rebuildSeconds = NAN;
     if (verifyThis) {
       const auto rebuildStart = Clock::now();
-      const Engine rebuilt(engine.scene());
+      const Engine rebuilt(engine.scene(), settings);
       rebuildSeconds = secondsSince(rebuildStart);
       entry["rebuild_seconds"] = rebuildSeconds;
       entry["edit_over_rebuild"] = result.seconds.total() / rebuildSeconds;

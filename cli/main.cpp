@@ -19,6 +19,7 @@ commands:
   build SCENE --out MESH [--stats]     the discontinuity mesh; --stats prints counters and timings as JSON
            [--color-scale S] [--edges] MESH ending in .glb: glTF binary, COLOR_0 = radiance × S
            [--grid G]                  overlap-cube tiles per side (default: from the face count)
+           [--threads N]               build threads (also replay, serve); default: every core
   render SCENE --out IMG.png|IMG.exr   an image shaded by the DM mesh (built, or --mesh MESH);
          [--width W] [--height H]      default 512×512, at most 8192 per side
          [--camera JSON|FILE]          default: the scene's camera, else a view of its bounds
@@ -29,9 +30,10 @@ commands:
            [--seed S] [--light-scale F] [--stacked-fraction F] [--tilted-light]
            [--two-lights] [--tables FRACTION]
   replay SCENE EDITS.jsonl             apply an edit script frame by frame; per-frame times and counts
-         [--verify] [--verify-every K] [--report OUT.json] [--out MESH]
+         [--verify] [--verify-every K] [--report OUT.json] [--out MESH] [--threads N]
   serve [SCENE...] [--host H]          the HTTP API and web page (docs/API.md) on the scenes;
         [--port P] [--static DIR]      default 127.0.0.1:8080 and ./web_client; prints the URL
+        [--grid G] [--threads N]
         [--data DIR | --ephemeral]     journal of scenes and edits (default ./penumbra-data)
         [--token T] [--max-scenes N]   token for mutating requests (needed off loopback; or
         [--max-body-mib M]             PENUMBRA_TOKEN); limits (default 32 scenes, 16 MiB)

@@ -1,38 +1,28 @@
 #include "server/image_encoding.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
 
+#include "server/image_module_loader.h"
+
 namespace penumbra::server {
 
 namespace {
 
-std::vector<uint8_t> encode(const RenderedImage& image, const char* format, OIIO::TypeDesc type,
-                            const void* pixels) {
+std::vector<uint8_t> encode(const RenderedImage& image, const char* format, bool isFloat, const void* pixels) {
   if (image.width <= 0 || image.height <= 0)
     throw ImageEncodingError(std::string(format) + ": empty image");
-  std::vector<unsigned char> bytes;
-  OIIO::Filesystem::IOVecOutput memory(bytes);
-  // The name only picks the plugin; bytes go to the proxy.
-  auto out = OIIO::ImageOutput::create(std::string("image.") + format);
-  if (!out) throw ImageEncodingError(std::string(format) + ": " + OIIO::geterror());
-  if (!out->set_ioproxy(&memory))
-    throw ImageEncodingError(std::string(format) + ": OIIO writer cannot write to memory");
-  OIIO::ImageSpec spec(image.width, image.height, 3, type);
-  if (type == OIIO::TypeDesc::UINT8) {
-    spec.attribute("png:compressionLevel", 1);
-    spec.attribute("oiio:ColorSpace", "sRGB");
-  } else {
-    spec.attribute("oiio:ColorSpace", "Linear");
-  }
-  if (!out->open("image." + std::string(format), spec) || !out->write_image(type, pixels) || !out->close())
-    throw ImageEncodingError(std::string(format) + ": " + out->geterror());
-  return std::vector<uint8_t>(bytes.begin(), bytes.end());
+  const ImageModule& module = imageModule();
+  std::vector<uint8_t> bytes;
+  const penumbra_image_sink sink = [](void* context, const unsigned char* data, size_t size) {
+    static_cast<std::vector<uint8_t>*>(context)->assign(data, data + size);
+  };
+  char error[512] = "";
+  if (module.encode(format, image.width, image.height, isFloat, pixels, sink, &bytes, error, sizeof error))
+    throw ImageEncodingError(error);
+  return bytes;
 }
 
 }  // namespace
@@ -49,14 +39,16 @@ ImageFormat imageFormatForPath(const std::string& path) {
 std::vector<uint8_t> encodePng(const RenderedImage& image) {
   if (image.srgb.size() != 3 * size_t(image.width) * size_t(image.height))
     throw ImageEncodingError("png: pixel buffer does not match the image size");
-  return encode(image, "png", OIIO::TypeDesc::UINT8, image.srgb.data());
+  return encode(image, "png", false, image.srgb.data());
 }
 
 std::vector<uint8_t> encodeExr(const RenderedImage& image) {
   if (image.linear.size() != 3 * size_t(image.width) * size_t(image.height))
     throw ImageEncodingError("exr: pixel buffer does not match the image size");
-  return encode(image, "exr", OIIO::TypeDesc::FLOAT, image.linear.data());
+  return encode(image, "exr", true, image.linear.data());
 }
+
+void loadImageModule() { imageModule(); }
 
 std::vector<uint8_t> encodeImage(const RenderedImage& image, ImageFormat format) {
   return format == ImageFormat::Png ? encodePng(image) : encodeExr(image);

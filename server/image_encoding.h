@@ -1,6 +1,6 @@
 // Rendered images to bytes with OpenImageIO: PNG (8-bit sRGB) and OpenEXR (linear float RGB),
 // encoded in memory (for the CLI and the HTTP server) or written to a file chosen by extension.
-// Free functions; thread-safe (each call uses its own OIIO writer).
+// Free functions; thread-safe. OIIO lives in the image module, loaded on first use.
 #pragma once
 
 #include <cstdint>
@@ -12,7 +12,8 @@
 
 namespace penumbra::server {
 
-// OIIO could not create a writer or encode (message from OIIO), or the file could not be written.
+// OIIO could not create a writer or encode (message from OIIO), the image module could not be
+// loaded (message names its path), or the file could not be written.
 class ImageEncodingError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -23,6 +24,10 @@ enum class ImageFormat { Png, Exr };
 // The format a path's extension names (.png, .exr; case-insensitive). Throws std::invalid_argument
 // naming the path for any other extension.
 ImageFormat imageFormatForPath(const std::string& path);
+
+// Loads the image module now rather than at the first encode, so a command can refuse before
+// its work when images are unavailable. Throws ImageEncodingError.
+void loadImageModule();
 
 // RenderedImage::srgb as PNG; compression level 1 (about 3× faster than the default, for
 // interactive responses).

@@ -1,6 +1,8 @@
 #include "core/engine/engine.h"
 
 #include <algorithm>
+#include <atomic>
+#include <mutex>
 #include <cmath>
 #include <limits>
 #include <chrono>
@@ -9,12 +11,10 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
-#include <unordered_map>
 
 #include "core/geom/clip.h"
 #include "core/illum/face_lookup.h"
-#include "core/mesh/cell_triangulation.h"
-#include "core/mesh/lattice_split.h"
+#include "core/illum/light_sum.h"
 #include "core/shadow/cast_shadow.h"
 
 namespace penumbra {
@@ -27,30 +27,38 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// A step's progress counted from several threads: the callback runs on one thread at a time,
+// with `done` rising, about every `every` items (and at the start and the end).
+class SharedProgress {
+ public:
+  SharedProgress(const EngineProgress& progress, const char* step, size_t total, size_t every)
+      : progress_(progress), step_(step), total_(total), every_(every) {
+    if (progress_) progress_(step_, 0, total_);
+  }
+  void add(size_t items) {
+    if (!progress_ || !items) return;
+    const size_t done = done_.fetch_add(items) + items;
+    if (done / every_ == (done - items) / every_ || done == total_) return;
+    std::lock_guard lock(mutex_);
+    if (done > reported_) progress_(step_, reported_ = done, total_);
+  }
+  void finish() {
+    if (progress_) progress_(step_, total_, total_);
+  }
+
+ private:
+  const EngineProgress& progress_;
+  const char* step_;
+  size_t total_, every_;
+  std::atomic<size_t> done_{0};
+  std::mutex mutex_;
+  size_t reported_ = 0;
+};
+
 Polygon2 polygonInFrame(const Polygon3& polygon, const PlaneFrame& frame) {
   Polygon2 out;
   out.reserve(polygon.size());
   for (const Vec3& p : polygon) out.push_back(frame.to2D(p));
-  return out;
-}
-
-// Sums the lights' contributions like the reference: radiance-weighted factors,
-// classes combined over the lights that reach the point (Umbra if none does).
-VertexIrradiance sumLights(const Scene& scene, const std::vector<VertexLight>& lights,
-                           const std::vector<bool>* dark = nullptr) {
-  VertexIrradiance out;
-  bool any = false;
-  for (size_t l = 0; l < lights.size(); ++l) {
-    const VertexLight& light = lights[l];
-    out.comparisons += light.comparisons;
-    if (!light.applies) continue;
-    const bool isDark = dark && (*dark)[l];
-    const LightClass cls = isDark ? LightClass::Umbra : light.lightClass;
-    if (!isDark) out.irradiance += scene.lights()[l].radiance * light.factor;
-    out.lightClass = any ? combine(out.lightClass, cls) : cls;
-    any = true;
-  }
-  if (!any) out.lightClass = LightClass::Umbra;
   return out;
 }
 
@@ -85,7 +93,7 @@ std::optional<SingleShadow> lightPlaneShadow(const Scene& scene, size_t light, c
 }  // namespace
 
 Engine::Engine(Scene scene, EngineSettings settings, const EngineProgress& progress)
-    : scene_(std::move(scene)), settings_(settings) {
+    : scene_(std::move(scene)), settings_(settings), parallel_(settings.threads) {
   if (meshSpacing() > 0 && settings_.meshChunkSquares > 0) {
     meshChunkSquares_ = settings_.meshChunkSquares;
   } else if (meshSpacing() > 0 && settings_.meshChunkSquares == 0) {
@@ -110,43 +118,59 @@ const std::set<FaceId>& Engine::castOn(FaceId occluder) const {
 }
 
 void Engine::build(const EngineProgress& progress) {
-  const size_t lightCount = scene_.lights().size();
   stats_ = BuildStats{};
   stats_.faces = scene_.faces().size();
-  stats_.lights = lightCount;
+  stats_.lights = scene_.lights().size();
+  buildOrdersAndCubes();
 
-  // Front-to-back orders (§2.1).
+  // One DM-tree per receiving face.
   auto start = Clock::now();
-  for (size_t l = 0; l < lightCount; ++l) {
-    orders_.push_back(std::make_unique<FaceOrder>(scene_, l));
-    stats_.orderFragments += orders_.back()->counters().fragments;
+  for (const Face& face : scene_.faces()) {
+    if (!scene_.receivesLight(face)) continue;
+    receiverIndex_[face.id] = receivers_.size();
+    receivers_.push_back(makeReceiver(face));
   }
+  stats_.receivers = receivers_.size();
+  castAllPairs(progress);
+  stats_.seconds.castingAndMerging = secondsSince(start);
+
+  // Illuminate every vertex (§2.4).
+  start = Clock::now();
+  illuminateAll(progress);
+  stats_.seconds.illumination = secondsSince(start);
+  countBuild();
+}
+
+void Engine::buildOrdersAndCubes() {
+  const size_t lightCount = scene_.lights().size();
+  // Front-to-back orders (§2.1), one light per thread.
+  auto start = Clock::now();
+  orders_.resize(lightCount);
+  parallel_.forEach(lightCount, [&](size_t l) { orders_[l] = std::make_unique<FaceOrder>(scene_, l); });
+  for (const auto& order : orders_) stats_.orderFragments += order->counters().fragments;
   stats_.seconds.ordering = secondsSince(start);
 
   // Shadow overlap cubes (§2.2).
   start = Clock::now();
   OverlapCubeSettings cubeSettings;
   cubeSettings.grid = settings_.overlapGrid;
-  for (size_t l = 0; l < lightCount; ++l) {
-    cubes_.push_back(std::make_unique<OverlapCube>(scene_, l, cubeSettings));
-    stats_.tiles += cubes_.back()->tileCount();
-  }
+  cubes_.resize(lightCount);
+  parallel_.forEach(lightCount, [&](size_t l) { cubes_[l] = std::make_unique<OverlapCube>(scene_, l, cubeSettings); });
+  for (const auto& cube : cubes_) stats_.tiles += cube->tileCount();
   stats_.seconds.cube = secondsSince(start);
+}
 
-  // One DM-tree per receiving face.
-  start = Clock::now();
-  const auto& faces = scene_.faces();
-  std::map<FaceId, const Face*> faceById;
-  for (const Face& face : faces) {
-    faceById[face.id] = &face;
-    if (!scene_.receivesLight(face)) continue;
-    receiverIndex_[face.id] = receivers_.size();
-    receivers_.push_back(makeReceiver(face));
-  }
-  stats_.receivers = receivers_.size();
-
-  // Cast every candidate pair both ways (§2.3), occluders in front-to-back order.
-  for (size_t l = 0; l < lightCount; ++l) {
+void Engine::castAllPairs(const EngineProgress& progress) {
+  // Every candidate pair both ways (§2.3), occluders in front-to-back order, light by light.
+  // A receiver's tree depends only on the sequence of shadows it receives, so each receiver
+  // takes its own part of that sequence, in order, and receivers cast in parallel.
+  struct Cast {
+    uint32_t light;
+    const Face* occluder;
+  };
+  std::vector<std::vector<Cast>> casts(receivers_.size());
+  size_t total = 0;
+  for (size_t l = 0; l < scene_.lights().size(); ++l) {
     const auto pairs = cubes_[l]->candidatePairs();
     stats_.candidatePairs += pairs.size();
     struct Attempt {
@@ -163,28 +187,43 @@ void Engine::build(const EngineProgress& progress) {
     std::sort(attempts.begin(), attempts.end(), [](const Attempt& x, const Attempt& y) {
       return std::tie(x.occluderRank, x.receiverRank) < std::tie(y.occluderRank, y.receiverRank);
     });
-    for (size_t i = 0; i < attempts.size(); ++i) {
-      const Attempt& attempt = attempts[i];
-      if (progress && i % 4096 == 0) progress("casting", i, attempts.size());
+    for (const Attempt& attempt : attempts) {
       const auto found = receiverIndex_.find(attempt.receiver);
       if (found == receiverIndex_.end()) continue;
-      Receiver& receiver = receivers_[found->second];
-      ++stats_.castAttempts;
-      if (castPair(l, *faceById.at(attempt.occluder), receiver)) ++stats_.pairsWithShadow;
+      casts[found->second].push_back({uint32_t(l), findFace(scene_, attempt.occluder)});
+      ++total;
     }
-    if (progress) progress("casting", attempts.size(), attempts.size());
   }
-  stats_.seconds.castingAndMerging = secondsSince(start);
+  stats_.castAttempts = total;
 
-  // Illuminate every vertex (§2.4).
-  start = Clock::now();
+  std::vector<std::vector<FaceId>> shadowedBy(receivers_.size());  // occluders that cast, per receiver
+  SharedProgress report(progress, "casting", total, 4096);
+  parallel_.forEach(receivers_.size(), [&](size_t r) {
+    for (const Cast& cast : casts[r])
+      if (castInto(cast.light, *cast.occluder, receivers_[r])) shadowedBy[r].push_back(cast.occluder->id);
+    report.add(casts[r].size());
+    std::vector<Cast>().swap(casts[r]);
+  });
+  report.finish();
   for (size_t r = 0; r < receivers_.size(); ++r) {
-    if (progress) progress("illumination", r, receivers_.size());
-    illuminate(receivers_[r]);
+    stats_.pairsWithShadow += shadowedBy[r].size();
+    for (FaceId occluder : shadowedBy[r]) {
+      castOn_[occluder].insert(receivers_[r].face);
+      castBy_[receivers_[r].face].insert(occluder);
+    }
   }
-  if (progress) progress("illumination", receivers_.size(), receivers_.size());
-  stats_.seconds.illumination = secondsSince(start);
+}
 
+void Engine::illuminateAll(const EngineProgress& progress) {
+  SharedProgress report(progress, "illumination", receivers_.size(), 1);
+  parallel_.forEach(receivers_.size(), [&](size_t r) {
+    illuminate(receivers_[r]);
+    report.add(1);
+  });
+  report.finish();
+}
+
+void Engine::countBuild() {
   for (const Receiver& receiver : receivers_) {
     stats_.treeNodes += receiver.tree.internalNodeCount();
     stats_.cells += receiver.tree.cellCount();
@@ -209,12 +248,17 @@ Engine::Receiver Engine::makeReceiver(const Face& face) const {
   return receiver;
 }
 
-std::optional<InsertResult> Engine::castPair(size_t light, const Face& occluder, Receiver& receiver) {
+std::optional<InsertResult> Engine::castInto(size_t light, const Face& occluder, Receiver& receiver) const {
   const Face* face = findFace(scene_, receiver.face);
   if (!face) throw std::logic_error("Engine: receiver without a scene face");
   const auto shadow = castShadow(scene_, light, occluder, *face, receiver.frame);
   if (!shadow) return std::nullopt;
-  InsertResult inserted = receiver.tree.insert(*shadow);
+  return receiver.tree.insert(*shadow);
+}
+
+std::optional<InsertResult> Engine::castPair(size_t light, const Face& occluder, Receiver& receiver) {
+  auto inserted = castInto(light, occluder, receiver);
+  if (!inserted) return std::nullopt;
   castOn_[occluder.id].insert(receiver.face);
   castBy_[receiver.face].insert(occluder.id);
   return inserted;
@@ -254,7 +298,7 @@ void Engine::growSlots(Receiver& receiver) {
   receiver.litAt.resize(slots, Vec2(std::numeric_limits<double>::quiet_NaN()));
 }
 
-void Engine::illuminate(Receiver& receiver) {
+void Engine::illuminate(Receiver& receiver) const {
   const size_t slots = receiver.tree.mesh().vertexSlots();
   // Headroom: a big receiver's first edits then grow its arrays in place instead of
   // moving every value (untouched capacity costs no memory until used).
@@ -265,14 +309,23 @@ void Engine::illuminate(Receiver& receiver) {
   receiver.values.assign(slots, VertexIrradiance{});
   receiver.perLight.assign(slots, {});
   receiver.litAt.assign(slots, Vec2(std::numeric_limits<double>::quiet_NaN()));
-  for (VertexId v : receiver.tree.vertices()) relightVertex(receiver, v);
+  // Vertices in parallel (a dense scene's floor holds most of them); each writes its own slots.
+  const std::vector<VertexId> vertices = receiver.tree.vertices();
+  parallel_.forEach(vertices.size(), [&](size_t i) { computeVertex(receiver, vertices[i]); }, 16);
+  // Every cell is new, so its corner values changed: the memo's test is the stamp.
+  for (VertexId v : vertices)
+    for (CellId c : receiver.tree.cellsAround(v)) receiver.tree.touch(c);
 }
 
 void Engine::relightVertex(Receiver& receiver, VertexId v) const {
+  computeVertex(receiver, v);
+  for (CellId c : receiver.tree.cellsAround(v)) receiver.tree.touch(c);  // their corner values may have changed
+}
+
+void Engine::computeVertex(Receiver& receiver, VertexId v) const {
   const DmTree& tree = receiver.tree;
   std::vector<const OccluderList*> lists;
-  const std::vector<CellId> around = tree.cellsAround(v);
-  for (CellId c : around) lists.push_back(&tree.occluders(c));
+  for (CellId c : tree.cellsAround(v)) lists.push_back(&tree.occluders(c));
   const Vec3 p = receiver.frame.to3D(tree.position(v));
   auto& perLight = receiver.perLight[v.index];
   perLight.clear();
@@ -280,7 +333,6 @@ void Engine::relightVertex(Receiver& receiver, VertexId v) const {
     perLight.push_back(illuminateVertex(scene_, l, p, receiver.frame.normal, lists));
   receiver.values[v.index] = sumLights(scene_, perLight);
   receiver.litAt[v.index] = tree.position(v);
-  for (CellId c : around) receiver.tree.touch(c);  // their corner values may have changed
 }
 
 void Engine::compactReceivers(const std::vector<bool>& dropped) {
@@ -305,112 +357,6 @@ bool Engine::insideEditVolume(const Face& face) const {
   return true;
 }
 
-namespace {
-
-// Output vertices of one receiver: points within eps are one location (lattice
-// cuts of a shared edge come from each side), and a location repeats once per
-// distinct value (value discontinuities, dark cells). Ids are given in order of
-// first appearance, so the output depends only on the sequence of calls.
-class ReceiverMeshBuilder {
- public:
-  ReceiverMeshBuilder(ReceiverMesh& mesh, const PlaneFrame& frame, double eps)
-      : mesh_(mesh), frame_(frame), eps_(eps) {}
-
-  uint32_t vertex(const Vec2& at, const VertexIrradiance& value) {
-    const Key key{location(at), value.irradiance.x, value.irradiance.y, value.irradiance.z, value.lightClass};
-    const auto [it, added] = index_.emplace(key, uint32_t(mesh_.positions.size()));
-    if (added) {
-      mesh_.positions.push_back(frame_.to3D(locations_[key.location]));
-      mesh_.irradiance.push_back(value.irradiance);
-      mesh_.classes.push_back(value.lightClass);
-    }
-    return it->second;
-  }
-
- private:
-  struct Key {
-    uint32_t location;
-    double r, g, b;
-    LightClass lightClass;
-    bool operator==(const Key& o) const {
-      return location == o.location && r == o.r && g == o.g && b == o.b && lightClass == o.lightClass;
-    }
-  };
-  // Hashes agree with ==: +0 and -0 hash alike.
-  static size_t mix(size_t seed, size_t value) { return seed ^ (value + 0x9e3779b97f4a7c15ull + (seed << 6) + (seed >> 2)); }
-  static size_t bits(double x) { return std::hash<double>{}(x == 0 ? 0.0 : x); }
-  struct KeyHash {
-    size_t operator()(const Key& k) const {
-      return mix(mix(mix(mix(k.location, bits(k.r)), bits(k.g)), bits(k.b)), size_t(k.lightClass));
-    }
-  };
-  struct BucketHash {
-    size_t operator()(const std::pair<long, long>& b) const { return mix(std::hash<long>{}(b.first), std::hash<long>{}(b.second)); }
-  };
-
-  // Buckets of side 2·eps: a point merges with the first earlier one within eps.
-  uint32_t location(const Vec2& at) {
-    const double side = 2 * eps_;
-    const long x = long(std::floor(at.x / side)), y = long(std::floor(at.y / side));
-    // A neighbour bucket farther than 1.25·eps along an axis holds no point within
-    // eps: skipping it finds the same first match, with ~5 look-ups instead of 9.
-    const double fx = at.x - double(x) * side, fy = at.y - double(y) * side;
-    const long xFrom = fx > 1.25 * eps_ ? 0 : -1, xTo = side - fx > 1.25 * eps_ ? 0 : 1;
-    const long yFrom = fy > 1.25 * eps_ ? 0 : -1, yTo = side - fy > 1.25 * eps_ ? 0 : 1;
-    for (long dx = xFrom; dx <= xTo; ++dx)
-      for (long dy = yFrom; dy <= yTo; ++dy) {
-        const auto bucket = buckets_.find({x + dx, y + dy});
-        if (bucket == buckets_.end()) continue;
-        for (uint32_t id : bucket->second)
-          if (glm::length(locations_[id] - at) <= eps_) return id;
-      }
-    const uint32_t id = uint32_t(locations_.size());
-    locations_.push_back(at);
-    buckets_[{x, y}].push_back(id);
-    return id;
-  }
-
-  ReceiverMesh& mesh_;
-  const PlaneFrame& frame_;
-  double eps_;
-  std::vector<Vec2> locations_;
-  std::unordered_map<std::pair<long, long>, std::vector<uint32_t>, BucketHash> buckets_;
-  std::unordered_map<Key, uint32_t, KeyHash> index_;
-};
-
-bool sameValues(const std::vector<VertexIrradiance>& a, const std::vector<VertexIrradiance>& b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (!identicalValue(a[i], b[i])) return false;
-  return true;
-}
-
-bool sameFrame(const PlaneFrame& a, const PlaneFrame& b) {
-  return a.origin == b.origin && a.u == b.u && a.v == b.v && a.normal == b.normal;
-}
-
-}  // namespace
-
-void Engine::CellMeshMemo::clearInputs() {
-  outline.clear();
-  occluders.clear();
-  occluderPoints.clear();
-  occluderSizes.clear();
-  cornerFromCell.clear();
-  cornerValues.clear();
-  emitted.clear();
-  triangles.clear();
-  pieceChunks.clear();
-  pieceEmitted.clear();
-  pieceTriangles.clear();
-}
-
-bool Engine::CellMeshMemo::sameInputs(const CellMeshMemo& o) const {
-  return valid && outline == o.outline && occluders == o.occluders && occluderSizes == o.occluderSizes &&
-         occluderPoints == o.occluderPoints && cornerFromCell == o.cornerFromCell &&
-         sameValues(cornerValues, o.cornerValues);
-}
-
 void Engine::pruneMeshMemo() {
   for (auto it = meshMemo_.begin(); it != meshMemo_.end();)
     it = receiverIndex_.count(it->first) ? std::next(it) : meshMemo_.erase(it);
@@ -418,10 +364,12 @@ void Engine::pruneMeshMemo() {
 
 Mesh Engine::mesh() {
   const auto start = Clock::now();
-  meshCounters_ = {};
+  std::vector<size_t> all(receivers_.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  updateMeshMemos(all);
   Mesh out;
   out.receivers.reserve(receivers_.size());
-  for (const Receiver& receiver : receivers_) out.receivers.push_back(meshReceiver(receiver));
+  for (const Receiver& receiver : receivers_) out.receivers.push_back(memoMesh(receiver));
   pruneMeshMemo();
   stats_.seconds.triangulation = secondsSince(start);
   return out;
@@ -436,24 +384,37 @@ std::vector<size_t> Engine::receiverIndices(const std::vector<FaceId>& only) con
   return indices;
 }
 
-Mesh Engine::mesh(const std::vector<FaceId>& only) {
+void Engine::updateMeshMemos(const std::vector<size_t>& indices) {
   meshCounters_ = {};
+  std::vector<ReceiverMeshMemo*> memos;  // created here: the map is not changed in parallel
+  for (size_t i : indices) memos.push_back(&meshMemo_[receivers_[i].face]);
+  std::vector<MeshMemoCounters> counters(indices.size());
+  parallel_.forEach(indices.size(), [&](size_t k) {
+    const Receiver& receiver = receivers_[indices[k]];
+    const MeshSource source{receiver.face, receiver.frame, receiver.tree, receiver.values, receiver.perLight};
+    memos[k]->update(scene_, source, MeshGrid{meshSpacing(), meshChunkSquares_}, counters[k]);
+  });
+  for (const MeshMemoCounters& c : counters) meshCounters_ += c;
+}
+
+Mesh Engine::mesh(const std::vector<FaceId>& only) {
   const std::vector<size_t> indices = receiverIndices(only);
+  updateMeshMemos(indices);
   Mesh out;
   out.receivers.reserve(indices.size());
-  for (size_t i : indices) out.receivers.push_back(meshReceiver(receivers_[i]));
+  for (size_t i : indices) out.receivers.push_back(memoMesh(receivers_[i]));
   pruneMeshMemo();
   return out;
 }
 
 std::vector<Engine::ReceiverChunks> Engine::meshChunks(const std::vector<FaceId>& only) {
-  meshCounters_ = {};
+  const std::vector<size_t> indices = receiverIndices(only);
+  updateMeshMemos(indices);
   std::vector<ReceiverChunks> out;
-  for (size_t i : receiverIndices(only)) {
-    const ReceiverMeshMemo& memo = updateMeshMemo(receivers_[i]);
+  for (size_t i : indices) {
     ReceiverChunks& entry = out.emplace_back();
     entry.face = receivers_[i].face;
-    for (const auto& [key, chunk] : memo.chunks) entry.chunks.push_back({key, chunk});
+    for (const auto& [key, chunk] : meshMemo_.at(entry.face).chunks()) entry.chunks.push_back({key, chunk});
   }
   pruneMeshMemo();
   return out;
@@ -463,233 +424,23 @@ ReceiverMesh Engine::meshOf(FaceId face) {
   const auto it = receiverIndex_.find(face);
   if (it == receiverIndex_.end()) throw std::out_of_range("Engine::meshOf: the face is not a receiver");
   meshCounters_ = {};
-  return meshReceiver(receivers_[it->second]);
+  updateMeshMemo(receivers_[it->second], meshCounters_);
+  return memoMesh(receivers_[it->second]);
 }
 
-ReceiverMesh Engine::meshReceiver(const Receiver& receiver) {
-  const ReceiverMeshMemo& memo = updateMeshMemo(receiver);
+ReceiverMesh Engine::memoMesh(const Receiver& receiver) const {
+  const ReceiverMeshMemo& memo = meshMemo_.at(receiver.face);
   ReceiverMesh result;
   result.face = receiver.face;
   result.normal = receiver.frame.normal;
-  for (const auto& [key, chunk] : memo.chunks) appendMesh(result, *chunk);
+  for (const auto& [key, chunk] : memo.chunks()) appendMesh(result, *chunk);
   return result;
 }
 
-const Engine::ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver) {
-  const double eps = scene_.tolerance().length();
-  const double spacing = meshSpacing();
-  const int chunkSquares = meshChunkSquares_;
-  const double chunkSide = spacing * chunkSquares;  // 0: one chunk
-  const size_t lightCount = scene_.lights().size();
-  const DmTree& tree = receiver.tree;
-  const HalfEdgeMesh& halfEdges = tree.mesh();
-  const Vec3 normal = receiver.frame.normal;
-
-  // The memo is only valid for the same face frame, lattice, chunks and tolerance.
+const ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver, MeshMemoCounters& counters) {
   ReceiverMeshMemo& memo = meshMemo_[receiver.face];
-  if (!sameFrame(memo.frame, receiver.frame) || memo.spacing != spacing || memo.eps != eps ||
-      memo.chunkSquares != chunkSquares) {
-    memo = ReceiverMeshMemo{};
-    memo.frame = receiver.frame;
-    memo.spacing = spacing;
-    memo.eps = eps;
-    memo.chunkSquares = chunkSquares;
-  }
-  const uint64_t stamp = HalfEdgeMesh::stampNow();
-
-  // Chunks whose cells changed; the memo's old pieces and the new ones both count.
-  // A cell's pieces leave or enter the chunks' cell lists (kept in cell order).
-  std::set<MeshChunkKey> dirty;
-  auto chunksOf = [&](uint32_t index) {
-    const CellMeshMemo& m = memo.cells[index];
-    return m.valid ? std::set<MeshChunkKey>(m.pieceChunks.begin(), m.pieceChunks.end()) : std::set<MeshChunkKey>{};
-  };
-  auto leaveChunks = [&](uint32_t index) {
-    for (const MeshChunkKey& key : chunksOf(index)) {
-      dirty.insert(key);
-      std::vector<uint32_t>& cells = memo.chunkCells[key];
-      const auto at = std::lower_bound(cells.begin(), cells.end(), index);
-      if (at != cells.end() && *at == index) cells.erase(at);
-    }
-  };
-  auto enterChunks = [&](uint32_t index) {
-    for (const MeshChunkKey& key : chunksOf(index)) {
-      dirty.insert(key);
-      std::vector<uint32_t>& cells = memo.chunkCells[key];
-      cells.insert(std::lower_bound(cells.begin(), cells.end(), index), index);
-    }
-  };
-  for (size_t i = halfEdges.cellSlots(); i < memo.cells.size(); ++i) leaveChunks(uint32_t(i));  // a smaller rebuilt tree
-  memo.cells.resize(halfEdges.cellSlots());
-
-  // A point is on a value discontinuity (D0) when an occluder of a cell around it
-  // has its plane through it (it touches the receiver there): it then takes its
-  // value per side, as the limit from each cell. "Through it" is the geometric
-  // predicate (length tolerance), not onPlane(): a point within onPlane() of the
-  // plane but off the contact line (e.g. on a line meeting it at a shallow angle
-  // near a footprint corner) lies inside one side, where the value is the point
-  // value (the face does not shadow it, SCENE_FORMAT.md), with no other side's
-  // copy to carry that value.
-  auto onContact = [&](const Vec3& p, const OccluderList& list) {
-    for (const OccluderEntry& entry : list) {
-      const Face* face = findFace(scene_, entry.face);
-      if (face && std::abs(face->plane.signedDistance(p)) <= eps) return true;
-    }
-    return false;
-  };
-  std::vector<int8_t> vertexContact(halfEdges.vertexSlots(), -1);  // -1: not asked yet
-  auto onContactAround = [&](VertexId v) {
-    int8_t& known = vertexContact[v.index];
-    if (known < 0) {
-      known = 0;
-      const Vec3 p = receiver.frame.to3D(tree.position(v));
-      for (CellId c : tree.cellsAround(v))
-        if (onContact(p, tree.occluders(c))) {
-          known = 1;
-          break;
-        }
-    }
-    return known == 1;
-  };
-  auto chunkOf = [&](const Polygon2& piece) {
-    if (!(chunkSide > 0)) return MeshChunkKey{};
-    Vec2 middle{0.0};
-    for (const Vec2& q : piece) middle += q;
-    middle /= double(piece.size());
-    return MeshChunkKey{int64_t(std::floor(middle.x / chunkSide)), int64_t(std::floor(middle.y / chunkSide))};
-  };
-
-  // Cells touched since the last call: lit again unless every input is equal.
-  CellMeshMemo inputs;  // this cell's inputs; swapped into the memo when lit afresh
-  std::vector<bool> dark(lightCount);
-  std::vector<VertexId> corners;
-  for (uint32_t index = 0; index < halfEdges.cellSlots(); ++index) {
-    const CellId c(index);
-    const HalfEdgeMesh::Cell& cell = halfEdges.cell(c);
-    CellMeshMemo& slot = memo.cells[index];
-    if (cell.touched <= memo.stamp && (slot.valid || !cell.alive)) {
-      if (cell.alive) ++meshCounters_.cellsReused;
-      continue;
-    }
-    if (!cell.alive) {
-      leaveChunks(index);
-      slot = CellMeshMemo{};
-      continue;
-    }
-    const OccluderList& list = cell.occluders;
-    std::fill(dark.begin(), dark.end(), false);
-    for (const OccluderEntry& entry : list)
-      if (entry.umbra) dark[entry.light] = true;
-    const bool anyDark = std::find(dark.begin(), dark.end(), true) != dark.end();
-
-    // The inputs this cell's triangles depend on.
-    inputs.clearInputs();
-    corners.clear();
-    for (HalfEdgeId h : halfEdges.loop(c)) corners.push_back(halfEdges.halfEdge(h).origin);
-    for (VertexId v : corners) inputs.outline.push_back(tree.position(v));
-    inputs.occluders = list;
-    for (const OccluderEntry& entry : list) {
-      const Face* face = findFace(scene_, entry.face);
-      inputs.occluderSizes.push_back(face ? uint32_t(face->polygon.size()) : 0);
-      if (face) inputs.occluderPoints.insert(inputs.occluderPoints.end(), face->polygon.begin(), face->polygon.end());
-    }
-    for (VertexId v : corners) {
-      const bool fromCell = onContactAround(v);
-      inputs.cornerFromCell.push_back(fromCell ? 1 : 0);
-      inputs.cornerValues.push_back(fromCell ? VertexIrradiance{}
-                                    : anyDark ? sumLights(scene_, receiver.perLight[v.index], &dark)
-                                              : receiver.values[v.index]);
-    }
-    if (slot.sameInputs(inputs)) {
-      ++meshCounters_.cellsReused;
-      continue;
-    }
-    ++meshCounters_.cellsLit;
-    leaveChunks(index);
-    const Polygon2& polygon = inputs.outline;
-    Vec3 centre{0.0};
-    for (const Vec2& q : polygon) centre += receiver.frame.to3D(q);
-    centre /= double(polygon.size());
-
-    // The value of a point of this cell's closure, as seen from this cell.
-    auto valueAt = [&](const Vec2& q) {
-      const Vec3 p = receiver.frame.to3D(q);
-      for (size_t i = 0; i < polygon.size(); ++i) {
-        if (polygon[i] != q) continue;
-        if (inputs.cornerFromCell[i]) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
-        return inputs.cornerValues[i];
-      }
-      // A lattice point: lit exactly from this cell's list (cases 2 and 3 keep it
-      // dark in a light's umbra).
-      if (onContact(p, list)) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
-      return illuminatePoint(scene_, p, normal, {&list});
-    };
-
-    for (const Polygon2& piece : splitByLattice(polygon, spacing, eps)) {
-      inputs.pieceChunks.push_back(chunkOf(piece));
-      inputs.pieceEmitted.push_back(uint32_t(inputs.emitted.size()));
-      inputs.pieceTriangles.push_back(uint32_t(inputs.triangles.size()));
-      std::vector<uint32_t> pieceCorners;
-      for (const Vec2& q : piece) {
-        pieceCorners.push_back(uint32_t(inputs.emitted.size()));
-        inputs.emitted.push_back({q, valueAt(q)});
-      }
-      const CellTriangulation triangulation = triangulateConvexCell(piece, eps);
-      if (triangulation.usesCentre) {
-        Vec2 middle{0.0};
-        for (const Vec2& q : piece) middle += q;
-        middle /= double(piece.size());
-        pieceCorners.push_back(uint32_t(inputs.emitted.size()));
-        inputs.emitted.push_back(
-            {middle, illuminatePoint(scene_, receiver.frame.to3D(middle), normal, {&list})});
-      }
-      for (const auto& t : triangulation.triangles)
-        inputs.triangles.push_back({pieceCorners[t[0]], pieceCorners[t[1]], pieceCorners[t[2]]});
-    }
-    inputs.pieceEmitted.push_back(uint32_t(inputs.emitted.size()));
-    inputs.pieceTriangles.push_back(uint32_t(inputs.triangles.size()));
-    inputs.valid = true;
-    std::swap(slot, inputs);  // the old slot's buffers are reused for the next cell
-    enterChunks(index);
-  }
-  memo.stamp = stamp;
-
-  // The changed chunks are assembled again from their cells' pieces, in cell order;
-  // the builder sees the same calls in the same order as for a fresh mesh.
-  if (!dirty.empty()) {
-    struct ChunkAssembly {
-      ReceiverMesh mesh;
-      ReceiverMeshBuilder builder;
-      ChunkAssembly(const Receiver& r, double eps) : builder(mesh, r.frame, eps) {
-        mesh.face = r.face;
-        mesh.normal = r.frame.normal;
-      }
-    };
-    std::vector<uint32_t> ids;
-    for (const MeshChunkKey& key : dirty) {
-      ChunkAssembly assembly(receiver, eps);
-      auto listed = memo.chunkCells.find(key);
-      if (listed != memo.chunkCells.end())
-        for (uint32_t index : listed->second) {
-          const CellMeshMemo& m = memo.cells[index];
-          for (size_t j = 0; j < m.pieceChunks.size(); ++j) {
-            if (m.pieceChunks[j] != key) continue;
-            ids.resize(m.emitted.size());
-            for (uint32_t e = m.pieceEmitted[j]; e < m.pieceEmitted[j + 1]; ++e)
-              ids[e] = assembly.builder.vertex(m.emitted[e].first, m.emitted[e].second);
-            for (uint32_t t = m.pieceTriangles[j]; t < m.pieceTriangles[j + 1]; ++t)
-              assembly.mesh.triangles.push_back({ids[m.triangles[t][0]], ids[m.triangles[t][1]], ids[m.triangles[t][2]]});
-          }
-        }
-      if (listed != memo.chunkCells.end() && listed->second.empty()) memo.chunkCells.erase(listed);
-      if (assembly.mesh.triangles.empty())
-        memo.chunks.erase(key);
-      else
-        memo.chunks[key] = std::make_shared<const ReceiverMesh>(std::move(assembly.mesh));
-    }
-  }
-  meshCounters_.chunksMeshed += dirty.size();
-  for (const auto& entry : memo.chunks) meshCounters_.chunksKept += dirty.count(entry.first) ? 0 : 1;
+  const MeshSource source{receiver.face, receiver.frame, receiver.tree, receiver.values, receiver.perLight};
+  memo.update(scene_, source, MeshGrid{meshSpacing(), meshChunkSquares_}, counters);
   return memo;
 }
 

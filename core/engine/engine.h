@@ -15,9 +15,11 @@
 #include "core/engine/dirty_set.h"
 #include "core/engine/build_stats.h"
 #include "core/engine/frame.h"
+#include "core/engine/parallel.h"
 #include "core/geom/plane_frame.h"
 #include "core/illum/vertex_illumination.h"
 #include "core/mesh/mesh.h"
+#include "core/mesh/mesh_memo.h"
 #include "core/order/face_order.h"
 #include "core/overlap/overlap_cube.h"
 #include "core/scene/scene.h"
@@ -42,6 +44,10 @@ struct EngineSettings {
   // fallback) and of a server session's meshing ("meshing"); it may throw to simulate a
   // failure there. Empty outside tests.
   std::function<void(const char* point)> failurePoint;
+  // Threads for the build (orders and cubes per light, casting per receiver, illumination per
+  // vertex) and for meshing (per receiver): 0 = every core, 1 = the calling thread only. The
+  // results are bit for bit the same for any count.
+  int threads = 0;
 };
 
 // Called with (step name, done, total) as a long build proceeds; may be empty.
@@ -118,17 +124,11 @@ class Engine {
   // repeat in each chunk); only chunks holding a changed cell are assembled again, in
   // cell order, so the result is bit for bit what a fresh mesh() gives. Counters of
   // the last mesh call:
-  struct MeshCacheCounters {
-    size_t cellsReused = 0, cellsLit = 0;     // live cells kept / lit afresh
-    size_t chunksMeshed = 0, chunksKept = 0;  // display chunks assembled again / kept
-  };
+  using MeshCacheCounters = MeshMemoCounters;
   const MeshCacheCounters& lastMeshCounters() const { return meshCounters_; }
   // A display chunk of a receiver's mesh: the lattice-aligned block (x, y) of its 2D
   // frame (side meshChunkSquares · meshSpacing()) and the chunk's own mesh.
-  struct MeshChunkKey {
-    int64_t x = 0, y = 0;
-    auto operator<=>(const MeshChunkKey&) const = default;
-  };
+  using MeshChunkKey = penumbra::MeshChunkKey;
   struct MeshChunk {
     MeshChunkKey key;
     std::shared_ptr<const ReceiverMesh> mesh;  // immutable; shared while the chunk is unchanged
@@ -169,14 +169,24 @@ class Engine {
   // Casts `occluder` on `receiver` from `light` and merges the shadow; records the
   // pair in castOn_/castBy_. Returns nullopt when nothing is shadowed.
   std::optional<InsertResult> castPair(size_t light, const Face& occluder, Receiver& receiver);
+  // The same without recording: touches `receiver` only, so receivers may cast in parallel.
+  std::optional<InsertResult> castInto(size_t light, const Face& occluder, Receiver& receiver) const;
+  // The build's steps (§2.1–2.4); each fills its part of stats_.
+  void buildOrdersAndCubes();
+  void castAllPairs(const EngineProgress& progress);
+  void illuminateAll(const EngineProgress& progress);
+  void countBuild();
   // Casts every candidate occluder of the overlap cubes on one (fresh) receiver.
   void castAllOn(Receiver& receiver);
   // Forgets every cast relation with `face` as receiver.
   void forgetReceived(FaceId face);
   // Sizes the per-slot arrays to the tree's vertex slots.
   static void growSlots(Receiver& receiver);
-  void illuminate(Receiver& receiver);
+  // Lights every vertex of a fresh tree (in parallel over vertices).
+  void illuminate(Receiver& receiver) const;
   void relightVertex(Receiver& receiver, VertexId v) const;
+  // relightVertex's value alone: writes v's slots only, touches no cell.
+  void computeVertex(Receiver& receiver, VertexId v) const;
   // Adds to `dirty` what one occluder's node deletion on `receiver` must have relit:
   // the vertices of its changed cells and its new vertices inside the removed
   // penumbra. Outside it the scene did not change for this receiver: a surviving
@@ -188,44 +198,18 @@ class Engine {
   // Whether every vertex of the face lies in each light's overlap cube.
   bool insideEditVolume(const Face& face) const;
 
-  // Per-cell memo of the meshing (see mesh()): what a cell emitted, and what that
-  // depends on. Buffers are reused from cell to cell.
-  struct CellMeshMemo {
-    bool valid = false;
-    Polygon2 outline;                     // the cell's loop positions
-    OccluderList occluders;               // its list
-    std::vector<Vec3> occluderPoints;     // the listed faces' world polygons, concatenated
-    std::vector<uint32_t> occluderSizes;  // their vertex counts (0: not a scene face)
-    // Per loop corner: 1 if lit from the cell (a contact vertex), else 0 and its value.
-    std::vector<uint8_t> cornerFromCell;
-    std::vector<VertexIrradiance> cornerValues;
-    // The output: builder calls (point, value) in order, and triangles into them,
-    // per piece (a lattice square's part of the cell): its chunk and where its
-    // points and triangles start (one more entry closes the last piece).
-    std::vector<std::pair<Vec2, VertexIrradiance>> emitted;
-    std::vector<std::array<uint32_t, 3>> triangles;
-    std::vector<MeshChunkKey> pieceChunks;
-    std::vector<uint32_t> pieceEmitted, pieceTriangles;
-    void clearInputs();
-    bool sameInputs(const CellMeshMemo& inputs) const;  // valid, and every input equal
-  };
-  struct ReceiverMeshMemo {
-    PlaneFrame frame;
-    double spacing = 0, eps = 0;
-    int chunkSquares = 0;
-    uint64_t stamp = 0;  // HalfEdgeMesh::stampNow() at the last call: cells touched later changed
-    std::vector<CellMeshMemo> cells;  // by CellId index
-    std::map<MeshChunkKey, std::shared_ptr<const ReceiverMesh>> chunks;  // the non-empty chunks' meshes
-    std::map<MeshChunkKey, std::vector<uint32_t>> chunkCells;  // cells with a piece in each chunk, ascending
-  };
   void pruneMeshMemo();  // drops the memos of faces that are no longer receivers
   // Brings a receiver's memo (cells and chunks) up to date with its tree.
-  const ReceiverMeshMemo& updateMeshMemo(const Receiver& receiver);
-  ReceiverMesh meshReceiver(const Receiver& receiver);
+  const ReceiverMeshMemo& updateMeshMemo(const Receiver& receiver, MeshMemoCounters& counters);
+  // A receiver's up-to-date memo as one mesh: its chunks concatenated.
+  ReceiverMesh memoMesh(const Receiver& receiver) const;
+  // The listed receivers' memos brought up to date, in parallel; counters summed in order.
+  void updateMeshMemos(const std::vector<size_t>& indices);
   std::vector<size_t> receiverIndices(const std::vector<FaceId>& only) const;
 
   Scene scene_;
   EngineSettings settings_;
+  Parallel parallel_;
   int meshChunkSquares_ = 0;  // fixed at construction: chunks stay comparable across edits
   uint64_t version_ = 0;
   std::vector<std::unique_ptr<FaceOrder>> orders_;   // per light

@@ -1,0 +1,44 @@
+// Loops over independent items on up to N threads (TBB): each item writes only its own outputs,
+// so results are the same on any number of threads. Shared by the engine's build steps;
+// forEach may be called from inside another forEach of the same object (nested loops share it).
+#pragma once
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <cstddef>
+#include <memory>
+
+namespace penumbra {
+
+class Parallel {
+ public:
+  // threads <= 0: every core TBB sees; 1: plain loops on the calling thread.
+  explicit Parallel(int threads)
+      : threads_(threads > 0 ? threads : tbb::info::default_concurrency()),
+        arena_(threads_ > 1 ? std::make_unique<tbb::task_arena>(threads_) : nullptr) {}
+
+  int threads() const { return threads_; }
+
+  // body(i) for every i in [0, n), in any order and concurrently; items are handed out `grain`
+  // at a time. Exceptions propagate to the caller (the first one thrown).
+  template <class Body>
+  void forEach(size_t n, const Body& body, size_t grain = 1) const {
+    if (!arena_ || n <= 1) {
+      for (size_t i = 0; i < n; ++i) body(i);
+      return;
+    }
+    arena_->execute([&] {
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, n, grain), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t i = range.begin(); i != range.end(); ++i) body(i);
+      });
+    });
+  }
+
+ private:
+  int threads_;
+  std::unique_ptr<tbb::task_arena> arena_;  // pointer: the engine stays movable
+};
+
+}  // namespace penumbra

@@ -1,0 +1,16 @@
+// Summing a point's per-light values into its irradiance and class, as the reference does.
+// Free function on a const Scene; thread-safe.
+#pragma once
+
+#include <vector>
+
+#include "core/illum/vertex_illumination.h"
+
+namespace penumbra {
+
+// Radiance-weighted factors, classes combined over the lights that reach the point (Umbra if
+// none does). dark[l]: light l counts as in umbra (a cell in its umbra), adding nothing.
+VertexIrradiance sumLights(const Scene& scene, const std::vector<VertexLight>& lights,
+                           const std::vector<bool>* dark = nullptr);
+
+}  // namespace penumbra

@@ -1,0 +1,290 @@
+#include "core/mesh/mesh_memo.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "core/illum/face_lookup.h"
+#include "core/illum/light_sum.h"
+#include "core/mesh/cell_triangulation.h"
+#include "core/mesh/lattice_split.h"
+#include "core/mesh/receiver_mesh_builder.h"
+
+namespace penumbra {
+
+namespace {
+
+bool sameValues(const std::vector<VertexIrradiance>& a, const std::vector<VertexIrradiance>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (!identicalValue(a[i], b[i])) return false;
+  return true;
+}
+
+bool sameFrame(const PlaneFrame& a, const PlaneFrame& b) {
+  return a.origin == b.origin && a.u == b.u && a.v == b.v && a.normal == b.normal;
+}
+
+Vec2 centroid(const Polygon2& polygon) {
+  Vec2 middle{0.0};
+  for (const Vec2& q : polygon) middle += q;
+  return middle / double(polygon.size());
+}
+
+}  // namespace
+
+void ReceiverMeshMemo::CellMemo::clearInputs() {
+  outline.clear();
+  occluders.clear();
+  occluderPoints.clear();
+  occluderSizes.clear();
+  cornerFromCell.clear();
+  cornerValues.clear();
+  emitted.clear();
+  triangles.clear();
+  pieceChunks.clear();
+  pieceEmitted.clear();
+  pieceTriangles.clear();
+}
+
+bool ReceiverMeshMemo::CellMemo::sameInputs(const CellMemo& o) const {
+  return valid && outline == o.outline && occluders == o.occluders && occluderSizes == o.occluderSizes &&
+         occluderPoints == o.occluderPoints && cornerFromCell == o.cornerFromCell &&
+         sameValues(cornerValues, o.cornerValues);
+}
+
+// One update() call: the cells touched since the last one, then the chunks they changed.
+class MeshMemoUpdate {
+ public:
+  using CellMemo = ReceiverMeshMemo::CellMemo;
+
+  MeshMemoUpdate(ReceiverMeshMemo& memo, const Scene& scene, const MeshSource& source, MeshMemoCounters& counters)
+      : memo_(memo), scene_(scene), source_(source), counters_(counters), tree_(source.tree),
+        halfEdges_(source.tree.mesh()), eps_(scene.tolerance().length()),
+        chunkSide_(memo.grid_.spacing * memo.grid_.chunkSquares),
+        dark_(scene.lights().size()), vertexContact_(halfEdges_.vertexSlots(), -1) {}
+
+  void run() {
+    const uint64_t stamp = HalfEdgeMesh::stampNow();
+    for (size_t i = halfEdges_.cellSlots(); i < memo_.cells_.size(); ++i) leaveChunks(uint32_t(i));  // a smaller rebuilt tree
+    memo_.cells_.resize(halfEdges_.cellSlots());
+    for (uint32_t index = 0; index < halfEdges_.cellSlots(); ++index) updateCell(index);
+    memo_.stamp_ = stamp;
+    assembleChunks();
+    counters_.chunksMeshed += dirty_.size();
+    for (const auto& entry : memo_.chunks_) counters_.chunksKept += dirty_.count(entry.first) ? 0 : 1;
+  }
+
+ private:
+  // Chunks whose cells changed; the memo's old pieces and the new ones both count.
+  // A cell's pieces leave or enter the chunks' cell lists (kept in cell order).
+  std::set<MeshChunkKey> chunksOf(uint32_t index) const {
+    const CellMemo& m = memo_.cells_[index];
+    return m.valid ? std::set<MeshChunkKey>(m.pieceChunks.begin(), m.pieceChunks.end()) : std::set<MeshChunkKey>{};
+  }
+  void leaveChunks(uint32_t index) {
+    for (const MeshChunkKey& key : chunksOf(index)) {
+      dirty_.insert(key);
+      std::vector<uint32_t>& cells = memo_.chunkCells_[key];
+      const auto at = std::lower_bound(cells.begin(), cells.end(), index);
+      if (at != cells.end() && *at == index) cells.erase(at);
+    }
+  }
+  void enterChunks(uint32_t index) {
+    for (const MeshChunkKey& key : chunksOf(index)) {
+      dirty_.insert(key);
+      std::vector<uint32_t>& cells = memo_.chunkCells_[key];
+      cells.insert(std::lower_bound(cells.begin(), cells.end(), index), index);
+    }
+  }
+
+  // A point is on a value discontinuity (D0) when an occluder of a cell around it
+  // has its plane through it (it touches the receiver there): it then takes its
+  // value per side, as the limit from each cell. "Through it" is the geometric
+  // predicate (length tolerance), not onPlane(): a point within onPlane() of the
+  // plane but off the contact line (e.g. on a line meeting it at a shallow angle
+  // near a footprint corner) lies inside one side, where the value is the point
+  // value (the face does not shadow it, SCENE_FORMAT.md), with no other side's
+  // copy to carry that value.
+  bool onContact(const Vec3& p, const OccluderList& list) const {
+    for (const OccluderEntry& entry : list) {
+      const Face* face = findFace(scene_, entry.face);
+      if (face && std::abs(face->plane.signedDistance(p)) <= eps_) return true;
+    }
+    return false;
+  }
+  bool onContactAround(VertexId v) {
+    int8_t& known = vertexContact_[v.index];  // -1: not asked yet
+    if (known < 0) {
+      known = 0;
+      const Vec3 p = source_.frame.to3D(tree_.position(v));
+      for (CellId c : tree_.cellsAround(v))
+        if (onContact(p, tree_.occluders(c))) {
+          known = 1;
+          break;
+        }
+    }
+    return known == 1;
+  }
+  MeshChunkKey chunkOf(const Polygon2& piece) const {
+    if (!(chunkSide_ > 0)) return MeshChunkKey{};
+    const Vec2 middle = centroid(piece);
+    return MeshChunkKey{int64_t(std::floor(middle.x / chunkSide_)), int64_t(std::floor(middle.y / chunkSide_))};
+  }
+
+  // A cell touched since the last call is lit again unless every input is equal.
+  void updateCell(uint32_t index) {
+    const CellId c(index);
+    const HalfEdgeMesh::Cell& cell = halfEdges_.cell(c);
+    CellMemo& slot = memo_.cells_[index];
+    if (cell.touched <= memo_.stamp_ && (slot.valid || !cell.alive)) {
+      if (cell.alive) ++counters_.cellsReused;
+      return;
+    }
+    if (!cell.alive) {
+      leaveChunks(index);
+      slot = CellMemo{};
+      return;
+    }
+    gatherInputs(c);
+    if (slot.sameInputs(inputs_)) {
+      ++counters_.cellsReused;
+      return;
+    }
+    ++counters_.cellsLit;
+    leaveChunks(index);
+    emitPieces(cell.occluders);
+    inputs_.valid = true;
+    std::swap(slot, inputs_);  // the old slot's buffers are reused for the next cell
+    enterChunks(index);
+  }
+
+  // The inputs this cell's triangles depend on, into inputs_ (dark_ and anyDark_ too).
+  void gatherInputs(CellId c) {
+    const OccluderList& list = halfEdges_.cell(c).occluders;
+    std::fill(dark_.begin(), dark_.end(), false);
+    for (const OccluderEntry& entry : list)
+      if (entry.umbra) dark_[entry.light] = true;
+    const bool anyDark = std::find(dark_.begin(), dark_.end(), true) != dark_.end();
+    inputs_.clearInputs();
+    corners_.clear();
+    for (HalfEdgeId h : halfEdges_.loop(c)) corners_.push_back(halfEdges_.halfEdge(h).origin);
+    for (VertexId v : corners_) inputs_.outline.push_back(tree_.position(v));
+    inputs_.occluders = list;
+    for (const OccluderEntry& entry : list) {
+      const Face* face = findFace(scene_, entry.face);
+      inputs_.occluderSizes.push_back(face ? uint32_t(face->polygon.size()) : 0);
+      if (face) inputs_.occluderPoints.insert(inputs_.occluderPoints.end(), face->polygon.begin(), face->polygon.end());
+    }
+    for (VertexId v : corners_) {
+      const bool fromCell = onContactAround(v);
+      inputs_.cornerFromCell.push_back(fromCell ? 1 : 0);
+      inputs_.cornerValues.push_back(fromCell ? VertexIrradiance{}
+                                     : anyDark ? sumLights(scene_, source_.perLight[v.index], &dark_)
+                                               : source_.values[v.index]);
+    }
+  }
+
+  // The value of a point of the cell's closure, as seen from the cell (centre: its centroid).
+  VertexIrradiance valueAt(const Vec2& q, const OccluderList& list, const Vec3& centre) const {
+    const Polygon2& polygon = inputs_.outline;
+    const Vec3 normal = source_.frame.normal;
+    const Vec3 p = source_.frame.to3D(q);
+    for (size_t i = 0; i < polygon.size(); ++i) {
+      if (polygon[i] != q) continue;
+      if (inputs_.cornerFromCell[i]) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
+      return inputs_.cornerValues[i];
+    }
+    // A lattice point: lit exactly from this cell's list (cases 2 and 3 keep it
+    // dark in a light's umbra).
+    if (onContact(p, list)) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
+    return illuminatePoint(scene_, p, normal, {&list});
+  }
+
+  // The cell's pieces (lattice squares' parts), triangulated, into inputs_'s output.
+  void emitPieces(const OccluderList& list) {
+    const Polygon2& polygon = inputs_.outline;
+    Vec3 centre{0.0};
+    for (const Vec2& q : polygon) centre += source_.frame.to3D(q);
+    centre /= double(polygon.size());
+    for (const Polygon2& piece : splitByLattice(polygon, memo_.grid_.spacing, eps_)) {
+      inputs_.pieceChunks.push_back(chunkOf(piece));
+      inputs_.pieceEmitted.push_back(uint32_t(inputs_.emitted.size()));
+      inputs_.pieceTriangles.push_back(uint32_t(inputs_.triangles.size()));
+      std::vector<uint32_t> pieceCorners;
+      for (const Vec2& q : piece) {
+        pieceCorners.push_back(uint32_t(inputs_.emitted.size()));
+        inputs_.emitted.push_back({q, valueAt(q, list, centre)});
+      }
+      const CellTriangulation triangulation = triangulateConvexCell(piece, eps_);
+      if (triangulation.usesCentre) {
+        const Vec2 middle = centroid(piece);
+        pieceCorners.push_back(uint32_t(inputs_.emitted.size()));
+        inputs_.emitted.push_back(
+            {middle, illuminatePoint(scene_, source_.frame.to3D(middle), source_.frame.normal, {&list})});
+      }
+      for (const auto& t : triangulation.triangles)
+        inputs_.triangles.push_back({pieceCorners[t[0]], pieceCorners[t[1]], pieceCorners[t[2]]});
+    }
+    inputs_.pieceEmitted.push_back(uint32_t(inputs_.emitted.size()));
+    inputs_.pieceTriangles.push_back(uint32_t(inputs_.triangles.size()));
+  }
+
+  // The changed chunks are assembled again from their cells' pieces, in cell order;
+  // the builder sees the same calls in the same order as for a fresh mesh.
+  void assembleChunks() {
+    std::vector<uint32_t> ids;
+    for (const MeshChunkKey& key : dirty_) {
+      ReceiverMesh mesh;
+      mesh.face = source_.face;
+      mesh.normal = source_.frame.normal;
+      ReceiverMeshBuilder builder(mesh, source_.frame, eps_);
+      auto listed = memo_.chunkCells_.find(key);
+      if (listed != memo_.chunkCells_.end())
+        for (uint32_t index : listed->second) {
+          const CellMemo& m = memo_.cells_[index];
+          for (size_t j = 0; j < m.pieceChunks.size(); ++j) {
+            if (m.pieceChunks[j] != key) continue;
+            ids.resize(m.emitted.size());
+            for (uint32_t e = m.pieceEmitted[j]; e < m.pieceEmitted[j + 1]; ++e)
+              ids[e] = builder.vertex(m.emitted[e].first, m.emitted[e].second);
+            for (uint32_t t = m.pieceTriangles[j]; t < m.pieceTriangles[j + 1]; ++t)
+              mesh.triangles.push_back({ids[m.triangles[t][0]], ids[m.triangles[t][1]], ids[m.triangles[t][2]]});
+          }
+        }
+      if (listed != memo_.chunkCells_.end() && listed->second.empty()) memo_.chunkCells_.erase(listed);
+      if (mesh.triangles.empty())
+        memo_.chunks_.erase(key);
+      else
+        memo_.chunks_[key] = std::make_shared<const ReceiverMesh>(std::move(mesh));
+    }
+  }
+
+  ReceiverMeshMemo& memo_;
+  const Scene& scene_;
+  const MeshSource& source_;
+  MeshMemoCounters& counters_;
+  const DmTree& tree_;
+  const HalfEdgeMesh& halfEdges_;
+  const double eps_, chunkSide_;  // chunkSide_ 0: one chunk
+  std::set<MeshChunkKey> dirty_;
+  CellMemo inputs_;  // the current cell's inputs; swapped into the memo when lit afresh
+  std::vector<bool> dark_;
+  std::vector<VertexId> corners_;
+  std::vector<int8_t> vertexContact_;
+};
+
+void ReceiverMeshMemo::update(const Scene& scene, const MeshSource& source, MeshGrid grid, MeshMemoCounters& counters) {
+  // The memo is only valid for the same face frame, lattice, chunks and tolerance.
+  const double eps = scene.tolerance().length();
+  if (!sameFrame(frame_, source.frame) || grid_.spacing != grid.spacing || eps_ != eps ||
+      grid_.chunkSquares != grid.chunkSquares) {
+    *this = ReceiverMeshMemo{};
+    frame_ = source.frame;
+    grid_ = grid;
+    eps_ = eps;
+  }
+  MeshMemoUpdate(*this, scene, source, counters).run();
+}
+
+}  // namespace penumbra
