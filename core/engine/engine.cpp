@@ -85,7 +85,8 @@ std::optional<SingleShadow> lightPlaneShadow(const Scene& scene, size_t light, c
 }  // namespace
 
 Engine::Engine(Scene scene, EngineSettings settings, const EngineProgress& progress)
-    : scene_(std::move(scene)), settings_(settings) {
+    : scene_(std::move(scene)), settings_(settings), budget_(settings.limits) {
+  budget_.checkFaces(scene_.faces().size());
   if (meshSpacing() > 0 && settings_.meshChunkSquares > 0) {
     meshChunkSquares_ = settings_.meshChunkSquares;
   } else if (meshSpacing() > 0 && settings_.meshChunkSquares == 0) {
@@ -118,7 +119,7 @@ void Engine::build(const EngineProgress& progress) {
   // Front-to-back orders (§2.1).
   auto start = Clock::now();
   for (size_t l = 0; l < lightCount; ++l) {
-    orders_.push_back(std::make_unique<FaceOrder>(scene_, l));
+    orders_.push_back(std::make_unique<FaceOrder>(scene_, l, settings_.limits.treeNodes));
     stats_.orderFragments += orders_.back()->counters().fragments;
   }
   stats_.seconds.ordering = secondsSince(start);
@@ -142,6 +143,7 @@ void Engine::build(const EngineProgress& progress) {
     if (!scene_.receivesLight(face)) continue;
     receiverIndex_[face.id] = receivers_.size();
     receivers_.push_back(makeReceiver(face));
+    budget_.change({}, usageOf(receivers_.back().tree, scene_.lights().size()));
   }
   stats_.receivers = receivers_.size();
 
@@ -204,6 +206,7 @@ void Engine::build(const EngineProgress& progress) {
 Engine::Receiver Engine::makeReceiver(const Face& face) const {
   const PlaneFrame frame = PlaneFrame::onPlane(face.plane, face.polygon[0]);
   Receiver receiver{face.id, frame, DmTree(polygonInFrame(face.polygon, frame), scene_.tolerance()), {}, {}, {}};
+  receiver.tree.setNodeLimit(settings_.limits.treeNodes);
   for (size_t l = 0; l < scene_.lights().size(); ++l)
     if (const auto horizon = lightPlaneShadow(scene_, l, face, frame)) receiver.tree.insert(*horizon);
   return receiver;
@@ -214,7 +217,9 @@ std::optional<InsertResult> Engine::castPair(size_t light, const Face& occluder,
   if (!face) throw std::logic_error("Engine: receiver without a scene face");
   const auto shadow = castShadow(scene_, light, occluder, *face, receiver.frame);
   if (!shadow) return std::nullopt;
+  const TreeUsage before = usageOf(receiver.tree, scene_.lights().size());
   InsertResult inserted = receiver.tree.insert(*shadow);
+  budget_.change(before, usageOf(receiver.tree, scene_.lights().size()));
   castOn_[occluder.id].insert(receiver.face);
   castBy_[receiver.face].insert(occluder.id);
   return inserted;
@@ -292,6 +297,11 @@ void Engine::compactReceivers(const std::vector<bool>& dropped) {
   receivers_ = std::move(kept);
   receiverIndex_.clear();
   for (size_t i = 0; i < receivers_.size(); ++i) receiverIndex_[receivers_[i].face] = i;
+}
+
+void Engine::recountBudget() {
+  budget_.clear();
+  for (const Receiver& receiver : receivers_) budget_.change({}, usageOf(receiver.tree, scene_.lights().size()));
 }
 
 bool Engine::insideEditVolume(const Face& face) const {

@@ -15,6 +15,7 @@
 #include "core/engine/dirty_set.h"
 #include "core/engine/build_stats.h"
 #include "core/engine/frame.h"
+#include "core/engine/resource_budget.h"
 #include "core/geom/plane_frame.h"
 #include "core/illum/vertex_illumination.h"
 #include "core/mesh/mesh.h"
@@ -37,6 +38,9 @@ struct EngineSettings {
   // construction from the scene's faces per lattice square (4, 2 or 1, so a block
   // holds some hundreds of cells), < 0: one block.
   int meshChunkSquares = 0;
+  // Per-scene resource limits, checked while building and applying frames: passing
+  // one throws ResourceLimitError naming it (README "Resource limits").
+  ResourceLimits limits;
 };
 
 // Called with (step name, done, total) as a long build proceeds; may be empty.
@@ -44,6 +48,7 @@ using EngineProgress = std::function<void(const char* step, size_t done, size_t 
 
 class Engine {
  public:
+  // Throws ResourceLimitError as soon as the build passes one of settings.limits.
   explicit Engine(Scene scene, EngineSettings settings = {}, const EngineProgress& progress = {});
 
   const Scene& scene() const { return scene_; }
@@ -62,14 +67,24 @@ class Engine {
   // the overlap cubes' edit volume): on any invalid one, throws EditError and changes
   // nothing. A receiver whose node deletion fails is rebuilt alone (counted in
   // FrameResult::treeRebuilds); an unexpected failure mid-frame rebuilds the engine.
+  // Resources: a frame that would pass limits.faces throws ResourceLimitError from
+  // checkFrame (nothing changed); passing another limit mid-frame throws it at once
+  // (as does std::bad_alloc: neither is retried by a rebuild), and the engine is then
+  // unusable: usable() is false and apply() throws std::logic_error; rebuild it from
+  // the previous scene.
   FrameResult apply(const Frame& frame);
+  // False after apply() failed part-way (see apply()).
+  bool usable() const { return usable_; }
+  // The DM-trees' totals as counted against settings.limits (exact after a build or frame).
+  TreeUsage resourceUsage() const { return budget_.totals(); }
   // The DM vertices the last apply() relit, per receiver (sorted ids).
   const std::map<FaceId, std::vector<VertexId>>& lastRelit() const { return lastRelit_; }
 
   // Checks every edit of a frame in order against the scene as the earlier edits leave
   // it, without copying the scene: ids, transforms and added objects (faces as
   // Scene::addObject makes them), and that moved and added objects stay in the overlap
-  // cubes' edit volume. Throws EditError naming the edit and key path.
+  // cubes' edit volume. Throws EditError naming the edit and key path, or
+  // ResourceLimitError if the scene would pass limits.faces.
   void checkFrame(const Frame& frame) const;
   // The scene after a frame, without changing anything (throws EditError).
   Scene sceneAfter(const Frame& frame) const;
@@ -169,6 +184,8 @@ class Engine {
   void compactReceivers(const std::vector<bool>& dropped);
   // Whether every vertex of the face lies in each light's overlap cube.
   bool insideEditVolume(const Face& face) const;
+  // Counts every receiver's tree against the limits afresh (drops drift).
+  void recountBudget();
 
   // Per-cell memo of the meshing (see mesh()): what a cell emitted, and what that
   // depends on. Buffers are reused from cell to cell.
@@ -208,6 +225,8 @@ class Engine {
 
   Scene scene_;
   EngineSettings settings_;
+  ResourceBudget budget_;
+  bool usable_ = true;
   int meshChunkSquares_ = 0;  // fixed at construction: chunks stay comparable across edits
   uint64_t version_ = 0;
   std::vector<std::unique_ptr<FaceOrder>> orders_;   // per light

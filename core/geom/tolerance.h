@@ -15,6 +15,10 @@ struct Tolerance {
   double length() const { return 1e-9 * sceneSize; }
   // Areas below this are treated as empty.
   double area() const { return 1e-18 * sceneSize * sceneSize; }
+  // The thinnest face a scene may hold (polygon.h width()): a thinner one lies within
+  // onPlane() of a line, so which side of it a point is on is not decided reliably,
+  // and 2D predicates at length() would merge its long sides.
+  double minFaceWidth() const { return onPlane(); }
 
   static Tolerance forSize(double size) { return Tolerance{size > 0 ? size : 1.0}; }
 };
