@@ -1,6 +1,7 @@
 #include "core/scene/scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -71,9 +72,12 @@ std::vector<Face> Scene::facesOf(const Object& object, uint32_t handle) const {
     // Snapped onto its plane: the format allows 1e-6 of the face's size off it, far
     // more than the length tolerance the ordering and clipping decide sides with.
     const Plane plane = *planeOf(polygons[f]);
-    Polygon3 snapped = projectedOnto(polygons[f], plane);
-    const double faceArea = area(snapped);
-    out.push_back(Face{FaceId{handle, f}, std::move(snapped), plane, faceArea});
+    const bool off = std::any_of(polygons[f].begin(), polygons[f].end(), [&](const Vec3& p) {
+      return std::abs(plane.signedDistance(p)) > tolerance_.snap();
+    });
+    Polygon3 polygon = off ? projectedOnto(polygons[f], plane) : polygons[f];
+    const double faceArea = area(polygon);
+    out.push_back(Face{FaceId{handle, f}, std::move(polygon), plane, faceArea});
   }
   return out;
 }

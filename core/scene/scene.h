@@ -83,9 +83,9 @@ class FaceError : public std::invalid_argument {
 
 struct Face {
   FaceId id;
-  // World space, CCW seen from the front, on `plane`: the authored face within the
-  // format's planarity tolerance, projected onto its Newell plane, so every later
-  // predicate sees a face that lies on its own plane.
+  // World space, CCW seen from the front, on `plane` within Tolerance::snap(): a face
+  // off it by more (the format allows 1e-6 of the face's size) is projected onto its
+  // Newell plane, so every later predicate sees a face lying on its own plane.
   Polygon3 polygon;
   Plane plane;       // front normal
   double area = 0;
