@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/geom/polygon.h"
+#include "core/geom/tolerance.h"
 #include "interchange/vertex_weld.h"
 #include "protocol/scene_json.h"
 
@@ -62,7 +63,9 @@ struct RepairedGroup {
   std::vector<IndexPolygon> faces;
 };
 
-RepairedGroup repairGroup(const ImportedGroup& group, double scale, double weldEps, ImportReport& report) {
+// minWidth: the scene's Tolerance::minFaceWidth() (thinner faces are refused by Scene).
+RepairedGroup repairGroup(const ImportedGroup& group, double scale, double weldEps, double minWidth,
+                          ImportReport& report) {
   RepairedGroup out;
   out.source = &group;
   std::vector<Vec3> scaled;
@@ -95,6 +98,13 @@ RepairedGroup repairGroup(const ImportedGroup& group, double scale, double weldE
     if (!welded.insert(weld.remap[size_t(i)]).second) ++joined;
   report.count("duplicate_vertices_merged", joined);
   if (group.joinTriangles) report.count("coplanar_triangles_joined", joinCoplanarConvex(out.positions, pieces));
+  const size_t before = pieces.size();
+  std::erase_if(pieces, [&](const IndexPolygon& piece) {
+    Polygon3 points;
+    for (int i : piece) points.push_back(out.positions[size_t(i)]);
+    return width(points) < minWidth;
+  });
+  report.count("thin_polygons_dropped", before - pieces.size());
 
   // Same face twice: dropped. A face and its reverse: a two-sided surface, both kept.
   std::set<IndexPolygon> seen;
@@ -140,7 +150,9 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
     // Undefined materials count once per group that uses them.
     if (group.material >= 0 && !geometry.materials[size_t(group.material)].defined)
       report.count("groups_with_undefined_material");
-    groups.push_back(repairGroup(group, options.scale, weldEps, report));
+    // Dropping faces only shrinks the scene, and its minimum width with it.
+    groups.push_back(repairGroup(group, options.scale, weldEps,
+                                 Tolerance::forSize(bounds.diagonal()).minFaceWidth(), report));
   }
 
   auto emissionOf = [&](const RepairedGroup& g) {

@@ -241,6 +241,11 @@ Scene sceneFromJson(const Json& root) {
     return Scene(std::move(lights), std::move(materials), std::move(objects), std::move(camera));
   } catch (const ValidationError&) {
     throw;
+  } catch (const FaceError& e) {
+    // A face the scene's tolerance cannot hold (too thin for the scene's size): only
+    // known once every object has set the scene's size.
+    throw ValidationError(indexPath(keyPath(indexPath("objects", e.objectIndex()), "faces"), e.face()),
+                          e.problem());
   } catch (const std::invalid_argument& e) {
     // Validation above should make this unreachable; keep the error a refusal.
     throw ValidationError("", e.what());

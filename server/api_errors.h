@@ -23,6 +23,7 @@ inline constexpr const char* kTooManyStreams = "too_many_streams";    // 429
 inline constexpr const char* kInternal = "internal_error";            // 500
 inline constexpr const char* kFrameNotApplied = "frame_not_applied";  // 500
 inline constexpr const char* kOutOfMemory = "out_of_memory";          // 507
+inline constexpr const char* kResourceLimit = "resource_limit";  // 507, names the limit
 inline constexpr const char* kBusy = "busy";                          // 503, with Retry-After
 inline constexpr const char* kNotImplemented = "not_implemented";     // 501
 inline constexpr const char* kUnauthorized = "unauthorized";          // 401

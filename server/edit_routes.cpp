@@ -9,6 +9,7 @@
 #include <optional>
 #include <regex>
 
+#include "core/geom/resource_limit.h"
 #include "protocol/edits_json.h"
 #include "protocol/frame_result_json.h"
 #include "server/request_io.h"
@@ -123,7 +124,16 @@ void HttpServer::registerEditRoutes() {
         }
         // Failed inside the engine or while meshing: the session restored the version
         // before the frame (SceneSession::apply), so say plainly that nothing was applied.
-        catch (const ApiError& error) {  // the journal could not record it (503)
+        catch (const ResourceLimitError& error) {  // a per-scene budget (EngineSettings::limits)
+          sendError(res,
+                    ApiError(507, error_code::kResourceLimit, "limits." + error.limit(),
+                             std::string(error.what()) + ": the frame was not applied"),
+                    {{"applied", false},
+                     {"version", session->snapshot()->version},
+                     {"limit", error.limit()},
+                     {"maximum", error.maximum()}});
+          return;
+        } catch (const ApiError& error) {  // the journal could not record it (503)
           sendError(res, error, {{"applied", false}, {"version", session->snapshot()->version}});
           return;
         } catch (const std::bad_alloc&) {

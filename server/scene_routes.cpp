@@ -6,6 +6,7 @@
 
 #include <chrono>
 
+#include "core/geom/resource_limit.h"
 #include "interchange/scene_import.h"
 #include "protocol/frame_result_json.h"
 #include "protocol/scene_json.h"
@@ -95,6 +96,9 @@ void HttpServer::registerSceneRoutes() {
                 id = addScene(std::move(scene), name, name);
               } catch (const std::invalid_argument& error) {  // geometry the engine refuses
                 throw ApiError(422, error_code::kInvalidScene, "", error.what());
+              } catch (const ResourceLimitError& error) {  // nothing was created
+                throw ApiError(507, error_code::kResourceLimit, "limits." + error.limit(),
+                               error.what());
               }
               const auto snapshot = findScene(id)->snapshot();
               res.set_header("Location", "/api/scenes/" + id);

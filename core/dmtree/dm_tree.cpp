@@ -1,5 +1,7 @@
 #include "core/dmtree/dm_tree.h"
 
+#include "core/geom/resource_limit.h"
+
 #include <algorithm>
 #include <set>
 #include <stdexcept>
@@ -23,6 +25,7 @@ void DmTree::record(const OccluderKey& key, const SingleShadow& shadow, const Si
 }
 
 NodeId DmTree::addNode(NodeId parent, CellId cell) {
+  if (nodes_.size() >= nodeLimit_) throw ResourceLimitError("tree_nodes", nodes_.size() + 1, nodeLimit_);
   DmNode n;
   n.parent = parent;
   n.cell = cell;

@@ -106,6 +106,10 @@ class DmTree {
   // Throws std::logic_error on any broken invariant (mesh, BSP, occluder lists).
   void validate() const;
 
+  // A cap on node slots: adding past it throws ResourceLimitError("tree_nodes"), so
+  // one insertion or removal cannot run away (the tree is then unusable: drop it).
+  void setNodeLimit(size_t maxNodeSlots) { nodeLimit_ = maxNodeSlots; }
+
  private:
   using OccluderKey = std::pair<uint32_t, FaceId>;
   struct Generator {
@@ -156,6 +160,7 @@ class DmTree {
   };
 
   Tolerance tolerance_;
+  size_t nodeLimit_ = size_t(-1);
   double receiverArea_ = 0;
   Polygon2 receiver_;
   HalfEdgeMesh mesh_;

@@ -87,10 +87,21 @@ void Engine::checkFrame(const Frame& frame) const {
       }
     } catch (const EditError&) {
       throw;
+    } catch (const FaceError& error) {
+      // An added object's face has a key path; a moved one is refused for its transform.
+      if (edit.op == Edit::Op::Add)
+        throw EditError(i, "object.faces[" + std::to_string(error.face()) + "]", error.problem());
+      throw EditError(i, "transform", error.what());
     } catch (const std::invalid_argument& error) {
       throw EditError(i, edit.op == Edit::Op::Add ? "object" : "transform", error.what());
     }
   }
+  size_t faces = scene_.faces().size();
+  for (const auto& [id, object] : edited) {
+    if (const auto index = scene_.findObject(id)) faces -= scene_.objects()[*index].faces.size();
+    if (object) faces += object->faces.size();
+  }
+  budget_.checkFaces(faces);
 }
 
 namespace {
@@ -190,7 +201,10 @@ void Engine::relightAfterRemoval(FaceId target, Receiver& receiver, const Remove
 }
 
 FrameResult Engine::apply(const Frame& frame) {
+  if (!usable_) throw std::logic_error("Engine: unusable after a failed frame; rebuild it from the previous scene");
   checkFrame(frame);  // throws before anything changes
+  usable_ = false;    // until the frame completes
+  const size_t lights = scene_.lights().size();
 
   // The frame's net effect per object handle (a move is remove + add, §3), from the
   // objects its edits name: the scene is edited in place, nothing here scans or copies
@@ -264,7 +278,9 @@ FrameResult Engine::apply(const Frame& frame) {
         // surrounding lists changed is on a live one.
         try {
           for (size_t l = 0; l < lightCount; ++l) {
+            const TreeUsage before = usageOf(tree, lights);
             const RemoveResult removed = tree.removeOccluder(uint32_t(l), face);
+            budget_.change(before, usageOf(tree, lights));
             if (!removed.found) continue;
             result.nodesDeleted += removed.nodesRemoved;
             dirty.markTopology(target);
@@ -279,6 +295,8 @@ FrameResult Engine::apply(const Frame& frame) {
             }
             relightAfterRemoval(target, receiver, removed, dirty);
           }
+        } catch (const ResourceLimitError&) {
+          throw;  // a budget, not a geometric failure: never retried
         } catch (const std::bad_alloc&) {
           throw;  // no memory: a bigger rebuild would not help, the caller restores
         } catch (const std::exception&) {
@@ -292,6 +310,7 @@ FrameResult Engine::apply(const Frame& frame) {
     // The leaving objects' own trees go (a moved object's faces get fresh ones).
     for (FaceId face : leavingReceivers) {
       const size_t i = receiverIndex_.at(face);
+      budget_.change(usageOf(receivers_[i].tree, lights), {});
       dropped[i] = true;
       freeSlots[face] = i;
       receiverIndex_.erase(face);
@@ -324,6 +343,7 @@ FrameResult Engine::apply(const Frame& frame) {
       if (!scene_.receivesLight(*face)) continue;
       if (const auto slot = freeSlots.find(face->id); slot != freeSlots.end()) {
         receivers_[slot->second] = makeReceiver(*face);
+        budget_.change({}, usageOf(receivers_[slot->second].tree, lights));
         dropped[slot->second] = false;
         receiverIndex_[face->id] = slot->second;
         freeSlots.erase(slot);
@@ -331,6 +351,7 @@ FrameResult Engine::apply(const Frame& frame) {
         appendedOutOfOrder |= !receivers_.empty() && !(receivers_.back().face < face->id);
         receiverIndex_[face->id] = receivers_.size();
         receivers_.push_back(makeReceiver(*face));
+        budget_.change({}, usageOf(receivers_.back().tree, lights));
         dropped.push_back(false);
       }
       dirty.touch(face->id);
@@ -377,7 +398,9 @@ FrameResult Engine::apply(const Frame& frame) {
     for (FaceId target : rebuild) {
       Receiver& receiver = receivers_[receiverIndex_.at(target)];
       forgetReceived(target);
+      budget_.change(usageOf(receiver.tree, lights), {});
       receiver = makeReceiver(*findFace(scene_, target));
+      budget_.change({}, usageOf(receiver.tree, lights));
       castAllOn(receiver);
       dirty.touch(target);
       dirty.markTopology(target);
@@ -421,6 +444,9 @@ FrameResult Engine::apply(const Frame& frame) {
     // Compact only if a receiver left for good or one joined out of face order.
     const bool anyDropped = std::find(dropped.begin(), dropped.end(), true) != dropped.end();
     if (anyDropped || appendedOutOfOrder) compactReceivers(dropped);
+    recountBudget();
+  } catch (const ResourceLimitError&) {
+    throw;  // usable_ stays false: the caller rebuilds from the previous scene
   } catch (const std::bad_alloc&) {
     throw;  // no memory: the caller restores the previous state (SceneSession)
   } catch (const std::exception&) {
@@ -437,6 +463,7 @@ FrameResult Engine::apply(const Frame& frame) {
   for (FaceId face : leavingReceivers)
     if (!receiver(face)) result.removedReceivers.push_back(face);
   result.version = ++version_;
+  usable_ = true;
   return result;
 }
 

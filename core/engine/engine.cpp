@@ -93,7 +93,11 @@ std::optional<SingleShadow> lightPlaneShadow(const Scene& scene, size_t light, c
 }  // namespace
 
 Engine::Engine(Scene scene, EngineSettings settings, const EngineProgress& progress)
-    : scene_(std::move(scene)), settings_(settings), parallel_(settings.threads) {
+    : scene_(std::move(scene)),
+      settings_(settings),
+      parallel_(settings.threads),
+      budget_(settings.limits) {
+  budget_.checkFaces(scene_.faces().size());
   if (meshSpacing() > 0 && settings_.meshChunkSquares > 0) {
     meshChunkSquares_ = settings_.meshChunkSquares;
   } else if (meshSpacing() > 0 && settings_.meshChunkSquares == 0) {
@@ -129,6 +133,7 @@ void Engine::build(const EngineProgress& progress) {
     if (!scene_.receivesLight(face)) continue;
     receiverIndex_[face.id] = receivers_.size();
     receivers_.push_back(makeReceiver(face));
+    budget_.change({}, usageOf(receivers_.back().tree, scene_.lights().size()));
   }
   stats_.receivers = receivers_.size();
   castAllPairs(progress);
@@ -146,7 +151,7 @@ void Engine::buildOrdersAndCubes() {
   // Front-to-back orders (§2.1), one light per thread.
   auto start = Clock::now();
   orders_.resize(lightCount);
-  parallel_.forEach(lightCount, [&](size_t l) { orders_[l] = std::make_unique<FaceOrder>(scene_, l); });
+  parallel_.forEach(lightCount, [&](size_t l) { orders_[l] = std::make_unique<FaceOrder>(scene_, l, settings_.limits.treeNodes); });
   for (const auto& order : orders_) stats_.orderFragments += order->counters().fragments;
   stats_.seconds.ordering = secondsSince(start);
 
@@ -243,17 +248,21 @@ void Engine::countBuild() {
 Engine::Receiver Engine::makeReceiver(const Face& face) const {
   const PlaneFrame frame = PlaneFrame::onPlane(face.plane, face.polygon[0]);
   Receiver receiver{face.id, frame, DmTree(polygonInFrame(face.polygon, frame), scene_.tolerance()), {}, {}, {}};
+  receiver.tree.setNodeLimit(settings_.limits.treeNodes);
   for (size_t l = 0; l < scene_.lights().size(); ++l)
     if (const auto horizon = lightPlaneShadow(scene_, l, face, frame)) receiver.tree.insert(*horizon);
   return receiver;
 }
 
-std::optional<InsertResult> Engine::castInto(size_t light, const Face& occluder, Receiver& receiver) const {
+std::optional<InsertResult> Engine::castInto(size_t light, const Face& occluder, Receiver& receiver) {
   const Face* face = findFace(scene_, receiver.face);
   if (!face) throw std::logic_error("Engine: receiver without a scene face");
   const auto shadow = castShadow(scene_, light, occluder, *face, receiver.frame);
   if (!shadow) return std::nullopt;
-  return receiver.tree.insert(*shadow);
+  const TreeUsage before = usageOf(receiver.tree, scene_.lights().size());
+  InsertResult inserted = receiver.tree.insert(*shadow);
+  budget_.change(before, usageOf(receiver.tree, scene_.lights().size()));
+  return inserted;
 }
 
 std::optional<InsertResult> Engine::castPair(size_t light, const Face& occluder, Receiver& receiver) {
@@ -344,6 +353,11 @@ void Engine::compactReceivers(const std::vector<bool>& dropped) {
   receivers_ = std::move(kept);
   receiverIndex_.clear();
   for (size_t i = 0; i < receivers_.size(); ++i) receiverIndex_[receivers_[i].face] = i;
+}
+
+void Engine::recountBudget() {
+  budget_.clear();
+  for (const Receiver& receiver : receivers_) budget_.change({}, usageOf(receiver.tree, scene_.lights().size()));
 }
 
 bool Engine::insideEditVolume(const Face& face) const {

@@ -16,6 +16,7 @@
 #include "core/engine/build_stats.h"
 #include "core/engine/frame.h"
 #include "core/engine/parallel.h"
+#include "core/engine/resource_budget.h"
 #include "core/geom/plane_frame.h"
 #include "core/illum/vertex_illumination.h"
 #include "core/mesh/mesh.h"
@@ -48,6 +49,9 @@ struct EngineSettings {
   // vertex) and for meshing (per receiver): 0 = every core, 1 = the calling thread only. The
   // results are bit for bit the same for any count.
   int threads = 0;
+  // Per-scene resource limits, checked while building and applying frames: passing
+  // one throws ResourceLimitError naming it (README "Resource limits").
+  ResourceLimits limits;
 };
 
 // Called with (step name, done, total) as a long build proceeds; may be empty.
@@ -55,6 +59,7 @@ using EngineProgress = std::function<void(const char* step, size_t done, size_t 
 
 class Engine {
  public:
+  // Throws ResourceLimitError as soon as the build passes one of settings.limits.
   explicit Engine(Scene scene, EngineSettings settings = {}, const EngineProgress& progress = {});
 
   const Scene& scene() const { return scene_; }
@@ -75,16 +80,25 @@ class Engine {
   // the overlap cubes' edit volume): on any invalid one, throws EditError and changes
   // nothing. A receiver whose node deletion fails is rebuilt alone (counted in
   // FrameResult::treeRebuilds); an unexpected failure mid-frame rebuilds the engine.
-  // If that rebuild throws, or memory runs out (std::bad_alloc is not caught), the
-  // exception leaves the engine half-edited: discard it (SceneSession rebuilds one).
+  // Resources: a frame that would pass limits.faces throws ResourceLimitError from
+  // checkFrame (nothing changed); passing another limit mid-frame throws it at once
+  // (as does std::bad_alloc: neither is retried by a rebuild), and the engine is then
+  // unusable: usable() is false and apply() throws std::logic_error; rebuild it from
+  // the previous scene. An unexpected exception from that rebuild leaves it half-edited
+  // too: discard it (SceneSession restores one).
   FrameResult apply(const Frame& frame);
+  // False after apply() failed part-way (see apply()).
+  bool usable() const { return usable_; }
+  // The DM-trees' totals as counted against settings.limits (exact after a build or frame).
+  TreeUsage resourceUsage() const { return budget_.totals(); }
   // The DM vertices the last apply() relit, per receiver (sorted ids).
   const std::map<FaceId, std::vector<VertexId>>& lastRelit() const { return lastRelit_; }
 
   // Checks every edit of a frame in order against the scene as the earlier edits leave
   // it, without copying the scene: ids, transforms and added objects (faces as
   // Scene::addObject makes them), and that moved and added objects stay in the overlap
-  // cubes' edit volume. Throws EditError naming the edit and key path.
+  // cubes' edit volume. Throws EditError naming the edit and key path, or
+  // ResourceLimitError if the scene would pass limits.faces.
   void checkFrame(const Frame& frame) const;
   // The scene after a frame, without changing anything (throws EditError).
   Scene sceneAfter(const Frame& frame) const;
@@ -169,8 +183,9 @@ class Engine {
   // Casts `occluder` on `receiver` from `light` and merges the shadow; records the
   // pair in castOn_/castBy_. Returns nullopt when nothing is shadowed.
   std::optional<InsertResult> castPair(size_t light, const Face& occluder, Receiver& receiver);
-  // The same without recording: touches `receiver` only, so receivers may cast in parallel.
-  std::optional<InsertResult> castInto(size_t light, const Face& occluder, Receiver& receiver) const;
+  // The same without recording: touches `receiver` (and the thread-safe budget) only, so
+  // receivers may cast in parallel.
+  std::optional<InsertResult> castInto(size_t light, const Face& occluder, Receiver& receiver);
   // The build's steps (§2.1–2.4); each fills its part of stats_.
   void buildOrdersAndCubes();
   void castAllPairs(const EngineProgress& progress);
@@ -197,6 +212,8 @@ class Engine {
   void compactReceivers(const std::vector<bool>& dropped);
   // Whether every vertex of the face lies in each light's overlap cube.
   bool insideEditVolume(const Face& face) const;
+  // Counts every receiver's tree against the limits afresh (drops drift).
+  void recountBudget();
 
   void pruneMeshMemo();  // drops the memos of faces that are no longer receivers
   // Brings a receiver's memo (cells and chunks) up to date with its tree.
@@ -210,6 +227,8 @@ class Engine {
   Scene scene_;
   EngineSettings settings_;
   Parallel parallel_;
+  ResourceBudget budget_;
+  bool usable_ = true;
   int meshChunkSquares_ = 0;  // fixed at construction: chunks stay comparable across edits
   uint64_t version_ = 0;
   std::vector<std::unique_ptr<FaceOrder>> orders_;   // per light

@@ -50,6 +50,18 @@ double planarityError(const Polygon3& polygon) {
   return worst / extent(polygon);
 }
 
+double width(const Polygon3& polygon) {
+  const double size = extent(polygon);
+  return size > 0 ? 2 * area(polygon) / size : 0;
+}
+
+Polygon3 projectedOnto(const Polygon3& polygon, const Plane& plane) {
+  Polygon3 out;
+  out.reserve(polygon.size());
+  for (const Vec3& v : polygon) out.push_back(plane.project(v));
+  return out;
+}
+
 bool isConvex(const Polygon3& polygon) {
   const auto plane = planeOf(polygon);
   if (!plane) return false;

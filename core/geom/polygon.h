@@ -26,6 +26,13 @@ std::optional<Plane> planeOf(const Polygon3& polygon);
 // Largest vertex distance from the polygon's plane, relative to its extent.
 double planarityError(const Polygon3& polygon);
 
+// Twice the area over the extent: the height of a triangle over its longest side,
+// twice the thickness of a thin rectangle. 0 for fewer than 3 vertices.
+double width(const Polygon3& polygon);
+
+// Every vertex moved along the plane's normal onto the plane.
+Polygon3 projectedOnto(const Polygon3& polygon, const Plane& plane);
+
 // Convex (no reflex corner, no self-overlap) and counter-clockwise about its own
 // Newell normal. Collinear corners are allowed.
 bool isConvex(const Polygon3& polygon);

@@ -15,6 +15,14 @@ struct Tolerance {
   double length() const { return 1e-9 * sceneSize; }
   // Areas below this are treated as empty.
   double area() const { return 1e-18 * sceneSize * sceneSize; }
+  // A face with a vertex farther than this from its plane is projected onto it
+  // (Scene::faces()): 1e-3 of length(), so predicates at length() see it flat; the
+  // rounding of an exactly planar face is far below and left as authored.
+  double snap() const { return 1e-12 * sceneSize; }
+  // The thinnest face a scene may hold (polygon.h width()): a thinner one lies within
+  // onPlane() of a line, so which side of it a point is on is not decided reliably,
+  // and 2D predicates at length() would merge its long sides.
+  double minFaceWidth() const { return onPlane(); }
 
   static Tolerance forSize(double size) { return Tolerance{size > 0 ? size : 1.0}; }
 };

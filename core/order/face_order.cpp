@@ -17,6 +17,7 @@
 #include <string>
 
 #include "core/geom/clip.h"
+#include "core/geom/resource_limit.h"
 
 namespace penumbra {
 
@@ -50,7 +51,7 @@ constexpr size_t kSplitterSample = 64;
 
 }  // namespace
 
-FaceOrder::FaceOrder(const Scene& scene, size_t light) {
+FaceOrder::FaceOrder(const Scene& scene, size_t light, size_t maxNodes) : maxNodes_(maxNodes) {
   light_ = scene.lights().at(light).polygon;
   tolerance_ = scene.tolerance();
   root_ = newNode(OrderNodeId{});
@@ -82,6 +83,7 @@ OrderNodeId FaceOrder::newNode(OrderNodeId parent) {
     freeNodes_.pop_back();
     nodes_[id.value] = Node{};
   } else {
+    if (nodes_.size() >= maxNodes_) throw ResourceLimitError("tree_nodes", nodes_.size() + 1, maxNodes_);
     id = OrderNodeId{static_cast<uint32_t>(nodes_.size())};
     nodes_.emplace_back();
   }
@@ -142,7 +144,9 @@ void FaceOrder::buildSubtree(OrderNodeId at, std::vector<Fragment> front) {
     Job job = std::move(jobs.back());
     jobs.pop_back();
     if (job.fragments.empty()) continue;
-    const Plane plane = job.fragments[chooseSplitter(job.fragments)].plane;
+    const Fragment& splitter = job.fragments[chooseSplitter(job.fragments)];
+    const Plane plane = splitter.plane;
+    const FaceId splitterFace = splitter.face;
     std::vector<Fragment> inFront, behind;
     {
       Node& node = nodes_[job.at.value];
@@ -150,7 +154,9 @@ void FaceOrder::buildSubtree(OrderNodeId at, std::vector<Fragment> front) {
       node.plane = plane;
     }
     for (Fragment& f : job.fragments) {
-      Split3 split = splitByPlane(f.polygon, plane, eps);
+      // The splitting face's own fragments stay on its plane whatever rounding says:
+      // each node takes at least one face, so the tree cannot grow without end.
+      Split3 split = f.face == splitterFace ? Split3{} : splitByPlane(f.polygon, plane, eps);
       if (split.front.empty() && split.back.empty()) {
         noteNode(f, job.at);
         nodes_[job.at.value].onPlane.push_back(std::move(f));

@@ -47,8 +47,10 @@ struct FaceOrderCounters {
 class FaceOrder {
  public:
   // Orders the front and offending faces of `scene` for light `light`; back faces
-  // are left out. Throws std::out_of_range if there is no such light.
-  FaceOrder(const Scene& scene, size_t light);
+  // are left out. Throws std::out_of_range if there is no such light, and
+  // ResourceLimitError("tree_nodes") whenever the tree would pass `maxNodes` nodes
+  // (here or in a later edit; the order is then unusable).
+  FaceOrder(const Scene& scene, size_t light, size_t maxNodes = size_t(-1));
 
   // Front-to-back: a ray from any point of the light crosses (through their front
   // sides) fragments in increasing index order. The walk is rebuilt lazily: edits
@@ -115,6 +117,7 @@ class FaceOrder {
 
   Polygon3 light_;
   Tolerance tolerance_;
+  size_t maxNodes_ = size_t(-1);
   std::vector<Node> nodes_;
   std::vector<OrderNodeId> freeNodes_;
   OrderNodeId root_;

@@ -1,6 +1,8 @@
 #include "core/scene/scene.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace penumbra {
@@ -47,22 +49,41 @@ std::vector<Polygon3> Scene::worldPolygons(const Object& object) {
   return out;
 }
 
+std::optional<std::string> Scene::faceProblem(const Polygon3& world, const Tolerance& tolerance) {
+  if (!planeOf(world)) return "face is degenerate (zero area or collinear vertices in world space)";
+  const double w = width(world);
+  if (!(w >= tolerance.minFaceWidth())) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "face is thinner (%.2e m) than the minimum width %.2e m (1e-6 of the scene's diagonal)", w,
+                  tolerance.minFaceWidth());
+    return std::string(text);
+  }
+  return std::nullopt;
+}
+
 std::vector<Face> Scene::facesOf(const Object& object, uint32_t handle) const {
   checkReferences(object);
   std::vector<Face> out;
   const auto polygons = worldPolygons(object);
   for (uint32_t f = 0; f < polygons.size(); ++f) {
-    const auto plane = planeOf(polygons[f]);
-    if (!plane)
-      throw std::invalid_argument("object '" + object.id + "' face " + std::to_string(f) +
-                                  " is degenerate");
-    out.push_back(Face{FaceId{handle, f}, polygons[f], *plane, area(polygons[f])});
+    if (const auto problem = faceProblem(polygons[f], tolerance_))
+      throw FaceError(object.id, FaceError::kUnknown, f, *problem);
+    // Snapped onto its plane: the format allows 1e-6 of the face's size off it, far
+    // more than the length tolerance the ordering and clipping decide sides with.
+    const Plane plane = *planeOf(polygons[f]);
+    const bool off = std::any_of(polygons[f].begin(), polygons[f].end(), [&](const Vec3& p) {
+      return std::abs(plane.signedDistance(p)) > tolerance_.snap();
+    });
+    Polygon3 polygon = off ? projectedOnto(polygons[f], plane) : polygons[f];
+    const double faceArea = area(polygon);
+    out.push_back(Face{FaceId{handle, f}, std::move(polygon), plane, faceArea});
   }
   return out;
 }
 
 void Scene::deriveFaces() {
-  faces_.clear();
+  // The scale first: faces are checked against the scene's tolerance.
   bool first = true;
   auto grow = [&](const Vec3& p) {
     if (first) {
@@ -74,13 +95,18 @@ void Scene::deriveFaces() {
   };
   for (const Light& light : lights_)
     for (const Vec3& p : light.polygon) grow(p);
+  for (const Object& object : objects_)
+    for (const auto& indices : object.faces)
+      for (int index : indices) grow(object.transform.apply(object.vertices[size_t(index)]));
+  tolerance_ = Tolerance::forSize(bounds_.diagonal());
+  faces_.clear();
   for (size_t o = 0; o < objects_.size(); ++o) {
-    for (Face& face : facesOf(objects_[o], handles_[o])) {
-      for (const Vec3& p : face.polygon) grow(p);
-      faces_.push_back(std::move(face));
+    try {
+      for (Face& face : facesOf(objects_[o], handles_[o])) faces_.push_back(std::move(face));
+    } catch (const FaceError& error) {
+      throw error.atObject(o);
     }
   }
-  tolerance_ = Tolerance::forSize(bounds_.diagonal());
 }
 
 std::optional<size_t> Scene::indexOfHandle(uint32_t handle) const {

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -59,9 +60,33 @@ struct FaceId {
   auto operator<=>(const FaceId&) const = default;
 };
 
+// A face the scene refuses (degenerate, thinner than Tolerance::minFaceWidth()):
+// which face of which object (its index in objects(), or kUnknown when checked
+// alone), and the problem in words ("face is degenerate ...").
+class FaceError : public std::invalid_argument {
+ public:
+  static constexpr size_t kUnknown = size_t(-1);
+  FaceError(const std::string& objectId, size_t objectIndex, uint32_t face, std::string problem)
+      : std::invalid_argument("object '" + objectId + "' face " + std::to_string(face) + ": " + problem),
+        objectId_(objectId), objectIndex_(objectIndex), face_(face), problem_(std::move(problem)) {}
+  FaceError atObject(size_t objectIndex) const { return FaceError(objectId_, objectIndex, face_, problem_); }
+  size_t objectIndex() const { return objectIndex_; }
+  uint32_t face() const { return face_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string objectId_;
+  size_t objectIndex_;
+  uint32_t face_;
+  std::string problem_;
+};
+
 struct Face {
   FaceId id;
-  Polygon3 polygon;  // world space, CCW seen from the front
+  // World space, CCW seen from the front, on `plane` within Tolerance::snap(): a face
+  // off it by more (the format allows 1e-6 of the face's size) is projected onto its
+  // Newell plane, so every later predicate sees a face lying on its own plane.
+  Polygon3 polygon;
   Plane plane;       // front normal
   double area = 0;
 };
@@ -79,7 +104,9 @@ class Scene {
  public:
   Scene() = default;
   // Throws std::invalid_argument if an object names an unknown material or a
-  // face index is out of range; protocol validates before this with key paths.
+  // face index is out of range, FaceError (with the object's index) for a face the
+  // scene's tolerance cannot hold (degenerate, or thinner than minFaceWidth()).
+  // protocol validates before this with key paths.
   Scene(std::vector<Light> lights, std::vector<Material> materials,
         std::vector<Object> objects, std::optional<Camera> camera = std::nullopt);
 
@@ -113,12 +140,17 @@ class Scene {
   // Edits (the engine's, after it has validated them). Bounds and tolerance stay
   // those of the scene as constructed: every geometric decision keeps one scale.
   // Throw std::invalid_argument (changing nothing) on an unknown material, a bad
-  // face index, a degenerate world face, a duplicate id or an unknown handle.
+  // face index, a degenerate or too thin world face (FaceError), a duplicate id or an
+  // unknown handle.
   uint32_t addObject(Object object);
   void removeObject(uint32_t handle);
   void setTransform(uint32_t handle, const Transform& transform);
-  // The world faces an object would have (checks it like addObject).
+  // The world faces an object would have (checks it like addObject; FaceError
+  // with objectIndex() == kUnknown).
   std::vector<Face> facesOf(const Object& object, uint32_t handle) const;
+  // Why the scene with tolerance `tolerance` cannot hold this world polygon as a
+  // face (degenerate, thinner than minFaceWidth()); nullopt if it can.
+  static std::optional<std::string> faceProblem(const Polygon3& world, const Tolerance& tolerance);
 
  private:
   void checkReferences(const Object& object) const;
