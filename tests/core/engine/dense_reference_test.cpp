@@ -56,7 +56,7 @@ DenseCheck checkDenseRoom(int boxes, uint64_t seed) {
 }
 
 TEST(DenseReference, SmallRoomsEverySeed) {
-  for (uint64_t seed = 1; seed <= 6; ++seed) {
+  for (uint64_t seed = 1; seed <= 4; ++seed) {
     const DenseCheck c = checkDenseRoom(int(10 + 5 * seed), seed);
     EXPECT_EQ(c.valueErrors, 0u);
     EXPECT_EQ(c.classErrors, 0u);
