@@ -4,6 +4,7 @@
 // estimator needs for 1% RMS relative error on the same penumbra vertices and (b)
 // the exact reference grid with the same vertex count (mean relative interpolation
 // error at random points). One thread.
+#include <sys/resource.h>
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -29,6 +30,22 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// CPU seconds (user + system) of this process so far: on a shared machine the
+// wall clock measures the neighbours too.
+double cpuSeconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+// Peak resident memory of this process so far (all rows up to this one), in MiB.
+double peakMemoryMiB() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / 1024.0;  // KiB on Linux
 }
 
 struct MonteCarloCost {
@@ -101,8 +118,8 @@ InterpolationError interpolationError(const Mesh& mesh, const std::vector<Surfac
 nlohmann::json runBuildBench(const BenchArgs& args) {
   tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
   nlohmann::json rows = nlohmann::json::array();
-  std::printf("%6s %5s %6s %8s %8s %7s %8s %9s %6s | %9s %8s %8s | %9s %9s %8s\n", "cubes", "light",
-              "faces", "pairs", "shadows", "nodes", "vertices", "penumbra", "cmp/v", "build s",
+  std::printf("%6s %5s %6s %8s %8s %7s %8s %9s %6s | %9s %9s %8s %8s | %9s %9s %8s\n", "cubes", "light",
+              "faces", "pairs", "shadows", "nodes", "vertices", "penumbra", "cmp/v", "build s", "cpu s",
               "cast %", "illum %", "MC s", "MC/build", "DM/grid");
   for (int cubes : args.cubes) {
     for (double lightScale : {1.0, 0.2}) {
@@ -116,9 +133,12 @@ nlohmann::json runBuildBench(const BenchArgs& args) {
           args.dense ? makeDenseScene({.boxes = cubes, .seed = args.seed}) : makeCubesScene(options);
 
       const auto start = Clock::now();
+      const double cpuStart = cpuSeconds();
       Engine engine(scene);
       const Mesh mesh = engine.mesh();
       const double buildSeconds = secondsSince(start);
+      const double buildCpuSeconds = cpuSeconds() - cpuStart;
+      const double peakMiB = peakMemoryMiB();
       const BuildStats& stats = engine.stats();
 
       // The penumbra vertices, and a seeded subset for the Monte Carlo estimate.
@@ -171,10 +191,11 @@ nlohmann::json runBuildBench(const BenchArgs& args) {
                    {"grid_dark_points_lit", onGrid.darkLeak}};
       }
       const BuildTimings& t = stats.seconds;
-      std::printf("%6d %5.1f %6zu %8zu %8zu %7zu %8zu %9zu %6.2f | %9.3f %7.0f%% %7.0f%% | %9.1f %9.0f %8.3f\n",
+      std::printf("%6d %5.1f %6zu %8zu %8zu %7zu %8zu %9zu %6.2f | %9.3f %9.3f %7.0f%% %7.0f%% | %9.1f %9.0f %8.3f\n",
                   cubes, lightScale, stats.faces, stats.candidatePairs, stats.pairsWithShadow,
                   stats.treeNodes, stats.vertices, penumbraVertices, stats.comparisonsPerVertex(),
-                  buildSeconds, 100 * t.castingAndMerging / t.total(), 100 * t.illumination / t.total(),
+                  buildSeconds, buildCpuSeconds, 100 * t.castingAndMerging / t.total(),
+                  100 * t.illumination / t.total(),
                   mcSeconds, mcSeconds / buildSeconds, ratio);
       std::fflush(stdout);
       rows.push_back({{"cubes", cubes},
@@ -195,7 +216,9 @@ nlohmann::json runBuildBench(const BenchArgs& args) {
                                    {"casting_and_merging", t.castingAndMerging},
                                    {"illumination", t.illumination},
                                    {"triangulation", t.triangulation},
-                                   {"build_and_mesh", buildSeconds}}},
+                                   {"build_and_mesh", buildSeconds},
+                                   {"build_and_mesh_cpu", buildCpuSeconds}}},
+                      {"peak_memory_mib_so_far", peakMiB},
                       {"monte_carlo", {{"vertices_sampled", mcPositions.size()},
                                        {"samples_for_1pct_rms", mc.samples},
                                        {"rms_relative_error", mc.rms},
