@@ -106,19 +106,39 @@ bool VisibleRegion::subtract(std::span<const Vec2> shadow, double eps) {
   }
   if (boxesApart(min_, max_, low, high, eps)) return false;
 
+  // Pieces the shadow cuts die in place and their remainders are appended; the
+  // others are not touched (no copy per shadow of what it misses).
   bool removed = false;
   nextPoints_.clear();
   nextPieces_.clear();
-  for (const Piece& piece : pieces_) {
+  for (Piece& piece : pieces_) {
     const std::span<const Vec2> polygon(points_.data() + piece.begin, points_.data() + piece.end);
-    if (boxesApart(piece.min, piece.max, low, high, eps) || !cutPiece(polygon, cutter, eps)) {
-      appendNext(polygon);
-      continue;
-    }
+    if (boxesApart(piece.min, piece.max, low, high, eps) || !cutPiece(polygon, cutter, eps)) continue;
+    piece.end = piece.begin;  // dead
     removed = true;
   }
-  std::swap(points_, nextPoints_);
-  std::swap(pieces_, nextPieces_);
+  if (!removed) return false;
+  std::erase_if(pieces_, [](const Piece& p) { return p.begin == p.end; });
+  const uint32_t offset = uint32_t(points_.size());
+  points_.insert(points_.end(), nextPoints_.begin(), nextPoints_.end());
+  for (Piece piece : nextPieces_) {
+    piece.begin += offset;
+    piece.end += offset;
+    pieces_.push_back(piece);
+  }
+  // Dead points are dropped once they outnumber the live ones.
+  size_t live = 0;
+  for (const Piece& piece : pieces_) live += piece.end - piece.begin;
+  if (2 * live < points_.size()) {
+    nextPoints_.clear();
+    for (Piece& piece : pieces_) {
+      const uint32_t begin = uint32_t(nextPoints_.size());
+      nextPoints_.insert(nextPoints_.end(), points_.begin() + piece.begin, points_.begin() + piece.end);
+      piece.begin = begin;
+      piece.end = uint32_t(nextPoints_.size());
+    }
+    std::swap(points_, nextPoints_);
+  }
   if (!pieces_.empty()) {
     min_ = pieces_[0].min;
     max_ = pieces_[0].max;
