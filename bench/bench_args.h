@@ -18,6 +18,7 @@ struct BenchArgs {
   int threads = 1;  // engine build threads (EngineSettings::threads; 0 = every core)
   int qualityMaxCubes = 150;  // mesh-quality comparison only up to this scene size
   std::string jsonOut;  // empty: no JSON file
+  bool dense = false;   // build: dense rooms (makeDenseScene) instead of cubes rooms
   // edits: --cubes given (else 150,1500,5000), --frames (drag frames, 0 = by size),
   // --html OUT, --write-scripts DIR --scene FILE (write that scene's scripts only).
   // --rebuild-every K: time the full rebuild on the first frame, every K-th and

@@ -14,6 +14,10 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first) {
   BenchArgs args;
   for (int i = first; i < argc; ++i) {
     const std::string name = argv[i];
+    if (name == "--dense") {  // the one option without a value
+      args.dense = true;
+      continue;
+    }
     if (i + 1 >= argc) throw std::invalid_argument(name + " needs a value");
     const std::string value = argv[++i];
     try {
@@ -64,13 +68,15 @@ int main(int argc, char** argv) {
   using namespace penumbra::bench;
   constexpr const char* kUsage =
       "usage: penumbra-bench reference|build|edits [--cubes 15,150,1500] [--seed S] [--light-scale F]\n"
+      "                      build: [--dense]\n"
       "                      [--points K] [--max-samples N] [--quality-max-cubes N] [--json OUT]\n"
       "                      [--threads N] (engine threads, default 1; 0 = every core)\n"
       "                      edits: [--frames F] [--rebuild-every K] [--html OUT]\n"
       "                             | --write-scripts DIR --scene FILE\n"
       "  reference: exact reference and Monte Carlo cost per point\n"
       "  build:     DM build times and counters at light scales 1 and 0.2, Monte Carlo cost for\n"
-      "             1% RMS on the same penumbra vertices, DM vs equal-vertex grid error\n"
+      "             1% RMS on the same penumbra vertices, DM vs equal-vertex grid error; --dense: the\n"
+      "             dense rooms (N boxes floating in 6×3×6 m, one light) instead of N cubes\n"
       "  edits:     edit scripts (drag, move 1/5/10/30% of faces, remove-add, build-up) per frame vs a\n"
       "             full rebuild, default --cubes 150,1500,5000; --html writes the report\n";
   if (argc < 2) {

@@ -1,10 +1,26 @@
 #include <cstdio>
 
 #include "bench/lib/cubes_scene.h"
+#include "bench/lib/dense_scene.h"
 #include "protocol/scene_json.h"
 #include "cli/commands.h"
 
 namespace penumbra::cli {
+
+namespace {
+
+// `--dense`: N boxes of random size and orientation floating in a 6 × 3 × 6 m room.
+Scene denseScene(const Args& args) {
+  if (args.flag("tilted-light") || args.flag("two-lights") || args.option("light-scale") ||
+      args.option("stacked-fraction") || args.option("tables"))
+    throw UsageError("--dense takes only --cubes, --seed and --out");
+  DenseSceneOptions options;
+  options.boxes = args.intOption("cubes", options.boxes, 0, 100000);
+  options.seed = uint64_t(args.intOption("seed", int(options.seed), 0, 1 << 30));
+  return makeDenseScene(options);
+}
+
+}  // namespace
 
 int runGenerate(const Args& args) {
   args.allowOnly({"cubes", "seed", "light-scale", "stacked-fraction", "tables", "out"});
@@ -25,7 +41,7 @@ int runGenerate(const Args& args) {
   const auto out = args.option("out");
   if (!out) throw UsageError("generate needs --out SCENE");
 
-  const Scene scene = makeCubesScene(options);
+  const Scene scene = args.flag("dense") ? denseScene(args) : makeCubesScene(options);
   protocol::saveSceneFile(scene, *out);
   std::printf("wrote %s: %zu objects, %zu faces, %zu lights\n", out->c_str(),
               scene.objects().size(), scene.faces().size(), scene.lights().size());

@@ -29,6 +29,7 @@ commands:
   generate --cubes N --out SCENE       a seeded 'N random cubes in a room' scene
            [--seed S] [--light-scale F] [--stacked-fraction F] [--tilted-light]
            [--two-lights] [--tables FRACTION]
+           [--dense]                   N boxes of random size and turn floating in a 6×3×6 m room
   replay SCENE EDITS.jsonl             apply an edit script frame by frame; per-frame times and counts
          [--verify] [--verify-every K] [--report OUT.json] [--out MESH] [--threads N]
   serve [SCENE...] [--host H]          the HTTP API and web page (docs/API.md) on the scenes;
@@ -55,7 +56,7 @@ int dispatch(int argc, char** argv) {
   if (command == "render") return runRender(Args(argc, argv, 2, {"reference", "stats"}));
   if (command == "replay") return runReplay(Args(argc, argv, 2, {"verify"}));
   if (command == "serve") return runServe(Args(argc, argv, 2, {"ephemeral"}));
-  if (command == "generate") return runGenerate(Args(argc, argv, 2, {"tilted-light", "two-lights"}));
+  if (command == "generate") return runGenerate(Args(argc, argv, 2, {"tilted-light", "two-lights", "dense"}));
   throw UsageError("unknown command '" + command + "'");
 }
 

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "bench/lib/scene_parts.h"
+
 namespace penumbra {
 
 namespace {
@@ -54,65 +56,11 @@ double units(std::mt19937_64& rng, int lo, int hi) {
   return std::uniform_int_distribution<int>(lo, hi)(rng) * kUnit;
 }
 
-// Orders a planar quad so it is counter-clockwise seen from `front`.
-Polygon3 facing(Polygon3 polygon, const Vec3& front) {
-  if (glm::dot(newellVector(polygon), front) < 0) std::reverse(polygon.begin(), polygon.end());
-  return polygon;
-}
-
-// Appends an axis-aligned box (8 vertices, 6 outward faces) to an object.
-void addBox(Object& object, const Vec3& lo, const Vec3& hi) {
-  const int first = int(object.vertices.size());
-  for (int i = 0; i < 8; ++i)
-    object.vertices.push_back(Vec3((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y,
-                                   (i & 4) ? hi.z : lo.z));
-  const Vec3 centre = 0.5 * (lo + hi);
-  for (int axis = 0; axis < 3; ++axis) {
-    const int b = 1 << ((axis + 1) % 3), c = 1 << ((axis + 2) % 3), a = 1 << axis;
-    for (int side = 0; side < 2; ++side) {
-      const int s = side ? a : 0;
-      std::vector<int> face{s, s | b, s | b | c, s | c};
-      Polygon3 polygon;
-      for (int& index : face) {
-        index += first;
-        polygon.push_back(object.vertices[index]);
-      }
-      if (glm::dot(newellVector(polygon), centroid(polygon) - centre) < 0)
-        std::reverse(face.begin(), face.end());
-      object.faces.push_back(face);
-    }
-  }
-}
-
-Object quadObject(const std::string& id, const Polygon3& quad, const Vec3& front) {
-  Object object;
-  object.id = id;
-  object.vertices = facing(quad, front);
-  object.faces = {{0, 1, 2, 3}};
-  object.material = "white";
-  object.isStatic = true;
-  return object;
-}
-
 // A square light of side `side` centred at `centre`, facing down, optionally
 // tilted by kTiltDeg about `tiltAxis` (through its centre).
 Light makeLight(const std::string& id, const Vec3& centre, double side, bool tilted,
                 const Vec3& tiltAxis) {
-  const double h = side / 2;
-  Polygon3 polygon{{-h, 0, -h}, {h, 0, -h}, {h, 0, h}, {-h, 0, h}};
-  const double angle = tilted ? glm::radians(kTiltDeg) : 0.0;
-  for (Vec3& v : polygon) {
-    // Rodrigues' rotation about a unit axis.
-    const Vec3 k = tiltAxis;
-    v = v * std::cos(angle) + glm::cross(k, v) * std::sin(angle) +
-        k * glm::dot(k, v) * (1 - std::cos(angle));
-    v += centre;
-  }
-  Light light;
-  light.id = id;
-  light.polygon = facing(polygon, Vec3(0, -1, 0));
-  light.radiance = Vec3(10.0);
-  return light;
+  return squareCeilingLight(id, centre, side, tilted ? kTiltDeg : 0.0, tiltAxis);
 }
 
 }  // namespace
@@ -152,19 +100,7 @@ Scene makeCubesScene(const CubesSceneOptions& options) {
   std::vector<Material> materials{{"white", Vec3(0.8)}, {"clay", Vec3(0.75, 0.45, 0.3)}};
 
   // The room: six quads facing inwards.
-  std::vector<Object> objects;
-  const double h = half;
-  objects.push_back(quadObject("floor", {{-h, 0, -h}, {h, 0, -h}, {h, 0, h}, {-h, 0, h}}, {0, 1, 0}));
-  objects.push_back(quadObject("ceiling", {{-h, height, -h}, {h, height, -h}, {h, height, h}, {-h, height, h}},
-                               {0, -1, 0}));
-  objects.push_back(quadObject("wall_n", {{-h, 0, -h}, {h, 0, -h}, {h, height, -h}, {-h, height, -h}},
-                               {0, 0, 1}));
-  objects.push_back(quadObject("wall_s", {{-h, 0, h}, {h, 0, h}, {h, height, h}, {-h, height, h}},
-                               {0, 0, -1}));
-  objects.push_back(quadObject("wall_e", {{h, 0, -h}, {h, 0, h}, {h, height, h}, {h, height, -h}},
-                               {-1, 0, 0}));
-  objects.push_back(quadObject("wall_w", {{-h, 0, -h}, {-h, 0, h}, {-h, height, h}, {-h, height, -h}},
-                               {1, 0, 0}));
+  std::vector<Object> objects = roomObjects(half, half, height);
 
   std::vector<Footprint> footprints;  // of everything standing on the floor
   std::vector<size_t> objectRoot(objects.size(), SIZE_MAX);  // footprint each object stands on

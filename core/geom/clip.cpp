@@ -12,6 +12,11 @@ Polygon3 clipFront(const Polygon3& polygon, const Plane& plane, double eps) {
   return front;
 }
 
+void clipFrontInto(const Polygon3& polygon, const Plane& plane, double eps, Polygon3& out) {
+  out.clear();
+  splitConvex(polygon, [&](const Vec3& v) { return plane.signedDistance(v); }, eps, &out, nullptr);
+}
+
 Split3 splitByPlane(const Polygon3& polygon, const Plane& plane, double eps) {
   Split3 out;
   splitConvex(polygon, [&](const Vec3& v) { return plane.signedDistance(v); }, eps, &out.front,

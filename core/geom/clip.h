@@ -12,6 +12,8 @@ namespace penumbra {
 // vertex lies more than eps in front (nothing of positive area remains), and
 // the whole polygon is returned unchanged if no vertex lies more than eps behind.
 Polygon3 clipFront(const Polygon3& polygon, const Plane& plane, double eps);
+// The same into `out` (cleared first; its capacity is reused). `out` must not be `polygon`.
+void clipFrontInto(const Polygon3& polygon, const Plane& plane, double eps, Polygon3& out);
 
 // Both sides at once, sharing the cut points (so the two areas add up exactly).
 struct Split3 {

@@ -9,17 +9,6 @@ namespace penumbra {
 
 namespace {
 
-// Drops vertices within eps of their predecessor: a near-zero edge has no
-// reliable direction, and its neighbours bound the polygon to within ~eps.
-Polygon2 withoutShortEdges(const Polygon2& polygon, double eps) {
-  Polygon2 out;
-  out.reserve(polygon.size());
-  for (const Vec2& v : polygon)
-    if (out.empty() || glm::length(v - out.back()) > eps) out.push_back(v);
-  while (out.size() > 1 && glm::length(out.front() - out.back()) <= eps) out.pop_back();
-  return out;
-}
-
 struct Box2 {
   Vec2 min{INFINITY}, max{-INFINITY};
   explicit Box2(const Polygon2& polygon) {
@@ -36,7 +25,16 @@ struct Box2 {
 
 }  // namespace
 
-double signedArea(const Polygon2& polygon) {
+Polygon2 withoutDuplicateVertices(const Polygon2& polygon, double eps) {
+  Polygon2 out;
+  out.reserve(polygon.size());
+  for (const Vec2& v : polygon)
+    if (out.empty() || glm::length(v - out.back()) > eps) out.push_back(v);
+  while (out.size() > 1 && glm::length(out.front() - out.back()) <= eps) out.pop_back();
+  return out;
+}
+
+double signedArea(std::span<const Vec2> polygon) {
   if (polygon.size() < 3) return 0;
   // Relative to the first vertex: less cancellation far from the origin.
   const Vec2 o = polygon[0];
@@ -81,7 +79,7 @@ Split2 splitByLine(const Polygon2& polygon, const Vec2& a, const Vec2& b, double
 }
 
 Polygon2 intersect(const Polygon2& a, const Polygon2& b, double eps) {
-  const Polygon2 clipper = withoutShortEdges(b, eps);
+  const Polygon2 clipper = withoutDuplicateVertices(b, eps);
   if (clipper.size() < 3 || a.size() < 3) return {};
   Polygon2 rest = a;
   for (size_t i = 0; i < clipper.size() && !rest.empty(); ++i)
@@ -92,7 +90,7 @@ Polygon2 intersect(const Polygon2& a, const Polygon2& b, double eps) {
 std::vector<Polygon2> subtract(const Polygon2& a, const Polygon2& b, double eps, bool* overlapped) {
   if (overlapped) *overlapped = false;
   if (a.size() < 3) return {};
-  const Polygon2 cutter = withoutShortEdges(b, eps);
+  const Polygon2 cutter = withoutDuplicateVertices(b, eps);
   if (cutter.size() < 3 || Box2(a).apartFrom(Box2(cutter), eps)) return {a};
   // Peel off the part of A outside each edge of B in turn; what stays is A ∩ B.
   std::vector<Polygon2> pieces;

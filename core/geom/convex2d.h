@@ -2,6 +2,7 @@
 // difference as disjoint convex pieces, containment. Free functions; thread-safe.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "core/geom/vec.h"
@@ -13,9 +14,14 @@ namespace penumbra {
 using Polygon2 = std::vector<Vec2>;
 
 // Positive for counter-clockwise polygons.
-double signedArea(const Polygon2& polygon);
+double signedArea(std::span<const Vec2> polygon);
+inline double signedArea(const Polygon2& polygon) { return signedArea(std::span<const Vec2>(polygon)); }
 // The same polygon, counter-clockwise.
 Polygon2 counterClockwise(Polygon2 polygon);
+
+// Drops vertices within eps of their predecessor: a near-zero edge has no
+// reliable direction, and its neighbours bound the polygon to within ~eps.
+Polygon2 withoutDuplicateVertices(const Polygon2& polygon, double eps);
 
 // Signed distance of p from the directed line a→b (positive on its left).
 double lineDistance(const Vec2& a, const Vec2& b, const Vec2& p);

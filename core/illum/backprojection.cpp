@@ -1,5 +1,6 @@
 #include "core/illum/backprojection.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/geom/clip.h"
@@ -21,10 +22,11 @@ Backprojection::Backprojection(const Scene& scene, size_t light, const Vec3& p, 
   applies_ = true;
   frame_ = PlaneFrame::onPlane(lightPlane_, source.polygon[0]);
 
-  Polygon2 front2;
-  front2.reserve(front_.size());
-  for (const Vec3& q : front_) front2.push_back(frame_.to2D(q));
-  visible_.push_back(counterClockwise(std::move(front2)));
+  front2_.reserve(front_.size());
+  for (const Vec3& q : front_) front2_.push_back(frame_.to2D(q));
+  front2_ = counterClockwise(std::move(front2_));
+  visible_.reset(front2_);
+  pendingStarts_.push_back(0);
 
   // Side planes of the cone from p over the front part with every edge moved out,
   // in the light's plane, by the front part's own size. The cone only keeps the
@@ -78,13 +80,19 @@ bool Backprojection::occlude(const Face& face) {
 
   // Keep the part between p and the light inside the cone; the cap just short of
   // p's height keeps the projection finite (a blocking face is ≥ onPlane from p).
+  // Clipped back and forth between two reused buffers.
   const double eps = tolerance_.length();
-  Polygon3 blocker = clipFront(face.polygon, lightPlane_, eps);
+  Polygon3& blocker = blocker_;
+  clipFrontInto(face.polygon, lightPlane_, eps, blocker);
   const Plane cap{-lightPlane_.normal, -lightPlane_.offset + pHeight_ - 2 * eps};
-  if (blocker.size() >= 3) blocker = clipFront(blocker, cap, eps);
+  if (blocker.size() >= 3) {
+    clipFrontInto(blocker, cap, eps, scratch_);
+    std::swap(blocker, scratch_);
+  }
   for (const Plane& side : cone_) {
     if (blocker.size() < 3) break;
-    blocker = clipFront(blocker, side, eps);
+    clipFrontInto(blocker, side, eps, scratch_);
+    std::swap(blocker, scratch_);
   }
   if (blocker.size() < 3) return false;
 
@@ -138,69 +146,116 @@ bool Backprojection::occludeApproaching(const Face& face, const Vec3& d) {
   return true;
 }
 
+namespace {
+// Cut at a tenth of length(): a piece vertex within the cut tolerance of a shadow
+// edge stays unmoved, and where several shadow edges nearly coincide (coplanar
+// faces seen edge-on from a D⁰ point) a full length() snap shows as ~1e-9
+// relative error in the value. Slivers left by it are dropped by area() below.
+double cutTolerance(const Tolerance& tolerance) { return 0.1 * tolerance.length(); }
+}  // namespace
+
 void Backprojection::subtractShadow(const Polygon3& onLightPlane) {
   ++comparisons_;
-  if (visible_.empty()) return;
-  Polygon2 shadow;
-  shadow.reserve(onLightPlane.size());
-  for (const Vec3& q : onLightPlane) shadow.push_back(frame_.to2D(q));
-  shadow = counterClockwise(std::move(shadow));
-  if (!(signedArea(shadow) > tolerance_.area())) return;
+  // Appended to the gathered shadows in the frame, counter-clockwise.
+  const size_t begin = pendingPoints_.size();
+  for (const Vec3& q : onLightPlane) pendingPoints_.push_back(frame_.to2D(q));
+  const std::span<Vec2> shadow(pendingPoints_.data() + begin, pendingPoints_.size() - begin);
+  const double area = signedArea(shadow);
+  if (area < 0) std::reverse(shadow.begin(), shadow.end());
+  if (!(std::abs(area) > tolerance_.area())) {
+    pendingPoints_.resize(begin);
+    return;
+  }
+  pendingStarts_.push_back(uint32_t(pendingPoints_.size()));
+}
+
+void Backprojection::resolve() const {
+  const size_t count = pendingStarts_.empty() ? 0 : pendingStarts_.size() - 1;
+  if (count == 0) return;
   // Cut at a tenth of length(): a piece vertex within the cut tolerance of a shadow
   // edge stays unmoved, and where several shadow edges nearly coincide (coplanar
   // faces seen edge-on from a D⁰ point) a full length() snap shows as ~1e-9
   // relative error in the value. Slivers left by it are dropped by area() below.
   const double cutEps = 0.1 * tolerance_.length();
-  std::vector<Polygon2> rest;
-  for (const Polygon2& piece : visible_) {
-    bool cut = false;
-    for (Polygon2& part : subtract(piece, shadow, cutEps, &cut)) rest.push_back(std::move(part));
-    occluded_ |= cut;
+  auto shadow = [&](size_t i) {
+    return std::span<const Vec2>(pendingPoints_.data() + pendingStarts_[i],
+                                 pendingPoints_.data() + pendingStarts_[i + 1]);
+  };
+  // Largest overlap with the light's box first: in an umbra the light is gone
+  // after few shadows, elsewhere later shadows find few pieces left to cut. Ties
+  // keep the order given, so the result depends only on the set of shadows.
+  Vec2 low = front2_[0], high = front2_[0];
+  for (const Vec2& v : front2_) {
+    low = glm::min(low, v);
+    high = glm::max(high, v);
   }
-  visible_ = std::move(rest);
+  std::vector<std::pair<double, uint32_t>> order(count);
+  for (size_t i = 0; i < count; ++i) {
+    Vec2 sLow = shadow(i)[0], sHigh = shadow(i)[0];
+    for (const Vec2& v : shadow(i)) {
+      sLow = glm::min(sLow, v);
+      sHigh = glm::max(sHigh, v);
+    }
+    const Vec2 overlap = glm::max(glm::min(high, sHigh) - glm::max(low, sLow), Vec2(0.0));
+    order[i] = {-overlap.x * overlap.y, uint32_t(i)};
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& [key, i] : order) {
+    if (visible_.empty()) break;
+    occluded_ |= visible_.subtract(shadow(i), cutEps);
+  }
+  pendingPoints_.clear();
+  pendingStarts_.assign(1, 0);
 }
 
-std::vector<Polygon2> Backprojection::keptPieces() const {
-  std::vector<Polygon2> kept;
-  for (const Polygon2& piece : visible_)
-    if (signedArea(piece) > tolerance_.area()) kept.push_back(piece);
-  return kept;
+bool Backprojection::kept(size_t piece) const {
+  return signedArea(visible_.piece(piece)) > tolerance_.area();
 }
 
 double Backprojection::unoccludedFactor() const {
   return applies_ ? lambertIntegral(p_, n_, front_) : 0.0;
 }
 
-bool Backprojection::anyVisible() const { return applies_ && !keptPieces().empty(); }
+bool Backprojection::anyVisible() const {
+  if (!applies_) return false;
+  resolve();
+  for (size_t i = 0; i < visible_.pieceCount(); ++i)
+    if (kept(i)) return true;
+  return false;
+}
 
 double Backprojection::visibleFactor() const {
-  if (!applies_) return 0;
-  const std::vector<Polygon2> kept = keptPieces();
-  if (kept.empty()) return 0;
+  if (!anyVisible()) return 0;
   // Nothing removed: integrate the front part itself, not its image in the frame.
   if (!occluded_) return unoccludedFactor();
   double sum = 0;
-  for (const Polygon3& piece : visiblePieces()) sum += lambertIntegral(p_, n_, piece);
+  Polygon3& world = scratch_;
+  for (size_t i = 0; i < visible_.pieceCount(); ++i) {
+    if (!kept(i)) continue;
+    world.clear();
+    for (const Vec2& q : visible_.piece(i)) world.push_back(frame_.to3D(q));
+    sum += lambertIntegral(p_, n_, world);
+  }
   return sum;
 }
 
 LightClass Backprojection::lightClass() const {
   if (!applies_) return LightClass::Lit;
-  if (keptPieces().empty()) return LightClass::Umbra;
+  if (!anyVisible()) return LightClass::Umbra;
   return occluded_ ? LightClass::Penumbra : LightClass::Lit;
 }
 
 std::vector<Polygon3> Backprojection::visiblePieces() const {
   std::vector<Polygon3> out;
-  if (!applies_) return out;
+  if (!anyVisible()) return out;
   if (!occluded_) {
-    if (!keptPieces().empty()) out.push_back(front_);
+    out.push_back(front_);
     return out;
   }
-  for (const Polygon2& piece : keptPieces()) {
+  for (size_t i = 0; i < visible_.pieceCount(); ++i) {
+    if (!kept(i)) continue;
     Polygon3 world;
-    world.reserve(piece.size());
-    for (const Vec2& q : piece) world.push_back(frame_.to3D(q));
+    for (const Vec2& q : visible_.piece(i)) world.push_back(frame_.to3D(q));
     out.push_back(std::move(world));
   }
   return out;

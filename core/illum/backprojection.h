@@ -1,7 +1,8 @@
 // The visible part of one light from one point, given candidate occluder faces:
 // the light clipped to the point's front half-space minus the central projections
 // of the faces that block the point (SCENE_FORMAT.md rule), as convex pieces, and
-// its Lambert integral. One object per (light, point), filled by one thread.
+// its Lambert integral. Shadows are gathered, then subtracted largest first (so the
+// light is gone, or its pieces few, early). One object per (light, point), one thread.
 #pragma once
 
 #include <cstddef>
@@ -10,6 +11,7 @@
 
 #include "core/geom/convex2d.h"
 #include "core/geom/plane_frame.h"
+#include "core/illum/visible_region.h"
 #include "core/mesh/mesh.h"
 #include "core/scene/scene.h"
 
@@ -26,8 +28,9 @@ class Backprojection {
 
   // Removes the projection of `face` if it can block p: p lies more than onPlane()
   // behind its plane and part of it lies between p and the light, inside the cone
-  // from p over the light. Returns whether it was projected and subtracted (one
-  // source/occluder comparison).
+  // from p over the light. Returns whether it was projected (one source/occluder
+  // comparison); the subtraction happens when a result is asked for. The result
+  // depends on the set of faces given and not on their order.
   bool occlude(const Face& face);
 
   // The same for the limit as the point tends to p from direction d (unit, in p's
@@ -40,7 +43,10 @@ class Backprojection {
   double unoccludedFactor() const;
   double visibleFactor() const;
   // Some candidate removed positive area; some positive area is left.
-  bool occluded() const { return occluded_; }
+  bool occluded() const {
+    resolve();
+    return occluded_;
+  }
   bool anyVisible() const;
   // Lit (nothing removed), Umbra (nothing left) or Penumbra; Lit if !applies().
   LightClass lightClass() const;
@@ -50,7 +56,9 @@ class Backprojection {
 
  private:
   void subtractShadow(const Polygon3& onLightPlane);
-  std::vector<Polygon2> keptPieces() const;
+  // Subtracts the gathered shadows, the one covering most of the light first.
+  void resolve() const;
+  bool kept(size_t piece) const;  // a resolved piece of positive area (at area())
 
   Tolerance tolerance_;
   Vec3 p_{0.0}, n_{0.0};
@@ -60,8 +68,13 @@ class Backprojection {
   Polygon3 front_;              // the light clipped to p's front half-space
   PlaneFrame frame_;            // 2D frame on the light's plane
   std::vector<Plane> cone_;     // inward side planes of a cone from p over front_ plus a margin
-  std::vector<Polygon2> visible_;
-  bool occluded_ = false;
+  Polygon2 front2_;             // front_ in the frame, CCW
+  // Resolved state (filled lazily by resolve(); one thread owns the object).
+  mutable VisibleRegion visible_;
+  mutable std::vector<Vec2> pendingPoints_;   // gathered shadows, flat
+  mutable std::vector<uint32_t> pendingStarts_;  // shadow i: [starts[i], starts[i+1])
+  mutable bool occluded_ = false;
+  mutable Polygon3 blocker_, scratch_;  // reused clipping buffers
   size_t comparisons_ = 0;
 };
 

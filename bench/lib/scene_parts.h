@@ -1,0 +1,27 @@
+// Building blocks shared by the seeded scene generators: boxes, room quads and
+// square ceiling lights. Pure functions on values; thread-safe.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/scene/scene.h"
+
+namespace penumbra {
+
+// Appends an axis-aligned box (8 vertices, 6 outward quads) to an object.
+void addBox(Object& object, const Vec3& lo, const Vec3& hi);
+
+// A one-quad static "white" object whose front faces `front`.
+Object quadObject(const std::string& id, const Polygon3& quad, const Vec3& front);
+
+// The six inward quads of the room [-halfX, halfX] × [0, height] × [-halfZ, halfZ]:
+// "floor", "ceiling", "wall_n", "wall_s", "wall_e", "wall_w".
+std::vector<Object> roomObjects(double halfX, double halfZ, double height);
+
+// A square light of side `side` centred at `centre`, facing down, radiance 10,
+// tilted by `tiltDeg` about the unit `tiltAxis` through its centre.
+Light squareCeilingLight(const std::string& id, const Vec3& centre, double side, double tiltDeg,
+                         const Vec3& tiltAxis);
+
+}  // namespace penumbra
