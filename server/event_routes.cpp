@@ -56,7 +56,7 @@ void HttpServer::registerEventRoutes() {
                      json hello = {{"version", now->version},
                                    {"changed", json::array()},
                                    {"removed", json::array()}};
-                     return write("retry: 1000\nevent: version\ndata: " + hello.dump() + "\n\n");
+                     return write("retry: 1000\nevent: version\ndata: " + dumpJson(hello) + "\n\n");
                    }
                    const auto now = session->waitForVersionAfter(*state->announced, kStreamPoll);
                    if (stopping_ || session->closed()) {
@@ -67,7 +67,7 @@ void HttpServer::registerEventRoutes() {
                      // Coalesced: one event covers every version since the last one sent.
                      const json event = changedAtJson(*now, *state->announced);
                      state->announced = now->version;
-                     return write("event: version\ndata: " + event.dump() + "\n\n");
+                     return write("event: version\ndata: " + dumpJson(event) + "\n\n");
                    }
                    if (Clock::now() - state->lastWrite > kStreamKeepAlive)
                      return write(": keep-alive\n\n");

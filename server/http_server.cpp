@@ -44,8 +44,8 @@ HttpServer::HttpServer(ServerOptions options)
         // Statuses httplib set itself (no route, body too large, unreadable request)
         // still answer with the JSON error shape; handler-written bodies are kept.
         if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
-        res.set_content(errorJsonForStatus(res.status, req.method, req.path, maxBody).dump(),
-                        "application/json");
+        // The path is the client's bytes (decoded): dumpJson, never a throwing dump().
+        sendJson(res, res.status, errorJsonForStatus(res.status, req.method, req.path, maxBody));
         return httplib::Server::HandlerResponse::Handled;
       }));
   http_->set_exception_handler(

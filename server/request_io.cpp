@@ -14,10 +14,12 @@ namespace penumbra::server {
 
 using nlohmann::json;
 
+std::string dumpJson(const json& value) { return value.dump(-1, ' ', false, json::error_handler_t::replace); }
+
 void sendJson(httplib::Response& res, int status, const json& body) {
   res.status = status;
   res.set_header("Cache-Control", "no-store");
-  res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
+  res.set_content(dumpJson(body), "application/json");
 }
 
 void sendError(httplib::Response& res, const ApiError& error, const json& extra) {

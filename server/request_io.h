@@ -19,8 +19,10 @@ struct Response;
 
 namespace penumbra::server {
 
-// Writes `body` as the JSON answer with `status`; never throws on bad bytes (invalid UTF-8
-// in a string is replaced by U+FFFD).
+// JSON text that never throws on bad bytes: invalid UTF-8 in a string becomes U+FFFD.
+std::string dumpJson(const nlohmann::json& value);
+
+// Writes `body` as the JSON answer with `status`; never throws on bad bytes (dumpJson).
 void sendJson(httplib::Response& res, int status, const nlohmann::json& body);
 void sendError(httplib::Response& res, const ApiError& error,
                const nlohmann::json& extra = nlohmann::json::object());

@@ -46,7 +46,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     frame = protocol::frameFromJson(protocol::parseJsonText(text, 64 * 1024, protocol::kMaxJsonDepth),
                                     &scene.materials());
-  } catch (const protocol::ValidationError&) {
+  } catch (const protocol::ValidationError& e) {
+    fuzz::note(std::string("refused: ") + e.what());
     return 0;
   }
   // The writer's round trip, on every frame the reader accepts.
@@ -58,10 +59,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   Engine engine(scene);
   try {
     engine.apply(frame);
-  } catch (const EditError&) {
+  } catch (const EditError& e) {
+    fuzz::note(std::string("edit refused: ") + e.what());
     fuzz::check(engine.version() == 0, "a refused frame changed the engine's version");
     return 0;
   } catch (const std::exception& e) {
+    fuzz::note(std::string("apply threw: ") + e.what());
     if (fuzz::strict()) fuzz::fail(std::string("Engine::apply threw: ") + e.what());
     return 0;
   }
@@ -70,6 +73,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   } catch (const std::logic_error& e) {
     fuzz::fail(std::string("engine invalid after an applied frame: ") + e.what());
   }
-  (void)engine.mesh();
+  fuzz::note("applied, mesh of " + std::to_string(engine.mesh().vertexCount()) + " vertices");
   return 0;
 }

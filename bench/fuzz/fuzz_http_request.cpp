@@ -119,6 +119,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string answer = exchange(server.port(), data, size);
   if (fuzz::strict() && answer.find(" 500 ") != std::string::npos && answer.find(" 500 ") < 16)
     fuzz::fail("HTTP 500: " + answer.substr(0, 600));
+  fuzz::note("answer: " + answer.substr(0, answer.find('\r')));
   server.reset();
   return 0;
 }

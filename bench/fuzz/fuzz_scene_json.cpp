@@ -16,13 +16,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   nlohmann::json root;
   try {
     root = protocol::parseJsonText(text, protocol::kMaxJsonFileBytes, protocol::kMaxJsonDepth);
-  } catch (const protocol::ValidationError&) {
+  } catch (const protocol::ValidationError& e) {
+    fuzz::note(std::string("refused: ") + e.what());
     return 0;
   }
   Scene scene;
   try {
     scene = protocol::sceneFromJson(root);
-  } catch (const protocol::ValidationError&) {
+  } catch (const protocol::ValidationError& e) {
+    fuzz::note(std::string("refused: ") + e.what());
     return 0;
   }
   const nlohmann::json written = protocol::sceneToJson(scene);

@@ -61,4 +61,13 @@ inline bool strict() {
   return on;
 }
 
+// PENUMBRA_FUZZ_VERBOSE=1: say what became of each input (to check that seeds get deep).
+inline void note(const std::string& what) {
+  static const bool on = [] {
+    const char* v = std::getenv("PENUMBRA_FUZZ_VERBOSE");
+    return v && std::string_view(v) == "1";
+  }();
+  if (on) std::fprintf(stderr, "  %s\n", what.c_str());
+}
+
 }  // namespace penumbra::fuzz
