@@ -48,6 +48,16 @@ TEST_F(ServerErrors, MalformedJsonIs400) {
   expectUnchanged();
 }
 
+// Fuzzing found it (bench/fuzz/crashes/http_request/url-invalid-utf8.http): the 404 body
+// names the decoded path, and dumping invalid UTF-8 threw outside any handler.
+TEST_F(ServerErrors, InvalidUtf8InTheUrlIs404AndTheServerLives) {
+  for (const char* path : {"/%ff", "/%c3%28?name=%ff", "/api/%fe%ff"}) {
+    expectError(client_.Get(path), 404, "not_found", "(url)");
+  }
+  EXPECT_EQ(client_.Get("/api/health")->status, 200);
+  expectUnchanged();
+}
+
 TEST_F(ServerErrors, UnknownSceneIs404) {
   expectError(client_.Get("/api/scenes/nope"), 404, "not_found", "id");
   expectError(client_.Get("/api/scenes/nope/mesh"), 404, "not_found", "id");
