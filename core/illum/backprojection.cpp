@@ -146,14 +146,6 @@ bool Backprojection::occludeApproaching(const Face& face, const Vec3& d) {
   return true;
 }
 
-namespace {
-// Cut at a tenth of length(): a piece vertex within the cut tolerance of a shadow
-// edge stays unmoved, and where several shadow edges nearly coincide (coplanar
-// faces seen edge-on from a D⁰ point) a full length() snap shows as ~1e-9
-// relative error in the value. Slivers left by it are dropped by area() below.
-double cutTolerance(const Tolerance& tolerance) { return 0.1 * tolerance.length(); }
-}  // namespace
-
 void Backprojection::subtractShadow(const Polygon3& onLightPlane) {
   ++comparisons_;
   // Appended to the gathered shadows in the frame, counter-clockwise.

@@ -61,7 +61,9 @@ TEST(ResourceLimit, FrameOverTheLimitIsNotAppliedAndTheSceneKeepsServing) {
     // Not applied: the scene is at the version it had, with the mesh that version had.
     const json scene = bodyJson(client.Get("/api/scenes/cubes15"));
     EXPECT_EQ(scene["version"], error["version"]);
-    if (i == 0) EXPECT_EQ(client.Get("/api/scenes/cubes15/mesh?format=bin")->body, meshBefore);
+    if (i == 0) {
+      EXPECT_EQ(client.Get("/api/scenes/cubes15/mesh?format=bin")->body, meshBefore);
+    }
   }
   EXPECT_TRUE(refused) << "no move passed " << built + 1 << " tree nodes";
   // The scene keeps serving: a removal shrinks the trees and applies.
