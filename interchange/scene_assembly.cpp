@@ -130,6 +130,19 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
       if (!(std::isfinite((*options.lightRadiance)[c]) && (*options.lightRadiance)[c] >= 0))
         throw ValidationError("light-radiance", "radiance must be three non-negative numbers");
 
+  // Every coordinate finite and within reach of double-precision geometry at 1e-9 (a NaN or a
+  // 1e300 would poison the scene's size, the welding grid and every tolerance after it).
+  constexpr double kMaxCoordinate = 1e9;  // metres, after scaling
+  for (size_t g = 0; g < geometry.groups.size(); ++g)
+    for (size_t i = 0; i < geometry.groups[g].positions.size(); ++i) {
+      const Vec3 p = geometry.groups[g].positions[i] * options.scale;
+      for (int c = 0; c < 3; ++c)
+        if (!(std::abs(p[c]) <= kMaxCoordinate))  // false for NaN too
+          throw ValidationError("(import).groups[" + std::to_string(g) + "].positions[" +
+                                    std::to_string(i) + "]",
+                                "vertex coordinate is not a finite number within ±1e9 m");
+    }
+
   // Scene size first: it sets the welding distance.
   Bounds bounds{Vec3(INFINITY), Vec3(-INFINITY)};
   bool anyPosition = false;

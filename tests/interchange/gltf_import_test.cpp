@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include <tiny_gltf.h>
@@ -155,6 +157,28 @@ TEST(GltfImport, UploadsCannotReadFilesAndBadAccessorsAreErrors) {
     FAIL() << "an accessor past its buffer view was accepted";
   } catch (const protocol::ValidationError& error) {
     EXPECT_EQ(error.path(), "meshes[0].primitives[0].attributes.POSITION") << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace penumbra::interchange
+
+namespace penumbra::interchange {
+namespace {
+
+// Found by the gltf_import fuzz target: a NaN position reached the welding grid (UB).
+TEST(GltfImport, NonFiniteCoordinatesAreRefusedWithTheirPath) {
+  const std::string path =
+      std::string(PENUMBRA_SOURCE_DIR) + "/bench/fuzz/crashes/gltf_import/weld-nan-position.gltf";
+  std::ifstream in(path, std::ios::binary);
+  ASSERT_TRUE(in) << path;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::vector<uint8_t> bytes(text.begin(), text.end());
+  try {
+    importSceneBytes(bytes, "weld-nan-position.gltf", {}, {});
+    FAIL() << "a NaN position was imported";
+  } catch (const protocol::ValidationError& error) {
+    EXPECT_NE(error.path().find(".positions["), std::string::npos) << error.path();
   }
 }
 
