@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/scene/scene.h"
+#include "interchange/scene_import.h"
 #include "protocol/scene_json.h"
 
 namespace penumbra::fuzz {
@@ -68,6 +69,16 @@ inline void note(const std::string& what) {
     return v && std::string_view(v) == "1";
   }();
   if (on) std::fprintf(stderr, "  %s\n", what.c_str());
+}
+
+// What every import target checks of an accepted file: its report serialises and its scene
+// JSON reads back as the imported scene.
+inline void checkImport(const interchange::ImportResult& result) {
+  (void)result.report.toJson().dump();
+  check(protocol::sceneToJson(protocol::sceneFromJson(result.sceneJson)) ==
+            protocol::sceneToJson(result.scene),
+        "imported scene JSON does not read back as the imported scene");
+  note("imported " + std::to_string(result.scene.faces().size()) + " faces");
 }
 
 }  // namespace penumbra::fuzz
