@@ -1,11 +1,23 @@
 #include "interchange/import_report.h"
 
+#include "protocol/utf8.h"
+
 namespace penumbra::interchange {
 
+using protocol::replacingInvalidUtf8;
+
+// Warnings and the source name quote the file's own bytes, which need not be UTF-8.
 nlohmann::json ImportReport::toJson() const {
-  return {{"source", source},   {"format", format},       {"objects", objects},
-          {"faces", faces},     {"lights", lights},       {"materials", materials},
-          {"repairs", repairs}, {"warnings", warnings}};
+  nlohmann::json validWarnings = nlohmann::json::array();
+  for (const std::string& warning : warnings) validWarnings.push_back(replacingInvalidUtf8(warning));
+  return {{"source", replacingInvalidUtf8(source)},
+          {"format", format},
+          {"objects", objects},
+          {"faces", faces},
+          {"lights", lights},
+          {"materials", materials},
+          {"repairs", repairs},
+          {"warnings", validWarnings}};
 }
 
 std::string ImportReport::summary() const {

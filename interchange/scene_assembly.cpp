@@ -9,6 +9,7 @@
 #include "core/geom/tolerance.h"
 #include "interchange/vertex_weld.h"
 #include "protocol/scene_json.h"
+#include "protocol/utf8.h"
 
 namespace penumbra::interchange {
 
@@ -42,11 +43,13 @@ class IdPool {
   IdPool(std::string fallback, std::string repair, ImportReport& report)
       : fallback_(std::move(fallback)), repair_(std::move(repair)), report_(report) {}
   std::string take(const std::string& wanted) {
-    std::string base = trimmed(wanted);
+    const std::string valid = protocol::replacingInvalidUtf8(wanted);
+    if (valid != wanted) report_.count("names_with_invalid_utf8_replaced");
+    std::string base = trimmed(valid);
     if (base.empty()) base = fallback_;
     std::string id = base;
     for (int k = 2; used_.count(id); ++k) id = base + "." + std::to_string(k);
-    if (id != trimmed(wanted)) report_.count(repair_);
+    if (id != trimmed(valid)) report_.count(repair_);
     used_.insert(id);
     return id;
   }
@@ -186,7 +189,8 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
   Json lights = Json::array(), objects = Json::array(), materials = Json::object();
   IdPool lightIds("light", "light_ids_made_unique", report);
   IdPool objectIds("object", "object_ids_made_unique", report);
-  std::set<int> usedMaterials;
+  IdPool materialNames("material", "material_names_made_unique", report);
+  std::map<int, std::string> usedMaterials;  // imported material → its name in the scene
   for (const RepairedGroup& g : groups) {
     if (g.faces.empty()) {
       if (!g.source->polygons.empty()) report.count("groups_emptied_by_repairs");
@@ -229,17 +233,17 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
     Json object = {{"id", objectIds.take(g.source->name)}, {"vertices", vertices}, {"faces", faces}};
     const int m = g.source->material;
     if (m >= 0 && geometry.materials[size_t(m)].defined) {
-      object["material"] = geometry.materials[size_t(m)].name;
-      usedMaterials.insert(m);
+      if (!usedMaterials.count(m)) usedMaterials[m] = materialNames.take(geometry.materials[size_t(m)].name);
+      object["material"] = usedMaterials[m];
     }
     objects.push_back(std::move(object));
     report.faces += g.faces.size();
   }
-  for (int m : usedMaterials) {
+  for (const auto& [m, name] : usedMaterials) {
     const ImportedMaterial& material = geometry.materials[size_t(m)];
     const Vec3 albedo = glm::clamp(material.albedo, 0.0, 1.0);
     if (albedo != material.albedo) report.count("albedo_clamped_to_0_1");
-    materials[material.name] = {{"albedo", toJson(albedo)}};
+    materials[name] = {{"albedo", toJson(albedo)}};
   }
   if (lights.empty())
     throw ValidationError("(import)",

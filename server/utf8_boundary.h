@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "core/scene/scene.h"
+#include "protocol/utf8.h"
 
 namespace httplib {
 struct Request;
@@ -15,8 +16,7 @@ struct Request;
 
 namespace penumbra::server {
 
-// Whether `text` is well-formed UTF-8 (no overlong forms, surrogates or code points past U+10FFFF).
-bool isValidUtf8(std::string_view text);
+using protocol::isValidUtf8;
 
 // Throws ApiError 400 `invalid_utf8` for the first query parameter (name or value:
 // `query.<name>`) or form part (name, file name, content type: `(form).<part>.filename`, ...)

@@ -232,6 +232,23 @@ TEST(ObjImport, BadInputIsAClearErrorNotACrash) {
   EXPECT_THROW(importObjFile((dir / "small.obj").string(), badScale), protocol::ValidationError);
 }
 
+// Names come from the file's bytes: invalid UTF-8 in them is replaced (U+FFFD) and counted,
+// so the scene and the report are valid JSON (a fuzz finding: the report's dump() threw).
+TEST(ObjImport, InvalidUtf8InNamesIsReplacedAndCounted) {
+  const std::string obj = "mtllib m\xff.mtl\n"
+                          "o fl\xc0\xafoor\nusemtl gr\xed" "ey\nv -2 0 -2\nv -2 0 2\nv 2 0 2\nv 2 0 -2\nf 1 2 3 4\n"
+                          "o lamp\nusemtl lamp\nv -0.5 3 -0.5\nv 0.5 3 -0.5\nv 0.5 3 0.5\nv -0.5 3 0.5\nf -4 -3 -2 -1\n";
+  const std::string mtl = "newmtl gr\xed" "ey\nKd 0.5 0.5 0.5\nnewmtl lamp\nKe 5 5 5\n";
+  const ImportResult result = importObjText(obj, {{"m\xff.mtl", mtl}}, {}, "sc\xfe" "ne.obj");
+  EXPECT_NO_THROW((void)result.sceneJson.dump());
+  EXPECT_NO_THROW((void)result.report.toJson().dump());
+  EXPECT_EQ(result.sceneJson["objects"][0]["id"], "fl\uFFFD\uFFFDoor");
+  EXPECT_EQ(result.sceneJson["objects"][0]["material"], "gr\uFFFDey");
+  EXPECT_TRUE(result.sceneJson["materials"].contains("gr\uFFFDey"));
+  EXPECT_EQ(result.report.repairs.at("names_with_invalid_utf8_replaced"), 2);
+  EXPECT_EQ(result.report.toJson()["source"], "sc\uFFFDne.obj");
+}
+
 TEST(ObjImport, FromMemoryMatchesFromFile) {
   const auto dir = scratchDir();
   writeFile(dir / "small.obj", smallScene(""));
