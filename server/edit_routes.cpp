@@ -11,6 +11,7 @@
 
 #include "core/geom/resource_limit.h"
 #include "protocol/edits_json.h"
+#include "server/frame_batch.h"
 #include "protocol/frame_result_json.h"
 #include "server/request_io.h"
 #include "server/response_json.h"
@@ -74,7 +75,98 @@ class WaitingEdit {
   bool admitted_ = false;
 };
 
+// 200: what the frame (and the frames applied with it, `coalesced_frames` in all) did.
+void sendFrameApplied(httplib::Response& res, const SceneSession::Applied& applied, size_t frames) {
+  json body = protocol::frameResultToJson(applied.result, applied.snapshot->scene);
+  const json delta = changedAtJson(*applied.snapshot, applied.snapshot->version - 1);
+  body["mesh_changed"] = delta["changed"];
+  body["mesh_removed"] = delta["removed"];
+  body["mesh_seconds"] = applied.meshSeconds;
+  body["meshed_receivers_count"] = applied.meshedReceivers;
+  body["mesh_cells"] = {{"reused", applied.meshCells.cellsReused},
+                        {"lit", applied.meshCells.cellsLit},
+                        {"chunks_meshed", applied.meshCells.chunksMeshed},
+                        {"chunks_kept", applied.meshCells.chunksKept}};
+  body["coalesced_frames"] = frames;
+  sendJson(res, 200, body);
+}
+
+// A frame waiting in its scene's queue, with the answer it gets (written by whichever thread
+// applies its batch; read by its own request thread after EditScheduler::submit returns).
+struct QueuedFrame : EditScheduler::Ticket {
+  Frame frame;
+  std::string body;          // as the client sent it: journaled when applied alone
+  httplib::Response* res = nullptr;
+};
+
 }  // namespace
+
+void HttpServer::applyFrameAlone(SceneSession& session, EditScheduler::Ticket& ticket) {
+  auto& queued = static_cast<QueuedFrame&>(ticket);
+  httplib::Response& res = *queued.res;
+  SceneSession::Applied applied;
+  try {
+    // Journaled (committed) before it is published and acknowledged.
+    applied = session.apply(queued.frame, [&](const SceneSnapshot& next) {
+      journalFrame(session, next.version, queued.body);
+    });
+  } catch (const EditError& error) {
+    const std::string path = "edits[" + std::to_string(error.editIndex()) + "]" +
+                             (error.path().empty() ? "" : "." + error.path());
+    std::string problem = error.what();
+    if (const size_t colon = problem.find(": "); colon != std::string::npos)
+      problem = problem.substr(colon + 2);
+    sendError(res, ApiError(422, error_code::kInvalidFrame, path, problem),
+              {{"edit", error.editIndex()}});
+    return;
+  }
+  // Failed inside the engine or while meshing: the session restored the version
+  // before the frame (SceneSession::apply), so say plainly that nothing was applied.
+  catch (const ResourceLimitError& error) {  // a per-scene budget (EngineSettings::limits)
+    sendError(res,
+              ApiError(507, error_code::kResourceLimit, "limits." + error.limit(),
+                       std::string(error.what()) + ": the frame was not applied"),
+              {{"applied", false},
+               {"version", session.snapshot()->version},
+               {"limit", error.limit()},
+               {"maximum", error.maximum()}});
+    return;
+  } catch (const ApiError& error) {  // the journal could not record it (503)
+    sendError(res, error, {{"applied", false}, {"version", session.snapshot()->version}});
+    return;
+  } catch (const std::bad_alloc&) {
+    sendNotApplied(res, session, true, "out of memory");
+    return;
+  } catch (const std::exception& error) {
+    sendNotApplied(res, session, false, error.what());
+    return;
+  }
+  sendFrameApplied(res, applied, 1);
+}
+
+void HttpServer::applyFrameBatch(SceneSession& session, const std::vector<EditScheduler::Ticket*>& batch) {
+  std::vector<const Frame*> frames;
+  for (EditScheduler::Ticket* ticket : batch) frames.push_back(&static_cast<QueuedFrame*>(ticket)->frame);
+  std::optional<Frame> combined;
+  if (batch.size() > 1) combined = combinedFrame(frames);
+  if (!combined) {
+    for (EditScheduler::Ticket* ticket : batch) applyFrameAlone(session, *ticket);
+    return;
+  }
+  SceneSession::Applied applied;
+  try {
+    applied = session.apply(*combined, [&](const SceneSnapshot& next) {
+      journalFrame(session, next.version, protocol::frameToJson(*combined).dump());
+    });
+  } catch (...) {
+    // One frame of the batch is refused (or failed): nothing was applied. Each frame on its
+    // own then, so only the bad one fails, with its own edit index.
+    for (EditScheduler::Ticket* ticket : batch) applyFrameAlone(session, *ticket);
+    return;
+  }
+  for (EditScheduler::Ticket* ticket : batch)
+    sendFrameApplied(*static_cast<QueuedFrame*>(ticket)->res, applied, batch.size());
+}
 
 void HttpServer::registerEditRoutes() {
   httplib::Server& http = *http_;
@@ -84,76 +176,32 @@ void HttpServer::registerEditRoutes() {
       scenePath + "/edits", guarded([this](const httplib::Request& req, httplib::Response& res) {
         const auto session = findScene(req.matches[1]);
         const json body = parseBody(req);
-        Frame frame;
+        QueuedFrame queued;
         try {
           const auto materials = session->snapshot()->scene.materials();
-          frame = protocol::frameFromJson(body, &materials);
+          queued.frame = protocol::frameFromJson(body, &materials);
         } catch (const protocol::ValidationError& error) {
           const long edit = editIndexOf(error.path());
           sendError(res, ApiError(422, error_code::kInvalidFrame, error.path(), error.problem()),
                     edit >= 0 ? json{{"edit", edit}} : json::object());
           return;
         }
-        // Wait for this client's turn (round-robin between clients, bounded: docs/API.md "Load").
-        std::optional<EditScheduler::Turn> turn;
-        {
-          WaitingEdit waiting(waitingEdits_);
-          if (!waiting.admitted()) return sendBusy(res, "too many edits waiting on this server");
-          try {
-            turn.emplace(session->editQueue().wait(clientOf(req)));
-          } catch (const EditQueueFull&) {
-            return sendBusy(res, "too many edits waiting for this scene");
-          }
-        }
-        SceneSession::Applied applied;
+        queued.client = clientOf(req);
+        queued.body = req.body;
+        queued.res = &res;
+        // The answer if the batch's thread failed to give one (it never should).
+        sendError(res, ApiError(500, error_code::kFrameNotApplied, "", "no answer from the edit queue"));
+        // Wait for this client's turn (round-robin between clients, bounded, frames that
+        // queued together applied together: docs/API.md "Load").
+        WaitingEdit waiting(waitingEdits_);
+        if (!waiting.admitted()) return sendBusy(res, "too many edits waiting on this server");
         try {
-          // Journaled (committed) before it is published and acknowledged.
-          applied = session->apply(frame, [&](const SceneSnapshot& next) {
-            journalFrame(*session, next.version, req.body);
+          session->editQueue().submit(queued, [&](const std::vector<EditScheduler::Ticket*>& batch) {
+            applyFrameBatch(*session, batch);
           });
-          turn.reset();  // the next client's frame applies while this answer is written
-        } catch (const EditError& error) {
-          const std::string path = "edits[" + std::to_string(error.editIndex()) + "]" +
-                                   (error.path().empty() ? "" : "." + error.path());
-          std::string problem = error.what();
-          if (const size_t colon = problem.find(": "); colon != std::string::npos)
-            problem = problem.substr(colon + 2);
-          sendError(res, ApiError(422, error_code::kInvalidFrame, path, problem),
-                    {{"edit", error.editIndex()}});
-          return;
+        } catch (const EditQueueFull&) {
+          return sendBusy(res, "too many edits waiting for this scene");
         }
-        // Failed inside the engine or while meshing: the session restored the version
-        // before the frame (SceneSession::apply), so say plainly that nothing was applied.
-        catch (const ResourceLimitError& error) {  // a per-scene budget (EngineSettings::limits)
-          sendError(res,
-                    ApiError(507, error_code::kResourceLimit, "limits." + error.limit(),
-                             std::string(error.what()) + ": the frame was not applied"),
-                    {{"applied", false},
-                     {"version", session->snapshot()->version},
-                     {"limit", error.limit()},
-                     {"maximum", error.maximum()}});
-          return;
-        } catch (const ApiError& error) {  // the journal could not record it (503)
-          sendError(res, error, {{"applied", false}, {"version", session->snapshot()->version}});
-          return;
-        } catch (const std::bad_alloc&) {
-          sendNotApplied(res, *session, true, "out of memory");
-          return;
-        } catch (const std::exception& error) {
-          sendNotApplied(res, *session, false, error.what());
-          return;
-        }
-        json body200 = protocol::frameResultToJson(applied.result, applied.snapshot->scene);
-        const json delta = changedAtJson(*applied.snapshot, applied.snapshot->version - 1);
-        body200["mesh_changed"] = delta["changed"];
-        body200["mesh_removed"] = delta["removed"];
-        body200["mesh_seconds"] = applied.meshSeconds;
-        body200["meshed_receivers_count"] = applied.meshedReceivers;
-        body200["mesh_cells"] = {{"reused", applied.meshCells.cellsReused},
-                                 {"lit", applied.meshCells.cellsLit},
-                                 {"chunks_meshed", applied.meshCells.chunksMeshed},
-                                 {"chunks_kept", applied.meshCells.chunksKept}};
-        sendJson(res, 200, body200);
       }));
 }
 

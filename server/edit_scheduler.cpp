@@ -2,17 +2,32 @@
 
 namespace penumbra::server {
 
-EditScheduler::Turn EditScheduler::wait(const std::string& client) {
+void EditScheduler::submit(Ticket& ticket, const ApplyBatch& apply) {
   std::unique_lock lock(mutex_);
   if (queued_ >= maxQueued_) throw EditQueueFull();
-  const uint64_t ticket = nextTicket_++;
-  std::deque<uint64_t>& mine = tickets_[client];
-  if (mine.empty()) rotation_.push_back(client);
-  mine.push_back(ticket);
+  ticket.done = false;
+  std::deque<Ticket*>& mine = waiting_[ticket.client];
+  if (mine.empty()) rotation_.push_back(ticket.client);
+  mine.push_back(&ticket);
   ++queued_;
-  if (current_ == 0) grantNext();
-  granted_.wait(lock, [&] { return current_ == ticket; });
-  return Turn(this);
+  while (!ticket.done) {
+    if (applying_) {
+      applied_.wait(lock);
+      continue;
+    }
+    applying_ = true;
+    const std::vector<Ticket*> batch = takeBatch();
+    lock.unlock();
+    try {
+      apply(batch);  // answers are in the tickets
+    } catch (...) {
+      // Against the contract: the tickets keep the answer they were created with.
+    }
+    lock.lock();
+    for (Ticket* t : batch) t->done = true;
+    applying_ = false;
+    applied_.notify_all();  // the batch's waiters return; one of the others applies next
+  }
 }
 
 size_t EditScheduler::queued() const {
@@ -20,26 +35,22 @@ size_t EditScheduler::queued() const {
   return queued_;
 }
 
-void EditScheduler::release() {
-  std::lock_guard lock(mutex_);
-  current_ = 0;
-  grantNext();
-}
-
-void EditScheduler::grantNext() {
-  if (rotation_.empty()) return;
-  const std::string client = std::move(rotation_.front());
-  rotation_.pop_front();
-  const auto it = tickets_.find(client);
-  current_ = it->second.front();
-  it->second.pop_front();
-  --queued_;
-  // A client with more frames waiting goes to the back: one frame per client per round.
-  if (it->second.empty())
-    tickets_.erase(it);
-  else
-    rotation_.push_back(client);
-  granted_.notify_all();
+std::vector<EditScheduler::Ticket*> EditScheduler::takeBatch() {
+  // One frame per client, in turn order; a client with more waiting goes to the back.
+  std::vector<Ticket*> batch;
+  for (size_t turns = rotation_.size(); turns > 0 && batch.size() < maxBatch_; --turns) {
+    const std::string client = std::move(rotation_.front());
+    rotation_.pop_front();
+    const auto it = waiting_.find(client);
+    batch.push_back(it->second.front());
+    it->second.pop_front();
+    --queued_;
+    if (it->second.empty())
+      waiting_.erase(it);
+    else
+      rotation_.push_back(client);
+  }
+  return batch;
 }
 
 }  // namespace penumbra::server

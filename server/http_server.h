@@ -99,6 +99,10 @@ class HttpServer {
   bool refuseAccess(const httplib::Request& req, httplib::Response& res) const;
   // Journal writes (no-ops when ephemeral); throw ApiError 503 when the journal fails.
   void journalFrame(const SceneSession& session, uint64_t version, const std::string& frame);
+  // Edit frames (edit_routes.cpp): a batch of queued frames applied as one frame when they
+  // touch different objects, else (or when that fails) one by one; answers in the tickets.
+  void applyFrameBatch(SceneSession& session, const std::vector<EditScheduler::Ticket*>& batch);
+  void applyFrameAlone(SceneSession& session, EditScheduler::Ticket& ticket);
   void journalRemove(const SceneSession& session);
   std::shared_ptr<SceneSession> findScene(const std::string& id) const;
   std::string freshId(const std::string& preferred);  // call with scenesMutex_ held

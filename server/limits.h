@@ -18,6 +18,9 @@ inline constexpr int kWorkerThreads = kMaxEventStreams + kRequestWorkers;
 // Edits waiting for their scene's turn: per scene, and over all scenes (so waiting edits
 // never hold more than three quarters of the request workers); beyond either, 503 busy.
 inline constexpr size_t kMaxQueuedEdits = 16;
+// Frames of different clients that queued while a frame applied are applied together, as one
+// frame and one version, at most this many (group commit: docs/API.md "Load").
+inline constexpr size_t kMaxFramesPerBatch = 16;
 inline constexpr int kMaxWaitingEdits = kRequestWorkers * 3 / 4;
 // How often freed heap memory is given back to the system while requests come (malloc_trim),
 // and the malloc arenas `penumbra serve` allows (glibc's default is 8 per core).

@@ -85,7 +85,7 @@ class SceneSession {
 
   const std::string id_;
   const EngineSettings settings_;
-  EditScheduler editQueue_{kMaxQueuedEdits};
+  EditScheduler editQueue_{kMaxQueuedEdits, kMaxFramesPerBatch};
   std::mutex editMutex_;  // one frame at a time; guards engine_
   std::unique_ptr<Engine> engine_;  // null after a restore that failed: rebuilt on the next frame
   // How to rebuild engine_ exactly (guarded by editMutex_; the engine is deterministic): a
