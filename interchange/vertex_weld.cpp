@@ -1,5 +1,6 @@
 #include "interchange/vertex_weld.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -15,7 +16,7 @@ struct CellKey {
 
 struct CellHash {
   size_t operator()(const CellKey& k) const {
-    return size_t(k.x * 73856093) ^ size_t(k.y * 19349663) ^ size_t(k.z * 83492791);
+    return (uint64_t(k.x) * 73856093u) ^ (uint64_t(k.y) * 19349663u) ^ (uint64_t(k.z) * 83492791u);  // wraps
   }
 };
 
@@ -26,10 +27,13 @@ WeldResult weldVertices(const std::vector<Vec3>& positions, double eps) {
   result.remap.resize(positions.size());
   // Grid of cell size eps: a match lies in the same or a neighbouring cell.
   std::unordered_multimap<CellKey, int, CellHash> grid;
-  auto cellOf = [eps](const Vec3& p) {
-    return CellKey{int64_t(std::floor(p.x / eps)), int64_t(std::floor(p.y / eps)),
-                   int64_t(std::floor(p.z / eps))};
+  // Cell indices are clamped into int64 range: a vertex ~1e18 cells away (an unused vertex far
+  // from a tiny model) shares an edge cell with others, and the distance check below still
+  // decides (a fuzz finding: the conversion overflowed).
+  auto cellIndex = [eps](double x) {
+    return int64_t(std::clamp(std::floor(x / eps), -1e18, 1e18));
   };
+  auto cellOf = [&](const Vec3& p) { return CellKey{cellIndex(p.x), cellIndex(p.y), cellIndex(p.z)}; };
   for (size_t i = 0; i < positions.size(); ++i) {
     const Vec3& p = positions[i];
     const CellKey cell = cellOf(p);
