@@ -34,7 +34,9 @@ TEST(LobesVsHeitz, FirstBounceMatchesAndGrazingSecondBounceIsClose) {
         int dof = 0;
         const double chi = bench::twoSampleChiSquare(corr, ref, 0, dof);
         EXPECT_LT(chi, test::chiSquareThreshold(dof)) << c.name() << " dof " << dof;
-        if (theta != 1.5 || facets == Facets::Dielectric) continue;  // dielectric: order 2 is tiny
+        // Dielectrics are left out: at 1.5 rad their second order differs more (relative L1 0.10
+        // at alpha (1, 0.1), 0.44 at alpha 1; README "Materials").
+        if (theta != 1.5 || facets == Facets::Dielectric) continue;
         const Lobes unc = bench::walkLobes(c, HeightModel::Uncorrelated, walks, seed++);
         const double noise = bench::relativeL1Noise(ref, 1);
         const double corrL1 = bench::relativeL1(corr, ref, 1), uncL1 = bench::relativeL1(unc, ref, 1);
