@@ -31,7 +31,7 @@ struct Microsurface {
   Vec3 sampleVisibleNormal(const Vec3& w, double u1, double u2) const;
 };
 
-// Slope-space helpers shared by the NDFs (exposed for the tests).
+// The inverse error function (Beckmann slope sampling).
 double erfInv(double y);
 
 }  // namespace penumbra::bsdf
