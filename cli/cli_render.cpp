@@ -1,6 +1,7 @@
 // `penumbra render`: an image of a scene lit by its DM mesh (or by the exact reference).
 #include <chrono>
 #include <cstdio>
+#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "core/engine/engine.h"
@@ -56,16 +57,23 @@ int runRender(const Args& args) {
 
   const auto meshStart = std::chrono::steady_clock::now();
   Mesh mesh;
+  std::unique_ptr<Engine> engine;  // kept: microfacet shading reads its cells' occluder lists
   if (const auto meshPath = args.option("mesh")) {
     mesh = protocol::loadMeshFile(*meshPath, scene);
   } else if (!settings.reference) {
     ProgressBar casting("casting"), illumination("illumination");
-    Engine engine(scene, {}, [&](const char* step, size_t done, size_t total) {
+    engine = std::make_unique<Engine>(scene, EngineSettings{}, [&](const char* step, size_t done, size_t total) {
       (std::string(step) == "casting" ? casting : illumination).update(done, total);
     });
     casting.finish();
     illumination.finish();
-    mesh = engine.mesh();
+    mesh = engine->mesh();
+    settings.occluders = [&engine](FaceId face, const Vec3& p, size_t light, std::vector<FaceId>& out) {
+      const Engine::Receiver* receiver = engine->receiver(face);
+      if (!receiver) return;
+      for (const OccluderEntry& e : receiver->tree.occluders(receiver->tree.locate(receiver->frame.to2D(p))))
+        if (e.light == light && e.face != kLightPlaneOccluder) out.push_back(e.face);
+    };
   }
   const double meshSeconds = secondsSince(meshStart);
 

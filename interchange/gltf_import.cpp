@@ -1,5 +1,7 @@
 #include "interchange/gltf_import.h"
 
+#include "interchange/material_mapping.h"
+
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -107,6 +109,33 @@ Mat4 localMatrix(const tinygltf::Node& node) {
   return m;
 }
 
+// A number from a material extension's object, or fallback.
+double extensionNumber(const tinygltf::Material& m, const char* extension, const char* key, double fallback) {
+  const auto ext = m.extensions.find(extension);
+  if (ext == m.extensions.end() || !ext->second.Has(key)) return fallback;
+  return ext->second.Get(key).GetNumberAsDouble();
+}
+
+// Metallic (>= 0.5; glTF's default is 1) -> conductor with base colour as F0; KHR_materials_transmission (>= 0.5) ->
+// dielectric with KHR_materials_ior (default 1.5); roughness alpha = roughnessFactor².
+void mapMicrofacet(const tinygltf::Material& m, ImportedMaterial& material, ImportReport& report) {
+  if (m.extensions.count("KHR_materials_unlit")) return;  // e.g. Penumbra's own lit-mesh export
+  const auto& pbr = m.pbrMetallicRoughness;
+  const double alpha = alphaFromPerceptual(pbr.roughnessFactor);
+  if (pbr.metallicRoughnessTexture.index >= 0) report.count("textures_ignored");
+  if (extensionNumber(m, "KHR_materials_transmission", "transmissionFactor", 0) >= 0.5) {
+    material.surface.type = MaterialType::Dielectric;
+    material.surface.roughness = Vec2(alpha);
+    const double ior = extensionNumber(m, "KHR_materials_ior", "ior", 1.5);
+    material.surface.ior = ior > 1 && ior <= 4 ? ior : 1.5;
+    report.count("materials_mapped_to_dielectric");
+  } else if (pbr.metallicFactor >= 0.5) {
+    setConductorFromBaseColor(material.surface, material.albedo);
+    material.surface.roughness = Vec2(alpha);
+    report.count("materials_mapped_to_conductor");
+  }
+}
+
 std::vector<ImportedMaterial> materialsOf(const tinygltf::Model& model, ImportReport& report) {
   std::vector<ImportedMaterial> materials;
   std::set<std::string> names;
@@ -122,6 +151,7 @@ std::vector<ImportedMaterial> materialsOf(const tinygltf::Model& model, ImportRe
     const std::vector<double>& base = m.pbrMetallicRoughness.baseColorFactor;
     if (base.size() >= 3) material.albedo = Vec3(base[0], base[1], base[2]);
     if (m.pbrMetallicRoughness.baseColorTexture.index >= 0) report.count("textures_ignored");
+    mapMicrofacet(m, material, report);
     double strength = 1;
     const auto ext = m.extensions.find("KHR_materials_emissive_strength");
     if (ext != m.extensions.end() && ext->second.Has("emissiveStrength"))

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/geom/vec.h"
+#include "core/scene/scene.h"
 #include "interchange/polygon_repair.h"
 
 namespace penumbra::interchange {
@@ -17,6 +18,7 @@ struct ImportedMaterial {
   Vec3 albedo{0.8};
   Vec3 emission{0.0};  // radiance, W·m⁻²·sr⁻¹; non-zero makes its polygons lights
   bool defined = true;  // false: named by the file but found in no material file
+  Material surface;     // the microfacet keys (type diffuse unless mapped; its albedo unused)
 };
 
 struct ImportedGroup {

@@ -1,5 +1,7 @@
 #include "interchange/obj_import.h"
 
+#include "interchange/material_mapping.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -181,6 +183,19 @@ ImportedMaterial materialFrom(const tinyobj::material_t& m, const ExactColors& e
     return material;
   }
   material.albedo = exact.kd.value_or(vec3(m.diffuse));
+  // PBR extension Pm/Pr, transparency d/Tr with Ni; Ns gives the roughness without Pr.
+  const double alpha = m.roughness > 0 ? alphaFromPerceptual(m.roughness)
+                       : m.shininess > 0 ? alphaFromPhong(m.shininess) : Material{}.roughness.x;
+  if (m.metallic >= 0.5) {
+    setConductorFromBaseColor(material.surface, material.albedo);
+    material.surface.roughness = Vec2(alpha);
+    report.count("materials_mapped_to_conductor");
+  } else if (m.dissolve < 1) {
+    material.surface.type = MaterialType::Dielectric;
+    material.surface.roughness = Vec2(alpha);
+    material.surface.ior = m.ior > 1 && m.ior <= 4 ? m.ior : 1.5;
+    report.count("materials_mapped_to_dielectric");
+  }
   const Vec3 emission = exact.ke.value_or(vec3(m.emission)), ambient = exact.ka.value_or(vec3(m.ambient));
   if (positive(emission)) {
     material.emission = emission;

@@ -1,5 +1,7 @@
 #include "interchange/scene_assembly.h"
 
+#include "protocol/material_json.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -243,7 +245,9 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
     const ImportedMaterial& material = geometry.materials[size_t(m)];
     const Vec3 albedo = glm::clamp(material.albedo, 0.0, 1.0);
     if (albedo != material.albedo) report.count("albedo_clamped_to_0_1");
-    materials[name] = {{"albedo", toJson(albedo)}};
+    Material out = material.surface;
+    out.albedo = albedo;
+    materials[name] = protocol::materialToJson(out);
   }
   if (lights.empty())
     throw ValidationError("(import)",

@@ -8,6 +8,7 @@
 #include "core/geom/tolerance.h"
 #include "protocol/json_reader.h"
 #include "protocol/json_text.h"
+#include "protocol/material_json.h"
 
 namespace penumbra::protocol {
 
@@ -67,13 +68,7 @@ std::vector<Material> materialsFromJson(const Json& value, const std::string& pa
   for (const auto& [name, body] : value.items()) {
     const std::string materialPath = keyPath(path, name);
     if (name.empty()) fail(materialPath, "material name is empty");
-    expectObject(body, materialPath);
-    Material material{name, {}};
-    const std::string albedoPath = keyPath(materialPath, "albedo");
-    material.albedo = expectVec3(requireKey(body, "albedo", materialPath), albedoPath);
-    for (int c = 0; c < 3; ++c)
-      if (material.albedo[c] < 0 || material.albedo[c] > 1)
-        fail(albedoPath, "albedo " + shortNumber(material.albedo[c]) + " is outside [0, 1]");
+    Material material = materialFromJson(name, body, materialPath);
     materials.push_back(std::move(material));
   }
   return materials;
@@ -288,7 +283,7 @@ Json sceneToJson(const Scene& scene) {
 
   Json materials = Json::object();
   for (const Material& material : scene.materials())
-    materials[material.id] = Json{{"albedo", toJson(material.albedo)}};
+    materials[material.id] = materialToJson(material);
   out["materials"] = std::move(materials);
 
   Json objects = Json::array();

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/illum/backprojection.h"
 #include "core/reference/exact_irradiance.h"
 #include "core/render/mesh_lookup.h"
 #include "core/render/ray_scene.h"
@@ -84,10 +85,44 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
   std::vector<Plane> lightPlanes;
   for (const Light& light : scene.lights()) lightPlanes.push_back(light.plane());
 
+  // Radiance of a diffuse face at a point: albedo/π · (E + ambient); faces receive light on
+  // their front only, so a back seen with culling off (or from a glossy path) is ambient.
+  const Vec3 ambient = ambientIrradiance(scene, settings.ambientFraction);
+  auto diffuseRadiance = [&](uint32_t faceIndex, const Vec3& position, bool frontFacing) {
+    const Face& face = scene.faces()[faceIndex];
+    Vec3 irradiance(0.0);
+    if (receives[faceIndex] && frontFacing) {
+      if (settings.reference) {
+        irradiance = reference.evaluate(position, face.plane.normal).irradiance;
+      } else if (const auto value = lookup.irradiance(faceIndex, position)) {
+        irradiance = *value;
+      }
+    }
+    return scene.albedo(face.id) / M_PI * (irradiance + ambient);
+  };
+  auto visiblePieces = [&](uint32_t faceIndex, const Vec3& p, size_t light, std::vector<Polygon3>& pieces) {
+    const Face& face = scene.faces()[faceIndex];
+    if (!settings.occluders || settings.reference) {
+      pieces = reference.visibility(p, face.plane.normal, light).visiblePieces;
+      return;
+    }
+    Backprojection backprojection(scene, light, p, face.plane.normal);
+    if (!backprojection.applies()) return;
+    std::vector<FaceId> candidates;
+    settings.occluders(face.id, p, light, candidates);
+    for (const FaceId& id : candidates) {
+      const auto it = std::lower_bound(scene.faces().begin(), scene.faces().end(), id,
+                                       [](const Face& f, const FaceId& x) { return f.id < x; });
+      if (it != scene.faces().end() && it->id == id) backprojection.occlude(*it);
+    }
+    pieces = backprojection.visiblePieces();
+  };
+  const MicrofacetShading microfacet(scene, rays, visiblePieces, diffuseRadiance, settings.microfacet);
+
   RenderedImage image;
   image.width = settings.width;
   image.height = settings.height;
-  image.ambientIrradiance = ambientIrradiance(scene, settings.ambientFraction);
+  image.ambientIrradiance = ambient;
   const size_t pixels = size_t(image.width) * size_t(image.height);
   image.linear.assign(3 * pixels, 0.0f);
   // 0: background, 1: surface, 2: light — for the exposure and the counts.
@@ -126,18 +161,12 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
         if (light) {
           radiance = scene.lights()[*light].radiance;
           kind[p] = 2;
+        } else if (surface && microfacet.isMicrofacet(surface->faceIndex)) {
+          bsdf::Rng rng(settings.seed * 0x9E3779B97F4A7C15ull + p);
+          radiance = microfacet.radiance(surface->faceIndex, surface->position, -glm::normalize(ray.dir), rng);
+          kind[p] = 1;
         } else if (surface) {
-          const Face& face = scene.faces()[surface->faceIndex];
-          Vec3 irradiance(0.0);
-          // Faces receive light on their front only: a back seen with culling off is ambient.
-          if (receives[surface->faceIndex] && surface->frontFacing) {
-            if (settings.reference) {
-              irradiance = reference.evaluate(surface->position, face.plane.normal).irradiance;
-            } else if (const auto value = lookup.irradiance(surface->faceIndex, surface->position)) {
-              irradiance = *value;
-            }
-          }
-          radiance = scene.albedo(face.id) / M_PI * (irradiance + image.ambientIrradiance);
+          radiance = diffuseRadiance(surface->faceIndex, surface->position, surface->frontFacing);
           kind[p] = 1;
         }
         for (int c = 0; c < 3; ++c) image.linear[3 * p + c] = float(radiance[c]);

@@ -10,6 +10,7 @@
 
 #include "core/mesh/mesh.h"
 #include "core/render/camera_projection.h"
+#include "core/render/microfacet_shading.h"
 #include "core/scene/scene.h"
 
 namespace penumbra {
@@ -34,6 +35,13 @@ struct RenderSettings {
   Vec3 background{0.0};  // radiance of rays that hit nothing
   // Linear scale before tone mapping; 0 = automatic (see RenderedImage::exposure).
   double exposure = 0;
+  // Microfacet materials (README "Materials"): light-piece samples and path depth.
+  MicrofacetSettings microfacet;
+  // The faces that can hide light `light` from p on receiving face `face` (appended to out):
+  // the DM cell's occluder list (Engine::Receiver::tree). Empty: every face of the scene.
+  // Either way the visible light pieces are exact (Backprojection).
+  std::function<void(FaceId face, const Vec3& p, size_t light, std::vector<FaceId>& out)> occluders;
+  uint64_t seed = 1;  // microfacet estimates: per-pixel generators seeded from it
 };
 
 struct RenderedImage {

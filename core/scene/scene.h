@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/bsdf/microsurface.h"
 #include "core/geom/plane.h"
 #include "core/geom/polygon.h"
 #include "core/geom/tolerance.h"
@@ -18,9 +19,21 @@
 
 namespace penumbra {
 
+enum class MaterialType { Diffuse, RoughDiffuse, Conductor, Dielectric };
+
+// A surface's reflectance. Diffuse: Lambertian albedo (the DM's irradiance view uses albedo
+// for every type). The others are microfacet BSDFs (core/bsdf) seen by the camera only.
 struct Material {
   std::string id;
   Vec3 albedo{0.8};
+  MaterialType type = MaterialType::Diffuse;
+  Vec2 roughness{0.5};                // GGX / Beckmann alpha along x and y
+  Vec3 eta{1.657, 0.880, 0.521};      // conductor: complex index eta + i k (aluminium)
+  Vec3 k{9.224, 6.270, 4.837};
+  double ior = 1.5;                   // dielectric: index inside / outside
+  bsdf::Ndf ndf = bsdf::Ndf::GGX;
+  bool singleScattering = false;      // microfacet: first bounce only
+  bool operator==(const Material&) const = default;
 };
 
 struct Light {

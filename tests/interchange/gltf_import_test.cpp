@@ -3,6 +3,8 @@
 // KHR_materials_emissive_strength → lights. The test writes its glTF with tinygltf.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -63,6 +65,7 @@ class ModelWriter {
     model_.nodes.push_back(node);
     model_.scenes[0].nodes.push_back(int(model_.nodes.size() - 1));
   }
+  tinygltf::Model& model() { return model_; }
   std::vector<uint8_t> write(bool binary) {
     tinygltf::TinyGLTF writer;
     std::ostringstream out;
@@ -180,6 +183,51 @@ TEST(GltfImport, NonFiniteCoordinatesAreRefusedWithTheirPath) {
   } catch (const protocol::ValidationError& error) {
     EXPECT_NE(error.path().find(".positions["), std::string::npos) << error.path();
   }
+}
+
+}  // namespace
+}  // namespace penumbra::interchange
+
+namespace penumbra::interchange {
+namespace {
+
+// pbrMetallicRoughness, KHR_materials_transmission and KHR_materials_ior onto material types.
+TEST(GltfImport, PbrMaterialsMapOntoMicrofacetTypes) {
+  ModelWriter w;
+  const int metal = w.material("metal", {0.9, 0.6, 0.3}, {0, 0, 0}, 1);  // metallicFactor: default 1
+  const int plastic = w.material("plastic", {0.5, 0.5, 0.5}, {0, 0, 0}, 1);
+  const int glass = w.material("glass", {1, 1, 1}, {0, 0, 0}, 1);
+  const int lamp = w.material("lamp", {1, 1, 1}, {1, 1, 1}, 8);
+  tinygltf::Model& model = w.model();
+  model.materials[size_t(metal)].pbrMetallicRoughness.roughnessFactor = 0.5;
+  model.materials[size_t(plastic)].pbrMetallicRoughness.metallicFactor = 0;
+  model.materials[size_t(glass)].pbrMetallicRoughness.metallicFactor = 0;
+  model.materials[size_t(glass)].pbrMetallicRoughness.roughnessFactor = 0.1;
+  model.materials[size_t(glass)].extensions["KHR_materials_transmission"] =
+      tinygltf::Value(tinygltf::Value::Object{{"transmissionFactor", tinygltf::Value(1.0)}});
+  model.materials[size_t(glass)].extensions["KHR_materials_ior"] =
+      tinygltf::Value(tinygltf::Value::Object{{"ior", tinygltf::Value(1.33)}});
+  model.materials[size_t(lamp)].pbrMetallicRoughness.metallicFactor = 0;
+  const std::array<Vec3, 4> quad = {{{-0.5, 0, -0.5}, {-0.5, 0, 0.5}, {0.5, 0, 0.5}, {0.5, 0, -0.5}}};
+  w.quad("a", quad, metal, {0, 0, 0});
+  w.quad("b", quad, plastic, {0, 1, 0});
+  w.quad("c", quad, glass, {0, 2, 0});
+  w.quad("lamp", quad, lamp, {0, 3, 0});
+  const ImportResult result = importSceneBytes(w.write(true), "m.glb", {}, {});
+  const Scene& scene = result.scene;
+  const Material& m = scene.materials()[*scene.findMaterial("metal")];
+  EXPECT_EQ(m.type, MaterialType::Conductor);
+  EXPECT_DOUBLE_EQ(m.roughness.x, 0.25);
+  for (int c = 0; c < 3; ++c)  // normal-incidence reflectance of eta + ik is the base colour
+    EXPECT_NEAR((std::pow(m.eta[c] - 1, 2) + m.k[c] * m.k[c]) / (std::pow(m.eta[c] + 1, 2) + m.k[c] * m.k[c]),
+                m.albedo[c], 1e-6);
+  EXPECT_EQ(scene.materials()[*scene.findMaterial("plastic")].type, MaterialType::Diffuse);
+  const Material& g = scene.materials()[*scene.findMaterial("glass")];
+  EXPECT_EQ(g.type, MaterialType::Dielectric);
+  EXPECT_DOUBLE_EQ(g.ior, 1.33);
+  EXPECT_NEAR(g.roughness.x, 0.01, 1e-12);
+  EXPECT_EQ(result.report.repaired("materials_mapped_to_conductor"), 1u) << result.report.summary();
+  EXPECT_EQ(result.report.repaired("materials_mapped_to_dielectric"), 1u);
 }
 
 }  // namespace

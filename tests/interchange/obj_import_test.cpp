@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <tuple>
@@ -258,6 +260,49 @@ TEST(ObjImport, FromMemoryMatchesFromFile) {
   const ImportResult fromMemory =
       importSceneBytes(std::vector<uint8_t>(text.begin(), text.end()), "small.obj", {{"small.mtl", kSmallMtl}}, {});
   EXPECT_EQ(fromMemory.sceneJson, fromFile.sceneJson);
+}
+
+}  // namespace
+}  // namespace penumbra::interchange
+
+namespace penumbra::interchange {
+namespace {
+
+// MTL's PBR extension (Pm, Pr), transparency (d) with Ni, and Ns onto material types.
+TEST(ObjImport, MtlParametersMapOntoMicrofacetTypes) {
+  const std::string mtl =
+      "newmtl metal\nKd 0.9 0.6 0.3\nPm 1\nPr 0.5\n"
+      "newmtl glass\nKd 1 1 1\nd 0.2\nNi 1.33\nNs 98\n"
+      "newmtl paint\nKd 0.5 0.5 0.5\nNs 250\n"
+      "newmtl light\nKe 5 5 5\n";
+  std::string obj = "mtllib m.mtl\n";
+  const char* names[] = {"metal", "glass", "paint", "light"};
+  for (int i = 0; i < 4; ++i) {
+    obj += "o " + std::string(names[i]) + "\nusemtl " + names[i] + "\n";
+    for (const char* corner : {"-1 %d -1", "-1 %d 1", "1 %d 1", "1 %d -1"}) {
+      char line[64];
+      std::snprintf(line, sizeof line, corner, i);
+      obj += "v " + std::string(line) + "\n";
+    }
+    const int b = 4 * i + 1;
+    // the light (top) faces down towards the others
+    obj += i == 3 ? "f " + std::to_string(b) + " " + std::to_string(b + 3) + " " + std::to_string(b + 2) + " " +
+                        std::to_string(b + 1) + "\n"
+                  : "f " + std::to_string(b) + " " + std::to_string(b + 1) + " " + std::to_string(b + 2) + " " +
+                        std::to_string(b + 3) + "\n";
+  }
+  const ImportResult result = importObjText(obj, {{"m.mtl", mtl}}, {}, "m.obj");
+  const Scene& scene = result.scene;
+  const Material& metal = scene.materials()[*scene.findMaterial("metal")];
+  EXPECT_EQ(metal.type, MaterialType::Conductor);
+  EXPECT_DOUBLE_EQ(metal.roughness.x, 0.25);
+  const Material& glass = scene.materials()[*scene.findMaterial("glass")];
+  EXPECT_EQ(glass.type, MaterialType::Dielectric);
+  EXPECT_DOUBLE_EQ(glass.ior, 1.33);
+  EXPECT_NEAR(glass.roughness.x, std::sqrt(2.0 / 100.0), 1e-12);
+  EXPECT_EQ(scene.materials()[*scene.findMaterial("paint")].type, MaterialType::Diffuse);
+  EXPECT_EQ(result.report.repaired("materials_mapped_to_conductor"), 1u) << result.report.summary();
+  EXPECT_EQ(result.report.repaired("materials_mapped_to_dielectric"), 1u);
 }
 
 }  // namespace

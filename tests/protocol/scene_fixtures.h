@@ -68,6 +68,7 @@ inline void expectSameScene(const Scene& a, const Scene& b) {
     const auto j = b.findMaterial(m.id);
     ASSERT_TRUE(j.has_value()) << m.id;
     EXPECT_EQ(m.albedo, b.materials()[*j].albedo) << m.id;
+    EXPECT_TRUE(m == b.materials()[*j]) << m.id << ": microfacet keys differ";
   }
   ASSERT_EQ(a.objects().size(), b.objects().size());
   for (size_t i = 0; i < a.objects().size(); ++i) {

@@ -265,8 +265,21 @@ Scene randomScene(std::mt19937_64& rng) {
   }
   std::vector<Material> materials;
   const int materialCount = int(rng() % 4);
-  for (int i = 0; i < materialCount; ++i)
-    materials.push_back(Material{"m" + std::to_string(i), Vec3(zeroOne(rng), zeroOne(rng), zeroOne(rng))});
+  for (int i = 0; i < materialCount; ++i) {
+    Material m{"m" + std::to_string(i), Vec3(zeroOne(rng), zeroOne(rng), zeroOne(rng))};
+    m.type = MaterialType(rng() % 4);
+    if (m.type != MaterialType::Diffuse) {  // the microfacet keys, each type with its own
+      m.roughness = rng() % 2 ? Vec2(0.01 + zeroOne(rng)) : Vec2(0.01 + zeroOne(rng), 0.01 + zeroOne(rng));
+      m.ndf = rng() % 2 ? bsdf::Ndf::GGX : bsdf::Ndf::Beckmann;
+      m.singleScattering = rng() % 2;
+      if (m.type == MaterialType::Conductor) {
+        m.eta = Vec3(positive(rng), positive(rng), positive(rng));
+        m.k = Vec3(zeroOne(rng), zeroOne(rng), zeroOne(rng)) * 5.0;
+      }
+      if (m.type == MaterialType::Dielectric) m.ior = 1.01 + 2 * zeroOne(rng);
+    }
+    materials.push_back(m);
+  }
 
   std::vector<Object> objects;
   const int objectCount = int(rng() % 5);
