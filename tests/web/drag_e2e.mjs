@@ -13,7 +13,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 
-import { check, parseArgs, repo, runWithServerAndBrowser } from './harness.mjs';
+import { check, repo, runWithServerAndBrowser, usageOnHelp } from './harness.mjs';
 
 const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'cubes15.scene.json'),
     screenshot: path.join(repo, 'build', 'web-e2e.png'), measure: null, seconds: 5, startupSeconds: 120, query: '' };
@@ -391,7 +391,8 @@ async function measure(page, base, sceneId, seconds) {
 }
 
 async function main() {
-  const args = parseArgs(process.argv, defaults);
+  const args = usageOnHelp(process.argv, defaults, 'node tests/web/drag_e2e.mjs --penumbra build/penumbra [--scene FILE] [--screenshot PNG]\n'
+    + '       [--measure build/cubes150.scene.json --seconds 5] [--query drag_scale=0.35]');
   await runWithServerAndBrowser({ ...args, scene: args.measure || args.scene }, async ({ browser, url, base, sceneId }) => {
     const { page, pageErrors } = await openPage(browser, args.query ? `${url}&${args.query}` : url);
     const ready = await page.evaluate(() => window.penumbra.state());

@@ -21,6 +21,24 @@ export function parseArgs(argv, defaults) {
   return args;
 }
 
+// parseArgs for a script's main: --help / -h prints `usage` and the options with their defaults
+// and exits 0; a bad option prints the problem and `usage` (no stack trace) and exits 2.
+export function usageOnHelp(argv, defaults, usage) {
+  const options = Object.entries(defaults).map(([key, value]) => `  --${key} ${value === null ? '(none)' : value}`).join('\n');
+  if (argv.includes('--help') || argv.includes('-h')) {
+    console.log(`usage: ${usage}\noptions and their defaults:\n${options}`);
+    process.exit(0);
+  }
+  try {
+    return parseArgs(argv, defaults);
+  } catch (error) {
+    console.error(`${error.message.replace(/^usage: /, '')}\nusage: ${usage}\noptions and their defaults:\n${options}`);
+    process.exit(2);
+  }
+}
+
+export const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+
 let failures = 0;
 let passes = 0;
 export function check(condition, what, detail = '') {

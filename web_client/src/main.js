@@ -5,6 +5,7 @@ import { ApiClient } from './api_client.js';
 import { ErrorBanner } from './error_banner.js';
 import { EditCoalescer } from './edit_coalescer.js';
 import { EventSync } from './event_sync.js';
+import { LoadingIndicator } from './loading_indicator.js';
 import { MeshSync } from './mesh_sync.js';
 import { ReceiverLayer } from './receiver_layer.js';
 import { RenderPanel } from './render_panel.js';
@@ -28,6 +29,7 @@ class App {
   constructor() {
     this.api = new ApiClient('', new URLSearchParams(window.location.search).get('token'));
     this.banner = new ErrorBanner($('error-banner'), $('error-text'), $('error-close'));
+    this.loading = new LoadingIndicator($('loading'), $('loading-text'), $('loading-progress'), $('controls'));
     // ?antialias=on|off and ?drag_scale=0.25..1 override the choices by GL renderer (to compare frame times).
     const query = new URLSearchParams(window.location.search);
     const antialias = query.get('antialias');
@@ -47,19 +49,27 @@ class App {
     // MOTION_HOLD_MS) for that edit's shadows, so the two are drawn together in one frame.
     this.view.motionHold = () => (this.view.gl.software && this.view.interactions.has('drag') && this.busy() ? MOTION_HOLD_MS : 0);
     this.fail = (error) => this.banner.show(error);
-    installSceneFileLoader($('scene-file'), this.api, this.fail, { scale: $('import-scale'), radiance: $('import-radiance') });
+    installSceneFileLoader($('scene-file'), this.api, this.fail, { scale: $('import-scale'), radiance: $('import-radiance') }, this.loading);
   }
 
   async start() {
+    performance.mark('penumbra:start');
     const requested = new URLSearchParams(window.location.search).get('scene');
     let sceneId = requested;
+    this.loading.step('Loading the scene…');
     if (!sceneId) {
       const { scenes } = await this.api.listScenes();
       if (!scenes.length) throw new Error('the server serves no scene: load a .scene.json file');
       sceneId = scenes[0].id;
     }
     this.sceneId = sceneId;
-    const wrapped = await this.api.getScene(sceneId);
+    // prefetch.js asked for the scene and its mesh while the modules loaded.
+    const prefetch = window.penumbraPrefetch && window.penumbraPrefetch.sceneId === sceneId ? window.penumbraPrefetch : null;
+    const meshResponse = prefetch ? this.api.adopt(prefetch.mesh, 'GET mesh')
+      : this.api.request('GET', `${this.api.scenePath(sceneId)}/mesh?format=bin`);
+    meshResponse.catch(() => {}); // reported when awaited below
+    const wrapped = prefetch ? await (await this.api.adopt(prefetch.scene, 'GET scene')).json() : await this.api.getScene(sceneId);
+    performance.mark('penumbra:scene');
     $('scene-name').textContent = `${wrapped.id} (${wrapped.name})`;
     showImportReport($('import-report'), sceneId, wrapped.name);
     this.sceneJson = wrapped.scene;
@@ -73,7 +83,10 @@ class App {
       $('version').textContent = String(decoded.sceneVersion);
       this.view.requestRender();
     });
-    const whole = await this.meshSync.loadWhole();
+    const whole = await this.meshSync.loadWhole(async () => ApiClient.bytesWithProgress(await meshResponse,
+      (loaded, total) => this.loading.bytes('Downloading the lit mesh', loaded, total)));
+    performance.mark('penumbra:mesh');
+    this.loading.step('Drawing…');
     this.toneMap.calibrate(whole.parts);
     this.receivers.apply({ ...whole, delta: false }, this.toneMap); // recolour with the calibrated exposure
     this.objects.build(wrapped.scene, (id) => this.toneMap.ambientColour(id));
@@ -104,6 +117,8 @@ class App {
 
     this.renderPanel.schedule();
     this.view.requestRender();
+    performance.mark('penumbra:ready');
+    this.loading.done();
   }
 
   installControls() {
@@ -259,4 +274,7 @@ class App {
 
 const app = new App();
 const hook = installTestHook(app);
-app.start().then(() => { hook.ready = true; }).catch((error) => app.banner.show(error));
+app.start().then(() => { hook.ready = true; }).catch((error) => {
+  app.banner.show(error);
+  app.loading.failed(`The scene did not load: ${error.message || error}`);
+});

@@ -17,8 +17,9 @@ export class MeshSync {
     this.fetches = 0;
   }
 
-  async loadWhole() {
-    const decoded = decodeMeshBinary(await this.api.meshBinary(this.sceneId));
+  // download: () → promise of the whole mesh's bytes (default: fetched here).
+  async loadWhole(download = () => this.api.meshBinary(this.sceneId)) {
+    const decoded = decodeMeshBinary(await download());
     this.record(decoded);
     return decoded;
   }

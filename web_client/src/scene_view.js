@@ -16,30 +16,18 @@ function defaultCamera(bounds) {
     fov_y_deg: 45, near: distance / 100, far: distance * 3 };
 }
 
-const SOFTWARE_GL = /swiftshader|llvmpipe|softpipe|lavapipe|software/i;
-
-// The WebGL renderer's name (WEBGL_debug_renderer_info, read from a throwaway context) and whether
-// it rasterises in software, where MSAA costs about twice the frame time (SwiftShader, 150 cubes
-// at 1280×800: 120 ms a frame antialiased, 65 ms without).
-export function probeWebGL() {
-  const canvas = document.createElement('canvas');
-  const gl = canvas.getContext('webgl2') || canvas.getContext('webgl');
-  if (!gl) return { renderer: 'no WebGL', software: false, name: 'no WebGL' };
-  const info = gl.getExtension('WEBGL_debug_renderer_info');
-  const renderer = String(gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER));
-  const lose = gl.getExtension('WEBGL_lose_context');
-  if (lose) lose.loseContext();
-  const software = renderer.match(SOFTWARE_GL);
-  return { renderer, software: !!software, name: software ? software[0] : renderer.slice(0, 40) };
-}
-
 export class SceneView {
   // antialias: 'auto' (on unless the GL is software), 'on' or 'off'. dragScale: the pixel
   // ratio a software GL draws at while the user drags or orbits ('auto': 0.25).
   constructor(container, { antialias = 'auto', dragScale = 'auto' } = {}) {
     this.container = container;
-    const probe = probeWebGL();
-    this.gl = { ...probe, antialias: antialias === 'auto' ? !probe.software : antialias === 'on' };
+    // gl_context.js made the context while the modules loaded, for the page's antialias choice.
+    const early = window.penumbraGL;
+    const { canvas, context, gl } = early && early.antialias === antialias && early.canvas.width === container.clientWidth
+      && early.canvas.height === container.clientHeight ? early : window.makeWebGLContext(antialias, container);
+    window.penumbraGL = null;
+    this.gl = gl;
+    const probe = gl;
     // A software rasteriser's frame time grows with the pixels drawn (SwiftShader, 150 cubes
     // at 940×800: 59 ms a frame, 31 ms at half resolution); while something moves, a quarter of
     // the resolution keeps the shadows up with the pointer, and full resolution returns when it
@@ -47,15 +35,6 @@ export class SceneView {
     // second: 17.7–18.1 at half resolution, 18.8–21.0 at a quarter; 0.35 was no better than 0.5).
     this.gl.dragScale = dragScale === 'auto' ? (probe.software ? 0.25 : 1) : Math.min(Math.max(Number(dragScale) || 1, 0.25), 1);
     this.interactions = new Set();
-    // The context is made here because three.js always asks for an alpha channel. An opaque
-    // canvas (the background is black), not kept once shown (nothing reads it after the frame:
-    // timeFrames reads pixels in the drawing task, screenshots read the compositor), and on a
-    // software GL desynchronized (low latency): each cuts the compositor's work per frame
-    // (SwiftShader, 150 cubes at half resolution, frames drawn a second in a requestAnimationFrame
-    // loop: 18.7 before, 26.4 with all three; an empty scene 45 → 58).
-    const canvas = document.createElement('canvas');
-    const context = canvas.getContext('webgl2', { antialias: this.gl.antialias, alpha: false, depth: true, stencil: false,
-      preserveDrawingBuffer: false, desynchronized: this.gl.software });
     this.renderer = new THREE.WebGLRenderer(context ? { canvas, context } : { antialias: this.gl.antialias });
     this.renderer.setPixelRatio(1);
     this.renderer.outputColorSpace = THREE.SRGBColorSpace;
@@ -126,7 +105,8 @@ export class SceneView {
 
   resize() {
     const { clientWidth: w, clientHeight: h } = this.container;
-    this.renderer.setSize(w, h);
+    const size = this.renderer.getSize(new THREE.Vector2());
+    if (size.x !== w || size.y !== h) this.renderer.setSize(w, h);
     if (!this.camera) return;
     const aspect = this.aspect();
     if (this.camera.isPerspectiveCamera) {

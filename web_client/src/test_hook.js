@@ -48,6 +48,8 @@ export function installTestHook(app) {
         lastFrame: app.timings.frame, roundTrip: app.timings.roundTrip, phases: app.timings.phases || null, totals: { ...app.timings.totals }, frames: app.view.frames, meshFramesDrawn,
         mesh: app.meshSync ? { lastBytes: app.meshSync.lastBytes, totalBytes: app.meshSync.totalBytes, fetches: app.meshSync.fetches } : null,
         events: app.events ? app.events.events : 0,
+        loading: { visible: app.loading.visible(), text: app.loading.text.textContent, controlsDisabled: app.loading.controls.disabled,
+          readySeconds: app.loading.readySeconds ?? null },
         gl: app.view.gl, canvas: { width: app.view.renderer.domElement.clientWidth, height: app.view.renderer.domElement.clientHeight },
       };
     },
