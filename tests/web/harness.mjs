@@ -52,10 +52,10 @@ export function check(condition, what, detail = '') {
   return condition;
 }
 
-// Starts the server and resolves with {server, url} once it prints the page's URL.
-export function startServer(penumbra, scene, timeoutSeconds) {
+// Starts the server (on `port`, 0: any free one) and resolves with {server, url} once it prints the page's URL.
+export function startServer(penumbra, scene, timeoutSeconds, port = 0) {
   return new Promise((resolve, reject) => {
-    const server = spawn(penumbra, ['serve', scene, '--port', '0', '--ephemeral', '--static', path.join(repo, 'web_client')],
+    const server = spawn(penumbra, ['serve', scene, '--port', String(port), '--ephemeral', '--static', path.join(repo, 'web_client')],
       { cwd: repo, stdio: ['ignore', 'pipe', 'pipe'] });
     let out = '';
     let err = '';
@@ -105,7 +105,7 @@ export async function runWithServerAndBrowser({ penumbra, scene, startupSeconds 
     let url;
     ({ server, url } = await startServer(penumbra, scene, startupSeconds));
     browser = await launchBrowser();
-    await body({ browser, url, base: new URL(url).origin, sceneId: new URL(url).searchParams.get('scene') });
+    await body({ browser, url, server, base: new URL(url).origin, sceneId: new URL(url).searchParams.get('scene') });
   } catch (error) {
     check(false, 'the test ran to the end', error.stack || String(error));
   } finally {

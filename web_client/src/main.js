@@ -2,6 +2,9 @@
 // and connects the view, selection gizmo, edit coalescer, undo history, server render, timings,
 // events and error banner. Each concept lives in its own module beside this one.
 import { ApiClient } from './api_client.js';
+import { ConnectionStatus } from './connection_status.js';
+import { DragLimit } from './drag_limit.js';
+import { EditPlot } from './edit_plot.js';
 import { ErrorBanner } from './error_banner.js';
 import { EditCoalescer } from './edit_coalescer.js';
 import { EventSync } from './event_sync.js';
@@ -40,6 +43,9 @@ class App {
     this.timings = new TimingsPanel($('timings'));
     this.timings.gl = this.view.gl;
     this.timings.draw();
+    this.plot = new EditPlot($('edit-plot'), $('edit-ratio'));
+    this.connection = new ConnectionStatus($('connection'));
+    this.dragLimit = new DragLimit();
     this.history = new UndoHistory();
     this.ownVersions = new Set();
     this.dragStart = null;
@@ -91,14 +97,19 @@ class App {
     this.receivers.apply({ ...whole, delta: false }, this.toneMap); // recolour with the calibrated exposure
     this.objects.build(wrapped.scene, (id) => this.toneMap.ambientColour(id));
 
-    this.coalescer = new EditCoalescer((frame) => this.sendFrame(frame), { onError: (error) => this.editFailed(error) });
+    this.coalescer = new EditCoalescer((frame) => this.sendFrame(frame), { onError: (error, frame) => this.editFailed(error, frame) });
     this.gizmo = new SelectionGizmo(this.view, this.objects, {
       onSelect: (id) => { $('selection').textContent = id ? `selected ${id}` : 'click an object'; },
       onDragStart: (id) => {
         this.dragStart = { id, before: transformOf(this.gizmo.holder()) };
+        this.dragLimit.start(id, this.dragStart.before);
         this.view.setInteracting('drag', true);
       },
-      onChange: (id) => this.coalescer.move(id, transformOf(this.gizmo.holder())),
+      onChange: (id) => {
+        const transform = transformOf(this.gizmo.holder());
+        if (this.dragLimit.allows(id, transform)) this.coalescer.move(id, transform);
+        else applyTransform(this.gizmo.holder(), this.dragLimit.lastGood(id)); // held at the last good place
+      },
       onDragEnd: (id) => this.dragEnded(id),
       onMode: (mode) => this.showMode(mode),
     });
@@ -108,11 +119,18 @@ class App {
     this.events = new EventSync(this.api.eventsUrl(sceneId), {
       onVersion: (version) => this.versionAnnounced(version),
       onError: this.fail,
+      onConnection: (state, previous) => {
+        this.connection.set(state);
+        if (state === 'connected' && (previous === 'reconnecting' || previous === 'refused')) {
+          this.resyncing = this.resync().finally(() => { this.resyncing = null; });
+        }
+      },
     });
     this.installControls();
     this.api.stats(sceneId).then((stats) => {
       this.timings.initialBuild = stats.build && stats.build.seconds ? stats.build.seconds.total : null;
       this.timings.draw();
+      if (!this.timings.rebuild) this.plot.setBuild(this.timings.initialBuild, 'at load');
     }).catch(this.fail);
 
     this.renderPanel.schedule();
@@ -136,6 +154,7 @@ class App {
       try {
         this.timings.rebuild = await this.api.rebuild(this.sceneId);
         this.timings.draw();
+        this.plot.setBuild(this.timings.rebuild.seconds.build, `rebuild of v${this.timings.rebuild.version}`);
       } catch (error) {
         this.fail(error);
       } finally {
@@ -169,6 +188,8 @@ class App {
     const result = await this.api.postEdits(this.sceneId, frame);
     const answered = performance.now();
     this.ownVersions.add(result.version);
+    this.dragLimit.applied(frame.edits);
+    this.banner.clearTransient();
     const follow = this.followMesh(result, start, answered);
     this.meshFollows.add(follow);
     follow.finally(() => this.meshFollows.delete(follow));
@@ -180,6 +201,7 @@ class App {
       const fetched = await this.meshSync.refresh(Math.max(result.version, this.announced));
       const end = performance.now();
       this.timings.edited(result, (end - start) / 1000, fetched.bytes, { edit: (answered - start) / 1000, mesh: (end - answered) / 1000 });
+      this.plot.add(result.seconds ? result.seconds.total : 0, (end - start) / 1000);
       // The server's image waits for the drag's end: it would compete with the edits for the server.
       if (!this.gizmo.dragging) this.renderPanel.schedule();
     } catch (error) {
@@ -187,9 +209,20 @@ class App {
     }
   }
 
-  // A refused frame leaves the server as it was: show why, and put the stand-ins back.
-  async editFailed(error) {
-    this.fail(error);
+  // A refused frame leaves the server as it was: show why (once, until an edit succeeds), and put
+  // the stand-ins back: a dragged object to its last accepted place, where it is held (DragLimit).
+  async editFailed(error, frame) {
+    const refused = error.status === 422;
+    this.banner.show(refused ? new Error(`${error.message} — the object stays at its last accepted place`) : error,
+      { transient: refused, key: refused ? `${error.code}:${error.path}` : null });
+    const held = refused && frame ? this.dragLimit.refused(frame.edits) : null;
+    if (held) {
+      this.coalescer.discard(held);
+      const holder = this.objects.byId.get(held);
+      if (holder && this.dragLimit.lastGood(held)) applyTransform(holder, this.dragLimit.lastGood(held));
+      this.view.requestRender();
+      return;
+    }
     try {
       const wrapped = await this.api.getScene(this.sceneId);
       this.objects.syncTransforms(wrapped.scene, null);
@@ -199,6 +232,7 @@ class App {
   }
 
   dragEnded(id) {
+    this.dragLimit.end();
     this.view.setInteracting('drag', false);
     this.renderPanel.schedule();
     const start = this.dragStart;
@@ -258,8 +292,27 @@ class App {
     }
   }
 
+  // After the server came back: the scene and its whole mesh again (it may have restarted, and
+  // without a journal be back at version 0).
+  async resync() {
+    try {
+      const wrapped = await this.api.getScene(this.sceneId);
+      this.gizmo.select(null);
+      this.sceneJson = wrapped.scene;
+      this.objects.build(wrapped.scene, (id) => this.toneMap.ambientColour(id));
+      this.ownVersions.clear();
+      await this.meshSync.reload();
+      this.announced = this.meshSync.version;
+      this.renderPanel.schedule();
+      this.view.requestRender();
+    } catch (error) {
+      this.fail(error);
+    }
+  }
+
   busy() {
-    return !!(this.coalescer && this.coalescer.busy()) || !!(this.meshSync && this.meshSync.running) || this.meshFollows.size > 0;
+    return !!(this.coalescer && this.coalescer.busy()) || !!(this.meshSync && this.meshSync.running) || this.meshFollows.size > 0
+      || !!this.resyncing;
   }
 
   // Resolves once no edit is pending or in flight and the page holds (and has timed) every version it made.
@@ -268,6 +321,7 @@ class App {
       await this.coalescer.idle();
       if (this.meshSync.running) await this.meshSync.running;
       await Promise.all([...this.meshFollows]);
+      if (this.resyncing) await this.resyncing;
     }
   }
 }

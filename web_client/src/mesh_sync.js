@@ -24,6 +24,13 @@ export class MeshSync {
     return decoded;
   }
 
+  // The whole mesh again, whatever version the page held (the server came back, perhaps restarted).
+  async reload() {
+    while (this.running) await this.running;
+    this.version = null;
+    return this.loadWhole();
+  }
+
   record(decoded) {
     this.lastBytes = decoded.bytes;
     this.totalBytes += decoded.bytes;
