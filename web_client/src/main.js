@@ -5,6 +5,9 @@ import { ApiClient } from './api_client.js';
 import { ConnectionStatus } from './connection_status.js';
 import { DragLimit } from './drag_limit.js';
 import { EditPlot } from './edit_plot.js';
+import { EditorActions } from './editor_actions.js';
+import { Inspector } from './inspector.js';
+import { installPanelControls } from './panel_controls.js';
 import { ErrorBanner } from './error_banner.js';
 import { EditCoalescer } from './edit_coalescer.js';
 import { EventSync } from './event_sync.js';
@@ -25,8 +28,6 @@ import { UndoHistory } from './undo_history.js';
 
 const $ = (id) => document.getElementById(id);
 const MOTION_HOLD_MS = 100;
-// Keys typed into a text field are not commands (checkboxes and buttons keep W/E and Ctrl+Z).
-const isTyping = (target) => target instanceof HTMLInputElement && !['checkbox', 'button', 'file'].includes(target.type);
 
 class App {
   constructor() {
@@ -47,6 +48,8 @@ class App {
     this.connection = new ConnectionStatus($('connection'));
     this.dragLimit = new DragLimit();
     this.history = new UndoHistory();
+    this.editor = new EditorActions(this);
+    this.inspector = new Inspector($('inspector'), (id, transform) => this.editor.typedTransform(id, transform));
     this.ownVersions = new Set();
     this.dragStart = null;
     this.meshFollows = new Set(); // edits answered whose version's mesh the page does not hold yet
@@ -79,6 +82,8 @@ class App {
     $('scene-name').textContent = `${wrapped.id} (${wrapped.name})`;
     showImportReport($('import-report'), sceneId, wrapped.name);
     this.sceneJson = wrapped.scene;
+    this.sceneName = wrapped.name;
+    this.editor.remember(wrapped);
 
     this.objects.build(wrapped.scene);
     this.toneMap = new ToneMap(wrapped.scene, this.objects.bounds);
@@ -99,7 +104,7 @@ class App {
 
     this.coalescer = new EditCoalescer((frame) => this.sendFrame(frame), { onError: (error, frame) => this.editFailed(error, frame) });
     this.gizmo = new SelectionGizmo(this.view, this.objects, {
-      onSelect: (id) => { $('selection').textContent = id ? `selected ${id}` : 'click an object'; },
+      onSelect: (id) => this.selected(id),
       onDragStart: (id) => {
         this.dragStart = { id, before: transformOf(this.gizmo.holder()) };
         this.dragLimit.start(id, this.dragStart.before);
@@ -127,6 +132,9 @@ class App {
       },
     });
     this.installControls();
+    this.editor.updateReset();
+    this.editor.refreshScenes();
+    this.selected(null);
     this.api.stats(sceneId).then((stats) => {
       this.timings.initialBuild = stats.build && stats.build.seconds ? stats.build.seconds.total : null;
       this.timings.draw();
@@ -140,44 +148,12 @@ class App {
   }
 
   installControls() {
-    $('mode-translate').addEventListener('click', () => this.gizmo.setMode('translate'));
-    $('mode-rotate').addEventListener('click', () => this.gizmo.setMode('rotate'));
-    $('undo').addEventListener('click', () => this.undo());
-    $('redo').addEventListener('click', () => this.redo());
-    $('toggle-edges').addEventListener('change', (event) => {
-      this.receivers.setEdgesVisible(event.target.checked);
-      this.view.requestRender();
-      $('edge-legend').hidden = !event.target.checked;
-    });
-    $('rebuild').addEventListener('click', async () => {
-      $('rebuild').disabled = true;
-      try {
-        this.timings.rebuild = await this.api.rebuild(this.sceneId);
-        this.timings.draw();
-        this.plot.setBuild(this.timings.rebuild.seconds.build, `rebuild of v${this.timings.rebuild.version}`);
-      } catch (error) {
-        this.fail(error);
-      } finally {
-        $('rebuild').disabled = false;
-      }
-    });
-    window.addEventListener('keydown', (event) => {
-      if (!(event.ctrlKey || event.metaKey) || isTyping(event.target)) return;
-      if (event.key === 'z' || event.key === 'Z') {
-        event.preventDefault();
-        if (event.shiftKey) this.redo();
-        else this.undo();
-      } else if (event.key === 'y') {
-        event.preventDefault();
-        this.redo();
-      }
-    });
+    installPanelControls(this, this.editor);
     this.updateUndoButtons();
   }
 
   showMode(mode) {
-    $('mode-translate').classList.toggle('active', mode === 'translate');
-    $('mode-rotate').classList.toggle('active', mode === 'rotate');
+    for (const m of ['translate', 'rotate', 'scale']) $(`mode-${m}`).classList.toggle('active', mode === m);
   }
 
   // One frame: the edit, at the server's pace. Once it is answered the coalescer may send the
@@ -241,6 +217,7 @@ class App {
     const after = transformOf(this.gizmo.holder());
     if (!sameTransform(start.before, after)) this.history.push({ id, before: start.before, after });
     this.updateUndoButtons();
+    this.inspector.update(after);
   }
 
   moveTo(id, transform) {
@@ -248,20 +225,42 @@ class App {
     if (!holder) return;
     applyTransform(holder, transform);
     this.coalescer.move(id, transform);
+    if (this.inspector.id === id) this.inspector.update(transform);
   }
 
+  // A move entry re-sends a transform; a structural one ({frame: {redo, undo}}) its frame.
   undo() {
     if (this.gizmo.dragging) return;
     const entry = this.history.undo();
-    if (entry) this.moveTo(entry.id, entry.before);
+    if (entry && entry.frame) this.editor.sendStructural(entry.frame.undo, entry.select.undo).catch(this.fail);
+    else if (entry) this.moveTo(entry.id, entry.before);
     this.updateUndoButtons();
   }
 
   redo() {
     if (this.gizmo.dragging) return;
     const entry = this.history.redo();
-    if (entry) this.moveTo(entry.id, entry.after);
+    if (entry && entry.frame) this.editor.sendStructural(entry.frame.redo, entry.select.redo).catch(this.fail);
+    else if (entry) this.moveTo(entry.id, entry.after);
     this.updateUndoButtons();
+  }
+
+  selected(id) {
+    $('selection').textContent = id ? `selected ${id}` : 'click an object';
+    const light = id && id.startsWith('light:') ? this.objects.lightJson.get(id.slice(6)) : null;
+    this.inspector.show(id, light || (id ? transformOf(this.objects.byId.get(id)) : null));
+    for (const button of ['duplicate', 'delete', 'focus']) $(button).disabled = !id || (button !== 'focus' && !!light);
+  }
+
+  // The stand-ins again from the server's scene (its object list changed), selecting `selectId`.
+  async reloadObjects(selectId) {
+    const wrapped = await this.api.getScene(this.sceneId);
+    this.sceneJson = wrapped.scene;
+    this.gizmo.select(null);
+    this.toneMap.learnObjects(wrapped.scene);
+    this.objects.build(wrapped.scene, (id) => this.toneMap.ambientColour(id));
+    if (selectId) this.gizmo.select(selectId);
+    this.view.requestRender();
   }
 
   updateUndoButtons() {
@@ -281,8 +280,12 @@ class App {
       if (this.ownVersions.has(version) || this.coalescer.busy()) return;
       // Another client's edit: follow its transforms (a changed object list reloads the page's stand-ins).
       const wrapped = await this.api.getScene(this.sceneId);
+      this.sceneJson = wrapped.scene;
+      this.toneMap.learnObjects(wrapped.scene);
       if (this.objects.sameObjects(wrapped.scene)) {
         this.objects.syncTransforms(wrapped.scene, this.gizmo.dragging ? this.gizmo.selected : null);
+        const holder = this.gizmo.holder();
+        if (holder) this.inspector.update(transformOf(holder));
       } else {
         this.gizmo.select(null);
         this.objects.build(wrapped.scene, (id) => this.toneMap.ambientColour(id));
@@ -312,7 +315,7 @@ class App {
 
   busy() {
     return !!(this.coalescer && this.coalescer.busy()) || !!(this.meshSync && this.meshSync.running) || this.meshFollows.size > 0
-      || !!this.resyncing;
+      || !!this.resyncing || this.editor.running.size > 0;
   }
 
   // Resolves once no edit is pending or in flight and the page holds (and has timed) every version it made.
@@ -322,6 +325,7 @@ class App {
       if (this.meshSync.running) await this.meshSync.running;
       await Promise.all([...this.meshFollows]);
       if (this.resyncing) await this.resyncing;
+      await Promise.allSettled([...this.editor.running]);
     }
   }
 }

@@ -1,6 +1,10 @@
 // Three.js stand-ins for a scene JSON's objects and lights: one pickable Group per object
 // (local geometry under the object's transform, drawn in its ambient colour behind the lit
 // receivers, so faces that receive no light still show) and the lights' emitting polygons.
+// Each object turns about the centre of its vertex bounds (its pivot: scene_transform.js), so an
+// imported object, whose vertices are in world coordinates, gets its gizmo on itself rather than
+// at the origin. The room's shell (`static` objects, and thin objects spanning most of the scene
+// such as an imported file's walls and floor) is locked: not picked unless unlocked.
 import * as THREE from 'three';
 import { applyTransform } from './scene_transform.js';
 
@@ -16,6 +20,23 @@ function polygonsGeometry(vertices, faces) {
   return geometry;
 }
 
+// Local vertex bounds' centre.
+function pivotOf(vertices) {
+  const box = new THREE.Box3();
+  for (const p of vertices) box.expandByPoint(new THREE.Vector3(...p));
+  return box.isEmpty() ? new THREE.Vector3() : box.getCenter(new THREE.Vector3());
+}
+
+// A wall, floor or ceiling: thinner than 1% of the scene's diagonal one way, and spanning at
+// least half the scene the other two.
+function isShell(objectBox, sceneBox) {
+  const e = objectBox.getSize(new THREE.Vector3()).toArray();
+  const s = sceneBox.getSize(new THREE.Vector3()).toArray();
+  const diagonal = Math.hypot(...s);
+  const thin = e.findIndex((x) => x < 0.01 * diagonal);
+  return thin >= 0 && e.every((x, k) => k === thin || x >= 0.5 * s[k]);
+}
+
 export class SceneObjects {
   constructor(parent) {
     this.group = new THREE.Group();
@@ -24,7 +45,10 @@ export class SceneObjects {
     this.lights.name = 'lights';
     parent.add(this.group, this.lights);
     this.byId = new Map();
+    this.json = new Map(); // object id → its scene JSON
+    this.lightJson = new Map(); // light id → its scene JSON
     this.bounds = new THREE.Box3();
+    this.unlocked = false; // whether the locked shell may be picked
   }
 
   // Rebuilds every stand-in from scene JSON v1.
@@ -32,31 +56,46 @@ export class SceneObjects {
     this.clear();
     for (const light of scene.lights) {
       const geometry = polygonsGeometry(light.polygon, [light.polygon.map((_, i) => i)]);
-      const mesh = new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({ color: 0xffffff, side: THREE.FrontSide }));
+      const mesh = new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({ color: 0xffffff, side: THREE.DoubleSide }));
       mesh.name = `light:${light.id}`;
+      mesh.userData.lightId = light.id;
       this.lights.add(mesh);
+      this.lightJson.set(light.id, light);
     }
     for (const object of scene.objects) {
       const holder = new THREE.Group();
       holder.name = object.id;
-      holder.userData = { objectId: object.id, static: !!object.static };
+      const pivot = pivotOf(object.vertices);
+      holder.userData = { objectId: object.id, static: !!object.static, pivot };
       const material = new THREE.MeshBasicMaterial({
         color: toneMapFor ? toneMapFor(object.id) : 0x333333,
         side: THREE.FrontSide, polygonOffset: true, polygonOffsetFactor: 2, polygonOffsetUnits: 2,
       });
       const mesh = new THREE.Mesh(polygonsGeometry(object.vertices, object.faces), material);
       mesh.userData.objectId = object.id;
+      mesh.position.copy(pivot).negate();
       holder.add(mesh);
       const outline = new THREE.LineSegments(new THREE.EdgesGeometry(mesh.geometry),
         new THREE.LineBasicMaterial({ color: 0xe0a030 }));
       outline.visible = false;
       outline.name = 'outline';
+      outline.position.copy(mesh.position);
       holder.add(outline);
       applyTransform(holder, object.transform);
       this.group.add(holder);
       this.byId.set(object.id, holder);
+      this.json.set(object.id, object);
     }
     this.bounds = this.worldBounds(scene);
+    for (const holder of this.byId.values()) {
+      holder.userData.locked = holder.userData.static || isShell(new THREE.Box3().setFromObject(holder.children[0]), this.bounds);
+    }
+  }
+
+  // The object's world bounds as drawn now.
+  objectBounds(id) {
+    const holder = this.byId.get(id);
+    return holder ? new THREE.Box3().setFromObject(holder.children[0]) : null;
   }
 
   // Bounds of lights and world-space object vertices (core's Scene::bounds).
@@ -65,8 +104,9 @@ export class SceneObjects {
     for (const light of scene.lights) for (const p of light.polygon) box.expandByPoint(new THREE.Vector3(...p));
     const v = new THREE.Vector3();
     for (const object of scene.objects) {
-      const holder = this.byId.get(object.id);
-      for (const p of object.vertices) box.expandByPoint(v.fromArray(p).applyMatrix4(holder.matrixWorld));
+      const mesh = this.byId.get(object.id).children[0];
+      mesh.updateMatrixWorld(true);
+      for (const p of object.vertices) box.expandByPoint(v.fromArray(p).applyMatrix4(mesh.matrixWorld));
     }
     return box;
   }
@@ -83,10 +123,10 @@ export class SceneObjects {
     return scene.objects.length === this.byId.size && scene.objects.every((o) => this.byId.has(o.id));
   }
 
-  // The movable objects' meshes, for picking.
+  // The meshes a click may pick: the lights, and the objects not locked (all when unlocked).
   pickable() {
-    const meshes = [];
-    for (const holder of this.byId.values()) if (!holder.userData.static) meshes.push(holder.children[0]);
+    const meshes = [...this.lights.children];
+    for (const holder of this.byId.values()) if (this.unlocked || !holder.userData.locked) meshes.push(holder.children[0]);
     return meshes;
   }
 
@@ -96,5 +136,7 @@ export class SceneObjects {
       group.clear();
     }
     this.byId.clear();
+    this.json.clear();
+    this.lightJson.clear();
   }
 }

@@ -56,6 +56,7 @@ export class SceneView {
   // sceneCamera: the scene JSON's camera, or undefined (then the default camera of `bounds`).
   setCamera(sceneCamera, bounds) {
     const c = { ...defaultCamera(bounds), ...(sceneCamera || {}) };
+    this.home = c;
     const aspect = this.aspect();
     if (c.projection === 'orthographic') {
       const h = (c.height || 2) / 2;
@@ -75,6 +76,40 @@ export class SceneView {
     this.controls.addEventListener('start', () => this.setInteracting('orbit', true));
     this.controls.addEventListener('end', () => this.setInteracting('orbit', false));
     this.resize();
+  }
+
+  // Back to the camera the view started with (the scene's, else the default one).
+  goHome() {
+    const c = this.home;
+    this.camera.up.fromArray(c.up);
+    this.camera.position.fromArray(c.position);
+    this.controls.target.fromArray(c.target);
+    this.camera.zoom = 1;
+    this.camera.updateProjectionMatrix();
+    this.controls.update();
+    this.listeners.forEach((f) => f());
+  }
+
+  // Turns to `box` (THREE.Box3) and backs off along the current view direction until its bounding
+  // sphere fits the view (F: the selection, frame all: the scene).
+  frame(box) {
+    if (!box || box.isEmpty()) return;
+    const centre = box.getCenter(new THREE.Vector3());
+    const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 1e-3);
+    const direction = this.camera.position.clone().sub(this.controls.target).normalize();
+    if (this.camera.isPerspectiveCamera) {
+      const halfFov = Math.min(this.camera.fov, this.camera.fov * this.aspect()) * Math.PI / 360;
+      this.camera.zoom = 1;
+      this.camera.position.copy(centre).addScaledVector(direction, 1.1 * radius / Math.sin(halfFov));
+      this.camera.far = Math.max(this.camera.far, 4 * radius + this.camera.position.distanceTo(centre));
+    } else {
+      this.camera.zoom = Math.min(this.camera.top - this.camera.bottom, this.camera.right - this.camera.left) / (2.2 * radius);
+      this.camera.position.copy(centre).addScaledVector(direction, this.camera.position.distanceTo(this.controls.target));
+    }
+    this.controls.target.copy(centre);
+    this.camera.updateProjectionMatrix();
+    this.controls.update();
+    this.listeners.forEach((f) => f());
   }
 
   // Something (`what`: 'orbit', 'drag') starts or stops moving: the drawing resolution follows

@@ -81,6 +81,24 @@ export function installTestHook(app) {
       const dir = new THREE.Vector3(axis === 'x' ? 1 : 0, axis === 'y' ? 1 : 0, axis === 'z' ? 1 : 0);
       return centre.addScaledVector(dir, t * factor * app.gizmo.controls.size / 4).toArray();
     },
+    gizmoMode() {
+      return app.gizmo.controls.mode;
+    },
+    objectCentre(id) {
+      return app.objects.objectBounds(id).getCenter(new THREE.Vector3()).toArray();
+    },
+    sceneCentre() {
+      return app.objects.bounds.getCenter(new THREE.Vector3()).toArray();
+    },
+    lightCentre(id) {
+      const polygon = app.objects.lightJson.get(id).polygon;
+      return [0, 1, 2].map((k) => polygon.reduce((s, p) => s + p[k], 0) / polygon.length);
+    },
+    // Each object's gizmo place (its holder's origin), world bounds centre and whether it is locked.
+    pivots() {
+      return [...app.objects.byId].map(([id, holder]) => ({ id, locked: holder.userData.locked,
+        pivot: holder.getWorldPosition(new THREE.Vector3()).toArray(), centre: app.objects.objectBounds(id).getCenter(new THREE.Vector3()).toArray() }));
+    },
     objectTransform(id) {
       const holder = app.objects.byId.get(id);
       return holder ? transformOf(holder) : null;
