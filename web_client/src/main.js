@@ -13,6 +13,7 @@ import { EditCoalescer } from './edit_coalescer.js';
 import { EventSync } from './event_sync.js';
 import { LoadingIndicator } from './loading_indicator.js';
 import { MeshSync } from './mesh_sync.js';
+import { receiverKey } from './mesh_binary.js';
 import { ReceiverLayer } from './receiver_layer.js';
 import { RenderPanel } from './render_panel.js';
 import { SceneObjects } from './scene_objects.js';
@@ -41,6 +42,15 @@ class App {
       dragScale: query.get('drag_scale') || 'auto' });
     this.objects = new SceneObjects(this.view.scene);
     this.receivers = new ReceiverLayer(this.view.scene);
+    // keys: the receivers whose parts changed (null: all, after a whole mesh).
+    this.receivers.onColours = (keys) => {
+      for (const [id, holder] of this.objects.byId) {
+        holder.children[0].geometry.userData.faceRanges.forEach((_, face) => {
+          const key = receiverKey(id, face);
+          if (!keys || keys.has(key)) this.objects.setFaceColour(id, face, this.receivers.meanColour(key));
+        });
+      }
+    };
     this.timings = new TimingsPanel($('timings'));
     this.timings.gl = this.view.gl;
     this.timings.draw();
@@ -87,7 +97,7 @@ class App {
 
     this.objects.build(wrapped.scene);
     this.toneMap = new ToneMap(wrapped.scene, this.objects.bounds);
-    this.view.setCamera(wrapped.scene.camera, this.objects.bounds);
+    this.view.setCamera(wrapped.scene.camera, this.objects.bounds, this.objects);
 
     this.meshSync = new MeshSync(this.api, sceneId, (decoded) => {
       this.receivers.apply(decoded, this.toneMap);
@@ -100,7 +110,7 @@ class App {
     this.loading.step('Drawing…');
     this.toneMap.calibrate(whole.parts);
     this.receivers.apply({ ...whole, delta: false }, this.toneMap); // recolour with the calibrated exposure
-    this.objects.build(wrapped.scene, (id) => this.toneMap.ambientColour(id));
+    this.buildStandIns(wrapped.scene);
 
     this.coalescer = new EditCoalescer((frame) => this.sendFrame(frame), { onError: (error, frame) => this.editFailed(error, frame) });
     this.gizmo = new SelectionGizmo(this.view, this.objects, {
@@ -258,7 +268,7 @@ class App {
     this.sceneJson = wrapped.scene;
     this.gizmo.select(null);
     this.toneMap.learnObjects(wrapped.scene);
-    this.objects.build(wrapped.scene, (id) => this.toneMap.ambientColour(id));
+    this.buildStandIns(wrapped.scene);
     if (selectId) this.gizmo.select(selectId);
     this.view.requestRender();
   }
@@ -288,11 +298,16 @@ class App {
         if (holder) this.inspector.update(transformOf(holder));
       } else {
         this.gizmo.select(null);
-        this.objects.build(wrapped.scene, (id) => this.toneMap.ambientColour(id));
+        this.buildStandIns(wrapped.scene);
       }
     } catch (error) {
       this.fail(error);
     }
+  }
+
+  // The objects' stand-ins, each face in its lit mesh's mean colour (ambient where none is held).
+  buildStandIns(scene) {
+    this.objects.build(scene, (id) => this.toneMap.ambientColour(id), (id, face) => this.receivers.meanColour(receiverKey(id, face)));
   }
 
   // After the server came back: the scene and its whole mesh again (it may have restarted, and
@@ -302,7 +317,7 @@ class App {
       const wrapped = await this.api.getScene(this.sceneId);
       this.gizmo.select(null);
       this.sceneJson = wrapped.scene;
-      this.objects.build(wrapped.scene, (id) => this.toneMap.ambientColour(id));
+      this.buildStandIns(wrapped.scene);
       this.ownVersions.clear();
       await this.meshSync.reload();
       this.announced = this.meshSync.version;

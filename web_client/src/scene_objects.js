@@ -8,14 +8,21 @@
 import * as THREE from 'three';
 import { applyTransform } from './scene_transform.js';
 
-// Convex polygon faces → a triangle fan geometry (counter-clockwise = front, as in the format).
+// Convex polygon faces → a triangle fan geometry (counter-clockwise = front, as in the format),
+// with a colour per vertex and userData.faceRanges[f] = [first vertex, count] of face f.
 function polygonsGeometry(vertices, faces) {
   const positions = [];
-  for (const face of faces)
+  const faceRanges = [];
+  for (const face of faces) {
+    const first = positions.length / 3;
     for (let k = 1; k + 1 < face.length; ++k)
       for (const index of [face[0], face[k], face[k + 1]]) positions.push(...vertices[index]);
+    faceRanges.push([first, positions.length / 3 - first]);
+  }
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute('position', new THREE.Float32BufferAttribute(positions, 3));
+  geometry.setAttribute('color', new THREE.Float32BufferAttribute(new Float32Array(positions.length), 3));
+  geometry.userData.faceRanges = faceRanges;
   geometry.computeVertexNormals();
   return geometry;
 }
@@ -51,8 +58,9 @@ export class SceneObjects {
     this.unlocked = false; // whether the locked shell may be picked
   }
 
-  // Rebuilds every stand-in from scene JSON v1.
-  build(scene, toneMapFor) {
+  // Rebuilds every stand-in from scene JSON v1. toneMapFor(id): the object's ambient colour (its
+  // faces' colour until faceColour(id, face) gives one: the lit mesh's mean, see ReceiverLayer).
+  build(scene, toneMapFor, faceColour = () => null) {
     this.clear();
     for (const light of scene.lights) {
       const geometry = polygonsGeometry(light.polygon, [light.polygon.map((_, i) => i)]);
@@ -68,10 +76,11 @@ export class SceneObjects {
       const pivot = pivotOf(object.vertices);
       holder.userData = { objectId: object.id, static: !!object.static, pivot };
       const material = new THREE.MeshBasicMaterial({
-        color: toneMapFor ? toneMapFor(object.id) : 0x333333,
-        side: THREE.FrontSide, polygonOffset: true, polygonOffsetFactor: 2, polygonOffsetUnits: 2,
+        vertexColors: true, side: THREE.FrontSide, polygonOffset: true, polygonOffsetFactor: 2, polygonOffsetUnits: 2,
       });
       const mesh = new THREE.Mesh(polygonsGeometry(object.vertices, object.faces), material);
+      mesh.userData.ambient = toneMapFor ? toneMapFor(object.id) : new THREE.Color(0x333333);
+      object.faces.forEach((_, f) => this.paintFace(mesh, f, faceColour(object.id, f)));
       mesh.userData.objectId = object.id;
       mesh.position.copy(pivot).negate();
       holder.add(mesh);
@@ -90,6 +99,21 @@ export class SceneObjects {
     for (const holder of this.byId.values()) {
       holder.userData.locked = holder.userData.static || isShell(new THREE.Box3().setFromObject(holder.children[0]), this.bounds);
     }
+  }
+
+  // A face's stand-in colour: `rgb` ([r, g, b] linear), or the object's ambient colour when null.
+  paintFace(mesh, face, rgb) {
+    const range = mesh.geometry.userData.faceRanges[face];
+    if (!range) return;
+    const colour = mesh.geometry.attributes.color;
+    const c = rgb || mesh.userData.ambient.toArray();
+    for (let v = range[0]; v < range[0] + range[1]; ++v) colour.setXYZ(v, c[0], c[1], c[2]);
+    colour.needsUpdate = true;
+  }
+
+  setFaceColour(objectId, face, rgb) {
+    const holder = this.byId.get(objectId);
+    if (holder) this.paintFace(holder.children[0], face, rgb);
   }
 
   // The object's world bounds as drawn now.

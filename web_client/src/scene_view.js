@@ -4,17 +4,7 @@
 // server renders exactly this view.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-
-// core/render's defaultCamera: from the bounds' centre, backed off along (0.6, 0.45, 1) until
-// the bounding sphere fits a 45° vertical field of view.
-function defaultCamera(bounds) {
-  const centre = bounds.getCenter(new THREE.Vector3());
-  const radius = Math.max(bounds.getSize(new THREE.Vector3()).length() / 2, 1e-3);
-  const distance = radius / Math.sin((45 / 2) * Math.PI / 180);
-  const eye = centre.clone().add(new THREE.Vector3(0.6, 0.45, 1).normalize().multiplyScalar(distance));
-  return { position: eye.toArray(), target: centre.toArray(), up: [0, 1, 0], projection: 'perspective',
-    fov_y_deg: 45, near: distance / 100, far: distance * 3 };
-}
+import { defaultCamera } from './default_camera.js';
 
 export class SceneView {
   // antialias: 'auto' (on unless the GL is software), 'on' or 'off'. dragScale: the pixel
@@ -53,9 +43,10 @@ export class SceneView {
     window.addEventListener('resize', () => this.resize());
   }
 
-  // sceneCamera: the scene JSON's camera, or undefined (then the default camera of `bounds`).
-  setCamera(sceneCamera, bounds) {
-    const c = { ...defaultCamera(bounds), ...(sceneCamera || {}) };
+  // sceneCamera: the scene JSON's camera, or undefined (then a default camera framing `bounds`,
+  // from a side where the walls among `objects` do not hide the inside: default_camera.js).
+  setCamera(sceneCamera, bounds, objects = null) {
+    const c = sceneCamera ? { ...defaultCamera(bounds), ...sceneCamera } : defaultCamera(bounds, objects);
     this.home = c;
     const aspect = this.aspect();
     if (c.projection === 'orthographic') {

@@ -3,6 +3,7 @@
 // and, for measuring, a timer-driven move of an object and a timed orbit of the camera.
 import * as THREE from 'three';
 import { receiverKey } from './mesh_binary.js';
+import { blockingShellFaces } from './default_camera.js';
 import { transformOf } from './scene_transform.js';
 
 // Barycentric interpolation of a receiver's irradiance at a point on its plane; null outside.
@@ -80,6 +81,24 @@ export function installTestHook(app) {
         : (camera.top - camera.bottom) / camera.zoom;
       const dir = new THREE.Vector3(axis === 'x' ? 1 : 0, axis === 'y' ? 1 : 0, axis === 'z' ? 1 : 0);
       return centre.addScaledVector(dir, t * factor * app.gizmo.controls.size / 4).toArray();
+    },
+    // Edges of the overlay with both ends above height y, and all of them.
+    overlayEdgesAbove(y) {
+      let above = 0, total = 0;
+      app.receivers.edgeGroup.traverse((o) => {
+        if (!o.isLineSegments) return;
+        const p = o.geometry.attributes.position.array;
+        for (let i = 0; i < p.length; i += 6) {
+          ++total;
+          if (p[i + 1] > y && p[i + 4] > y) ++above;
+        }
+      });
+      return { above, total };
+    },
+    // Faces of locked objects (walls, floor) between the camera and its target seen from behind.
+    backFacingShellAhead() {
+      const shells = [...app.objects.byId.values()].filter((h) => h.userData.locked).length;
+      return { shells, blocking: blockingShellFaces(app.objects, app.view.camera.position, app.view.controls.target) };
     },
     gizmoMode() {
       return app.gizmo.controls.mode;
