@@ -52,10 +52,11 @@ export function check(condition, what, detail = '') {
   return condition;
 }
 
-// Starts the server (on `port`, 0: any free one) and resolves with {server, url} once it prints the page's URL.
-export function startServer(penumbra, scene, timeoutSeconds, port = 0) {
+// Starts the server (on `port`, 0: any free one; serving the page in `staticDir`) and resolves
+// with {server, url} once it prints the page's URL.
+export function startServer(penumbra, scene, timeoutSeconds, port = 0, staticDir = path.join(repo, 'web_client')) {
   return new Promise((resolve, reject) => {
-    const server = spawn(penumbra, ['serve', scene, '--port', String(port), '--ephemeral', '--static', path.join(repo, 'web_client')],
+    const server = spawn(penumbra, ['serve', scene, '--port', String(port), '--ephemeral', '--static', staticDir],
       { cwd: repo, stdio: ['ignore', 'pipe', 'pipe'] });
     let out = '';
     let err = '';

@@ -4,14 +4,14 @@
 // an overlay says what is awaited (the mesh download's bytes; an upload, then the server's build)
 // and the panel's controls are disabled. Prints the page-ready time, cold and warm.
 //
-// usage: node tests/web/open_e2e.mjs --penumbra build/penumbra [--scene scenes/cubes15.scene.json] [--opens 3]
+// usage: node tests/web/open_e2e.mjs --penumbra build/penumbra [--scene scenes/cubes15.scene.json] [--opens 2]
 import path from 'node:path';
 import fs from 'node:fs';
 
 import { check, parseArgs, repo, runWithServerAndBrowser, sleep, usageOnHelp } from './harness.mjs';
 
 const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'cubes15.scene.json'),
-  opens: 3, startupSeconds: 120 };
+  opens: 2, startupSeconds: 120 };
 
 async function staticHeaders(base) {
   const started = performance.now();

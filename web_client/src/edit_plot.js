@@ -19,7 +19,9 @@ export class EditPlot {
     this.caption = caption;
     this.history = []; // {engine, roundTrip} seconds, oldest first
     this.build = null; // {seconds, label}
-    this.draw();
+    // No drawing until there is something to show: a 2D canvas's first use costs a software GL
+    // ~0.1 s, which the page's opening need not wait for.
+    this.caption.textContent = 'no edit yet';
   }
 
   add(engineSeconds, roundTripSeconds) {
