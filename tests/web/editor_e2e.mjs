@@ -58,6 +58,13 @@ async function locked(page) {
   await page.uncheck('#unlock-shell');
   check(before === null && unlocked === 'floor' && (await state(page)).selected === null,
     'the floor is locked (a click selects nothing) until unlocked', JSON.stringify({ before, unlocked }));
+  // The outliner: a click on an item selects it; the floor's item is locked.
+  await page.click('.outliner-box summary');
+  await page.click('#outliner li[data-id="cube_7"]');
+  const picked = (await state(page)).selected;
+  const floorLocked = await page.evaluate(() => document.querySelector('#outliner li[data-id="floor"]').classList.contains('locked'));
+  check(picked === 'cube_7' && floorLocked, 'the outliner selects cube_7; its floor item is locked', JSON.stringify({ picked, floorLocked }));
+  await press(page, 'Escape');
 }
 
 async function inspector(page, base, sceneId) {

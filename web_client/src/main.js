@@ -7,6 +7,7 @@ import { DragLimit } from './drag_limit.js';
 import { EditPlot } from './edit_plot.js';
 import { EditorActions } from './editor_actions.js';
 import { Inspector } from './inspector.js';
+import { Outliner } from './outliner.js';
 import { installPanelControls } from './panel_controls.js';
 import { ErrorBanner } from './error_banner.js';
 import { EditCoalescer } from './edit_coalescer.js';
@@ -60,6 +61,7 @@ class App {
     this.history = new UndoHistory();
     this.editor = new EditorActions(this);
     this.inspector = new Inspector($('inspector'), (id, transform) => this.editor.typedTransform(id, transform));
+    this.outliner = new Outliner($('outliner'), (id) => this.gizmo && this.gizmo.select(id));
     this.ownVersions = new Set();
     this.dragStart = null;
     this.meshFollows = new Set(); // edits answered whose version's mesh the page does not hold yet
@@ -257,6 +259,7 @@ class App {
 
   selected(id) {
     $('selection').textContent = id ? `selected ${id}` : 'click an object';
+    this.outliner.highlight(id);
     const light = id && id.startsWith('light:') ? this.objects.lightJson.get(id.slice(6)) : null;
     this.inspector.show(id, light || (id ? transformOf(this.objects.byId.get(id)) : null));
     for (const button of ['duplicate', 'delete', 'focus']) $(button).disabled = !id || (button !== 'focus' && !!light);
@@ -308,6 +311,7 @@ class App {
   // The objects' stand-ins, each face in its lit mesh's mean colour (ambient where none is held).
   buildStandIns(scene) {
     this.objects.build(scene, (id) => this.toneMap.ambientColour(id), (id, face) => this.receivers.meanColour(receiverKey(id, face)));
+    this.outliner.render(this.objects, this.gizmo ? this.gizmo.selected : null);
   }
 
   // After the server came back: the scene and its whole mesh again (it may have restarted, and

@@ -24,6 +24,7 @@ export function installPanelControls(app, editor) {
   $('snap').addEventListener('change', (event) => app.gizmo.setSnap(event.target.checked));
   $('unlock-shell').addEventListener('change', (event) => {
     app.objects.unlocked = event.target.checked;
+    app.outliner.render(app.objects, app.gizmo.selected);
     if (!event.target.checked && app.gizmo.selected && app.objects.byId.get(app.gizmo.selected)?.userData.locked) app.gizmo.select(null);
   });
   $('toggle-edges').addEventListener('change', (event) => {
