@@ -75,6 +75,17 @@ async function inspector(page, base, sceneId) {
   await idle(page);
   const moved = (await serverScene(base, sceneId)).scene.objects.find((o) => o.id === 'cube_3').transform;
   check(Math.abs(moved.translate[0] + 1.25) < 1e-9, 'a typed x moves the object on the server', JSON.stringify(moved.translate));
+  // The history survives a reload: undo there puts the cube back, redo moves it again.
+  await page.reload({ waitUntil: 'domcontentloaded' });
+  await page.waitForFunction(() => window.penumbra && window.penumbra.state().ready, null, { timeout: 60000 });
+  const undoEnabled = await page.evaluate(() => !document.getElementById('undo').disabled);
+  await press(page, 'Control+z');
+  const undone = (await serverScene(base, sceneId)).scene.objects.find((o) => o.id === 'cube_3').transform.translate[0];
+  await press(page, 'Control+Shift+z');
+  const redone = (await serverScene(base, sceneId)).scene.objects.find((o) => o.id === 'cube_3').transform.translate[0];
+  check(undoEnabled && Math.abs(undone - 1.672914011131045) < 1e-9 && Math.abs(redone + 1.25) < 1e-9,
+    'the undo history is kept across a reload', JSON.stringify({ undoEnabled, undone, redone }));
+  check((await clickObject(page, 'cube_3')) === 'cube_3', 'a click selects cube_3 again');
   await press(page, 'r');
   check((await page.evaluate(() => window.penumbra.gizmoMode())) === 'scale', 'R switches the gizmo to scale');
   await press(page, 'w');

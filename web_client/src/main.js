@@ -96,6 +96,8 @@ class App {
     this.sceneJson = wrapped.scene;
     this.sceneName = wrapped.name;
     this.editor.remember(wrapped);
+    this.knownVersion = wrapped.version;
+    this.history.restore(`${wrapped.id}.${wrapped.name}`, wrapped.version);
 
     this.objects.build(wrapped.scene);
     this.toneMap = new ToneMap(wrapped.scene, this.objects.bounds);
@@ -176,6 +178,8 @@ class App {
     const result = await this.api.postEdits(this.sceneId, frame);
     const answered = performance.now();
     this.ownVersions.add(result.version);
+    this.knownVersion = result.version;
+    this.history.save(result.version);
     this.dragLimit.applied(frame.edits);
     this.banner.clearTransient();
     const follow = this.followMesh(result, start, answered);
@@ -277,6 +281,7 @@ class App {
   }
 
   updateUndoButtons() {
+    this.history.save(this.knownVersion);
     $('undo').disabled = !this.history.canUndo();
     $('redo').disabled = !this.history.canRedo();
   }
