@@ -53,7 +53,8 @@ std::shared_ptr<StaticFile> readFile(const fs::path& path, fs::file_time_type mo
   file->size = size;
   file->contentType = contentTypeFor(path);
   char hash[24];
-  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv1a64(file->bytes)));
+  std::snprintf(hash, sizeof hash, "%016llx",
+                static_cast<unsigned long long>(fnv1a64(file->bytes)));
   file->etag = std::string("\"") + hash + "\"";
   file->gzipEtag = std::string("\"") + hash + "-gz\"";
   // Once per file version, so the slowest level costs nothing per request.
@@ -67,15 +68,22 @@ std::shared_ptr<StaticFile> readFile(const fs::path& path, fs::file_time_type mo
 }  // namespace
 
 std::string contentTypeFor(const fs::path& file) {
-  static const std::map<std::string, std::string> types = {
-      {".html", "text/html; charset=utf-8"}, {".js", "text/javascript; charset=utf-8"},
-      {".mjs", "text/javascript; charset=utf-8"}, {".css", "text/css; charset=utf-8"},
-      {".json", "application/json"},        {".map", "application/json"},
-      {".txt", "text/plain; charset=utf-8"}, {".md", "text/plain; charset=utf-8"},
-      {".svg", "image/svg+xml"},            {".png", "image/png"},
-      {".jpg", "image/jpeg"},               {".ico", "image/x-icon"},
-      {".glb", "model/gltf-binary"},        {".gltf", "model/gltf+json"},
-      {".wasm", "application/wasm"},        {".exr", "image/x-exr"}};
+  static const std::map<std::string, std::string> types = {{".html", "text/html; charset=utf-8"},
+                                                           {".js", "text/javascript"},
+                                                           {".mjs", "text/javascript"},
+                                                           {".css", "text/css; charset=utf-8"},
+                                                           {".json", "application/json"},
+                                                           {".map", "application/json"},
+                                                           {".txt", "text/plain; charset=utf-8"},
+                                                           {".md", "text/plain; charset=utf-8"},
+                                                           {".svg", "image/svg+xml"},
+                                                           {".png", "image/png"},
+                                                           {".jpg", "image/jpeg"},
+                                                           {".ico", "image/x-icon"},
+                                                           {".glb", "model/gltf-binary"},
+                                                           {".gltf", "model/gltf+json"},
+                                                           {".wasm", "application/wasm"},
+                                                           {".exr", "image/x-exr"}};
   const auto it = types.find(file.extension().string());
   return it == types.end() ? "application/octet-stream" : it->second;
 }
@@ -130,7 +138,8 @@ bool StaticFiles::serve(const httplib::Request& req, httplib::Response& res) {
   res.set_header("Cache-Control", mount->cacheControl);
   res.set_header("Vary", "Accept-Encoding");
   const std::string ifNoneMatch = req.get_header_value("If-None-Match");
-  if (!ifNoneMatch.empty() && (listsEtag(ifNoneMatch, file->etag) || listsEtag(ifNoneMatch, file->gzipEtag))) {
+  if (!ifNoneMatch.empty() &&
+      (listsEtag(ifNoneMatch, file->etag) || listsEtag(ifNoneMatch, file->gzipEtag))) {
     res.status = 304;
     return true;
   }

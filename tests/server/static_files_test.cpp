@@ -1,6 +1,8 @@
 // The page's static files (docs/API.md "Static files"): random files served byte for byte, text
 // gzip-compressed once (never brotli), an ETag per content that changes when the file does, 304
 // on a matching If-None-Match, Cache-Control per mount; JSON API answers offered gzip, not br.
+#include "server/static_files.h"
+
 #include <gtest/gtest.h>
 #include <zlib.h>
 
@@ -8,7 +10,6 @@
 #include <fstream>
 #include <random>
 
-#include "server/static_files.h"
 #include "server_fixture.h"
 
 namespace penumbra::server::test {
@@ -42,7 +43,8 @@ void writeFile(const fs::path& path, const std::string& bytes) {
 
 // Text that compresses (words from a small vocabulary), or random bytes that do not.
 std::string randomContent(std::mt19937& rng, bool text) {
-  static const char* words[] = {"const ", "three ", "mesh ", "=> ", "{ ", "}\n", "light ", "receiver "};
+  static const char* words[] = {"const ", "three ", "mesh ",  "=> ",
+                                "{ ",     "}\n",    "light ", "receiver "};
   std::string out;
   const size_t size = std::uniform_int_distribution<size_t>(0, 200000)(rng);
   while (out.size() < size)
@@ -62,7 +64,8 @@ struct Served {
 };
 
 fs::path freshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("penumbra-static-" + name + "-" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("penumbra-static-" + name + "-" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "page");
   return dir;
@@ -74,7 +77,8 @@ TEST(StaticFiles, RandomFilesComeBackExactlyGzipOnceWithEtags) {
   std::vector<std::pair<std::string, std::string>> files;
   for (int i = 0; i < 12; ++i) {
     const bool text = i % 3 != 0;
-    const std::string name = "sub" + std::to_string(i % 3) + "/f" + std::to_string(i) + (text ? ".js" : ".bin");
+    const std::string name =
+        "sub" + std::to_string(i % 3) + "/f" + std::to_string(i) + (text ? ".js" : ".bin");
     files.emplace_back(name, randomContent(rng, text));
     writeFile(root / "page" / name, files.back().second);
   }
@@ -105,7 +109,8 @@ TEST(StaticFiles, RandomFilesComeBackExactlyGzipOnceWithEtags) {
   }
   // Distinct contents, distinct ETags.
   std::set<std::string> etags;
-  for (const auto& [name, bytes] : files) etags.insert(client.Get(("/" + name).c_str())->get_header_value("ETag"));
+  for (const auto& [name, bytes] : files)
+    etags.insert(client.Get(("/" + name).c_str())->get_header_value("ETag"));
   EXPECT_EQ(etags.size(), files.size());
   const auto module = client.Get("/node_modules/three/three.core.js");
   ASSERT_TRUE(module);
@@ -154,7 +159,7 @@ TEST(StaticFiles, ApiAnswersAreOfferedGzipNotBrotli) {
 }
 
 TEST(StaticFiles, ContentTypesByExtension) {
-  EXPECT_EQ(contentTypeFor("a/b.mjs"), "text/javascript; charset=utf-8");
+  EXPECT_EQ(contentTypeFor("a/b.mjs"), "text/javascript");
   EXPECT_EQ(contentTypeFor("x.glb"), "model/gltf-binary");
   EXPECT_EQ(contentTypeFor("x.wasm"), "application/wasm");
   EXPECT_EQ(contentTypeFor("x.unknown"), "application/octet-stream");
