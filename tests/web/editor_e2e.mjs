@@ -3,7 +3,8 @@
 // box (B), duplicate (Ctrl+D), delete (Delete) and undo them; typed transforms; scale mode (R) and
 // snapping; focus (F), frame all (A), camera home (H); the "?" sheet; a light selected read-only;
 // downloads of the scene JSON and GLB; reset to the file; an imported OBJ's pivots at their
-// objects' centres and its walls locked; the scene list and deleting a scene from it.
+// objects' centres, its walls locked and its default camera on its open side; the scene list and
+// deleting a scene from it.
 //
 // usage: node tests/web/editor_e2e.mjs --penumbra build/penumbra [--scene scenes/cubes15.scene.json]
 import fs from 'node:fs';
@@ -162,6 +163,8 @@ async function imported(browser, base, sceneId) {
   const walls = r.filter((o) => o.locked).length;
   check(offCentre.length === 0 && r.some((o) => !o.locked), 'an imported object turns about its own centre (gizmo on it, not at the origin)', JSON.stringify(offCentre));
   check(walls >= 4 && walls < r.length, 'an imported room\'s walls and floor are locked, its blocks are not', JSON.stringify(r.map((o) => [o.id, o.locked])));
+  const view = await page.evaluate(() => window.penumbra.backFacingShellAhead());
+  check(view.shells > 0 && view.blocking === 0, 'an imported room without a camera is seen from its open side (no wall\'s back in the way)', JSON.stringify(view));
   // The scene list: both scenes; delete this one (after the confirm) from it.
   const listed = await page.evaluate(() => [...document.querySelectorAll('#scene-list li')].map((li) => li.dataset.scene));
   check(listed.includes(sceneId) && listed.includes(created.id), 'the scene list shows the server\'s scenes', JSON.stringify(listed));

@@ -5,11 +5,9 @@
 // shadows and dark edges do not count). Before the stand-ins took their lit mesh's mean colour,
 // cubes15's view had ~40 of them (cracks of the lit mesh showing the dark stand-in behind). Also:
 // the edges overlay leaves out the umbra-to-lit edges of the strip above the light's plane (the
-// blue zig-zag along the walls' tops), and a scene without a camera (an imported file) is seen from
-// a side whose walls do not hide the inside.
+// blue zig-zag along the walls' tops). (editor_e2e.mjs checks the default camera of an imported file.)
 //
 // usage: node tests/web/looks_e2e.mjs --penumbra build/penumbra [--scene scenes/cubes15.scene.json] [--specks 10]
-import fs from 'node:fs';
 import path from 'node:path';
 
 import { check, repo, runWithServerAndBrowser, sleep, usageOnHelp } from './harness.mjs';
@@ -73,25 +71,12 @@ async function wallTops(page) {
   check(r.total > 0 && r.above === 0, 'the edges overlay draws nothing in the unlit strip above the light\'s plane', JSON.stringify(r));
 }
 
-async function importedCamera(browser, base) {
-  const data = path.join(repo, 'tests', 'interchange', 'data');
-  const form = new FormData();
-  form.append('file', new Blob([fs.readFileSync(path.join(data, 'cornell_mm.obj'))]), 'cornell_mm.obj');
-  form.append('mtl', new Blob([fs.readFileSync(path.join(data, 'cornell_mm.mtl'))]), 'cornell_mm.mtl');
-  const created = await (await fetch(`${base}/api/scenes?scale=0.001`, { method: 'POST', body: form })).json();
-  const { page } = await openPage(browser, `${base}/?scene=${created.id}`);
-  const r = await page.evaluate(() => window.penumbra.backFacingShellAhead());
-  check(r.shells > 0 && r.blocking === 0, 'an imported room without a camera is seen from its open side (no wall\'s back in the way)', JSON.stringify(r));
-  await page.close();
-}
-
 async function main() {
   const args = usageOnHelp(process.argv, defaults, 'node tests/web/looks_e2e.mjs --penumbra build/penumbra [--scene FILE] [--specks N]');
-  await runWithServerAndBrowser(args, async ({ browser, url, base, sceneId }) => {
+  await runWithServerAndBrowser(args, async ({ browser, url, sceneId }) => {
     const { page } = await openPage(browser, url);
     await specks(page, sceneId, args.specks);
     await wallTops(page);
-    await importedCamera(browser, base);
   });
 }
 
