@@ -45,11 +45,14 @@ class App {
     this.receivers = new ReceiverLayer(this.view.scene);
     // keys: the receivers whose parts changed (null: all, after a whole mesh).
     this.receivers.onColours = (keys) => {
-      for (const [id, holder] of this.objects.byId) {
-        holder.children[0].geometry.userData.faceRanges.forEach((_, face) => {
-          const key = receiverKey(id, face);
-          if (!keys || keys.has(key)) this.objects.setFaceColour(id, face, this.receivers.meanColour(key));
-        });
+      if (!keys) {
+        const means = this.receivers.meanColours();
+        this.objects.recolour((id) => this.toneMap.ambientColour(id), (id, face) => means.get(receiverKey(id, face)) || null);
+        return;
+      }
+      for (const key of keys) {
+        const [object, face] = key.split('/');
+        this.objects.setFaceColour(object, Number(face), this.receivers.meanColour(key));
       }
     };
     this.timings = new TimingsPanel($('timings'));
@@ -104,17 +107,17 @@ class App {
     this.view.setCamera(wrapped.scene.camera, this.objects.bounds, this.objects);
 
     this.meshSync = new MeshSync(this.api, sceneId, (decoded) => {
+      // The exposure is fixed from the first whole mesh, before its colours are made.
+      if (!this.toneMap.calibrated) this.toneMap.calibrate(decoded.parts);
       this.receivers.apply(decoded, this.toneMap);
       $('version').textContent = String(decoded.sceneVersion);
       this.view.requestRender();
     });
-    const whole = await this.meshSync.loadWhole(async () => ApiClient.bytesWithProgress(await meshResponse,
+    await this.meshSync.loadWhole(async () => ApiClient.bytesWithProgress(await meshResponse,
       (loaded, total) => this.loading.bytes('Downloading the lit mesh', loaded, total)));
     performance.mark('penumbra:mesh');
     this.loading.step('Drawing…');
-    this.toneMap.calibrate(whole.parts);
-    this.receivers.apply({ ...whole, delta: false }, this.toneMap); // recolour with the calibrated exposure
-    this.buildStandIns(wrapped.scene);
+    this.outliner.render(this.objects, null);
 
     this.coalescer = new EditCoalescer((frame) => this.sendFrame(frame), { onError: (error, frame) => this.editFailed(error, frame) });
     this.gizmo = new SelectionGizmo(this.view, this.objects, {
@@ -315,7 +318,8 @@ class App {
 
   // The objects' stand-ins, each face in its lit mesh's mean colour (ambient where none is held).
   buildStandIns(scene) {
-    this.objects.build(scene, (id) => this.toneMap.ambientColour(id), (id, face) => this.receivers.meanColour(receiverKey(id, face)));
+    const means = this.receivers.meanColours();
+    this.objects.build(scene, (id) => this.toneMap.ambientColour(id), (id, face) => means.get(receiverKey(id, face)) || null);
     this.outliner.render(this.objects, this.gizmo ? this.gizmo.selected : null);
   }
 

@@ -143,6 +143,20 @@ export class ReceiverLayer {
   // the colour of its stand-in behind the lit mesh, so that where the mesh leaves a one-pixel crack
   // (parts and faces meeting at vertices that lie on the other's edges) the face's own tone shows
   // rather than a dark speck.
+  // Every held receiver's mean colour (as meanColour), in one pass: receiver key → [r, g, b].
+  meanColours() {
+    const sums = new Map();
+    for (const { part, colours: c } of this.entries.values()) {
+      let s = sums.get(part.receiverKey);
+      if (!s) sums.set(part.receiverKey, (s = [0, 0, 0, 0]));
+      for (let i = 0; i < c.length; i += 3) { s[0] += c[i]; s[1] += c[i + 1]; s[2] += c[i + 2]; }
+      s[3] += c.length / 3;
+    }
+    const means = new Map();
+    for (const [key, s] of sums) if (s[3]) means.set(key, [s[0] / s[3], s[1] / s[3], s[2] / s[3]]);
+    return means;
+  }
+
   meanColour(key) {
     const keys = this.byReceiver.get(key);
     if (!keys) return null;

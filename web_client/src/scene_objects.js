@@ -84,12 +84,6 @@ export class SceneObjects {
       mesh.userData.objectId = object.id;
       mesh.position.copy(pivot).negate();
       holder.add(mesh);
-      const outline = new THREE.LineSegments(new THREE.EdgesGeometry(mesh.geometry),
-        new THREE.LineBasicMaterial({ color: 0xe0a030 }));
-      outline.visible = false;
-      outline.name = 'outline';
-      outline.position.copy(mesh.position);
-      holder.add(outline);
       applyTransform(holder, object.transform);
       this.group.add(holder);
       this.byId.set(object.id, holder);
@@ -98,6 +92,31 @@ export class SceneObjects {
     this.bounds = this.worldBounds(scene);
     for (const holder of this.byId.values()) {
       holder.userData.locked = holder.userData.static || isShell(new THREE.Box3().setFromObject(holder.children[0]), this.bounds);
+    }
+  }
+
+  // Shows or hides an object's selection outline (made on first use: most objects are never selected).
+  setOutlined(id, on) {
+    const holder = this.byId.get(id);
+    if (!holder) return;
+    let outline = holder.getObjectByName('outline');
+    if (!outline && !on) return;
+    if (!outline) {
+      const mesh = holder.children[0];
+      outline = new THREE.LineSegments(new THREE.EdgesGeometry(mesh.geometry), new THREE.LineBasicMaterial({ color: 0xe0a030 }));
+      outline.name = 'outline';
+      outline.position.copy(mesh.position);
+      holder.add(outline);
+    }
+    outline.visible = on;
+  }
+
+  // New colours for every stand-in (after the tone map's calibration), arguments as build's.
+  recolour(toneMapFor, faceColour) {
+    for (const [id, holder] of this.byId) {
+      const mesh = holder.children[0];
+      mesh.userData.ambient = toneMapFor(id);
+      mesh.geometry.userData.faceRanges.forEach((_, f) => this.paintFace(mesh, f, faceColour(id, f)));
     }
   }
 

@@ -90,15 +90,12 @@ export class SelectionGizmo {
   }
 
   select(id) {
-    if (this.selected) {
-      const old = this.objects.byId.get(this.selected);
-      if (old) old.getObjectByName('outline').visible = false;
-    }
+    if (this.selected) this.objects.setOutlined(this.selected, false);
     const light = id && id.startsWith('light:') && this.objects.lightJson.has(id.slice(6));
     const holder = id && !light ? this.objects.byId.get(id) : null;
     this.selected = holder || light ? id : null;
     if (holder) {
-      holder.getObjectByName('outline').visible = true;
+      this.objects.setOutlined(id, true);
       this.controls.attach(holder);
     } else {
       this.controls.detach();

@@ -33,6 +33,7 @@ export class ToneMap {
     this.ambient = power.map((p) => (surface > 0 ? AMBIENT_FRACTION * p / surface : 0));
     this.learnObjects(scene);
     this.exposure = 1;
+    this.calibrated = false;
   }
 
   // The objects' albedos (again after objects were added); the exposure stays as calibrated.
@@ -47,6 +48,7 @@ export class ToneMap {
   // Sets the exposure from the mesh's parts ({object, irradiance: Float32Array}); call on load.
   // (A chunk-border vertex counts once per part holding it: too few to move the percentile.)
   calibrate(parts) {
+    this.calibrated = true;
     const values = [];
     for (const r of parts) {
       const albedo = this.albedoOf(r.object);
