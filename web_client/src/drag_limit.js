@@ -17,10 +17,11 @@ export class DragLimit {
     this.drag = null; // {id, start, bound: distance of the nearest refused move, or Infinity}
   }
 
-  // A drag of object `id` begins at transform `start` (the server's current one).
+  // A drag of object `id` begins at transform `start` (the server's current one: another
+  // client may have moved it since this page's last accepted move).
   start(id, start) {
     this.drag = { id, start, bound: Infinity };
-    if (!this.accepted.has(id)) this.accepted.set(id, start);
+    this.accepted.set(id, start);
   }
 
   end() {

@@ -1,6 +1,7 @@
-// The page's wiring: picks the scene (?scene=ID, else the first served), loads it and its mesh,
-// and connects the view, selection gizmo, edit coalescer, undo history, server render, timings,
-// events and error banner. Each concept lives in its own module beside this one.
+// The page's wiring: picks the scene (?scene=ID, else the first served), loads it and its mesh
+// (behind the loading overlay), and connects the view, selection gizmo, edit coalescer, drag
+// limit, undo history, editor commands, inspector, outliner, server render, timings and plot,
+// events, connection bar and error banner. Each concept lives in its own module beside this one.
 import { ApiClient } from './api_client.js';
 import { ConnectionStatus } from './connection_status.js';
 import { DragLimit } from './drag_limit.js';
