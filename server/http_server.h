@@ -14,6 +14,7 @@
 #include "server/scene_journal.h"
 #include "server/memory_trim.h"
 #include "server/scene_session.h"
+#include "server/static_files.h"
 
 namespace httplib {
 class Server;
@@ -119,6 +120,7 @@ class HttpServer {
   std::unique_ptr<SceneJournal> journal_;  // null: ephemeral
   std::map<const SceneSession*, int64_t> journalKeys_;  // guarded by scenesMutex_
   std::vector<std::pair<std::string, std::string>> staticRoots_;  // URL prefix → canonical dir
+  StaticFiles staticFiles_;  // the page, served from those roots
   size_t nextId_ = 1;
 };
 

@@ -13,29 +13,11 @@
 import fs from 'node:fs';
 import path from 'node:path';
 
-import { check, parseArgs, repo, runWithServerAndBrowser } from './harness.mjs';
+import { check, repo, runWithServerAndBrowser, sleep, usageOnHelp } from './harness.mjs';
+import { clickObject, dragXHandle, openPage, serverScene } from './page_actions.mjs';
 
 const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'cubes15.scene.json'),
     screenshot: path.join(repo, 'build', 'web-e2e.png'), measure: null, seconds: 5, startupSeconds: 120, query: '' };
-
-async function openPage(browser, url) {
-  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-  const pageErrors = [];
-  page.on('pageerror', (error) => pageErrors.push(error.message));
-  page.on('console', (message) => { if (message.type() === 'error') pageErrors.push(message.text()); });
-  await page.goto(url, { waitUntil: 'domcontentloaded', timeout: 120000 });
-  await page.waitForFunction(() => window.penumbra && (window.penumbra.state().ready || window.penumbra.state().bannerVisible),
-    null, { timeout: 120000 });
-  return { page, pageErrors };
-}
-
-const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
-
-async function serverScene(base, id) {
-  const response = await fetch(`${base}/api/scenes/${id}`);
-  if (!response.ok) throw new Error(`GET scene: ${response.status}`);
-  return response.json();
-}
 
 // The renderer's camera maths (docs/API.md, README "Rendering": three.js lookAt view matrix,
 // PerspectiveCamera / OrthographicCamera projection, NDC → pixel with y down), written out
@@ -160,45 +142,6 @@ async function projectionChecks(page, base, sceneId, scene) {
       JSON.stringify(result));
     console.log(`     ${camera.projection}: ${result.insideChecked} pixels inside, ${result.outsideChecked} outside checked, ${result.ambiguous} within 0.01 px of an edge`);
   }
-}
-
-// Presses on the selected object's X translate handle and drags it so the object moves about
-// `dx` metres along x, in `steps` real mouse moves `stepMs` apart. Returns the handle's start.
-async function dragXHandle(page, dx, steps, stepMs) {
-  let handle = null;
-  for (const t of [0.35, -0.35, 0.5, -0.5, 0.2, -0.2]) {
-    const point = await page.evaluate((t) => window.penumbra.gizmoAxisPoint('x', t), t);
-    const screen = await page.evaluate((p) => window.penumbra.screenOf(p), point);
-    await page.mouse.move(screen.x, screen.y);
-    await sleep(50);
-    if ((await page.evaluate(() => window.penumbra.state().gizmoAxis)) === 'X') {
-      handle = screen;
-      break;
-    }
-  }
-  if (!handle) throw new Error('the translate gizmo\'s X handle is not under any probed point');
-  const shift = await page.evaluate((dx) => {
-    const state = window.penumbra.state();
-    const t = window.penumbra.objectTransform(state.selected).translate;
-    const a = window.penumbra.screenOf(t);
-    const b = window.penumbra.screenOf([t[0] + dx, t[1], t[2]]);
-    return { x: b.x - a.x, y: b.y - a.y };
-  }, dx);
-  await page.mouse.down();
-  for (let s = 1; s <= steps; ++s) {
-    await page.mouse.move(handle.x + shift.x * s / steps, handle.y + shift.y * s / steps);
-    await sleep(stepMs);
-  }
-  await page.mouse.up();
-  return handle;
-}
-
-async function clickObject(page, id) {
-  const point = await page.evaluate((id) => window.penumbra.objectTransform(id).translate, id);
-  const screen = await page.evaluate((p) => window.penumbra.screenOf(p), point);
-  await page.mouse.click(screen.x, screen.y);
-  await sleep(100);
-  return page.evaluate(() => window.penumbra.state().selected);
 }
 
 // In the page: the served whole binary mesh (layout 2, parts) decoded afresh by the page's decoder
@@ -391,7 +334,8 @@ async function measure(page, base, sceneId, seconds) {
 }
 
 async function main() {
-  const args = parseArgs(process.argv, defaults);
+  const args = usageOnHelp(process.argv, defaults, 'node tests/web/drag_e2e.mjs --penumbra build/penumbra [--scene FILE] [--screenshot PNG]\n'
+    + '       [--measure build/cubes150.scene.json --seconds 5] [--query drag_scale=0.35]');
   await runWithServerAndBrowser({ ...args, scene: args.measure || args.scene }, async ({ browser, url, base, sceneId }) => {
     const { page, pageErrors } = await openPage(browser, args.query ? `${url}&${args.query}` : url);
     const ready = await page.evaluate(() => window.penumbra.state());

@@ -21,6 +21,24 @@ export function parseArgs(argv, defaults) {
   return args;
 }
 
+// parseArgs for a script's main: --help / -h prints `usage` and the options with their defaults
+// and exits 0; a bad option prints the problem and `usage` (no stack trace) and exits 2.
+export function usageOnHelp(argv, defaults, usage) {
+  const options = Object.entries(defaults).map(([key, value]) => `  --${key} ${value === null ? '(none)' : value}`).join('\n');
+  if (argv.includes('--help') || argv.includes('-h')) {
+    console.log(`usage: ${usage}\noptions and their defaults:\n${options}`);
+    process.exit(0);
+  }
+  try {
+    return parseArgs(argv, defaults);
+  } catch (error) {
+    console.error(`${error.message.replace(/^usage: /, '')}\nusage: ${usage}\noptions and their defaults:\n${options}`);
+    process.exit(2);
+  }
+}
+
+export const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+
 let failures = 0;
 let passes = 0;
 export function check(condition, what, detail = '') {
@@ -34,10 +52,11 @@ export function check(condition, what, detail = '') {
   return condition;
 }
 
-// Starts the server and resolves with {server, url} once it prints the page's URL.
-export function startServer(penumbra, scene, timeoutSeconds) {
+// Starts the server (on `port`, 0: any free one; serving the page in `staticDir`) and resolves
+// with {server, url} once it prints the page's URL.
+export function startServer(penumbra, scene, timeoutSeconds, port = 0, staticDir = path.join(repo, 'web_client')) {
   return new Promise((resolve, reject) => {
-    const server = spawn(penumbra, ['serve', scene, '--port', '0', '--ephemeral', '--static', path.join(repo, 'web_client')],
+    const server = spawn(penumbra, ['serve', scene, '--port', String(port), '--ephemeral', '--static', staticDir],
       { cwd: repo, stdio: ['ignore', 'pipe', 'pipe'] });
     let out = '';
     let err = '';
@@ -87,7 +106,7 @@ export async function runWithServerAndBrowser({ penumbra, scene, startupSeconds 
     let url;
     ({ server, url } = await startServer(penumbra, scene, startupSeconds));
     browser = await launchBrowser();
-    await body({ browser, url, base: new URL(url).origin, sceneId: new URL(url).searchParams.get('scene') });
+    await body({ browser, url, server, base: new URL(url).origin, sceneId: new URL(url).searchParams.get('scene') });
   } catch (error) {
     check(false, 'the test ran to the end', error.stack || String(error));
   } finally {

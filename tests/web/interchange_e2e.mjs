@@ -13,7 +13,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 
-import { check, parseArgs, repo, runWithServerAndBrowser } from './harness.mjs';
+import { check, repo, runWithServerAndBrowser, usageOnHelp } from './harness.mjs';
 
 const data = path.join(repo, 'tests', 'interchange', 'data');
 const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'cornell.scene.json'),
@@ -217,7 +217,7 @@ async function objUploadTest(page, pageErrors, base, screenshot) {
 }
 
 async function main() {
-  const args = parseArgs(process.argv, defaults);
+  const args = usageOnHelp(process.argv, defaults, 'node tests/web/interchange_e2e.mjs --penumbra build/penumbra [--screenshot PNG]');
   await runWithServerAndBrowser(args, async ({ browser, url, base, sceneId }) => {
     const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
     const pageErrors = [];

@@ -10,15 +10,26 @@ export class ApiError extends Error {
   }
 }
 
-async function failure(response) {
+// An error answer's body text → ApiError with the server's {code, message, path}.
+function errorFromText(status, statusText, text) {
   let body = null;
   try {
-    body = await response.json();
+    body = JSON.parse(text);
   } catch {
     // Not JSON (a proxy or a static 404): report the status line alone.
   }
   const error = body && body.error ? body.error : {};
-  return new ApiError(response.status, error.code || 'http_error', error.message || response.statusText, error.path || '');
+  return new ApiError(status, error.code || 'http_error', error.message || statusText, error.path || '');
+}
+
+async function failure(response) {
+  let text = '';
+  try {
+    text = await response.text();
+  } catch {
+    // The body could not be read: the status line alone.
+  }
+  return errorFromText(response.status, response.statusText, text);
 }
 
 export class ApiClient {
@@ -60,9 +71,37 @@ export class ApiClient {
   postEdits(id, frame) { return this.json('POST', `${this.scenePath(id)}/edits`, frame); }
 
   // sceneText: the file's text, sent as is so the server validates it with key paths.
-  createScene(sceneText, name) {
+  createScene(sceneText, name, onProgress) {
     const query = name ? `?name=${encodeURIComponent(name)}` : '';
+    if (onProgress) return this.upload(`/api/scenes${query}`, sceneText, 'application/json', onProgress);
     return this.json('POST', `/api/scenes${query}`, sceneText);
+  }
+
+  // A POST whose upload progress is reported (fetch reports none): onProgress(sent, total,
+  // false) while the body leaves, then onProgress(total, total, true) once the server has it
+  // all and works on it (building a scene: seconds). Resolves with the answer's JSON.
+  upload(path, body, contentType, onProgress) {
+    return new Promise((resolve, reject) => {
+      const xhr = new XMLHttpRequest();
+      xhr.open('POST', this.base + path);
+      if (contentType) xhr.setRequestHeader('Content-Type', contentType);
+      if (this.token) xhr.setRequestHeader('Authorization', `Bearer ${this.token}`);
+      xhr.upload.addEventListener('progress', (e) => onProgress(e.loaded, e.lengthComputable ? e.total : 0, false));
+      xhr.upload.addEventListener('load', () => onProgress(1, 1, true));
+      xhr.addEventListener('error', () => reject(new ApiError(0, 'network_error', `POST ${path} failed`, '')));
+      xhr.addEventListener('load', () => {
+        if (xhr.status < 200 || xhr.status >= 300) {
+          reject(errorFromText(xhr.status, xhr.statusText, xhr.responseText));
+          return;
+        }
+        try {
+          resolve(JSON.parse(xhr.responseText));
+        } catch (error) {
+          reject(new ApiError(xhr.status, 'bad_answer', `POST ${path}: ${error.message}`, ''));
+        }
+      });
+      xhr.send(body);
+    });
   }
 
   // The binary mesh (whole, or the receivers changed after `since`) as an ArrayBuffer.
@@ -70,6 +109,43 @@ export class ApiClient {
     const query = since === undefined || since === null ? '?format=bin' : `?since=${since}&format=bin`;
     const response = await this.request('GET', `${this.scenePath(id)}/mesh${query}`);
     return response.arrayBuffer();
+  }
+
+  // A response requested earlier (prefetch.js's), checked as request() checks its own.
+  async adopt(promise, what) {
+    let response;
+    try {
+      response = await promise;
+    } catch (error) {
+      throw new ApiError(0, 'network_error', `${what} failed: ${error.message}`, '');
+    }
+    if (!response.ok) throw await failure(response);
+    return response;
+  }
+
+  // The body as an ArrayBuffer, calling onProgress(loaded, total) as it arrives (total 0 when
+  // unknown: no Content-Length, or one of compressed bytes).
+  static async bytesWithProgress(response, onProgress) {
+    const encoded = response.headers.get('Content-Encoding');
+    const total = encoded ? 0 : Number(response.headers.get('Content-Length')) || 0;
+    if (!response.body) return response.arrayBuffer();
+    const reader = response.body.getReader();
+    const chunks = [];
+    let loaded = 0;
+    for (;;) {
+      const { done, value } = await reader.read();
+      if (done) break;
+      chunks.push(value);
+      loaded += value.byteLength;
+      onProgress(loaded, total);
+    }
+    const bytes = new Uint8Array(loaded);
+    let at = 0;
+    for (const chunk of chunks) {
+      bytes.set(chunk, at);
+      at += chunk.byteLength;
+    }
+    return bytes.buffer;
   }
 
   // A PNG for a camera (cameraQuery: URLSearchParams entries from cameraToQuery).

@@ -3,7 +3,8 @@
 // frame. So a drag never queues stale frames, however fast the mouse moves.
 
 export class EditCoalescer {
-  // sendFrame(frame) → promise of the server's answer (and whatever follow-up the page needs).
+  // sendFrame(frame) → promise of the server's answer (and whatever follow-up the page needs);
+  // onError(error, frame) for a frame that failed.
   constructor(sendFrame, { onError } = {}) {
     this.sendFrame = sendFrame;
     this.onError = onError || (() => {});
@@ -31,11 +32,16 @@ export class EditCoalescer {
     ++this.sent;
     this.inFlight = Promise.resolve()
       .then(() => this.sendFrame({ edits }))
-      .catch((error) => this.onError(error))
+      .catch((error) => this.onError(error, { edits }))
       .finally(() => {
         this.inFlight = null;
         this.pump();
       });
+  }
+
+  // Forgets a move of `objectId` not sent yet.
+  discard(objectId) {
+    this.pending.delete(objectId);
   }
 
   busy() {

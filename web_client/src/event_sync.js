@@ -1,29 +1,63 @@
 // Server-sent events (GET /events): each announced version the page does not hold is fetched
-// as a mesh delta; versions made by another client also move the objects' stand-ins.
+// as a mesh delta; versions made by another client also move the objects' stand-ins. The stream
+// also tells whether the server is there: a broken stream is a lost server (the browser retries
+// every second, as the server's `retry: 1000` asks), a refused one (404: the scene is gone, e.g.
+// a server restarted without it) is retried here every few seconds. Leaving the page closes the
+// stream quietly.
+
+const REOPEN_MS = 3000;
 
 export class EventSync {
-  // handlers: {onVersion(version, data), onLost()}
+  // handlers: {onVersion(version, data), onError(error), onConnection(state)}; state:
+  // 'connected', 'reconnecting' (the server is unreachable) or 'refused' (it answers, without the scene).
   constructor(url, handlers) {
-    this.source = new EventSource(url);
+    this.url = url;
+    this.handlers = handlers;
     this.events = 0;
+    this.state = 'connecting';
+    this.leaving = false;
+    this.timer = null;
+    window.addEventListener('pagehide', () => this.close());
+    this.open();
+  }
+
+  open() {
+    this.source = new EventSource(this.url);
+    this.source.addEventListener('open', () => this.setState('connected'));
     this.source.addEventListener('version', (event) => {
       ++this.events;
       let data;
       try {
         data = JSON.parse(event.data);
       } catch (error) {
-        handlers.onError(new Error(`event stream: bad event data: ${error.message}`));
+        this.handlers.onError(new Error(`event stream: bad event data: ${error.message}`));
         return;
       }
-      handlers.onVersion(data.version, data);
+      this.handlers.onVersion(data.version, data);
     });
     this.source.addEventListener('error', () => {
-      // EventSource retries by itself (the server sends retry: 1000); a closed stream is final.
-      if (this.source.readyState === EventSource.CLOSED) handlers.onError(new Error('event stream closed by the server'));
+      if (this.leaving) return;
+      if (this.source.readyState === EventSource.CLOSED) {
+        // Not retried by the browser: an HTTP error. Try again later ourselves.
+        this.setState('refused');
+        clearTimeout(this.timer);
+        this.timer = setTimeout(() => { if (!this.leaving) this.open(); }, REOPEN_MS);
+      } else {
+        this.setState('reconnecting');
+      }
     });
   }
 
+  setState(state) {
+    if (state === this.state) return;
+    const previous = this.state;
+    this.state = state;
+    this.handlers.onConnection(state, previous);
+  }
+
   close() {
+    this.leaving = true;
+    clearTimeout(this.timer);
     this.source.close();
   }
 }

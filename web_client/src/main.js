@@ -1,11 +1,21 @@
-// The page's wiring: picks the scene (?scene=ID, else the first served), loads it and its mesh,
-// and connects the view, selection gizmo, edit coalescer, undo history, server render, timings,
-// events and error banner. Each concept lives in its own module beside this one.
+// The page's wiring: picks the scene (?scene=ID, else the first served), loads it and its mesh
+// (behind the loading overlay), and connects the view, selection gizmo, edit coalescer, drag
+// limit, undo history, editor commands, inspector, outliner, server render, timings and plot,
+// events, connection bar and error banner. Each concept lives in its own module beside this one.
 import { ApiClient } from './api_client.js';
+import { ConnectionStatus } from './connection_status.js';
+import { DragLimit } from './drag_limit.js';
+import { EditPlot } from './edit_plot.js';
+import { EditorActions } from './editor_actions.js';
+import { Inspector } from './inspector.js';
+import { Outliner } from './outliner.js';
+import { installPanelControls } from './panel_controls.js';
 import { ErrorBanner } from './error_banner.js';
 import { EditCoalescer } from './edit_coalescer.js';
 import { EventSync } from './event_sync.js';
+import { LoadingIndicator } from './loading_indicator.js';
 import { MeshSync } from './mesh_sync.js';
+import { receiverKey } from './mesh_binary.js';
 import { ReceiverLayer } from './receiver_layer.js';
 import { RenderPanel } from './render_panel.js';
 import { SceneObjects } from './scene_objects.js';
@@ -21,13 +31,12 @@ import { UndoHistory } from './undo_history.js';
 
 const $ = (id) => document.getElementById(id);
 const MOTION_HOLD_MS = 100;
-// Keys typed into a text field are not commands (checkboxes and buttons keep W/E and Ctrl+Z).
-const isTyping = (target) => target instanceof HTMLInputElement && !['checkbox', 'button', 'file'].includes(target.type);
 
 class App {
   constructor() {
     this.api = new ApiClient('', new URLSearchParams(window.location.search).get('token'));
     this.banner = new ErrorBanner($('error-banner'), $('error-text'), $('error-close'));
+    this.loading = new LoadingIndicator($('loading'), $('loading-text'), $('loading-progress'), $('controls'));
     // ?antialias=on|off and ?drag_scale=0.25..1 override the choices by GL renderer (to compare frame times).
     const query = new URLSearchParams(window.location.search);
     const antialias = query.get('antialias');
@@ -35,10 +44,28 @@ class App {
       dragScale: query.get('drag_scale') || 'auto' });
     this.objects = new SceneObjects(this.view.scene);
     this.receivers = new ReceiverLayer(this.view.scene);
+    // keys: the receivers whose parts changed (null: all, after a whole mesh).
+    this.receivers.onColours = (keys) => {
+      if (!keys) {
+        const means = this.receivers.meanColours();
+        this.objects.recolour((id) => this.toneMap.ambientColour(id), (id, face) => means.get(receiverKey(id, face)) || null);
+        return;
+      }
+      for (const key of keys) {
+        const [object, face] = key.split('/');
+        this.objects.setFaceColour(object, Number(face), this.receivers.meanColour(key));
+      }
+    };
     this.timings = new TimingsPanel($('timings'));
     this.timings.gl = this.view.gl;
     this.timings.draw();
+    this.plot = new EditPlot($('edit-plot'), $('edit-ratio'));
+    this.connection = new ConnectionStatus($('connection'));
+    this.dragLimit = new DragLimit();
     this.history = new UndoHistory();
+    this.editor = new EditorActions(this);
+    this.inspector = new Inspector($('inspector'), (id, transform) => this.editor.typedTransform(id, transform));
+    this.outliner = new Outliner($('outliner'), (id) => this.gizmo && this.gizmo.select(id));
     this.ownVersions = new Set();
     this.dragStart = null;
     this.meshFollows = new Set(); // edits answered whose version's mesh the page does not hold yet
@@ -47,45 +74,65 @@ class App {
     // MOTION_HOLD_MS) for that edit's shadows, so the two are drawn together in one frame.
     this.view.motionHold = () => (this.view.gl.software && this.view.interactions.has('drag') && this.busy() ? MOTION_HOLD_MS : 0);
     this.fail = (error) => this.banner.show(error);
-    installSceneFileLoader($('scene-file'), this.api, this.fail, { scale: $('import-scale'), radiance: $('import-radiance') });
+    installSceneFileLoader($('scene-file'), this.api, this.fail, { scale: $('import-scale'), radiance: $('import-radiance') }, this.loading);
   }
 
   async start() {
+    performance.mark('penumbra:start');
     const requested = new URLSearchParams(window.location.search).get('scene');
     let sceneId = requested;
+    this.loading.step('Loading the scene…');
     if (!sceneId) {
       const { scenes } = await this.api.listScenes();
       if (!scenes.length) throw new Error('the server serves no scene: load a .scene.json file');
       sceneId = scenes[0].id;
     }
     this.sceneId = sceneId;
-    const wrapped = await this.api.getScene(sceneId);
+    // prefetch.js asked for the scene and its mesh while the modules loaded.
+    const prefetch = window.penumbraPrefetch && window.penumbraPrefetch.sceneId === sceneId ? window.penumbraPrefetch : null;
+    const meshResponse = prefetch ? this.api.adopt(prefetch.mesh, 'GET mesh')
+      : this.api.request('GET', `${this.api.scenePath(sceneId)}/mesh?format=bin`);
+    meshResponse.catch(() => {}); // reported when awaited below
+    const wrapped = prefetch ? await (await this.api.adopt(prefetch.scene, 'GET scene')).json() : await this.api.getScene(sceneId);
+    performance.mark('penumbra:scene');
     $('scene-name').textContent = `${wrapped.id} (${wrapped.name})`;
     showImportReport($('import-report'), sceneId, wrapped.name);
     this.sceneJson = wrapped.scene;
+    this.sceneName = wrapped.name;
+    this.editor.remember(wrapped);
+    this.knownVersion = wrapped.version;
+    this.history.restore(`${wrapped.id}.${wrapped.name}`, wrapped.version);
 
     this.objects.build(wrapped.scene);
     this.toneMap = new ToneMap(wrapped.scene, this.objects.bounds);
-    this.view.setCamera(wrapped.scene.camera, this.objects.bounds);
+    this.view.setCamera(wrapped.scene.camera, this.objects.bounds, this.objects);
 
     this.meshSync = new MeshSync(this.api, sceneId, (decoded) => {
+      // The exposure is fixed from the first whole mesh, before its colours are made.
+      if (!this.toneMap.calibrated) this.toneMap.calibrate(decoded.parts);
       this.receivers.apply(decoded, this.toneMap);
       $('version').textContent = String(decoded.sceneVersion);
       this.view.requestRender();
     });
-    const whole = await this.meshSync.loadWhole();
-    this.toneMap.calibrate(whole.parts);
-    this.receivers.apply({ ...whole, delta: false }, this.toneMap); // recolour with the calibrated exposure
-    this.objects.build(wrapped.scene, (id) => this.toneMap.ambientColour(id));
+    await this.meshSync.loadWhole(async () => ApiClient.bytesWithProgress(await meshResponse,
+      (loaded, total) => this.loading.bytes('Downloading the lit mesh', loaded, total)));
+    performance.mark('penumbra:mesh');
+    this.loading.step('Drawing…');
+    this.outliner.render(this.objects, null);
 
-    this.coalescer = new EditCoalescer((frame) => this.sendFrame(frame), { onError: (error) => this.editFailed(error) });
+    this.coalescer = new EditCoalescer((frame) => this.sendFrame(frame), { onError: (error, frame) => this.editFailed(error, frame) });
     this.gizmo = new SelectionGizmo(this.view, this.objects, {
-      onSelect: (id) => { $('selection').textContent = id ? `selected ${id}` : 'click an object'; },
+      onSelect: (id) => this.selected(id),
       onDragStart: (id) => {
         this.dragStart = { id, before: transformOf(this.gizmo.holder()) };
+        this.dragLimit.start(id, this.dragStart.before);
         this.view.setInteracting('drag', true);
       },
-      onChange: (id) => this.coalescer.move(id, transformOf(this.gizmo.holder())),
+      onChange: (id) => {
+        const transform = transformOf(this.gizmo.holder());
+        if (this.dragLimit.allows(id, transform)) this.coalescer.move(id, transform);
+        else applyTransform(this.gizmo.holder(), this.dragLimit.lastGood(id)); // held at the last good place
+      },
       onDragEnd: (id) => this.dragEnded(id),
       onMode: (mode) => this.showMode(mode),
     });
@@ -95,55 +142,36 @@ class App {
     this.events = new EventSync(this.api.eventsUrl(sceneId), {
       onVersion: (version) => this.versionAnnounced(version),
       onError: this.fail,
+      onConnection: (state, previous) => {
+        this.connection.set(state);
+        if (state === 'connected' && (previous === 'reconnecting' || previous === 'refused')) {
+          this.resyncing = this.resync().finally(() => { this.resyncing = null; });
+        }
+      },
     });
     this.installControls();
+    this.editor.updateReset();
+    this.editor.refreshScenes();
+    this.selected(null);
     this.api.stats(sceneId).then((stats) => {
       this.timings.initialBuild = stats.build && stats.build.seconds ? stats.build.seconds.total : null;
       this.timings.draw();
+      if (!this.timings.rebuild) this.plot.setBuild(this.timings.initialBuild, 'at load');
     }).catch(this.fail);
 
     this.renderPanel.schedule();
     this.view.requestRender();
+    performance.mark('penumbra:ready');
+    this.loading.done();
   }
 
   installControls() {
-    $('mode-translate').addEventListener('click', () => this.gizmo.setMode('translate'));
-    $('mode-rotate').addEventListener('click', () => this.gizmo.setMode('rotate'));
-    $('undo').addEventListener('click', () => this.undo());
-    $('redo').addEventListener('click', () => this.redo());
-    $('toggle-edges').addEventListener('change', (event) => {
-      this.receivers.setEdgesVisible(event.target.checked);
-      this.view.requestRender();
-      $('edge-legend').hidden = !event.target.checked;
-    });
-    $('rebuild').addEventListener('click', async () => {
-      $('rebuild').disabled = true;
-      try {
-        this.timings.rebuild = await this.api.rebuild(this.sceneId);
-        this.timings.draw();
-      } catch (error) {
-        this.fail(error);
-      } finally {
-        $('rebuild').disabled = false;
-      }
-    });
-    window.addEventListener('keydown', (event) => {
-      if (!(event.ctrlKey || event.metaKey) || isTyping(event.target)) return;
-      if (event.key === 'z' || event.key === 'Z') {
-        event.preventDefault();
-        if (event.shiftKey) this.redo();
-        else this.undo();
-      } else if (event.key === 'y') {
-        event.preventDefault();
-        this.redo();
-      }
-    });
+    installPanelControls(this, this.editor);
     this.updateUndoButtons();
   }
 
   showMode(mode) {
-    $('mode-translate').classList.toggle('active', mode === 'translate');
-    $('mode-rotate').classList.toggle('active', mode === 'rotate');
+    for (const m of ['translate', 'rotate', 'scale']) $(`mode-${m}`).classList.toggle('active', mode === m);
   }
 
   // One frame: the edit, at the server's pace. Once it is answered the coalescer may send the
@@ -154,6 +182,10 @@ class App {
     const result = await this.api.postEdits(this.sceneId, frame);
     const answered = performance.now();
     this.ownVersions.add(result.version);
+    this.knownVersion = result.version;
+    this.history.save(result.version);
+    this.dragLimit.applied(frame.edits);
+    this.banner.clearTransient();
     const follow = this.followMesh(result, start, answered);
     this.meshFollows.add(follow);
     follow.finally(() => this.meshFollows.delete(follow));
@@ -165,6 +197,7 @@ class App {
       const fetched = await this.meshSync.refresh(Math.max(result.version, this.announced));
       const end = performance.now();
       this.timings.edited(result, (end - start) / 1000, fetched.bytes, { edit: (answered - start) / 1000, mesh: (end - answered) / 1000 });
+      this.plot.add(result.seconds ? result.seconds.total : 0, (end - start) / 1000);
       // The server's image waits for the drag's end: it would compete with the edits for the server.
       if (!this.gizmo.dragging) this.renderPanel.schedule();
     } catch (error) {
@@ -172,9 +205,20 @@ class App {
     }
   }
 
-  // A refused frame leaves the server as it was: show why, and put the stand-ins back.
-  async editFailed(error) {
-    this.fail(error);
+  // A refused frame leaves the server as it was: show why (once, until an edit succeeds), and put
+  // the stand-ins back: a dragged object to its last accepted place, where it is held (DragLimit).
+  async editFailed(error, frame) {
+    const refused = error.status === 422;
+    this.banner.show(refused ? new Error(`${error.message} — the object stays at its last accepted place`) : error,
+      { transient: refused, key: refused ? `${error.code}:${error.path}` : null });
+    const held = refused && frame ? this.dragLimit.refused(frame.edits) : null;
+    if (held) {
+      this.coalescer.discard(held);
+      const holder = this.objects.byId.get(held);
+      if (holder && this.dragLimit.lastGood(held)) applyTransform(holder, this.dragLimit.lastGood(held));
+      this.view.requestRender();
+      return;
+    }
     try {
       const wrapped = await this.api.getScene(this.sceneId);
       this.objects.syncTransforms(wrapped.scene, null);
@@ -184,6 +228,7 @@ class App {
   }
 
   dragEnded(id) {
+    this.dragLimit.end();
     this.view.setInteracting('drag', false);
     this.renderPanel.schedule();
     const start = this.dragStart;
@@ -192,6 +237,7 @@ class App {
     const after = transformOf(this.gizmo.holder());
     if (!sameTransform(start.before, after)) this.history.push({ id, before: start.before, after });
     this.updateUndoButtons();
+    this.inspector.update(after);
   }
 
   moveTo(id, transform) {
@@ -199,23 +245,47 @@ class App {
     if (!holder) return;
     applyTransform(holder, transform);
     this.coalescer.move(id, transform);
+    if (this.inspector.id === id) this.inspector.update(transform);
   }
 
+  // A move entry re-sends a transform; a structural one ({frame: {redo, undo}}) its frame.
   undo() {
     if (this.gizmo.dragging) return;
     const entry = this.history.undo();
-    if (entry) this.moveTo(entry.id, entry.before);
+    if (entry && entry.frame) this.editor.sendStructural(entry.frame.undo, entry.select.undo).catch(this.fail);
+    else if (entry) this.moveTo(entry.id, entry.before);
     this.updateUndoButtons();
   }
 
   redo() {
     if (this.gizmo.dragging) return;
     const entry = this.history.redo();
-    if (entry) this.moveTo(entry.id, entry.after);
+    if (entry && entry.frame) this.editor.sendStructural(entry.frame.redo, entry.select.redo).catch(this.fail);
+    else if (entry) this.moveTo(entry.id, entry.after);
     this.updateUndoButtons();
   }
 
+  selected(id) {
+    $('selection').textContent = id ? `selected ${id}` : 'click an object';
+    this.outliner.highlight(id);
+    const light = id && id.startsWith('light:') ? this.objects.lightJson.get(id.slice(6)) : null;
+    this.inspector.show(id, light || (id ? transformOf(this.objects.byId.get(id)) : null));
+    for (const button of ['duplicate', 'delete', 'focus']) $(button).disabled = !id || (button !== 'focus' && !!light);
+  }
+
+  // The stand-ins again from the server's scene (its object list changed), selecting `selectId`.
+  async reloadObjects(selectId) {
+    const wrapped = await this.api.getScene(this.sceneId);
+    this.sceneJson = wrapped.scene;
+    this.gizmo.select(null);
+    this.toneMap.learnObjects(wrapped.scene);
+    this.buildStandIns(wrapped.scene);
+    if (selectId) this.gizmo.select(selectId);
+    this.view.requestRender();
+  }
+
   updateUndoButtons() {
+    this.history.save(this.knownVersion);
     $('undo').disabled = !this.history.canUndo();
     $('redo').disabled = !this.history.canRedo();
   }
@@ -232,19 +302,49 @@ class App {
       if (this.ownVersions.has(version) || this.coalescer.busy()) return;
       // Another client's edit: follow its transforms (a changed object list reloads the page's stand-ins).
       const wrapped = await this.api.getScene(this.sceneId);
+      this.sceneJson = wrapped.scene;
+      this.toneMap.learnObjects(wrapped.scene);
       if (this.objects.sameObjects(wrapped.scene)) {
         this.objects.syncTransforms(wrapped.scene, this.gizmo.dragging ? this.gizmo.selected : null);
+        const holder = this.gizmo.holder();
+        if (holder) this.inspector.update(transformOf(holder));
       } else {
         this.gizmo.select(null);
-        this.objects.build(wrapped.scene, (id) => this.toneMap.ambientColour(id));
+        this.buildStandIns(wrapped.scene);
       }
     } catch (error) {
       this.fail(error);
     }
   }
 
+  // The objects' stand-ins, each face in its lit mesh's mean colour (ambient where none is held).
+  buildStandIns(scene) {
+    const means = this.receivers.meanColours();
+    this.objects.build(scene, (id) => this.toneMap.ambientColour(id), (id, face) => means.get(receiverKey(id, face)) || null);
+    this.outliner.render(this.objects, this.gizmo ? this.gizmo.selected : null);
+  }
+
+  // After the server came back: the scene and its whole mesh again (it may have restarted, and
+  // without a journal be back at version 0).
+  async resync() {
+    try {
+      const wrapped = await this.api.getScene(this.sceneId);
+      this.gizmo.select(null);
+      this.sceneJson = wrapped.scene;
+      this.buildStandIns(wrapped.scene);
+      this.ownVersions.clear();
+      await this.meshSync.reload();
+      this.announced = this.meshSync.version;
+      this.renderPanel.schedule();
+      this.view.requestRender();
+    } catch (error) {
+      this.fail(error);
+    }
+  }
+
   busy() {
-    return !!(this.coalescer && this.coalescer.busy()) || !!(this.meshSync && this.meshSync.running) || this.meshFollows.size > 0;
+    return !!(this.coalescer && this.coalescer.busy()) || !!(this.meshSync && this.meshSync.running) || this.meshFollows.size > 0
+      || !!this.resyncing || this.editor.running.size > 0;
   }
 
   // Resolves once no edit is pending or in flight and the page holds (and has timed) every version it made.
@@ -253,10 +353,15 @@ class App {
       await this.coalescer.idle();
       if (this.meshSync.running) await this.meshSync.running;
       await Promise.all([...this.meshFollows]);
+      if (this.resyncing) await this.resyncing;
+      await Promise.allSettled([...this.editor.running]);
     }
   }
 }
 
 const app = new App();
 const hook = installTestHook(app);
-app.start().then(() => { hook.ready = true; }).catch((error) => app.banner.show(error));
+app.start().then(() => { hook.ready = true; }).catch((error) => {
+  app.banner.show(error);
+  app.loading.failed(`The scene did not load: ${error.message || error}`);
+});

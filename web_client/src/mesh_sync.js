@@ -17,10 +17,18 @@ export class MeshSync {
     this.fetches = 0;
   }
 
-  async loadWhole() {
-    const decoded = decodeMeshBinary(await this.api.meshBinary(this.sceneId));
+  // download: () → promise of the whole mesh's bytes (default: fetched here).
+  async loadWhole(download = () => this.api.meshBinary(this.sceneId)) {
+    const decoded = decodeMeshBinary(await download());
     this.record(decoded);
     return decoded;
+  }
+
+  // The whole mesh again, whatever version the page held (the server came back, perhaps restarted).
+  async reload() {
+    while (this.running) await this.running;
+    this.version = null;
+    return this.loadWhole();
   }
 
   record(decoded) {

@@ -4,7 +4,7 @@
 // wall blocks there), and an optional overlay of the mesh's edges coloured by vertex class
 // (see discontinuityEdges). A receiver is read back as one merged view of its parts.
 import * as THREE from 'three';
-import { CLASS_PENUMBRA, CLASS_UMBRA } from './mesh_binary.js';
+import { CLASS_LIT, CLASS_PENUMBRA, CLASS_UMBRA } from './mesh_binary.js';
 
 const EDGE_COLOURS = {
   [CLASS_PENUMBRA]: new THREE.Color(0xff9020),
@@ -13,7 +13,8 @@ const EDGE_COLOURS = {
 
 // The overlay: the mesh's triangle edges (each once) that touch a penumbra vertex or join two
 // classes, coloured by the darker end (umbra blue over penumbra orange). Lit–lit and umbra–umbra
-// edges (the triangulation inside fully lit or fully dark regions) are left out, so what remains
+// edges (the triangulation inside fully lit or fully dark regions) and umbra–lit ones (the light's
+// plane, see below) are left out, so what remains
 // is the penumbrae the mesh resolved, filled with their discontinuity edges, and the umbrae's borders.
 export function discontinuityEdges(part) {
   const { positions, classes, indices } = part;
@@ -30,6 +31,9 @@ export function discontinuityEdges(part) {
       seen.add(key);
       const cls = Math.max(classes[a], classes[b]);
       if (classes[a] === classes[b] && classes[a] !== CLASS_PENUMBRA) continue;
+      // Umbra straight to lit, with no penumbra between: not a shadow's edge but the light's
+      // plane (above it nothing is lit), whose thin strip's triangulation drew a zig-zag band.
+      if (cls === CLASS_UMBRA && Math.min(classes[a], classes[b]) === CLASS_LIT) continue;
       const colour = EDGE_COLOURS[Math.min(cls, CLASS_UMBRA)];
       for (const v of [a, b]) {
         points.push(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
@@ -114,6 +118,7 @@ export class ReceiverLayer {
   // (non-delta) mesh replaces everything.
   apply(decoded, toneMap) {
     if (!decoded.delta) this.clear();
+    const touched = new Set([...decoded.removedParts, ...decoded.parts].map((p) => p.receiverKey).filter(Boolean));
     for (const removed of decoded.removedParts) this.remove(removed.key);
     for (const part of decoded.parts) {
       this.remove(part.key);
@@ -131,6 +136,38 @@ export class ReceiverLayer {
       this.triangles += part.triangleCount;
     }
     this.rebuildStale();
+    if (this.onColours) this.onColours(decoded.delta ? touched : null);
+  }
+
+  // The mean display colour of a receiver's vertices ([r, g, b] linear), or null when none is held:
+  // the colour of its stand-in behind the lit mesh, so that where the mesh leaves a one-pixel crack
+  // (parts and faces meeting at vertices that lie on the other's edges) the face's own tone shows
+  // rather than a dark speck.
+  // Every held receiver's mean colour (as meanColour), in one pass: receiver key → [r, g, b].
+  meanColours() {
+    const sums = new Map();
+    for (const { part, colours: c } of this.entries.values()) {
+      let s = sums.get(part.receiverKey);
+      if (!s) sums.set(part.receiverKey, (s = [0, 0, 0, 0]));
+      for (let i = 0; i < c.length; i += 3) { s[0] += c[i]; s[1] += c[i + 1]; s[2] += c[i + 2]; }
+      s[3] += c.length / 3;
+    }
+    const means = new Map();
+    for (const [key, s] of sums) if (s[3]) means.set(key, [s[0] / s[3], s[1] / s[3], s[2] / s[3]]);
+    return means;
+  }
+
+  meanColour(key) {
+    const keys = this.byReceiver.get(key);
+    if (!keys) return null;
+    const sum = [0, 0, 0];
+    let n = 0;
+    for (const k of keys) {
+      const c = this.entries.get(k).colours;
+      for (let i = 0; i < c.length; i += 3) { sum[0] += c[i]; sum[1] += c[i + 1]; sum[2] += c[i + 2]; }
+      n += c.length / 3;
+    }
+    return n ? sum.map((x) => x / n) : null;
   }
 
   // A new Mesh for each batch whose parts changed; none for a batch left empty.

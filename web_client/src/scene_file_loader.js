@@ -45,34 +45,50 @@ export function importQuery(kind, name, scaleText, radianceText) {
   return params;
 }
 
-async function importFile(api, main, mtl, options) {
+function importFile(api, main, mtl, options, onProgress) {
   const form = new FormData();
   form.append('file', main.file, main.file.name);
   for (const file of mtl) form.append('mtl', file, file.name);
   const query = importQuery(main.kind, main.file.name, options.scale.value, options.radiance.value);
-  const response = await api.request('POST', `/api/scenes?${query}`, { body: form });
-  return response.json();
+  return api.upload(`/api/scenes?${query}`, form, null, onProgress);
 }
 
-// options: {scale, radiance}: the page's input elements for the import options.
-export function installSceneFileLoader(input, api, onError, options) {
+// Upload progress, then the server's build (no events until the scene exists: seconds waited).
+function uploadProgress(loading, fileName) {
+  let building = false;
+  return (sent, total, done) => {
+    if (done) {
+      if (!building) loading.waiting('The server builds the discontinuity mesh…');
+      building = true;
+    } else if (!building) {
+      loading.bytes(`Uploading ${fileName}`, sent, total);
+    }
+  };
+}
+
+// options: {scale, radiance}: the page's input elements for the import options; loading: the
+// LoadingIndicator that shows the upload and the build.
+export function installSceneFileLoader(input, api, onError, options, loading) {
   input.addEventListener('change', async () => {
     const files = input.files ? [...input.files] : [];
     if (!files.length) return;
     try {
       const { main, mtl } = classifyFiles(files);
+      const progress = uploadProgress(loading, main.file.name);
       let created;
       if (main.kind === 'scene') {
         const name = main.file.name.replace(/\.scene\.json$|\.json$/i, '');
-        created = await api.createScene(await main.file.text(), name);
+        created = await api.createScene(await main.file.text(), name, progress);
       } else {
-        created = await importFile(api, main, mtl, options);
+        created = await importFile(api, main, mtl, options, progress);
         storeImportReport(created.id, created.name, created.import);
       }
+      loading.step('Opening the new scene…');
       const next = new URLSearchParams({ scene: created.id });
       if (api.token) next.set('token', api.token); // the new scene's page keeps the token
       window.location.search = `?${next}`;
     } catch (error) {
+      loading.cancel();
       onError(error);
     } finally {
       input.value = '';

@@ -1,19 +1,47 @@
 // Three.js stand-ins for a scene JSON's objects and lights: one pickable Group per object
 // (local geometry under the object's transform, drawn in its ambient colour behind the lit
 // receivers, so faces that receive no light still show) and the lights' emitting polygons.
+// Each object turns about the centre of its vertex bounds (its pivot: scene_transform.js), so an
+// imported object, whose vertices are in world coordinates, gets its gizmo on itself rather than
+// at the origin. The room's shell (`static` objects, and thin objects spanning most of the scene
+// such as an imported file's walls and floor) is locked: not picked unless unlocked.
 import * as THREE from 'three';
 import { applyTransform } from './scene_transform.js';
 
-// Convex polygon faces → a triangle fan geometry (counter-clockwise = front, as in the format).
+// Convex polygon faces → a triangle fan geometry (counter-clockwise = front, as in the format),
+// with a colour per vertex and userData.faceRanges[f] = [first vertex, count] of face f.
 function polygonsGeometry(vertices, faces) {
   const positions = [];
-  for (const face of faces)
+  const faceRanges = [];
+  for (const face of faces) {
+    const first = positions.length / 3;
     for (let k = 1; k + 1 < face.length; ++k)
       for (const index of [face[0], face[k], face[k + 1]]) positions.push(...vertices[index]);
+    faceRanges.push([first, positions.length / 3 - first]);
+  }
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute('position', new THREE.Float32BufferAttribute(positions, 3));
+  geometry.setAttribute('color', new THREE.Float32BufferAttribute(new Float32Array(positions.length), 3));
+  geometry.userData.faceRanges = faceRanges;
   geometry.computeVertexNormals();
   return geometry;
+}
+
+// Local vertex bounds' centre.
+function pivotOf(vertices) {
+  const box = new THREE.Box3();
+  for (const p of vertices) box.expandByPoint(new THREE.Vector3(...p));
+  return box.isEmpty() ? new THREE.Vector3() : box.getCenter(new THREE.Vector3());
+}
+
+// A wall, floor or ceiling: thinner than 1% of the scene's diagonal one way, and spanning at
+// least half the scene the other two.
+function isShell(objectBox, sceneBox) {
+  const e = objectBox.getSize(new THREE.Vector3()).toArray();
+  const s = sceneBox.getSize(new THREE.Vector3()).toArray();
+  const diagonal = Math.hypot(...s);
+  const thin = e.findIndex((x) => x < 0.01 * diagonal);
+  return thin >= 0 && e.every((x, k) => k === thin || x >= 0.5 * s[k]);
 }
 
 export class SceneObjects {
@@ -24,39 +52,93 @@ export class SceneObjects {
     this.lights.name = 'lights';
     parent.add(this.group, this.lights);
     this.byId = new Map();
+    this.json = new Map(); // object id → its scene JSON
+    this.lightJson = new Map(); // light id → its scene JSON
     this.bounds = new THREE.Box3();
+    this.unlocked = false; // whether the locked shell may be picked
   }
 
-  // Rebuilds every stand-in from scene JSON v1.
-  build(scene, toneMapFor) {
+  // Rebuilds every stand-in from scene JSON v1. toneMapFor(id): the object's ambient colour (its
+  // faces' colour until faceColour(id, face) gives one: the lit mesh's mean, see ReceiverLayer).
+  build(scene, toneMapFor, faceColour = () => null) {
     this.clear();
     for (const light of scene.lights) {
       const geometry = polygonsGeometry(light.polygon, [light.polygon.map((_, i) => i)]);
-      const mesh = new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({ color: 0xffffff, side: THREE.FrontSide }));
+      const mesh = new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({ color: 0xffffff, side: THREE.DoubleSide }));
       mesh.name = `light:${light.id}`;
+      mesh.userData.lightId = light.id;
       this.lights.add(mesh);
+      this.lightJson.set(light.id, light);
     }
     for (const object of scene.objects) {
       const holder = new THREE.Group();
       holder.name = object.id;
-      holder.userData = { objectId: object.id, static: !!object.static };
+      const pivot = pivotOf(object.vertices);
+      holder.userData = { objectId: object.id, static: !!object.static, pivot };
       const material = new THREE.MeshBasicMaterial({
-        color: toneMapFor ? toneMapFor(object.id) : 0x333333,
-        side: THREE.FrontSide, polygonOffset: true, polygonOffsetFactor: 2, polygonOffsetUnits: 2,
+        vertexColors: true, side: THREE.FrontSide, polygonOffset: true, polygonOffsetFactor: 2, polygonOffsetUnits: 2,
       });
       const mesh = new THREE.Mesh(polygonsGeometry(object.vertices, object.faces), material);
+      mesh.userData.ambient = toneMapFor ? toneMapFor(object.id) : new THREE.Color(0x333333);
+      object.faces.forEach((_, f) => this.paintFace(mesh, f, faceColour(object.id, f)));
       mesh.userData.objectId = object.id;
+      mesh.position.copy(pivot).negate();
       holder.add(mesh);
-      const outline = new THREE.LineSegments(new THREE.EdgesGeometry(mesh.geometry),
-        new THREE.LineBasicMaterial({ color: 0xe0a030 }));
-      outline.visible = false;
-      outline.name = 'outline';
-      holder.add(outline);
       applyTransform(holder, object.transform);
       this.group.add(holder);
       this.byId.set(object.id, holder);
+      this.json.set(object.id, object);
     }
     this.bounds = this.worldBounds(scene);
+    for (const holder of this.byId.values()) {
+      holder.userData.locked = holder.userData.static || isShell(new THREE.Box3().setFromObject(holder.children[0]), this.bounds);
+    }
+  }
+
+  // Shows or hides an object's selection outline (made on first use: most objects are never selected).
+  setOutlined(id, on) {
+    const holder = this.byId.get(id);
+    if (!holder) return;
+    let outline = holder.getObjectByName('outline');
+    if (!outline && !on) return;
+    if (!outline) {
+      const mesh = holder.children[0];
+      outline = new THREE.LineSegments(new THREE.EdgesGeometry(mesh.geometry), new THREE.LineBasicMaterial({ color: 0xe0a030 }));
+      outline.name = 'outline';
+      outline.position.copy(mesh.position);
+      holder.add(outline);
+    }
+    outline.visible = on;
+  }
+
+  // New colours for every stand-in (after the tone map's calibration), arguments as build's.
+  recolour(toneMapFor, faceColour) {
+    for (const [id, holder] of this.byId) {
+      const mesh = holder.children[0];
+      mesh.userData.ambient = toneMapFor(id);
+      mesh.geometry.userData.faceRanges.forEach((_, f) => this.paintFace(mesh, f, faceColour(id, f)));
+    }
+  }
+
+  // A face's stand-in colour: `rgb` ([r, g, b] linear), or the object's ambient colour when null.
+  paintFace(mesh, face, rgb) {
+    const range = mesh.geometry.userData.faceRanges[face];
+    if (!range) return;
+    const colour = mesh.geometry.attributes.color;
+    const c = rgb || mesh.userData.ambient.toArray();
+    for (let v = range[0]; v < range[0] + range[1]; ++v) colour.setXYZ(v, c[0], c[1], c[2]);
+    colour.needsUpdate = true;
+  }
+
+  setFaceColour(objectId, face, rgb) {
+    const holder = this.byId.get(objectId);
+    if (holder) this.paintFace(holder.children[0], face, rgb);
+  }
+
+  // The object's world bounds as drawn now.
+  objectBounds(id) {
+    const holder = this.byId.get(id);
+    return holder ? new THREE.Box3().setFromObject(holder.children[0]) : null;
   }
 
   // Bounds of lights and world-space object vertices (core's Scene::bounds).
@@ -65,8 +147,9 @@ export class SceneObjects {
     for (const light of scene.lights) for (const p of light.polygon) box.expandByPoint(new THREE.Vector3(...p));
     const v = new THREE.Vector3();
     for (const object of scene.objects) {
-      const holder = this.byId.get(object.id);
-      for (const p of object.vertices) box.expandByPoint(v.fromArray(p).applyMatrix4(holder.matrixWorld));
+      const mesh = this.byId.get(object.id).children[0];
+      mesh.updateMatrixWorld(true);
+      for (const p of object.vertices) box.expandByPoint(v.fromArray(p).applyMatrix4(mesh.matrixWorld));
     }
     return box;
   }
@@ -83,10 +166,10 @@ export class SceneObjects {
     return scene.objects.length === this.byId.size && scene.objects.every((o) => this.byId.has(o.id));
   }
 
-  // The movable objects' meshes, for picking.
+  // The meshes a click may pick: the lights, and the objects not locked (all when unlocked).
   pickable() {
-    const meshes = [];
-    for (const holder of this.byId.values()) if (!holder.userData.static) meshes.push(holder.children[0]);
+    const meshes = [...this.lights.children];
+    for (const holder of this.byId.values()) if (this.unlocked || !holder.userData.locked) meshes.push(holder.children[0]);
     return meshes;
   }
 
@@ -96,5 +179,7 @@ export class SceneObjects {
       group.clear();
     }
     this.byId.clear();
+    this.json.clear();
+    this.lightJson.clear();
   }
 }

@@ -4,42 +4,20 @@
 // server renders exactly this view.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-
-// core/render's defaultCamera: from the bounds' centre, backed off along (0.6, 0.45, 1) until
-// the bounding sphere fits a 45° vertical field of view.
-function defaultCamera(bounds) {
-  const centre = bounds.getCenter(new THREE.Vector3());
-  const radius = Math.max(bounds.getSize(new THREE.Vector3()).length() / 2, 1e-3);
-  const distance = radius / Math.sin((45 / 2) * Math.PI / 180);
-  const eye = centre.clone().add(new THREE.Vector3(0.6, 0.45, 1).normalize().multiplyScalar(distance));
-  return { position: eye.toArray(), target: centre.toArray(), up: [0, 1, 0], projection: 'perspective',
-    fov_y_deg: 45, near: distance / 100, far: distance * 3 };
-}
-
-const SOFTWARE_GL = /swiftshader|llvmpipe|softpipe|lavapipe|software/i;
-
-// The WebGL renderer's name (WEBGL_debug_renderer_info, read from a throwaway context) and whether
-// it rasterises in software, where MSAA costs about twice the frame time (SwiftShader, 150 cubes
-// at 1280×800: 120 ms a frame antialiased, 65 ms without).
-export function probeWebGL() {
-  const canvas = document.createElement('canvas');
-  const gl = canvas.getContext('webgl2') || canvas.getContext('webgl');
-  if (!gl) return { renderer: 'no WebGL', software: false, name: 'no WebGL' };
-  const info = gl.getExtension('WEBGL_debug_renderer_info');
-  const renderer = String(gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER));
-  const lose = gl.getExtension('WEBGL_lose_context');
-  if (lose) lose.loseContext();
-  const software = renderer.match(SOFTWARE_GL);
-  return { renderer, software: !!software, name: software ? software[0] : renderer.slice(0, 40) };
-}
+import { defaultCamera } from './default_camera.js';
 
 export class SceneView {
   // antialias: 'auto' (on unless the GL is software), 'on' or 'off'. dragScale: the pixel
   // ratio a software GL draws at while the user drags or orbits ('auto': 0.25).
   constructor(container, { antialias = 'auto', dragScale = 'auto' } = {}) {
     this.container = container;
-    const probe = probeWebGL();
-    this.gl = { ...probe, antialias: antialias === 'auto' ? !probe.software : antialias === 'on' };
+    // gl_context.js made the context while the modules loaded, for the page's antialias choice.
+    const early = window.penumbraGL;
+    const { canvas, context, gl } = early && early.antialias === antialias && early.canvas.width === container.clientWidth
+      && early.canvas.height === container.clientHeight ? early : window.makeWebGLContext(antialias, container);
+    window.penumbraGL = null;
+    this.gl = gl;
+    const probe = gl;
     // A software rasteriser's frame time grows with the pixels drawn (SwiftShader, 150 cubes
     // at 940×800: 59 ms a frame, 31 ms at half resolution); while something moves, a quarter of
     // the resolution keeps the shadows up with the pointer, and full resolution returns when it
@@ -47,15 +25,6 @@ export class SceneView {
     // second: 17.7–18.1 at half resolution, 18.8–21.0 at a quarter; 0.35 was no better than 0.5).
     this.gl.dragScale = dragScale === 'auto' ? (probe.software ? 0.25 : 1) : Math.min(Math.max(Number(dragScale) || 1, 0.25), 1);
     this.interactions = new Set();
-    // The context is made here because three.js always asks for an alpha channel. An opaque
-    // canvas (the background is black), not kept once shown (nothing reads it after the frame:
-    // timeFrames reads pixels in the drawing task, screenshots read the compositor), and on a
-    // software GL desynchronized (low latency): each cuts the compositor's work per frame
-    // (SwiftShader, 150 cubes at half resolution, frames drawn a second in a requestAnimationFrame
-    // loop: 18.7 before, 26.4 with all three; an empty scene 45 → 58).
-    const canvas = document.createElement('canvas');
-    const context = canvas.getContext('webgl2', { antialias: this.gl.antialias, alpha: false, depth: true, stencil: false,
-      preserveDrawingBuffer: false, desynchronized: this.gl.software });
     this.renderer = new THREE.WebGLRenderer(context ? { canvas, context } : { antialias: this.gl.antialias });
     this.renderer.setPixelRatio(1);
     this.renderer.outputColorSpace = THREE.SRGBColorSpace;
@@ -74,9 +43,11 @@ export class SceneView {
     window.addEventListener('resize', () => this.resize());
   }
 
-  // sceneCamera: the scene JSON's camera, or undefined (then the default camera of `bounds`).
-  setCamera(sceneCamera, bounds) {
-    const c = { ...defaultCamera(bounds), ...(sceneCamera || {}) };
+  // sceneCamera: the scene JSON's camera, or undefined (then a default camera framing `bounds`,
+  // from a side where the walls among `objects` do not hide the inside: default_camera.js).
+  setCamera(sceneCamera, bounds, objects = null) {
+    const c = sceneCamera ? { ...defaultCamera(bounds), ...sceneCamera } : defaultCamera(bounds, objects);
+    this.home = c;
     const aspect = this.aspect();
     if (c.projection === 'orthographic') {
       const h = (c.height || 2) / 2;
@@ -96,6 +67,40 @@ export class SceneView {
     this.controls.addEventListener('start', () => this.setInteracting('orbit', true));
     this.controls.addEventListener('end', () => this.setInteracting('orbit', false));
     this.resize();
+  }
+
+  // Back to the camera the view started with (the scene's, else the default one).
+  goHome() {
+    const c = this.home;
+    this.camera.up.fromArray(c.up);
+    this.camera.position.fromArray(c.position);
+    this.controls.target.fromArray(c.target);
+    this.camera.zoom = 1;
+    this.camera.updateProjectionMatrix();
+    this.controls.update();
+    this.listeners.forEach((f) => f());
+  }
+
+  // Turns to `box` (THREE.Box3) and backs off along the current view direction until its bounding
+  // sphere fits the view (F: the selection, frame all: the scene).
+  frame(box) {
+    if (!box || box.isEmpty()) return;
+    const centre = box.getCenter(new THREE.Vector3());
+    const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 1e-3);
+    const direction = this.camera.position.clone().sub(this.controls.target).normalize();
+    if (this.camera.isPerspectiveCamera) {
+      const halfFov = Math.min(this.camera.fov, this.camera.fov * this.aspect()) * Math.PI / 360;
+      this.camera.zoom = 1;
+      this.camera.position.copy(centre).addScaledVector(direction, 1.1 * radius / Math.sin(halfFov));
+      this.camera.far = Math.max(this.camera.far, 4 * radius + this.camera.position.distanceTo(centre));
+    } else {
+      this.camera.zoom = Math.min(this.camera.top - this.camera.bottom, this.camera.right - this.camera.left) / (2.2 * radius);
+      this.camera.position.copy(centre).addScaledVector(direction, this.camera.position.distanceTo(this.controls.target));
+    }
+    this.controls.target.copy(centre);
+    this.camera.updateProjectionMatrix();
+    this.controls.update();
+    this.listeners.forEach((f) => f());
   }
 
   // Something (`what`: 'orbit', 'drag') starts or stops moving: the drawing resolution follows
@@ -126,7 +131,8 @@ export class SceneView {
 
   resize() {
     const { clientWidth: w, clientHeight: h } = this.container;
-    this.renderer.setSize(w, h);
+    const size = this.renderer.getSize(new THREE.Vector2());
+    if (size.x !== w || size.y !== h) this.renderer.setSize(w, h);
     if (!this.camera) return;
     const aspect = this.aspect();
     if (this.camera.isPerspectiveCamera) {

@@ -1,10 +1,13 @@
-// Click to select a movable object (a raycast against the objects' stand-ins; a press that
-// moved more than a few pixels is an orbit, not a click), and drag it with TransformControls:
-// W translate, E rotate, Escape deselects. Reports each gesture's start, every change and end.
+// Click to select a movable object or a light (a raycast against the stand-ins; a press that
+// moved more than a few pixels is an orbit, not a click), and drag an object with
+// TransformControls: W translate, E rotate, R scale, Escape deselects; snapping (0.1 m, 15°, 0.1)
+// while Ctrl is held or the snap box is ticked. A light is selected as "light:ID" and gets no gizmo
+// (the server has no light edits yet). Reports each gesture's start, every change and end.
 import * as THREE from 'three';
 import { TransformControls } from 'three/addons/controls/TransformControls.js';
 
 const CLICK_SLOP_PX = 4;
+export const SNAP = { translate: 0.1, rotateDeg: 15, scale: 0.1 };
 
 export class SelectionGizmo {
   // callbacks: {onSelect(id|null), onDragStart(id), onChange(id), onDragEnd(id)}
@@ -15,6 +18,8 @@ export class SelectionGizmo {
     this.selected = null;
     this.dragging = false;
     this.raycaster = new THREE.Raycaster();
+    this.snapBox = false; // the panel's snap checkbox
+    this.ctrlHeld = false;
     this.controls = new TransformControls(view.camera, view.renderer.domElement);
     view.scene.add(this.controls.getHelper());
     this.controls.addEventListener('change', () => view.requestMotionRender());
@@ -36,12 +41,37 @@ export class SelectionGizmo {
       if (moved <= CLICK_SLOP_PX) this.pick(event);
     });
     window.addEventListener('keydown', (event) => {
+      if (event.key === 'Control') this.setCtrl(true);
       const typing = event.target instanceof HTMLInputElement && !['checkbox', 'button', 'file'].includes(event.target.type);
-      if (typing || event.ctrlKey || event.metaKey) return;
+      if (typing || event.ctrlKey || event.metaKey || event.altKey) return;
       if (event.key === 'w' || event.key === 'W') this.setMode('translate');
       else if (event.key === 'e' || event.key === 'E') this.setMode('rotate');
+      else if (event.key === 'r' || event.key === 'R') this.setMode('scale');
       else if (event.key === 'Escape') this.select(null);
     });
+    window.addEventListener('keyup', (event) => { if (event.key === 'Control') this.setCtrl(false); });
+    window.addEventListener('blur', () => this.setCtrl(false));
+  }
+
+  setCtrl(held) {
+    this.ctrlHeld = held;
+    this.applySnap();
+  }
+
+  setSnap(on) {
+    this.snapBox = on;
+    this.applySnap();
+  }
+
+  snapping() {
+    return this.snapBox || this.ctrlHeld;
+  }
+
+  applySnap() {
+    const on = this.snapping();
+    this.controls.setTranslationSnap(on ? SNAP.translate : null);
+    this.controls.setRotationSnap(on ? THREE.MathUtils.degToRad(SNAP.rotateDeg) : null);
+    this.controls.setScaleSnap(on ? SNAP.scale : null);
   }
 
   setMode(mode) {
@@ -55,18 +85,17 @@ export class SelectionGizmo {
       -((event.clientY - rect.top) / rect.height) * 2 + 1);
     this.raycaster.setFromCamera(ndc, this.view.camera);
     const hits = this.raycaster.intersectObjects(this.objects.pickable(), false);
-    this.select(hits.length ? hits[0].object.userData.objectId : null);
+    const hit = hits.length ? hits[0].object.userData : null;
+    this.select(hit ? (hit.lightId !== undefined ? `light:${hit.lightId}` : hit.objectId) : null);
   }
 
   select(id) {
-    if (this.selected) {
-      const old = this.objects.byId.get(this.selected);
-      if (old) old.getObjectByName('outline').visible = false;
-    }
-    const holder = id ? this.objects.byId.get(id) : null;
-    this.selected = holder ? id : null;
+    if (this.selected) this.objects.setOutlined(this.selected, false);
+    const light = id && id.startsWith('light:') && this.objects.lightJson.has(id.slice(6));
+    const holder = id && !light ? this.objects.byId.get(id) : null;
+    this.selected = holder || light ? id : null;
     if (holder) {
-      holder.getObjectByName('outline').visible = true;
+      this.objects.setOutlined(id, true);
       this.controls.attach(holder);
     } else {
       this.controls.detach();
@@ -76,6 +105,6 @@ export class SelectionGizmo {
   }
 
   holder() {
-    return this.selected ? this.objects.byId.get(this.selected) : null;
+    return this.selected ? this.objects.byId.get(this.selected) || null : null;
   }
 }

@@ -3,6 +3,7 @@
 // and, for measuring, a timer-driven move of an object and a timed orbit of the camera.
 import * as THREE from 'three';
 import { receiverKey } from './mesh_binary.js';
+import { blockingShellFaces } from './default_camera.js';
 import { transformOf } from './scene_transform.js';
 
 // Barycentric interpolation of a receiver's irradiance at a point on its plane; null outside.
@@ -47,7 +48,10 @@ export function installTestHook(app) {
         renders: app.renderPanel ? app.renderPanel.renders : 0, renderVersion: app.renderPanel ? app.renderPanel.lastVersion : null,
         lastFrame: app.timings.frame, roundTrip: app.timings.roundTrip, phases: app.timings.phases || null, totals: { ...app.timings.totals }, frames: app.view.frames, meshFramesDrawn,
         mesh: app.meshSync ? { lastBytes: app.meshSync.lastBytes, totalBytes: app.meshSync.totalBytes, fetches: app.meshSync.fetches } : null,
-        events: app.events ? app.events.events : 0,
+        events: app.events ? app.events.events : 0, connection: app.events ? app.events.state : null,
+        editHistory: app.plot.history.length,
+        loading: { visible: app.loading.visible(), text: app.loading.text.textContent, controlsDisabled: app.loading.controls.disabled,
+          readySeconds: app.loading.readySeconds ?? null },
         gl: app.view.gl, canvas: { width: app.view.renderer.domElement.clientWidth, height: app.view.renderer.domElement.clientHeight },
       };
     },
@@ -77,6 +81,42 @@ export function installTestHook(app) {
         : (camera.top - camera.bottom) / camera.zoom;
       const dir = new THREE.Vector3(axis === 'x' ? 1 : 0, axis === 'y' ? 1 : 0, axis === 'z' ? 1 : 0);
       return centre.addScaledVector(dir, t * factor * app.gizmo.controls.size / 4).toArray();
+    },
+    // Edges of the overlay with both ends above height y, and all of them.
+    overlayEdgesAbove(y) {
+      let above = 0, total = 0;
+      app.receivers.edgeGroup.traverse((o) => {
+        if (!o.isLineSegments) return;
+        const p = o.geometry.attributes.position.array;
+        for (let i = 0; i < p.length; i += 6) {
+          ++total;
+          if (p[i + 1] > y && p[i + 4] > y) ++above;
+        }
+      });
+      return { above, total };
+    },
+    // Faces of locked objects (walls, floor) between the camera and its target seen from behind.
+    backFacingShellAhead() {
+      const shells = [...app.objects.byId.values()].filter((h) => h.userData.locked).length;
+      return { shells, blocking: blockingShellFaces(app.objects, app.view.camera.position, app.view.controls.target) };
+    },
+    gizmoMode() {
+      return app.gizmo.controls.mode;
+    },
+    objectCentre(id) {
+      return app.objects.objectBounds(id).getCenter(new THREE.Vector3()).toArray();
+    },
+    sceneCentre() {
+      return app.objects.bounds.getCenter(new THREE.Vector3()).toArray();
+    },
+    lightCentre(id) {
+      const polygon = app.objects.lightJson.get(id).polygon;
+      return [0, 1, 2].map((k) => polygon.reduce((s, p) => s + p[k], 0) / polygon.length);
+    },
+    // Each object's gizmo place (its holder's origin), world bounds centre and whether it is locked.
+    pivots() {
+      return [...app.objects.byId].map(([id, holder]) => ({ id, locked: holder.userData.locked,
+        pivot: holder.getWorldPosition(new THREE.Vector3()).toArray(), centre: app.objects.objectBounds(id).getCenter(new THREE.Vector3()).toArray() }));
     },
     objectTransform(id) {
       const holder = app.objects.byId.get(id);

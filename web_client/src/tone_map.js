@@ -31,17 +31,24 @@ export class ToneMap {
     const e = bounds.getSize(new THREE.Vector3());
     const surface = 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
     this.ambient = power.map((p) => (surface > 0 ? AMBIENT_FRACTION * p / surface : 0));
+    this.learnObjects(scene);
+    this.exposure = 1;
+    this.calibrated = false;
+  }
+
+  // The objects' albedos (again after objects were added); the exposure stays as calibrated.
+  learnObjects(scene) {
     this.albedo = new Map();
     for (const object of scene.objects) {
       const material = object.material && scene.materials ? scene.materials[object.material] : null;
       this.albedo.set(object.id, material ? material.albedo : [0.8, 0.8, 0.8]);
     }
-    this.exposure = 1;
   }
 
   // Sets the exposure from the mesh's parts ({object, irradiance: Float32Array}); call on load.
   // (A chunk-border vertex counts once per part holding it: too few to move the percentile.)
   calibrate(parts) {
+    this.calibrated = true;
     const values = [];
     for (const r of parts) {
       const albedo = this.albedoOf(r.object);

@@ -1,0 +1,114 @@
+#!/usr/bin/env node
+// Opening the page (README "The page"): static files come compressed once with gzip (not
+// brotli per request), with ETag / Cache-Control and 304 on revalidation; while the scene loads
+// an overlay says what is awaited (the mesh download's bytes; an upload, then the server's build)
+// and the panel's controls are disabled. Prints the page-ready time, cold and warm.
+//
+// usage: node tests/web/open_e2e.mjs --penumbra build/penumbra [--scene scenes/cubes15.scene.json] [--opens 1]
+import path from 'node:path';
+import fs from 'node:fs';
+
+import { check, parseArgs, repo, runWithServerAndBrowser, sleep, usageOnHelp } from './harness.mjs';
+
+const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'cubes15.scene.json'),
+  opens: 1, startupSeconds: 120 };
+
+async function staticHeaders(base) {
+  const started = performance.now();
+  const core = await fetch(`${base}/node_modules/three/build/three.core.js`, { headers: { 'Accept-Encoding': 'gzip, deflate, br' } });
+  const seconds = (performance.now() - started) / 1000;
+  await core.arrayBuffer();
+  const etag = core.headers.get('etag');
+  check(core.ok && core.headers.get('content-encoding') === 'gzip', 'three.core.js comes gzip-compressed to a browser that also accepts br',
+    `${core.status} ${core.headers.get('content-encoding')}`);
+  check(/max-age=\d+/.test(core.headers.get('cache-control') || '') && !!etag, 'node_modules files carry Cache-Control max-age and an ETag',
+    `${core.headers.get('cache-control')} ${etag}`);
+  check(seconds < 1, 'three.core.js (1.3 MB) is served in under a second', `${seconds.toFixed(3)} s`);
+  const again = await fetch(`${base}/node_modules/three/build/three.core.js`, { headers: { 'Accept-Encoding': 'gzip', 'If-None-Match': etag } });
+  check(again.status === 304, 'a request naming its ETag is answered 304', String(again.status));
+  const page = await fetch(`${base}/src/main.js`);
+  const text = await page.text();
+  check(page.headers.get('cache-control') === 'no-cache' && !!page.headers.get('etag') && text.includes('class App'),
+    'the page\'s own files are revalidated on every load (no-cache + ETag)', page.headers.get('cache-control'));
+  const escape = await fetch(`${base}/src/..%2f..%2fCMakeLists.txt`);
+  check(escape.status === 404, 'a path leading out of the page\'s folder is 404', String(escape.status));
+}
+
+// Records every text the loading overlay shows, across navigations (sessionStorage).
+const recordLoadingTexts = () => {
+  const keep = (text) => sessionStorage.setItem('loadingTexts', JSON.stringify([...JSON.parse(sessionStorage.getItem('loadingTexts') || '[]'), text]));
+  document.addEventListener('DOMContentLoaded', () => {
+    const node = document.getElementById('loading-text');
+    new MutationObserver(() => keep(node.textContent)).observe(node, { childList: true, characterData: true, subtree: true });
+  });
+};
+
+async function loadingOverlay(browser, url, scene) {
+  const context = await browser.newContext({ viewport: { width: 1280, height: 800 } });
+  await context.addInitScript(recordLoadingTexts);
+  const page = await context.newPage();
+  // The mesh is held back until the test has looked: meanwhile the overlay shows and the controls are disabled.
+  let release;
+  const held = new Promise((resolve) => { release = resolve; });
+  await page.route(/\/mesh\?format=bin$/, async (route) => { await held; await route.continue(); });
+  await page.goto(url, { waitUntil: 'domcontentloaded' });
+  const controls = () => ({ overlay: getComputedStyle(document.getElementById('loading')).display !== 'none', text: document.getElementById('loading-text').textContent,
+    undo: document.getElementById('undo').matches(':disabled'), move: document.getElementById('mode-translate').matches(':disabled'),
+    file: document.getElementById('scene-file').matches(':disabled') });
+  const atOnce = await page.evaluate(controls);
+  check(atOnce.overlay && atOnce.move && atOnce.undo && !atOnce.file, 'as the page opens: the overlay shows and the buttons are disabled (the file input is not)',
+    JSON.stringify(atOnce));
+  await page.waitForFunction(() => window.penumbra && window.penumbra.state().loading.text !== 'Loading the page…', null, { timeout: 60000 });
+  await sleep(200);
+  const during = await page.evaluate(controls);
+  release();
+  check(during.overlay && during.move && /^(Loading the scene|Downloading the lit mesh)/.test(during.text),
+    'while the mesh is awaited: the overlay says so and the buttons stay disabled', JSON.stringify(during));
+  await page.waitForFunction(() => window.penumbra.state().ready, null, { timeout: 60000 });
+  const after = await page.evaluate(() => {
+    const rect = document.getElementById('viewport').getBoundingClientRect();
+    const top = document.elementFromPoint(rect.left + rect.width / 2, rect.top + rect.height / 2);
+    return { ...window.penumbra.state().loading, move: document.getElementById('mode-translate').matches(':disabled'), top: top && top.tagName };
+  });
+  check(!after.visible && !after.controlsDisabled && !after.move && after.top === 'CANVAS',
+    'once loaded: the overlay is gone (the view takes clicks) and the buttons work', JSON.stringify(after));
+  await page.unroute(/\/mesh\?format=bin$/);
+
+  // Loading a scene file: upload, the server's build, then the new scene's mesh download.
+  await page.setInputFiles('#scene-file', { name: 'again.scene.json', mimeType: 'application/json', buffer: fs.readFileSync(scene) });
+  await page.waitForURL(/scene=again/, { timeout: 60000 });
+  await page.waitForFunction(() => window.penumbra && window.penumbra.state().ready, null, { timeout: 60000 });
+  const texts = await page.evaluate(() => JSON.parse(sessionStorage.getItem('loadingTexts') || '[]'));
+  check(texts.some((t) => /^The server builds the discontinuity mesh… \d+\.\d s$/.test(t)), 'a file load shows the server\'s build with seconds waited',
+    JSON.stringify(texts.slice(0, 12)));
+  check(texts.some((t) => /^Downloading the lit mesh: [\d.]+ of [\d.]+ MB$/.test(t)), 'the mesh download shows bytes received of the total',
+    JSON.stringify(texts.slice(0, 12)));
+  await context.close();
+}
+
+// Page-ready time: navigation start → the page holds the mesh and its controls are enabled.
+async function openTimes(browser, url, opens) {
+  const context = await browser.newContext({ viewport: { width: 1280, height: 800 } });
+  const times = [];
+  for (let i = 0; i < opens; ++i) {
+    const page = await context.newPage();
+    await page.goto(url, { waitUntil: 'domcontentloaded' });
+    await page.waitForFunction(() => window.penumbra && window.penumbra.state().ready, null, { timeout: 60000 });
+    times.push(await page.evaluate(() => performance.getEntriesByName('penumbra:ready')[0].startTime / 1000));
+    await page.close();
+  }
+  await context.close();
+  console.log(`     page ready (s, first open cold, then cached; bench/web/page_open.mjs measures more): ${times.map((t) => t.toFixed(2)).join(', ')}`);
+  check(times.length === opens, 'the page opened every time');
+}
+
+async function main() {
+  const args = usageOnHelp(process.argv, defaults, 'node tests/web/open_e2e.mjs --penumbra build/penumbra [--scene FILE] [--opens N]');
+  await runWithServerAndBrowser(args, async ({ browser, url, base }) => {
+    await staticHeaders(base);
+    await loadingOverlay(browser, url, args.scene);
+    await openTimes(browser, url, args.opens);
+  });
+}
+
+main();

@@ -1,0 +1,179 @@
+// The editor's commands beyond dragging: add a box, duplicate, delete (each one frame, undoable),
+// typed transforms, reset to the file, downloads, the scene list, and the camera (focus on the
+// selection, frame all, back home). Structural frames wait for pending moves, then reload the
+// stand-ins from the server's scene (the object list changed).
+import { addEdits, boxObject, duplicateObject, freshId, removeEdits, resetEdits } from './object_edits.js';
+import { SceneList, download, forgetSource, rememberSource, sourceOf } from './scene_library.js';
+import { sameTransform, transformOf } from './scene_transform.js';
+import * as THREE from 'three';
+
+const $ = (id) => document.getElementById(id);
+
+export class EditorActions {
+  constructor(app) {
+    this.app = app;
+    this.running = new Set(); // structural changes under way (the page is busy until they end)
+    this.sceneList = new SceneList($('scene-list'), {
+      onDelete: (summary) => this.deleteScene(summary),
+      pageUrl: (id) => this.pageUrl(id),
+    });
+  }
+
+  pageUrl(id) {
+    const query = new URLSearchParams({ scene: id });
+    if (this.app.api.token) query.set('token', this.app.api.token);
+    return `?${query}`;
+  }
+
+  scene() {
+    return this.app.sceneJson;
+  }
+
+  // One structural frame; on success the stand-ins are reloaded and `selectId` selected.
+  sendStructural(edits, selectId) {
+    const { app } = this;
+    const task = (async () => {
+      await app.coalescer.idle();
+      await app.sendFrame({ edits });
+      await app.reloadObjects(selectId);
+    })();
+    this.running.add(task);
+    const forget = () => this.running.delete(task);
+    task.then(forget, forget);
+    return task;
+  }
+
+  // Runs a structural change {redo, undo} and records it for undo.
+  async change(edits, label, selectAfter, selectBefore = null) {
+    try {
+      await this.sendStructural(edits.redo, selectAfter);
+      this.app.history.push({ frame: edits, label, select: { redo: selectAfter, undo: selectBefore } });
+      this.app.updateUndoButtons();
+    } catch (error) {
+      this.app.fail(error);
+    }
+  }
+
+  addBox() {
+    const scene = this.scene();
+    const bounds = this.app.objects.bounds;
+    const size = Math.max(0.05, 0.1 * bounds.getSize(new THREE.Vector3()).length() / Math.sqrt(3));
+    // On the floor (the bounds' bottom) under the view's target.
+    const target = this.app.view.controls.target;
+    const at = [target.x, bounds.min.y + size / 2 + 1e-3, target.z];
+    const material = scene.materials ? Object.keys(scene.materials)[0] : undefined;
+    const box = boxObject(freshId(scene, 'box'), at, [size, size, size], material);
+    return this.change(addEdits(box), `add ${box.id}`, box.id);
+  }
+
+  duplicate() {
+    const id = this.app.gizmo.selected;
+    const object = id && this.app.objects.json.get(id);
+    if (!object) return null;
+    const current = { ...object, transform: transformOf(this.app.objects.byId.get(id)) };
+    const size = this.app.objects.objectBounds(id).getSize(new THREE.Vector3());
+    const copy = duplicateObject(current, freshId(this.scene(), `${id}_copy`), [0.25 * size.x + 0.05, 0, 0.25 * size.z + 0.05]);
+    return this.change(addEdits(copy), `duplicate ${id}`, copy.id, id);
+  }
+
+  deleteSelected() {
+    const id = this.app.gizmo.selected;
+    const object = id && this.app.objects.json.get(id);
+    if (!object) return null;
+    const current = { ...object, transform: transformOf(this.app.objects.byId.get(id)) };
+    return this.change(removeEdits(current), `delete ${id}`, null, id);
+  }
+
+  // A transform typed in the inspector: one move, undoable.
+  typedTransform(id, transform) {
+    const holder = this.app.objects.byId.get(id);
+    if (!holder) return;
+    const before = transformOf(holder);
+    if (sameTransform(before, transform)) return;
+    this.app.moveTo(id, transform);
+    this.app.history.push({ id, before, after: transform });
+    this.app.updateUndoButtons();
+  }
+
+  // Back to the scene as the server first built it (kept by this browser at version 0).
+  async resetToFile() {
+    const { app } = this;
+    const source = sourceOf(app.sceneId, app.sceneName);
+    if (!source) return;
+    await app.coalescer.idle();
+    const current = (await app.api.getScene(app.sceneId)).scene;
+    const edits = resetEdits(current, source);
+    if (!edits.length) return;
+    const undo = resetEdits(source, current);
+    await this.change({ redo: edits, undo }, 'reset to file', null, app.gizmo.selected);
+  }
+
+  updateReset() {
+    const { app } = this;
+    const known = !!sourceOf(app.sceneId, app.sceneName);
+    $('reset-scene').disabled = !known;
+    $('reset-scene').title = known ? 'One frame back to the scene as the server first built it'
+      : 'This browser did not see the scene at version 0, so it does not know the file';
+  }
+
+  remember(wrapped) {
+    rememberSource(wrapped.id, wrapped.name, wrapped.version, wrapped.scene);
+  }
+
+  downloadJson() {
+    const { app } = this;
+    return app.api.getScene(app.sceneId).then((wrapped) => {
+      download(`${app.sceneId}.v${wrapped.version}.scene.json`, new Blob([JSON.stringify(wrapped.scene, null, 1)], { type: 'application/json' }));
+    }).catch(app.fail);
+  }
+
+  async downloadGlb() {
+    const { app } = this;
+    try {
+      const response = await app.api.request('GET', `${app.api.scenePath(app.sceneId)}/mesh?format=glb`);
+      download(`${app.sceneId}.v${response.headers.get('X-Penumbra-Version')}.glb`, await response.blob());
+    } catch (error) {
+      app.fail(error);
+    }
+  }
+
+  downloadPng() {
+    const panel = this.app.renderPanel;
+    if (panel && panel.url) fetch(panel.url).then((r) => r.blob()).then((blob) => download(`${this.app.sceneId}.v${panel.lastVersion}.png`, blob));
+  }
+
+  async refreshScenes() {
+    try {
+      const { scenes } = await this.app.api.listScenes();
+      this.sceneList.render(scenes, this.app.sceneId);
+      return scenes;
+    } catch (error) {
+      this.app.fail(error);
+      return [];
+    }
+  }
+
+  async deleteScene(summary) {
+    const { app } = this;
+    try {
+      await app.api.json('DELETE', app.api.scenePath(summary.id));
+      forgetSource(summary.id, summary.name);
+      const scenes = await this.refreshScenes();
+      if (summary.id === app.sceneId) window.location.search = scenes.length ? this.pageUrl(scenes[0].id) : '';
+    } catch (error) {
+      app.fail(error);
+    }
+  }
+
+  focus() {
+    const id = this.app.gizmo.selected;
+    if (!id) return this.frameAll();
+    const box = id.startsWith('light:') ? new THREE.Box3().setFromObject(this.app.objects.lights.getObjectByName(id))
+      : this.app.objects.objectBounds(id);
+    this.app.view.frame(box);
+  }
+
+  frameAll() {
+    this.app.view.frame(this.app.objects.bounds);
+  }
+}

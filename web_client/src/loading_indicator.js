@@ -1,0 +1,65 @@
+// The loading overlay over the view: what the page is waiting for (page files, scene, mesh
+// download with its bytes, drawing; an upload and the server's build when a file is loaded) and a
+// progress bar when the size is known. The panel's controls stay disabled (their fieldset) until
+// the scene is ready.
+
+export class LoadingIndicator {
+  constructor(root, text, bar, controls) {
+    Object.assign(this, { root, text, bar, controls });
+    this.started = performance.now();
+    this.timer = null;
+  }
+
+  // fraction: 0..1, or null for an indeterminate bar.
+  step(message, fraction = null) {
+    clearInterval(this.timer);
+    this.timer = null;
+    this.root.hidden = false;
+    this.root.classList.remove('failed');
+    this.text.textContent = message;
+    if (fraction === null) this.bar.removeAttribute('value');
+    else this.bar.value = Math.min(1, Math.max(0, fraction));
+  }
+
+  // A step without progress events (the server building a scene): shows the seconds waited.
+  waiting(message) {
+    const since = performance.now();
+    const show = () => this.step(`${message} ${((performance.now() - since) / 1000).toFixed(1)} s`);
+    show();
+    this.timer = setInterval(show, 100);
+  }
+
+  // Bytes received of a download (total 0 when the server did not say).
+  bytes(message, loaded, total) {
+    const mb = (n) => (n / 1048576).toFixed(n < 1048576 ? 2 : 1);
+    this.step(total ? `${message}: ${mb(loaded)} of ${mb(total)} MB` : `${message}: ${mb(loaded)} MB`, total ? loaded / total : null);
+  }
+
+  done() {
+    clearInterval(this.timer);
+    this.timer = null;
+    this.root.hidden = true;
+    this.controls.disabled = false;
+    this.readySeconds = (performance.now() - this.started) / 1000;
+  }
+
+  // A step given up (a refused upload): back to the loaded scene, or to why none is loaded.
+  cancel() {
+    if (this.readySeconds !== undefined) this.done();
+    else this.failed(this.failure || 'No scene loaded: load a scene file');
+  }
+
+  failed(message) {
+    this.failure = message;
+    clearInterval(this.timer);
+    this.timer = null;
+    this.root.hidden = false;
+    this.root.classList.add('failed');
+    this.text.textContent = message;
+    this.bar.value = 0;
+  }
+
+  visible() {
+    return !this.root.hidden;
+  }
+}

@@ -1,0 +1,54 @@
+// Frames (docs/SCENE_FORMAT.md "Edit scripts") for the page's structural edits: a box primitive,
+// a duplicate, a delete, and the frame that takes a scene back to its source. Pure functions of
+// scene JSON; the page sends them and keeps their inverses for undo.
+
+// An id not used by the scene's objects: base, else base_2, base_3, ...
+export function freshId(scene, base) {
+  const used = new Set(scene.objects.map((o) => o.id));
+  if (!used.has(base)) return base;
+  for (let n = 2; ; ++n) if (!used.has(`${base}_${n}`)) return `${base}_${n}`;
+}
+
+// An axis-aligned box of `size` (metres) centred on its origin, placed at `at`: six quads,
+// counter-clockwise seen from outside (the format's front side).
+export function boxObject(id, at, size, material) {
+  const [hx, hy, hz] = size.map((s) => s / 2);
+  const vertices = [];
+  for (const z of [-hz, hz]) for (const y of [-hy, hy]) for (const x of [-hx, hx]) vertices.push([x, y, z]);
+  // vertex index = x + 2y + 4z (each 0 or 1)
+  const faces = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 4, 6, 2], [1, 3, 7, 5], [0, 1, 5, 4], [2, 6, 7, 3]];
+  const object = { id, vertices, faces, transform: { translate: [...at], rotate_deg: [0, 0, 0], scale: [1, 1, 1] } };
+  if (material) object.material = material;
+  return object;
+}
+
+// A copy of `object` under a new id, moved by `offset` metres.
+export function duplicateObject(object, id, offset) {
+  const copy = JSON.parse(JSON.stringify(object));
+  copy.id = id;
+  delete copy.static;
+  const t = (copy.transform && copy.transform.translate) || [0, 0, 0];
+  copy.transform = { ...(copy.transform || {}), translate: t.map((x, k) => x + offset[k]) };
+  return copy;
+}
+
+// {redo, undo} edits of one structural change.
+export const addEdits = (object) => ({ redo: [{ op: 'add', object }], undo: [{ op: 'remove', id: object.id }] });
+export const removeEdits = (object) => ({ redo: [{ op: 'remove', id: object.id }], undo: [{ op: 'add', object }] });
+
+// One frame taking `current` back to `source`: objects added since are removed, removed ones
+// added back, moved ones moved back (by transform; an object whose geometry changed is replaced).
+export function resetEdits(current, source) {
+  const now = new Map(current.objects.map((o) => [o.id, o]));
+  const then = new Map(source.objects.map((o) => [o.id, o]));
+  const edits = [];
+  const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
+  for (const [id, object] of now) {
+    const original = then.get(id);
+    if (!original) edits.push({ op: 'remove', id });
+    else if (!same({ ...object, transform: null }, { ...original, transform: null })) edits.push({ op: 'remove', id }, { op: 'add', object: original });
+    else if (!same(object.transform || {}, original.transform || {})) edits.push({ op: 'move', id, transform: original.transform || {} });
+  }
+  for (const [id, object] of then) if (!now.has(id)) edits.push({ op: 'add', object });
+  return edits;
+}

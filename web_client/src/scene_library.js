@@ -1,0 +1,71 @@
+// Scenes the server holds (GET /api/scenes): a list to open one (?scene=ID) or delete it
+// (DELETE, after a confirm); downloads of the current scene (its JSON, the lit mesh as GLB, the
+// server's render as PNG); and the scene as first seen at version 0, kept in this browser
+// (localStorage), for "Reset to file".
+
+const sourceKey = (id, name) => `penumbra.source.${id}.${name}`;
+
+// Keeps the scene JSON of version 0 (the file as the server built it) for a later reset.
+export function rememberSource(id, name, version, scene) {
+  if (version !== 0) return;
+  try {
+    localStorage.setItem(sourceKey(id, name), JSON.stringify(scene));
+  } catch {
+    // Storage full or disabled: reset stays unavailable for this scene.
+  }
+}
+
+export function sourceOf(id, name) {
+  try {
+    const text = localStorage.getItem(sourceKey(id, name));
+    return text ? JSON.parse(text) : null;
+  } catch {
+    return null;
+  }
+}
+
+export function forgetSource(id, name) {
+  try { localStorage.removeItem(sourceKey(id, name)); } catch { /* nothing kept */ }
+}
+
+// Saves `text` as a file named `name` through a temporary link.
+export function download(name, blob) {
+  const url = URL.createObjectURL(blob);
+  const a = document.createElement('a');
+  a.href = url;
+  a.download = name;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 1000);
+}
+
+export class SceneList {
+  // onDelete(summary) → promise; pageUrl(id) → the URL that opens a scene.
+  constructor(root, { onDelete, pageUrl }) {
+    Object.assign(this, { root, onDelete, pageUrl });
+  }
+
+  render(scenes, currentId) {
+    this.root.replaceChildren(...scenes.map((summary) => {
+      const item = document.createElement('li');
+      item.dataset.scene = summary.id;
+      const link = document.createElement('a');
+      link.href = this.pageUrl(summary.id);
+      link.textContent = summary.id;
+      if (summary.id === currentId) link.className = 'current';
+      const info = document.createElement('span');
+      info.className = 'muted';
+      info.textContent = ` ${summary.name} · v${summary.version} · ${summary.objects} objects`;
+      const remove = document.createElement('button');
+      remove.type = 'button';
+      remove.textContent = 'Delete';
+      remove.title = `DELETE /api/scenes/${summary.id}`;
+      remove.addEventListener('click', () => {
+        if (window.confirm(`Delete scene ${summary.id} (${summary.name}) from the server?`)) this.onDelete(summary);
+      });
+      item.append(link, info, remove);
+      return item;
+    }));
+  }
+}
