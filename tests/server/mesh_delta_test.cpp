@@ -3,7 +3,6 @@
 // removed ones dropped) gives byte-identical receiver JSON to a fresh mesh() of an
 // engine given the same frames. Also gzip Content-Encoding of the binary mesh.
 #include <gtest/gtest.h>
-#include <zlib.h>
 
 #include <map>
 #include <random>
@@ -184,24 +183,6 @@ TEST(MeshDelta, AcceptEncodingParsing) {
   EXPECT_FALSE(acceptsGzip("gzipx"));
 }
 
-std::string gunzip(const std::string& data) {
-  z_stream stream{};
-  EXPECT_EQ(inflateInit2(&stream, 15 + 16), Z_OK);
-  std::string out;
-  char buffer[1 << 16];
-  stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
-  stream.avail_in = uInt(data.size());
-  int status = Z_OK;
-  while (status == Z_OK) {
-    stream.next_out = reinterpret_cast<Bytef*>(buffer);
-    stream.avail_out = sizeof buffer;
-    status = inflate(&stream, Z_NO_FLUSH);
-    out.append(buffer, sizeof buffer - stream.avail_out);
-  }
-  EXPECT_EQ(status, Z_STREAM_END);
-  inflateEnd(&stream);
-  return out;
-}
 
 TEST(MeshDelta, BinaryMeshIsGzippedWhenTheClientAcceptsIt) {
   ServerOptions options = test::RunningServer::loopback();
@@ -225,7 +206,7 @@ TEST(MeshDelta, BinaryMeshIsGzippedWhenTheClientAcceptsIt) {
   EXPECT_EQ(packed->get_header_value("Vary"), "Accept-Encoding");
   EXPECT_EQ(packed->get_header_value("X-Penumbra-Uncompressed-Bytes"), std::to_string(plain->body.size()));
   EXPECT_LT(packed->body.size(), plain->body.size() * 3 / 4);
-  EXPECT_EQ(gunzip(packed->body), plain->body);
+  EXPECT_EQ(test::gunzip(packed->body), plain->body);
 
   // A client that decodes (httplib's, a browser's fetch) reads the same bytes.
   auto decoding = running.client();

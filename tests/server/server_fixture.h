@@ -2,7 +2,9 @@
 // from construction to scope exit (then stopped and joined). One per test.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <httplib.h>
+#include <zlib.h>
 
 #include <chrono>
 #include <nlohmann/json.hpp>
@@ -80,6 +82,26 @@ inline json moveFrame(const std::string& id, double x, double y, double z, doubl
                {{{"op", "move"},
                  {"id", id},
                  {"transform", {{"translate", {x, y, z}}, {"rotate_deg", {0, rotateY, 0}}}}}})}};
+}
+
+// The bytes of a gzip stream (what a gzip-encoded answer carries).
+inline std::string gunzip(const std::string& data) {
+  z_stream stream{};
+  EXPECT_EQ(inflateInit2(&stream, 15 + 16), Z_OK);
+  std::string out;
+  char buffer[1 << 16];
+  stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  stream.avail_in = uInt(data.size());
+  int status = Z_OK;
+  while (status == Z_OK) {
+    stream.next_out = reinterpret_cast<Bytef*>(buffer);
+    stream.avail_out = sizeof buffer;
+    status = inflate(&stream, Z_NO_FLUSH);
+    out.append(buffer, sizeof buffer - stream.avail_out);
+  }
+  EXPECT_EQ(status, Z_STREAM_END);
+  inflateEnd(&stream);
+  return out;
 }
 
 }  // namespace penumbra::server::test
