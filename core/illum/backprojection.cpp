@@ -25,8 +25,7 @@ Backprojection::Backprojection(const Scene& scene, size_t light, const Vec3& p, 
   front2_.reserve(front_.size());
   for (const Vec3& q : front_) front2_.push_back(frame_.to2D(q));
   front2_ = counterClockwise(std::move(front2_));
-  visible_.reset(front2_);
-  pendingStarts_.push_back(0);
+  shadowStarts_.push_back(0);
 
   // Side planes of the cone from p over the front part with every edge moved out,
   // in the light's plane, by the front part's own size. The cone only keeps the
@@ -149,30 +148,58 @@ bool Backprojection::occludeApproaching(const Face& face, const Vec3& d) {
 void Backprojection::subtractShadow(const Polygon3& onLightPlane) {
   ++comparisons_;
   // Appended to the gathered shadows in the frame, counter-clockwise.
-  const size_t begin = pendingPoints_.size();
-  for (const Vec3& q : onLightPlane) pendingPoints_.push_back(frame_.to2D(q));
-  const std::span<Vec2> shadow(pendingPoints_.data() + begin, pendingPoints_.size() - begin);
+  const size_t begin = shadowPoints_.size();
+  for (const Vec3& q : onLightPlane) shadowPoints_.push_back(frame_.to2D(q));
+  const std::span<Vec2> shadow(shadowPoints_.data() + begin, shadowPoints_.size() - begin);
   const double area = signedArea(shadow);
   if (area < 0) std::reverse(shadow.begin(), shadow.end());
   if (!(std::abs(area) > tolerance_.area())) {
-    pendingPoints_.resize(begin);
+    shadowPoints_.resize(begin);
     return;
   }
-  pendingStarts_.push_back(uint32_t(pendingPoints_.size()));
+  shadowStarts_.push_back(uint32_t(shadowPoints_.size()));
+  resolved_ = false;
 }
 
+std::span<const Vec2> Backprojection::shadow(size_t i) const {
+  return std::span<const Vec2>(shadowPoints_.data() + shadowStarts_[i],
+                               shadowPoints_.data() + shadowStarts_[i + 1]);
+}
+
+// Cut at a tenth of length(): a vertex within the cut tolerance of a shadow edge
+// stays unmoved, and where several shadow edges nearly coincide (coplanar faces seen
+// edge-on from a D⁰ point) a full length() snap shows as ~1e-9 relative error in the
+// value.
+double Backprojection::cutEps() const { return 0.1 * tolerance_.length(); }
+
 void Backprojection::resolve() const {
-  const size_t count = pendingStarts_.empty() ? 0 : pendingStarts_.size() - 1;
-  if (count == 0) return;
-  // Cut at a tenth of length(): a piece vertex within the cut tolerance of a shadow
-  // edge stays unmoved, and where several shadow edges nearly coincide (coplanar
-  // faces seen edge-on from a D⁰ point) a full length() snap shows as ~1e-9
-  // relative error in the value. Slivers left by it are dropped by area() below.
-  const double cutEps = 0.1 * tolerance_.length();
-  auto shadow = [&](size_t i) {
-    return std::span<const Vec2>(pendingPoints_.data() + pendingStarts_[i],
-                                 pendingPoints_.data() + pendingStarts_[i + 1]);
-  };
+  if (resolved_ || !applies_) return;
+  resolved_ = true;
+  // One contour per thread, its buffers reused from vertex to vertex; what is read
+  // of it is kept here before another view on this thread computes again.
+  thread_local VisibleContour contour;
+  contour.compute(front2_, shadowPoints_, shadowStarts_, cutEps());
+  occluded_ = contour.occluded();
+  anyVisible_ = contour.area() > tolerance_.area() && contour.anyLeft(tolerance_.length());
+  visibleFactor_ = 0;
+  if (!anyVisible_) return;
+  if (!occluded_) {  // nothing removed: the front part itself, not its image in the frame
+    visibleFactor_ = unoccludedFactor();
+    return;
+  }
+  // Lambert's sum over the boundary of what is left, oriented as the light is in
+  // the frame (counter-clockwise): the light's own sum gives the sign.
+  double sum = 0, lightSum = 0;
+  for (const Segment2& s : contour.boundary())
+    sum += lambertEdgeTerm(p_, n_, frame_.to3D(s.from), frame_.to3D(s.to));
+  for (size_t i = 0; i < front2_.size(); ++i)
+    lightSum += lambertEdgeTerm(p_, n_, frame_.to3D(front2_[i]), frame_.to3D(front2_[(i + 1) % front2_.size()]));
+  visibleFactor_ = std::max(0.0, 0.5 * (lightSum < 0 ? -sum : sum));
+}
+
+void Backprojection::resolvePieces(VisibleRegion& region) const {
+  region.reset(front2_);
+  const size_t count = shadowStarts_.size() - 1;
   // Largest overlap with the light's box first: in an umbra the light is gone
   // after few shadows, elsewhere later shadows find few pieces left to cut. Ties
   // keep the order given, so the result depends only on the set of shadows.
@@ -193,15 +220,9 @@ void Backprojection::resolve() const {
   }
   std::sort(order.begin(), order.end());
   for (const auto& [key, i] : order) {
-    if (visible_.empty()) break;
-    occluded_ |= visible_.subtract(shadow(i), cutEps);
+    if (region.empty()) break;
+    region.subtract(shadow(i), cutEps());
   }
-  pendingPoints_.clear();
-  pendingStarts_.assign(1, 0);
-}
-
-bool Backprojection::kept(size_t piece) const {
-  return signedArea(visible_.piece(piece)) > tolerance_.area();
 }
 
 double Backprojection::unoccludedFactor() const {
@@ -211,24 +232,13 @@ double Backprojection::unoccludedFactor() const {
 bool Backprojection::anyVisible() const {
   if (!applies_) return false;
   resolve();
-  for (size_t i = 0; i < visible_.pieceCount(); ++i)
-    if (kept(i)) return true;
-  return false;
+  return anyVisible_;
 }
 
 double Backprojection::visibleFactor() const {
-  if (!anyVisible()) return 0;
-  // Nothing removed: integrate the front part itself, not its image in the frame.
-  if (!occluded_) return unoccludedFactor();
-  double sum = 0;
-  Polygon3& world = scratch_;
-  for (size_t i = 0; i < visible_.pieceCount(); ++i) {
-    if (!kept(i)) continue;
-    world.clear();
-    for (const Vec2& q : visible_.piece(i)) world.push_back(frame_.to3D(q));
-    sum += lambertIntegral(p_, n_, world);
-  }
-  return sum;
+  if (!applies_) return 0;
+  resolve();
+  return visibleFactor_;
 }
 
 LightClass Backprojection::lightClass() const {
@@ -244,10 +254,12 @@ std::vector<Polygon3> Backprojection::visiblePieces() const {
     out.push_back(front_);
     return out;
   }
-  for (size_t i = 0; i < visible_.pieceCount(); ++i) {
-    if (!kept(i)) continue;
+  VisibleRegion region;
+  resolvePieces(region);
+  for (size_t i = 0; i < region.pieceCount(); ++i) {
+    if (!(signedArea(region.piece(i)) > tolerance_.area())) continue;
     Polygon3 world;
-    for (const Vec2& q : visible_.piece(i)) world.push_back(frame_.to3D(q));
+    for (const Vec2& q : region.piece(i)) world.push_back(frame_.to3D(q));
     out.push_back(std::move(world));
   }
   return out;

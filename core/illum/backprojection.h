@@ -1,8 +1,9 @@
 // The visible part of one light from one point, given candidate occluder faces:
 // the light clipped to the point's front half-space minus the central projections
-// of the faces that block the point (SCENE_FORMAT.md rule), as convex pieces, and
-// its Lambert integral. Shadows are gathered, then subtracted largest first (so the
-// light is gone, or its pieces few, early). One object per (light, point), one thread.
+// of the faces that block the point (SCENE_FORMAT.md rule), and its Lambert integral.
+// Shadows are gathered; the integral is Lambert's edge sum over the boundary of what
+// they leave (VisibleContour), the pieces are formed only when asked for (largest
+// shadow first). One object per (light, point), one thread.
 #pragma once
 
 #include <cstddef>
@@ -11,6 +12,7 @@
 
 #include "core/geom/convex2d.h"
 #include "core/geom/plane_frame.h"
+#include "core/illum/visible_contour.h"
 #include "core/illum/visible_region.h"
 #include "core/mesh/mesh.h"
 #include "core/scene/scene.h"
@@ -56,9 +58,13 @@ class Backprojection {
 
  private:
   void subtractShadow(const Polygon3& onLightPlane);
-  // Subtracts the gathered shadows, the one covering most of the light first.
+  // The boundary of what the gathered shadows leave and its Lambert integral, once
+  // per set of shadows.
   void resolve() const;
-  bool kept(size_t piece) const;  // a resolved piece of positive area (at area())
+  // The visible part as convex pieces: the shadows subtracted, largest first.
+  void resolvePieces(VisibleRegion& region) const;
+  std::span<const Vec2> shadow(size_t i) const;
+  double cutEps() const;
 
   Tolerance tolerance_;
   Vec3 p_{0.0}, n_{0.0};
@@ -69,11 +75,12 @@ class Backprojection {
   PlaneFrame frame_;            // 2D frame on the light's plane
   std::vector<Plane> cone_;     // inward side planes of a cone from p over front_ plus a margin
   Polygon2 front2_;             // front_ in the frame, CCW
+  std::vector<Vec2> shadowPoints_;      // gathered shadows in the frame, flat, CCW
+  std::vector<uint32_t> shadowStarts_;  // shadow i: [starts[i], starts[i+1])
   // Resolved state (filled lazily by resolve(); one thread owns the object).
-  mutable VisibleRegion visible_;
-  mutable std::vector<Vec2> pendingPoints_;   // gathered shadows, flat
-  mutable std::vector<uint32_t> pendingStarts_;  // shadow i: [starts[i], starts[i+1])
-  mutable bool occluded_ = false;
+  mutable bool resolved_ = false;
+  mutable bool occluded_ = false, anyVisible_ = false;
+  mutable double visibleFactor_ = 0;
   mutable Polygon3 blocker_, scratch_;  // reused clipping buffers
   size_t comparisons_ = 0;
 };

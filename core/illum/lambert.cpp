@@ -12,15 +12,15 @@ double lambertIntegral(const Vec3& p, const Vec3& n, const Polygon3& polygon) {
   // winding as seen from p, and the integrand is non-negative in front of p's
   // plane, so the magnitude is the value.
   double sum = 0;
-  Vec3 a = polygon[count - 1] - p;
-  for (size_t i = 0; i < count; ++i) {
-    const Vec3 b = polygon[i] - p;
-    const Vec3 normal = glm::cross(a, b);
-    const double sine = glm::length(normal);  // |a||b| sin Θ
-    if (sine > 0) sum += std::atan2(sine, glm::dot(a, b)) * glm::dot(n, normal) / sine;
-    a = b;
-  }
+  for (size_t i = 0; i < count; ++i) sum += lambertEdgeTerm(p, n, polygon[(i + count - 1) % count], polygon[i]);
   return 0.5 * std::abs(sum);
+}
+
+double lambertEdgeTerm(const Vec3& p, const Vec3& n, const Vec3& a, const Vec3& b) {
+  const Vec3 pa = a - p, pb = b - p;
+  const Vec3 normal = glm::cross(pa, pb);
+  const double sine = glm::length(normal);  // |a||b| sin Θ
+  return sine > 0 ? std::atan2(sine, glm::dot(pa, pb)) * glm::dot(n, normal) / sine : 0.0;
 }
 
 }  // namespace penumbra

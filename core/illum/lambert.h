@@ -12,4 +12,10 @@ namespace penumbra {
 // point-to-polygon form factor.
 double lambertIntegral(const Vec3& p, const Vec3& n, const Polygon3& polygon);
 
+// One edge's term of Lambert's sum, Θ (n · Γ) with Θ the angle a→b subtends at p and
+// Γ the unit normal of the plane through p, a and b (signed by the direction a→b).
+// Additive along a line: the terms of a→m and m→b add up to that of a→b, so the
+// integral over a region is half the sum over any split of its boundary.
+double lambertEdgeTerm(const Vec3& p, const Vec3& n, const Vec3& a, const Vec3& b);
+
 }  // namespace penumbra

@@ -1,0 +1,196 @@
+#include "core/illum/visible_contour.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra {
+
+namespace {
+
+bool boxesApart(const Vec2& minA, const Vec2& maxA, const Vec2& minB, const Vec2& maxB, double eps) {
+  return minA.x > maxB.x + eps || minB.x > maxA.x + eps || minA.y > maxB.y + eps ||
+         minB.y > maxA.y + eps;
+}
+
+// Every point of `inner` inside the convex polygon with edge lines `lines`, or
+// within eps of it.
+template <class Line>
+bool holdsAll(std::span<const Line> lines, std::span<const Vec2> inner, double eps) {
+  for (const Line& line : lines)
+    for (const Vec2& q : inner)
+      if (glm::dot(line.normal, q) - line.offset < -eps) return false;
+  return true;
+}
+
+}  // namespace
+
+void VisibleContour::addLines(std::span<const Vec2> polygon) {
+  for (size_t k = 0; k < polygon.size(); ++k) {
+    Line line;  // a zero edge keeps a zero normal: every point "on" it, never deciding
+    line.from = polygon[k];
+    line.to = polygon[(k + 1) % polygon.size()];
+    const Vec2 e = line.to - line.from;
+    if (const double length = glm::length(e); length > 0) {
+      line.normal = Vec2(-e.y, e.x) / length;
+      line.offset = glm::dot(line.normal, line.from);
+    }
+    lines_.push_back(line);
+  }
+}
+
+Vec2 VisibleContour::crossing(size_t e, size_t f) const {
+  const Line& on = lines_[std::min(e, f)];
+  const Line& by = lines_[std::max(e, f)];
+  const double dA = glm::dot(by.normal, on.from) - by.offset;
+  const double dB = glm::dot(by.normal, on.to) - by.offset;
+  const double t = dA != dB ? std::clamp(dA / (dA - dB), 0.0, 1.0) : 0.0;
+  return on.from + t * (on.to - on.from);
+}
+
+bool VisibleContour::clipToPolygon(size_t edge, size_t first, size_t count, bool alongInside,
+                                   bool againstInside, Interval& out) const {
+  const Vec2 a = lines_[edge].from, b = lines_[edge].to, d = b - a;
+  double t0 = 0, t1 = 1;
+  size_t by0 = edge, by1 = edge;  // the lines that set t0, t1 (edge itself: its own ends)
+  for (size_t k = first; k < first + count; ++k) {
+    const Line& line = lines_[k];
+    const double dA = glm::dot(line.normal, a) - line.offset;
+    const double dB = glm::dot(line.normal, b) - line.offset;
+    if (std::abs(dA) <= eps_ && std::abs(dB) <= eps_) {  // along this edge's line
+      if (line.normal == Vec2(0.0)) continue;
+      if (glm::dot(line.to - line.from, d) > 0 ? alongInside : againstInside) continue;
+      return false;
+    }
+    if (dA < 0 && dB < 0) return false;
+    const double t = dA / (dA - dB);
+    if (dA < 0 && t > t0) t0 = t, by0 = k;
+    if (dB < 0 && !(dA < 0) && t < t1) t1 = t, by1 = k;
+    if (!(t0 < t1)) return false;
+  }
+  out.from = t0;
+  out.to = t1;
+  out.fromPoint = by0 == edge ? a : crossing(edge, by0);
+  out.toPoint = by1 == edge ? b : crossing(edge, by1);
+  return true;
+}
+
+void VisibleContour::emitUncovered(Interval within, bool reversed) {
+  std::sort(covered_.begin(), covered_.end(),
+            [](const Interval& x, const Interval& y) { return x.from < y.from; });
+  auto emit = [&](const Vec2& from, const Vec2& to) {
+    if (from == to) return;
+    boundary_.push_back(reversed ? Segment2{to, from} : Segment2{from, to});
+  };
+  double t = within.from;
+  Vec2 at = within.fromPoint;
+  for (const Interval& c : covered_) {
+    if (c.to <= t) continue;
+    if (c.from >= within.to) break;
+    if (c.from > t) emit(at, c.fromPoint);
+    if (c.to >= within.to) return;
+    t = c.to;
+    at = c.toPoint;
+  }
+  emit(at, within.toPoint);
+}
+
+void VisibleContour::clipEdgeOfShadow(uint32_t i, size_t edge) {
+  Interval inside;
+  if (!clipToPolygon(edge, 0, lightLines_, false, false, inside)) return;
+  // Even a stretch shorter than eps is kept: it closes the boundary where a
+  // shadow's corner sits at the light's (an open boundary is a wrong integral).
+  const Line& line = lines_[edge];
+  occluded_ |= (inside.to - inside.from) * glm::length(line.to - line.from) > eps_;
+  const Vec2 sLow = glm::min(line.from, line.to), sHigh = glm::max(line.from, line.to);
+  covered_.clear();
+  for (uint32_t j : active_) {
+    Interval c;
+    if (j == i || boxesApart(sLow, sHigh, low_[j], high_[j], eps_)) continue;
+    if (clipToPolygon(edge, firstLine_[j], firstLine_[j + 1] - firstLine_[j], j < i, true, c))
+      covered_.push_back(c);
+  }
+  // The shadow is on the edge's left, the visible part on its right: reversed.
+  emitUncovered(inside, true);
+}
+
+void VisibleContour::compute(std::span<const Vec2> light, std::span<const Vec2> points,
+                             std::span<const uint32_t> starts, double eps) {
+  boundary_.clear();
+  occluded_ = false;
+  eps_ = eps;
+  const size_t count = starts.size() < 2 ? 0 : starts.size() - 1;
+
+  lines_.clear();
+  addLines(light);
+  lightLines_ = light.size();
+  firstLine_.assign(1, uint32_t(lightLines_));
+  for (size_t i = 0; i < count; ++i) {
+    addLines(points.subspan(starts[i], starts[i + 1] - starts[i]));
+    firstLine_.push_back(uint32_t(lines_.size()));
+  }
+  Vec2 lightLow = light[0], lightHigh = light[0];
+  for (const Vec2& v : light) {
+    lightLow = glm::min(lightLow, v);
+    lightHigh = glm::max(lightHigh, v);
+  }
+  // Only shadows whose box meets the light's take part; one holding the whole
+  // light leaves nothing (the umbra of a single face, the common case in clutter).
+  active_.clear();
+  low_.assign(count, Vec2(0.0));
+  high_.assign(count, Vec2(0.0));
+  for (size_t i = 0; i < count; ++i) {
+    const auto s = points.subspan(starts[i], starts[i + 1] - starts[i]);
+    low_[i] = high_[i] = s[0];
+    for (const Vec2& v : s) {
+      low_[i] = glm::min(low_[i], v);
+      high_[i] = glm::max(high_[i], v);
+    }
+    if (boxesApart(low_[i], high_[i], lightLow, lightHigh, eps)) continue;
+    if (holdsAll(std::span<const Line>(lines_).subspan(firstLine_[i], s.size()), light, eps)) {
+      occluded_ = true;
+      return;
+    }
+    active_.push_back(uint32_t(i));
+  }
+
+  // The light's edges, less what a shadow on the light's side covers.
+  for (size_t k = 0; k < lightLines_; ++k) {
+    const Line& line = lines_[k];
+    const Vec2 sLow = glm::min(line.from, line.to), sHigh = glm::max(line.from, line.to);
+    const double length = glm::length(line.to - line.from);
+    covered_.clear();
+    for (uint32_t j : active_) {
+      Interval c;
+      if (boxesApart(sLow, sHigh, low_[j], high_[j], eps)) continue;
+      if (!clipToPolygon(k, firstLine_[j], firstLine_[j + 1] - firstLine_[j], true, false, c)) continue;
+      covered_.push_back(c);
+      occluded_ |= (c.to - c.from) * length > eps;
+    }
+    emitUncovered({0, 1, line.from, line.to}, false);
+  }
+  // Each shadow's edges inside the light, less what the other shadows cover.
+  for (uint32_t i : active_)
+    for (size_t e = firstLine_[i]; e < firstLine_[i + 1]; ++e) clipEdgeOfShadow(i, e);
+}
+
+double VisibleContour::area() const {
+  double sum = 0;
+  for (const Segment2& s : boundary_) sum += cross2(s.from, s.to);
+  return 0.5 * sum;
+}
+
+double VisibleContour::length() const {
+  double sum = 0;
+  for (const Segment2& s : boundary_) sum += glm::length(s.to - s.from);
+  return sum;
+}
+
+bool VisibleContour::anyLeft(double eps) const {
+  // Stretches shorter than eps alone are where crossings nearly meet, not a region.
+  const bool anyStretch = std::any_of(boundary_.begin(), boundary_.end(), [&](const Segment2& s) {
+    return glm::length(s.to - s.from) > eps;
+  });
+  return anyStretch && area() > 0;
+}
+
+}  // namespace penumbra

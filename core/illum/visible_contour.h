@@ -1,0 +1,82 @@
+// The boundary of a light's visible part, light minus the union of convex shadows,
+// as directed segments with the visible part on their left: the light's edges where no
+// shadow covers them and each shadow's edges inside the light where no other shadow
+// does. Lambert's formula is a sum over boundary edges and additive along a line, so
+// these segments give the visible factor without ever forming the region: the work is
+// O(edges × shadows), not pieces × shadows. Owned by one thread; buffers are reused.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/geom/convex2d.h"
+
+namespace penumbra {
+
+struct Segment2 {
+  Vec2 from{0.0}, to{0.0};
+};
+
+class VisibleContour {
+ public:
+  // light: convex CCW. Shadow i is points[starts[i] .. starts[i+1]), convex CCW.
+  // Points within eps of a line count as on it; a shadow edge along another
+  // polygon's edge (adjacent faces seen from p) is decided by the edges' directions:
+  // against each other the two shadows join (interior of the union), along each
+  // other the lower index keeps the edge, so a shared boundary counts once.
+  void compute(std::span<const Vec2> light, std::span<const Vec2> points,
+               std::span<const uint32_t> starts, double eps);
+
+  // The boundary of what is left (empty when the shadows cover the light).
+  std::span<const Segment2> boundary() const { return boundary_; }
+  // Some shadow covers part of the light: a light edge lost a stretch, or a shadow
+  // edge runs inside the light.
+  bool occluded() const { return occluded_; }
+  // The area left (shoelace over the boundary) and the boundary's length.
+  double area() const;
+  double length() const;
+  // Something is left: some boundary stretch is longer than eps and the area is
+  // positive (stretches shorter than eps alone are crossings that nearly meet).
+  bool anyLeft(double eps) const;
+
+ private:
+  // A stretch [from, to] of an edge's parameter, with its end points: where an end
+  // is a crossing with another edge, the point both edges compute alike (crossing()),
+  // so the boundary closes exactly where a stretch of one edge meets one of another.
+  struct Interval {
+    double from = 0, to = 1;
+    Vec2 fromPoint{0.0}, toPoint{0.0};
+  };
+  // An edge and its line: signed distance normal·x − offset, positive inside (left
+  // of the counter-clockwise edge).
+  struct Line {
+    Vec2 from{0.0}, to{0.0}, normal{0.0};
+    double offset = 0;
+  };
+  // The stretch of edge `edge` (an index into lines_) inside the convex polygon
+  // whose edges are lines_[first, first + count) (nothing if it misses it); a polygon
+  // edge along it is inside when `alongInside` (same direction) or `againstInside`
+  // (opposite direction) says so.
+  bool clipToPolygon(size_t edge, size_t first, size_t count, bool alongInside, bool againstInside,
+                     Interval& out) const;
+  // Where edges e and f cross, computed on the lower-indexed one by the other's line.
+  Vec2 crossing(size_t e, size_t f) const;
+  // Appends the parts of `within` not covered by covered_ to the boundary, in the
+  // edge's direction or reversed.
+  void emitUncovered(Interval within, bool reversed);
+  void addLines(std::span<const Vec2> polygon);
+  void clipEdgeOfShadow(uint32_t i, size_t edge);
+
+  double eps_ = 0;
+  std::vector<Segment2> boundary_;
+  std::vector<Interval> covered_;
+  std::vector<Line> lines_;                  // the light's edges, then each shadow's
+  std::vector<uint32_t> firstLine_;          // shadow i: lines_[firstLine_[i], firstLine_[i + 1])
+  std::vector<Vec2> low_, high_;             // shadows' bounding boxes
+  std::vector<uint32_t> active_;             // shadows whose box meets the light's
+  size_t lightLines_ = 0;
+  bool occluded_ = false;
+};
+
+}  // namespace penumbra
