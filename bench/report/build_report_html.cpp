@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bench/report/build_summary.h"
+#include "bench/report/html_page.h"
 #include "bench/report/svg_charts.h"
 
 namespace penumbra::bench {
@@ -261,13 +262,6 @@ std::string plots(const json& result, const std::vector<SceneRows>& scenes) {
 std::string buildReportHtml(const json& result) {
   const std::vector<SceneRows> scenes = scenesOf(result);
   std::string html =
-      "<!DOCTYPE html>\n<html><head><meta charset='utf-8'/><title>Penumbra: build</title>\n"
-      "<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
-      "table{border-collapse:collapse;font-size:12px;margin:1em 0}td,th{border:1px solid #ccc;"
-      "padding:2px 6px;text-align:right}figure{margin:1em 0}pre{background:#f6f6f6;padding:1em;"
-      "overflow:auto;max-height:30em;font-size:11px}</style></head><body>\n"
-      "<h1>Penumbra: discontinuity-mesh build, sparse and dense rooms</h1>\n";
-  html +=
       "<p>Generated scenes (seed " + result["seed"].dump() +
       "): <em>sparse</em> is \"N cubes in a room\" (<code>penumbra generate</code>) at light "
       "scales 1 and 0.2, <em>dense</em> is N boxes floating in a 6 × 3 × 6 m room under one "
@@ -283,9 +277,7 @@ std::string buildReportHtml(const json& result) {
   html += plots(result, scenes);
   if (!result["failures"].empty())
     html += "<h2>Failed builds</h2>\n<pre>" + escapeHtml(result["failures"].dump(1)) + "</pre>\n";
-  html +=
-      "<h2>Numbers (JSON)</h2>\n<pre>" + escapeHtml(result.dump(1)) + "</pre>\n</body></html>\n";
-  return html;
+  return htmlPage("Penumbra: discontinuity-mesh build, sparse and dense rooms", html, result);
 }
 
 }  // namespace penumbra::bench

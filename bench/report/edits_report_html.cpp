@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/report/html_page.h"
 #include "bench/report/svg_charts.h"
 
 namespace penumbra::bench {
@@ -123,17 +124,35 @@ std::string introHtml(const json& result) {
 }  // namespace
 
 std::string editsReportHtml(const json& result) {
-  Plot drag{"Dragging one object: edit vs full rebuild, per frame", "frame", "milliseconds"};
-  drag.logY = true;
+  // title, x label, y label, log x, log y, series, y = x
+  Plot drag{"Dragging one object: edit vs full rebuild, per frame",
+            "frame",
+            "milliseconds",
+            false,
+            true,
+            {},
+            false};
   Plot shares{"Moving a share of the faces together (mean per frame)",
-              "share of the scene's faces (%)", "milliseconds"};
-  shares.logY = true;
-  Plot sizes{"Dragging one object: median time per frame vs scene size", "faces in the scene",
-             "milliseconds per frame"};
-  sizes.logX = sizes.logY = true;
-  Plot relit{"Vertices relit vs vertices whose value changed (every frame)", "vertices changed",
-             "vertices relit"};
-  relit.logX = relit.logY = relit.diagonal = true;
+              "share of the scene's faces (%)",
+              "milliseconds",
+              false,
+              true,
+              {},
+              false};
+  Plot sizes{"Dragging one object: median time per frame vs scene size",
+             "faces in the scene",
+             "milliseconds per frame",
+             true,
+             true,
+             {},
+             false};
+  Plot relit{"Vertices relit vs vertices whose value changed (every frame)",
+             "vertices changed",
+             "vertices relit",
+             true,
+             true,
+             {},
+             true};
   Series sizeEdit{"edit (apply), median", {}}, sizeRebuild{"full rebuild, median", {}, true};
   Series sizeFirst{"edit, first frame", {}, false, true};
   Series relitPoints{"frames", {}, false, true};
@@ -195,22 +214,10 @@ std::string editsReportHtml(const json& result) {
   sizes.series = {sizeEdit, sizeRebuild, sizeFirst};
   relit.series = {relitPoints};
 
-  std::string html =
-      "<!DOCTYPE html>\n<html><head><meta charset='utf-8'/><title>Penumbra: incremental "
-      "edits</title>\n"
-      "<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;color:#222}"
-      "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px "
-      "6px;text-align:right}"
-      "figure{margin:1em "
-      "0}pre{background:#f6f6f6;padding:1em;overflow:auto;max-height:30em;font-size:11px}"
-      "</style></head><body>\n<h1>Penumbra: incremental edits vs full rebuild</h1>\n";
-  html += introHtml(result);
-  html += table;
-  html += dragTable(result);
-  html += svgPlot(drag) + svgPlot(shares) + svgPlot(sizes) + svgPlot(relit);
-  html +=
-      "<h2>Numbers (JSON)</h2>\n<pre>" + escapeHtml(result.dump(1)) + "</pre>\n</body></html>\n";
-  return html;
+  return htmlPage("Penumbra: incremental edits vs full rebuild",
+                  introHtml(result) + table + dragTable(result) + svgPlot(drag) + svgPlot(shares) +
+                      svgPlot(sizes) + svgPlot(relit),
+                  result);
 }
 
 }  // namespace penumbra::bench
