@@ -15,10 +15,16 @@ struct BenchArgs {
   double lightScale = 1.0;
   size_t points = 2000;
   int maxSamples = 1 << 16;
-  int threads = 1;  // engine build threads (EngineSettings::threads; 0 = every core)
+  // build: engine threads per row (EngineSettings::threads; 0 = every core); each scene is
+  // built once per count.
+  std::vector<int> threads{1};
   int qualityMaxCubes = 150;  // mesh-quality comparison only up to this scene size
-  std::string jsonOut;  // empty: no JSON file
-  bool dense = false;   // build: dense rooms (makeDenseScene) instead of cubes rooms
+  std::string jsonOut;        // empty: no JSON file
+  bool dense = false;         // build, edits: dense rooms (makeDenseScene) instead of cubes rooms
+  // build: --dense-cubes N,...: dense rooms in the same run as the cubes rooms of --cubes
+  // (then --cubes only when given). build-row: --no-compare skips Monte Carlo and mesh quality.
+  std::vector<int> denseCubes;
+  bool compare = true;
   // edits: --cubes given (else 150,1500,5000), --frames (drag frames, 0 = by size),
   // --html OUT, --write-scripts DIR --scene FILE (write that scene's scripts only).
   // --rebuild-every K: time the full rebuild on the first frame, every K-th and
@@ -34,6 +40,9 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first);
 
 nlohmann::json runReferenceBench(const BenchArgs& args);
 nlohmann::json runBuildBench(const BenchArgs& args);
+// The hidden `build-row` mode: one scene (--cubes N, [--dense], --light-scale, --threads T)
+// built in this process, so its peak memory is its own (bench/build_row.cpp).
+nlohmann::json runBuildRow(const BenchArgs& args);
 nlohmann::json runEditsBench(const BenchArgs& args);
 
 }  // namespace penumbra::bench

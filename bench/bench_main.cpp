@@ -5,27 +5,46 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "bench/bench_args.h"
 
 namespace penumbra::bench {
 
+namespace {
+
+// "15,150,1500" → {15, 150, 1500}; throws on an empty list or a value below `least`.
+std::vector<int> intList(const std::string& text, int least) {
+  std::vector<int> out;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');) {
+    size_t used = 0;
+    out.push_back(std::stoi(item, &used));
+    if (used != item.size()) throw std::invalid_argument("not a whole number: " + item);
+    if (out.back() < least) throw std::invalid_argument("must be >= " + std::to_string(least));
+  }
+  if (out.empty()) throw std::invalid_argument("empty list");
+  return out;
+}
+
+}  // namespace
+
 BenchArgs parseBenchArgs(int argc, char** argv, int first) {
   BenchArgs args;
   for (int i = first; i < argc; ++i) {
     const std::string name = argv[i];
-    if (name == "--dense") {  // the one option without a value
-      args.dense = true;
+    if (name == "--dense" || name == "--no-compare") {  // the options without a value
+      (name == "--dense" ? args.dense : args.compare) = name == "--dense";
       continue;
     }
     if (i + 1 >= argc) throw std::invalid_argument(name + " needs a value");
     const std::string value = argv[++i];
     try {
       if (name == "--cubes") {
-        args.cubes.clear();
+        args.cubes = intList(value, 0);
         args.cubesGiven = true;
-        std::stringstream list(value);
-        for (std::string item; std::getline(list, item, ',');) args.cubes.push_back(std::stoi(item));
+      } else if (name == "--dense-cubes") {
+        args.denseCubes = intList(value, 0);
       } else if (name == "--seed") {
         args.seed = std::stoull(value);
       } else if (name == "--light-scale") {
@@ -37,8 +56,7 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first) {
       } else if (name == "--quality-max-cubes") {
         args.qualityMaxCubes = std::stoi(value);
       } else if (name == "--threads") {
-        args.threads = std::stoi(value);
-        if (args.threads < 0) throw std::invalid_argument("must be >= 0");
+        args.threads = intList(value, 0);
       } else if (name == "--frames") {
         args.frames = std::stoi(value);
       } else if (name == "--rebuild-every") {
@@ -67,18 +85,31 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first) {
 int main(int argc, char** argv) {
   using namespace penumbra::bench;
   constexpr const char* kUsage =
-      "usage: penumbra-bench reference|build|edits [--cubes 15,150,1500] [--seed S] [--light-scale F]\n"
-      "                      build: [--dense]\n"
-      "                      [--points K] [--max-samples N] [--quality-max-cubes N] [--json OUT]\n"
-      "                      [--threads N] (engine threads, default 1; 0 = every core)\n"
-      "                      edits: [--frames F] [--rebuild-every K] [--html OUT]\n"
+      "usage: penumbra-bench reference|build|edits [--cubes 15,150,1500] [--seed S] [--light-scale "
+      "F]\n"
+      "                      [--json OUT]\n"
+      "                      build: [--dense-cubes 150,300] [--dense] [--threads 1,2] [--html "
+      "OUT]\n"
+      "                             [--points K] [--max-samples N] [--quality-max-cubes N]\n"
+      "                      edits: [--dense] [--frames F] [--rebuild-every K] [--html OUT]\n"
       "                             | --write-scripts DIR --scene FILE\n"
       "  reference: exact reference and Monte Carlo cost per point\n"
-      "  build:     DM build times and counters at light scales 1 and 0.2, Monte Carlo cost for\n"
-      "             1% RMS on the same penumbra vertices, DM vs equal-vertex grid error; --dense: the\n"
-      "             dense rooms (N boxes floating in 6×3×6 m, one light) instead of N cubes\n"
-      "  edits:     edit scripts (drag, move 1/5/10/30% of faces, remove-add, build-up) per frame vs a\n"
-      "             full rebuild, default --cubes 150,1500,5000; --html writes the report\n";
+      "  build:     DM build times per step, counters, peak memory: sparse rooms (--cubes) at "
+      "light\n"
+      "             scales 1 and 0.2 and dense rooms (--dense-cubes: N boxes floating in 6×3×6 m, "
+      "one\n"
+      "             light; --dense: --cubes are dense rooms), each at every --threads count "
+      "(engine\n"
+      "             threads, default 1; 0 = every core) in its own process; at the first count "
+      "also the\n"
+      "             Monte Carlo cost for 1% RMS on the penumbra vertices and DM vs equal-vertex "
+      "grid\n"
+      "             error; --html writes the report (time vs N, steps, speed-up, memory)\n"
+      "  edits:     edit scripts (drag, move 1/5/10/30% of faces, remove-add, build-up) per frame "
+      "vs a\n"
+      "             full rebuild, default --cubes 150,1500,5000; --dense: dragging one floating "
+      "box\n"
+      "             in the dense rooms; --html writes the report\n";
   if (argc < 2) {
     std::fputs(kUsage, stderr);
     return 2;
@@ -91,6 +122,9 @@ int main(int argc, char** argv) {
       result = runReferenceBench(args);
     } else if (benchmark == "build") {
       result = runBuildBench(args);
+    } else if (benchmark == "build-row") {  // hidden: one row, JSON on stdout (build_bench.cpp)
+      std::printf("%s\n", runBuildRow(args).dump().c_str());
+      return 0;
     } else if (benchmark == "edits") {
       result = runEditsBench(args);
     } else {

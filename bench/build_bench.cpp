@@ -1,241 +1,176 @@
-// `penumbra-bench build`: the full discontinuity-mesh build on generated 'N cubes
-// in a room' scenes at two light sizes (--dense: 'N boxes floating in a room', one
-// light) — times split by step and the counters — against (a) what the Monte Carlo
-// estimator needs for 1% RMS relative error on the same penumbra vertices and (b)
-// the exact reference grid with the same vertex count (mean relative interpolation
-// error at random points). One thread.
-#include <sys/resource.h>
-#include <tbb/global_control.h>
-
+// `penumbra-bench build`: the full discontinuity-mesh build on generated scenes — sparse
+// 'N cubes in a room' at two light sizes (--cubes) and dense 'N boxes floating in a room',
+// one light (--dense-cubes, or --cubes with --dense) — each scene at each --threads count,
+// each build in its own child process (`penumbra-bench build-row`, bench/build_row.cpp)
+// so every row's peak memory is its own. Prints a table, returns the rows with the
+// speed-up per step and the growth with N; --html writes the report.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "bench/bench_args.h"
-#include "bench/lib/cubes_scene.h"
-#include "bench/lib/dense_scene.h"
-#include "bench/lib/mesh_sampling.h"
-#include "bench/lib/sample_points.h"
-#include "core/engine/engine.h"
-#include "core/reference/exact_irradiance.h"
-#include "core/reference/grid_mesh.h"
-#include "core/reference/monte_carlo.h"
+#include "bench/child_process.h"
+#include "bench/report/build_report_html.h"
+#include "bench/report/build_summary.h"
+#include "protocol/json_text.h"
 
 namespace penumbra::bench {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using nlohmann::json;
 
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// CPU seconds (user + system) of this process so far: on a shared machine the
-// wall clock measures the neighbours too.
-double cpuSeconds() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
-// Peak resident memory of this process so far (all rows up to this one), in MiB.
-double peakMemoryMiB() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return double(usage.ru_maxrss) / 1024.0;  // KiB on Linux
-}
-
-struct MonteCarloCost {
-  int samples = 0;          // stratified samples per light and vertex for 1% RMS
-  double rms = NAN;         // the RMS relative error reached
-  double secondsPerVertex = NAN;
+struct RowSpec {
+  bool dense = false;
+  int cubes = 0;
+  double lightScale = 1;
+  int threads = 1;
+  bool compare = true;  // Monte Carlo and mesh quality: at the first thread count only
 };
 
-// Doubles the samples until the RMS relative error over the given points is 1%.
-MonteCarloCost monteCarloCost(const Scene& scene, const std::vector<Vec3>& positions,
-                              const std::vector<Vec3>& normals, const std::vector<double>& truth,
-                              const BenchArgs& args) {
-  MonteCarloCost cost;
-  if (positions.empty()) return cost;
-  const MonteCarloEstimator estimator(scene);
-  for (int n = 64; n <= args.maxSamples; n *= 2) {
-    MonteCarloOptions options;
-    options.samplesPerLight = n;
-    options.seed = args.seed;
-    options.stratified = true;
-    const auto start = Clock::now();
-    const auto estimates = estimator.estimateMany(positions, normals, options);
-    cost.secondsPerVertex = secondsSince(start) / double(positions.size());
-    double sum = 0;
-    for (size_t i = 0; i < truth.size(); ++i) {
-      const double relative = (estimates[i].irradiance.x - truth[i]) / truth[i];
-      sum += relative * relative;
-    }
-    cost.rms = std::sqrt(sum / double(truth.size()));
-    cost.samples = n;
-    if (cost.rms <= 0.01) break;
-  }
-  return cost;
+// Sparse rows: --cubes (unless only --dense-cubes was given) at light scales 1 and 0.2;
+// dense rows: --dense-cubes, or --cubes with --dense (one light size).
+std::vector<RowSpec> buildPlan(const BenchArgs& args) {
+  std::vector<int> sparse, dense = args.denseCubes;
+  if (args.dense)
+    dense.insert(dense.begin(), args.cubes.begin(), args.cubes.end());
+  else if (args.cubesGiven || args.denseCubes.empty())
+    sparse = args.cubes;
+  std::vector<RowSpec> plan;
+  auto add = [&](bool isDense, int cubes, double lightScale) {
+    for (size_t t = 0; t < args.threads.size(); ++t)
+      plan.push_back({isDense, cubes, lightScale, args.threads[t], args.compare && t == 0});
+  };
+  for (int cubes : sparse)
+    for (double lightScale : {1.0, 0.2}) add(false, cubes, lightScale);
+  for (int cubes : dense) add(true, cubes, 1.0);
+  return plan;
 }
 
-struct InterpolationError {
-  double meanRelative = 0;  // mean of |mesh − exact| / exact over points with exact > 0
-  double relativeL1 = 0;    // Σ|mesh − exact| / Σ exact over all points
-  double darkLeak = 0;      // share of points with exact = 0 where the mesh is not 0
-};
-
-InterpolationError interpolationError(const Mesh& mesh, const std::vector<SurfacePoint>& points,
-                                      const std::vector<double>& exact) {
-  const MeshInterpolator interpolator(mesh);
-  InterpolationError out;
-  double error = 0, total = 0, relative = 0;
-  size_t lit = 0, dark = 0, leaks = 0;
-  for (size_t i = 0; i < points.size(); ++i) {
-    const auto value = interpolator.at(points[i].face, points[i].position);
-    if (!value) continue;
-    const double difference = std::abs(value->x - exact[i]);
-    error += difference;
-    total += exact[i];
-    if (exact[i] > 0) {
-      relative += difference / exact[i];
-      ++lit;
-    } else {
-      ++dark;
-      leaks += value->x > 0;
-    }
-  }
-  out.meanRelative = lit ? relative / double(lit) : 0;
-  out.relativeL1 = total > 0 ? error / total : 0;
-  out.darkLeak = dark ? double(leaks) / double(dark) : 0;
+std::vector<std::string> childArguments(const RowSpec& spec, const BenchArgs& args) {
+  char scale[32];
+  std::snprintf(scale, sizeof scale, "%.17g", spec.lightScale);
+  std::vector<std::string> out{"build-row",
+                               "--cubes",
+                               std::to_string(spec.cubes),
+                               "--threads",
+                               std::to_string(spec.threads),
+                               "--light-scale",
+                               scale,
+                               "--seed",
+                               std::to_string(args.seed),
+                               "--points",
+                               std::to_string(args.points),
+                               "--max-samples",
+                               std::to_string(args.maxSamples),
+                               "--quality-max-cubes",
+                               std::to_string(args.qualityMaxCubes)};
+  if (spec.dense) out.push_back("--dense");
+  if (!spec.compare) out.push_back("--no-compare");
   return out;
+}
+
+// The 1-minute load average (/proc/loadavg), NAN where there is none: on a shared machine
+// wall times include waiting for a core.
+double loadAverage() {
+  double load = NAN;
+  if (FILE* file = std::fopen("/proc/loadavg", "r")) {
+    if (std::fscanf(file, "%lf", &load) != 1) load = NAN;
+    std::fclose(file);
+  }
+  return load;
+}
+
+double number(const json& value) { return value.is_number() ? value.get<double>() : NAN; }
+
+void printHeader() {
+  std::printf(
+      "%6s %6s %5s %3s %6s %8s %8s %7s %8s %8s %6s | %8s %8s %6s %6s %8s %7s | %9s %8s %7s\n",
+      "scene", "cubes", "light", "thr", "faces", "pairs", "shadows", "nodes", "vertices",
+      "penumbra", "cmp/v", "build s", "cpu s", "cast%", "illum%", "peak MiB", "kB/face", "MC s",
+      "MC/build", "DM/grid");
+}
+
+void printRow(const json& row) {
+  const json& s = row["seconds"];
+  double steps = 0;
+  for (const char* key :
+       {"ordering", "cube", "casting_and_merging", "illumination", "triangulation"})
+    steps += s[key].get<double>();
+  const json& mc = row["monte_carlo"];
+  const json& quality = row["mesh_quality"];
+  std::printf(
+      "%6s %6d %5.1f %3d %6zu %8zu %8zu %7zu %8zu %8zu %6.2f | %8.3f %8.3f %5.0f%% %5.0f%% %8.0f "
+      "%7.1f | "
+      "%9.1f %8.0f %7.3f\n",
+      row["scene"].get<std::string>().c_str(), row["cubes"].get<int>(),
+      row["light_scale"].get<double>(), row["threads"].get<int>(), row["faces"].get<size_t>(),
+      row["candidate_pairs"].get<size_t>(), row["pairs_with_shadow"].get<size_t>(),
+      row["tree_nodes"].get<size_t>(), row["vertices"].get<size_t>(),
+      row["penumbra_vertices"].get<size_t>(), row["comparisons_per_vertex"].get<double>(),
+      s["build_and_mesh"].get<double>(), s["build_and_mesh_cpu"].get<double>(),
+      100 * s["casting_and_merging"].get<double>() / steps,
+      100 * s["illumination"].get<double>() / steps, row["peak_memory_mib"].get<double>(),
+      row["kb_per_face"].get<double>(),
+      mc.is_object() ? number(mc["seconds_all_penumbra_vertices"]) : NAN,
+      mc.is_object() ? number(mc["over_build"]) : NAN,
+      quality.is_object() ? number(quality["dm_over_grid"]) : NAN);
+  std::fflush(stdout);
+}
+
+void printSpeedups(const json& speedups) {
+  for (const json& entry : speedups) {
+    std::printf("speed-up %d → %d threads, %s:", entry["from_threads"].get<int>(),
+                entry["to_threads"].get<int>(), sceneLabel(entry).c_str());
+    for (size_t i = 0; i < buildStepKeys().size(); ++i)
+      std::printf(" %s %.2f×%s", buildStepLabels()[i].c_str(),
+                  number(entry["speedup"][buildStepKeys()[i]]),
+                  i + 1 < buildStepKeys().size() ? "," : "\n");
+  }
 }
 
 }  // namespace
 
-nlohmann::json runBuildBench(const BenchArgs& args) {
-  nlohmann::json rows = nlohmann::json::array();
-  std::printf("%6s %5s %6s %8s %8s %7s %8s %9s %6s | %9s %9s %8s %8s | %9s %9s %8s\n", "cubes", "light",
-              "faces", "pairs", "shadows", "nodes", "vertices", "penumbra", "cmp/v", "build s", "cpu s",
-              "cast %", "illum %", "MC s", "MC/build", "DM/grid");
-  for (int cubes : args.cubes) {
-    for (double lightScale : {1.0, 0.2}) {
-      // Dense rooms have one light size: one row per N.
-      if (args.dense && lightScale != 1.0) continue;
-      CubesSceneOptions options;
-      options.cubes = cubes;
-      options.seed = args.seed;
-      options.lightScale = lightScale;
-      const Scene scene =
-          args.dense ? makeDenseScene({.boxes = cubes, .seed = args.seed}) : makeCubesScene(options);
-
-      const auto start = Clock::now();
-      const double cpuStart = cpuSeconds();
-      EngineSettings settings;
-      settings.threads = args.threads;
-      Engine engine(scene, settings);
-      const Mesh mesh = engine.mesh();
-      const double buildSeconds = secondsSince(start);
-      const double buildCpuSeconds = cpuSeconds() - cpuStart;
-      const double peakMiB = peakMemoryMiB();
-      const BuildStats& stats = engine.stats();
-
-      // The penumbra vertices, and a seeded subset for the Monte Carlo estimate.
-      std::vector<Vec3> positions, normals;
-      std::vector<double> truth;
-      for (const Engine::Receiver& r : engine.receivers())
-        for (VertexId v : r.tree.vertices())
-          if (r.values[v.index].lightClass == LightClass::Penumbra && r.values[v.index].irradiance.x > 0) {
-            positions.push_back(r.frame.to3D(r.tree.position(v)));
-            normals.push_back(r.frame.normal);
-            truth.push_back(r.values[v.index].irradiance.x);
-          }
-      const size_t penumbraVertices = positions.size();
-      const size_t stride = std::max<size_t>(1, positions.size() / args.points);
-      std::vector<Vec3> mcPositions, mcNormals;
-      std::vector<double> mcTruth;
-      for (size_t i = 0; i < positions.size(); i += stride) {
-        mcPositions.push_back(positions[i]);
-        mcNormals.push_back(normals[i]);
-        mcTruth.push_back(truth[i]);
-      }
-      MonteCarloCost mc;
-      {  // on one thread, as the engine's figures before --threads were
-        const tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
-        mc = monteCarloCost(scene, mcPositions, mcNormals, mcTruth, args);
-      }
-      const double mcSeconds = mc.secondsPerVertex * double(penumbraVertices);
-
-      // Mesh quality against the reference grid with about as many vertices.
-      nlohmann::json quality = nullptr;
-      double ratio = NAN;
-      if (cubes <= args.qualityMaxCubes) {
-        const std::vector<SurfacePoint> points = sampleReceivingPoints(scene, args.points, args.seed);
-        const ExactReference reference(scene);
-        std::vector<double> exact;
-        for (const SurfacePoint& p : points) exact.push_back(reference.evaluate(p.position, p.normal).irradiance.x);
-        // (N+1)² vertices per quad face: pick N for the DM mesh's vertex count.
-        const double perFace = double(mesh.vertexCount()) / double(std::max<size_t>(1, mesh.receivers.size()));
-        const int grid = std::max(1, int(std::lround(std::sqrt(perFace) - 1)));
-        const Mesh gridMesh = referenceGridMesh(scene, grid);
-        const InterpolationError dm = interpolationError(mesh, points, exact);
-        const InterpolationError onGrid = interpolationError(gridMesh, points, exact);
-        ratio = onGrid.meanRelative > 0 ? dm.meanRelative / onGrid.meanRelative : NAN;
-        quality = {{"points", points.size()},
-                   {"dm_vertices", mesh.vertexCount()},
-                   {"grid", grid},
-                   {"grid_vertices", gridMesh.vertexCount()},
-                   {"dm_mean_relative_error", dm.meanRelative},
-                   {"grid_mean_relative_error", onGrid.meanRelative},
-                   {"dm_over_grid", ratio},
-                   {"dm_relative_l1_error", dm.relativeL1},
-                   {"grid_relative_l1_error", onGrid.relativeL1},
-                   {"dm_dark_points_lit", dm.darkLeak},
-                   {"grid_dark_points_lit", onGrid.darkLeak}};
-      }
-      const BuildTimings& t = stats.seconds;
-      std::printf("%6d %5.1f %6zu %8zu %8zu %7zu %8zu %9zu %6.2f | %9.3f %9.3f %7.0f%% %7.0f%% | %9.1f %9.0f %8.3f\n",
-                  cubes, lightScale, stats.faces, stats.candidatePairs, stats.pairsWithShadow,
-                  stats.treeNodes, stats.vertices, penumbraVertices, stats.comparisonsPerVertex(),
-                  buildSeconds, buildCpuSeconds, 100 * t.castingAndMerging / t.total(),
-                  100 * t.illumination / t.total(),
-                  mcSeconds, mcSeconds / buildSeconds, ratio);
-      std::fflush(stdout);
-      rows.push_back({{"cubes", cubes},
-                      {"threads", args.threads},
-                      {"light_scale", lightScale},
-                      {"faces", stats.faces},
-                      {"candidate_pairs", stats.candidatePairs},
-                      {"pairs_with_shadow", stats.pairsWithShadow},
-                      {"tiles", stats.tiles},
-                      {"tree_nodes", stats.treeNodes},
-                      {"cells", stats.cells},
-                      {"vertices", stats.vertices},
-                      {"lit_vertices", stats.litVertices},
-                      {"penumbra_vertices", stats.penumbraVertices},
-                      {"umbra_vertices", stats.umbraVertices},
-                      {"comparisons_per_vertex", stats.comparisonsPerVertex()},
-                      {"seconds", {{"ordering", t.ordering},
-                                   {"cube", t.cube},
-                                   {"casting_and_merging", t.castingAndMerging},
-                                   {"illumination", t.illumination},
-                                   {"triangulation", t.triangulation},
-                                   {"build_and_mesh", buildSeconds},
-                                   {"build_and_mesh_cpu", buildCpuSeconds}}},
-                      {"peak_memory_mib_so_far", peakMiB},
-                      {"monte_carlo", {{"vertices_sampled", mcPositions.size()},
-                                       {"samples_for_1pct_rms", mc.samples},
-                                       {"rms_relative_error", mc.rms},
-                                       {"seconds_per_vertex", mc.secondsPerVertex},
-                                       {"seconds_all_penumbra_vertices", mcSeconds},
-                                       {"over_build", mcSeconds / buildSeconds}}},
-                      {"mesh_quality", quality}});
+json runBuildBench(const BenchArgs& args) {
+  json rows = json::array(), failures = json::array();
+  const double loadAtStart = loadAverage();
+  printHeader();
+  for (const RowSpec& spec : buildPlan(args)) {
+    const ChildResult child = runSelf(childArguments(spec, args));
+    json row;
+    if (child.exitCode == 0) {  // the row is the child's last line
+      const std::string& out = child.output;
+      const size_t end = out.find_last_not_of('\n');
+      const size_t start = end == std::string::npos ? 0 : out.rfind('\n', end);
+      row = json::parse(out.substr(start == std::string::npos ? 0 : start), nullptr, false);
     }
+    if (child.exitCode != 0 || row.is_discarded() || !row.is_object()) {
+      // A scene that runs out of memory or crashes is a result too: note it, go on.
+      std::printf("%6s %6d %5.1f %3d   failed (exit %d, signal %d)\n",
+                  spec.dense ? "dense" : "sparse", spec.cubes, spec.lightScale, spec.threads,
+                  child.exitCode, child.signal);
+      failures.push_back({{"scene", spec.dense ? "dense" : "sparse"},
+                          {"cubes", spec.cubes},
+                          {"light_scale", spec.lightScale},
+                          {"threads", spec.threads},
+                          {"exit_code", child.exitCode},
+                          {"signal", child.signal}});
+      continue;
+    }
+    printRow(row);
+    rows.push_back(std::move(row));
   }
-  return {{"benchmark", "build"}, {"scenes", args.dense ? "dense" : "cubes"}, {"seed", args.seed},
-          {"rows", rows}};
+  json result = buildBenchResult(rows, failures, args.threads, args.seed);
+  result["load_average"] = {loadAtStart, loadAverage()};
+  printSpeedups(result["speedup"]);
+  if (!args.htmlOut.empty()) {
+    protocol::writeTextFile(args.htmlOut, buildReportHtml(result));
+    std::printf("wrote %s\n", args.htmlOut.c_str());
+  }
+  return result;
 }
 
 }  // namespace penumbra::bench

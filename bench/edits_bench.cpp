@@ -2,8 +2,10 @@
 // frame with Engine::apply on generated 'N cubes in a room' scenes (with the
 // subject cube, so the drag moves the same cube at every N), against a full
 // rebuild of the same scene (an Engine built from scratch, timed in the same run)
-// on every frame or every K-th; JSON and a self-contained HTML report. With --write-scripts
-// DIR --scene FILE it only writes that scene's standard scripts as .edits.jsonl.
+// on every frame or every K-th; JSON and a self-contained HTML report. --dense: the dense
+// rooms, one floating box dragged (bench/lib/dense_drag.h; issue 11's move-one-box ratio).
+// With --write-scripts DIR --scene FILE it only writes that scene's standard scripts as
+// .edits.jsonl.
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -15,6 +17,8 @@
 
 #include "bench/bench_args.h"
 #include "bench/lib/cubes_scene.h"
+#include "bench/lib/dense_drag.h"
+#include "bench/lib/dense_scene.h"
 #include "bench/lib/edit_scripts.h"
 #include "bench/report/edits_report_html.h"
 #include "core/engine/engine.h"
@@ -42,6 +46,8 @@ double median(std::vector<double> values) {
   return 0.5 * (values[half] + *std::max_element(values.begin(), values.begin() + half));
 }
 
+json ratioOrNull(double a, double b) { return b > 0 ? json(a / b) : json(nullptr); }
+
 // Frames per script by scene size: every frame costs a full rebuild (and, until
 // the incremental apply lands, a second one inside apply).
 // Large moved shares cost minutes per frame at N = 1500 (2026-11: 30% took 5 min),
@@ -51,8 +57,10 @@ struct Budget {
   double maxShare;
   int removeAddPairs, buildUp;
 };
+// Dense rooms run the drag only, and build slower than sparse ones at the same N.
 Budget budgetFor(int cubes, const BenchArgs& args) {
-  Budget b = cubes <= 200    ? Budget{100, 5, 0.30, 5, 40}
+  Budget b = args.dense      ? Budget{cubes <= 300 ? 20 : 10, 0, 0, 0, 0}
+             : cubes <= 200  ? Budget{100, 5, 0.30, 5, 40}
              : cubes <= 2000 ? Budget{5, 1, 0.01, 0, 0}
                              : Budget{2, 0, 0, 0, 0};
   if (args.frames > 0) b.drag = args.frames;
@@ -60,10 +68,33 @@ Budget budgetFor(int cubes, const BenchArgs& args) {
 }
 
 // Frames between timed full rebuilds: every frame up to 2000 cubes; beyond, a
-// rebuild costs ~30 s (5000 cubes, 2026-11), so every 10th.
+// rebuild costs ~30 s (5000 cubes, 2026-11), so every 10th. Dense rooms: every frame up
+// to 300 boxes, else every 5th (a dense rebuild at 1500 is the issue's 120 s budget).
 int rebuildEveryFor(int cubes, const BenchArgs& args) {
   if (args.rebuildEvery > 0) return args.rebuildEvery;
+  if (args.dense) return cubes <= 300 ? 1 : 5;
   return cubes <= 2000 ? 1 : 10;
+}
+
+json frameJson(size_t frame, const FrameResult& result, double wall, const json& rebuildSeconds,
+               const json& editOverRebuild) {
+  return {{"frame", frame},
+          {"seconds",
+           {{"remove", result.seconds.remove},
+            {"add", result.seconds.add},
+            {"relight", result.seconds.relight},
+            {"total", result.seconds.total()}}},
+          {"wall_seconds", wall},
+          {"rebuild_seconds", rebuildSeconds},
+          {"edit_over_rebuild", editOverRebuild},
+          {"vertices",
+           {{"relit", result.verticesRelit},
+            {"changed", result.verticesChanged},
+            {"created", result.verticesCreated}}},
+          {"changed_receivers", result.changedReceivers.size()},
+          {"tree_rebuilds", result.treeRebuilds},
+          {"full_rebuild", result.fullRebuild},
+          {"nodes_deleted", result.nodesDeleted}};
 }
 
 // Runs the script on the engine, timing a full rebuild after the first frame,
@@ -94,23 +125,7 @@ json runScript(Engine& engine, const EditScript& script, int rebuildEvery) {
     edits.push_back(result.seconds.total());
     walls.push_back(wall);
     fullRebuilds += result.fullRebuild ? 1 : 0;
-    frames.push_back({{"frame", i + 1},
-                      {"seconds",
-                       {{"remove", result.seconds.remove},
-                        {"add", result.seconds.add},
-                        {"relight", result.seconds.relight},
-                        {"total", result.seconds.total()}}},
-                      {"wall_seconds", wall},
-                      {"rebuild_seconds", rebuildSeconds},
-                      {"edit_over_rebuild", editOverRebuild},
-                      {"vertices",
-                       {{"relit", result.verticesRelit},
-                        {"changed", result.verticesChanged},
-                        {"created", result.verticesCreated}}},
-                      {"changed_receivers", result.changedReceivers.size()},
-                      {"tree_rebuilds", result.treeRebuilds},
-                      {"full_rebuild", result.fullRebuild},
-                      {"nodes_deleted", result.nodesDeleted}});
+    frames.push_back(frameJson(i + 1, result, wall, rebuildSeconds, editOverRebuild));
   }
   const double n = std::max<double>(1, double(script.frames.size()));
   const double timed = std::max<double>(1, double(rebuilds.size()));
@@ -125,8 +140,10 @@ json runScript(Engine& engine, const EditScript& script, int rebuildEvery) {
       script.name.c_str(), script.frames.size(), script.editedFaces, 100 * script.faceShare,
       1e3 * meanEdit, 1e3 * meanRebuild, meanRebuild > 0 ? meanEdit / meanRebuild : 0.0, relit / n,
       changed / n, "", 1e3 * first, 1e3 * medianEdit, 1e3 * medianRebuild, rebuilds.size(),
-      fullRebuilds,
-      script.subject.empty() ? "" : "  ", script.subject.c_str());
+      fullRebuilds, script.subject.empty() ? "" : "  ", script.subject.c_str());
+  if (medianRebuild > 0)
+    std::printf("  %-12s over the median rebuild: first %.4f  median %.4f  mean %.4f\n", "",
+                first / medianRebuild, medianEdit / medianRebuild, meanEdit / medianRebuild);
   std::fflush(stdout);
   return {{"name", script.name},
           {"subject", script.subject},
@@ -134,6 +151,10 @@ json runScript(Engine& engine, const EditScript& script, int rebuildEvery) {
           {"median_edit_seconds", medianEdit},
           {"median_wall_seconds", median(walls)},
           {"median_rebuild_seconds", medianRebuild},
+          // Issue 11's move-one-box measure: the edit against the median timed rebuild.
+          {"first_over_rebuild", ratioOrNull(first, medianRebuild)},
+          {"median_over_rebuild", ratioOrNull(medianEdit, medianRebuild)},
+          {"mean_over_rebuild", ratioOrNull(meanEdit, medianRebuild)},
           {"rebuild_frames", rebuilds.size()},
           {"full_rebuild_frames", fullRebuilds},
           {"edited_faces", script.editedFaces},
@@ -181,6 +202,9 @@ json dragVsSize(const json& scenes) {
                          {"median_wall_seconds", script["median_wall_seconds"]},
                          {"mean_edit_seconds", script["mean_edit_seconds"]},
                          {"median_rebuild_seconds", script["median_rebuild_seconds"]},
+                         {"first_over_rebuild", script["first_over_rebuild"]},
+                         {"median_over_rebuild", script["median_over_rebuild"]},
+                         {"mean_over_rebuild", script["mean_over_rebuild"]},
                          {"rebuild_frames", script["rebuild_frames"]}});
   json out = {{"sizes", sizes}, {"median_ratio", nullptr}};
   if (sizes.size() >= 2) {
@@ -218,16 +242,19 @@ json runEditsBench(const BenchArgs& args) {
     options.seed = args.seed;
     options.lightScale = args.lightScale;
     options.subjectCube = true;  // every script runs on this scene; the drag moves the subject
-    const Scene scene = makeCubesScene(options);
+    const Scene scene =
+        args.dense ? makeDenseScene({.boxes = cubes, .seed = args.seed}) : makeCubesScene(options);
     const auto buildStart = Clock::now();
     Engine engine(scene);
     const double buildSeconds = secondsSince(buildStart);
-    std::printf("N = %d cubes: %zu faces, %zu receivers, build %.3f s\n", cubes,
-                scene.faces().size(), engine.receivers().size(), buildSeconds);
+    std::printf("N = %d %s: %zu faces, %zu receivers, build %.3f s\n", cubes,
+                args.dense ? "dense boxes" : "cubes", scene.faces().size(),
+                engine.receivers().size(), buildSeconds);
     std::fflush(stdout);
 
     const Budget budget = budgetFor(cubes, args);
-    std::vector<EditScript> scripts{dragScript(scene, budget.drag, args.seed)};
+    std::vector<EditScript> scripts{args.dense ? denseDragScript(scene, budget.drag, args.seed)
+                                               : dragScript(scene, budget.drag, args.seed)};
     if (budget.shareFrames > 0)
       for (double share : {0.01, 0.05, 0.10, 0.30})
         if (share <= budget.maxShare)
@@ -243,18 +270,17 @@ json runEditsBench(const BenchArgs& args) {
     for (const EditScript& script : scripts)
       results.push_back(runScript(engine, script, rebuildEvery));
     scenes.push_back({{"cubes", cubes},
-                      {"subject_cube", true},
+                      {"scene", args.dense ? "dense" : "sparse"},
+                      {"subject_cube", !args.dense},
                       {"rebuild_every", rebuildEvery},
                       {"faces", scene.faces().size()},
                       {"receivers", engine.receivers().size()},
                       {"build_seconds", buildSeconds},
                       {"scripts", std::move(results)}});
   }
-  json result = {{"benchmark", "edits"},
-                 {"seed", args.seed},
-                 {"light_scale", args.lightScale},
-                 {"scenes", scenes},
-                 {"drag_vs_size", dragVsSize(scenes)}};
+  json result = {{"benchmark", "edits"}, {"scenes_kind", args.dense ? "dense" : "cubes"},
+                 {"seed", args.seed},    {"light_scale", args.lightScale},
+                 {"scenes", scenes},     {"drag_vs_size", dragVsSize(scenes)}};
   if (!args.htmlOut.empty()) {
     protocol::writeTextFile(args.htmlOut, editsReportHtml(result));
     std::printf("wrote %s\n", args.htmlOut.c_str());
