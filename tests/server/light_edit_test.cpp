@@ -1,12 +1,18 @@
 // set_light over HTTP: a grown light gives the mesh a fresh upload of the edited scene has,
 // its delta merges into the old mesh to the new one, bad light edits are refused with 422
-// and the key path (version unchanged), and the journal replays light edits after a restart.
+// and the key path (version unchanged), the journal replays light edits after a restart, and a
+// light frame failing inside the engine or the meshing leaves no trace (atomic frames).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <map>
+#include <memory>
+#include <new>
 
+#include "bench/lib/cubes_scene.h"
+#include "server/mesh_binary.h"
+#include "server/scene_session.h"
 #include "server_fixture.h"
 
 namespace penumbra::server::test {
@@ -137,6 +143,65 @@ TEST(LightEdits, JournalReplaysLightEditsAfterARestart) {
   EXPECT_EQ(scene["scene"]["lights"][0]["radiance"], json({5.0, 5.0, 5.0}));
   EXPECT_TRUE(client.Get(("/api/scenes/" + id + "/mesh?format=bin").c_str())->body == mesh);
   std::filesystem::remove_all(data);
+}
+
+// Light frames failing at each point they pass (the rebuild of a moved light, the incremental
+// path of a radiance-only one, the meshing), as out of memory or an internal error: nothing is
+// published, and the session then goes on exactly as one that never saw the failure.
+TEST(LightEdits, FailedLightFramesLeaveNoTrace) {
+  struct Injector {
+    std::string target;
+    bool armed = false, outOfMemory = false, fired = false;
+  };
+  auto injector = std::make_shared<Injector>();
+  EngineSettings hooked;
+  hooked.failurePoint = [injector](const char* point) {
+    if (!injector->armed) return;
+    // An internal error mid-frame is met by the engine's fallback rebuild: make it fail too.
+    if (injector->fired && !injector->outOfMemory && std::string(point) == "rebuild")
+      throw std::logic_error("fallback fails too");
+    if (injector->fired || injector->target != point) return;
+    injector->fired = true;
+    if (injector->outOfMemory) throw std::bad_alloc();
+    throw std::logic_error(std::string("injected at ") + point);
+  };
+  const Scene scene = makeCubesScene(CubesSceneOptions{6, 5});
+  SceneSession tested("s", "cubes", scene, hooked);
+  SceneSession reference("s", "cubes", scene);
+  const Light light = scene.lights()[0];
+  auto setLight = [](const std::string& id, std::optional<Polygon3> polygon, std::optional<Vec3> radiance) {
+    Edit edit;
+    edit.op = Edit::Op::SetLight;
+    edit.id = id;
+    edit.polygon = std::move(polygon);
+    edit.radiance = radiance;
+    return Frame{{edit}};
+  };
+  Polygon3 moved = light.polygon;
+  for (Vec3& p : moved) p += Vec3(0.3, -0.1, 0.2);
+  const std::vector<std::pair<Frame, std::vector<std::string>>> frames = {
+      {setLight("light", moved, std::nullopt), {"rebuild", "meshing"}},
+      {setLight("light", std::nullopt, Vec3(3, 4, 5)), {"removed", "added", "meshing"}},
+      {setLight("light", light.polygon, light.radiance), {"rebuild", "meshing"}},
+  };
+  auto bytes = [](const SceneSnapshot& s) { return mesh_binary::encode(s, s.select(std::nullopt)); };
+  for (size_t f = 0; f < frames.size(); ++f) {
+    for (const std::string& point : frames[f].second)
+      for (bool outOfMemory : {false, true}) {
+        const std::string when = "frame " + std::to_string(f) + " at " + point + (outOfMemory ? " (no memory)" : "");
+        const auto before = tested.snapshot();
+        *injector = Injector{point, true, outOfMemory, false};
+        EXPECT_ANY_THROW(tested.apply(frames[f].first)) << when;
+        injector->armed = false;
+        EXPECT_TRUE(injector->fired) << when;
+        EXPECT_EQ(tested.snapshot(), before) << when;
+      }
+    const auto a = tested.apply(frames[f].first);
+    const auto b = reference.apply(frames[f].first);
+    EXPECT_EQ(a.snapshot->version, b.snapshot->version);
+    EXPECT_EQ(protocol::sceneToJson(a.snapshot->scene), protocol::sceneToJson(b.snapshot->scene));
+    EXPECT_TRUE(bytes(*a.snapshot) == bytes(*b.snapshot)) << "frame " << f << ": mesh";
+  }
 }
 
 }  // namespace
