@@ -45,7 +45,8 @@ Bounds lightVolume(const Scene& scene) {
 
 }  // namespace
 
-void checkLightEdit(const Scene& scene, const Edit& edit, size_t index, std::vector<Light>& lights) {
+void checkLightEdit(const Scene& scene, const Edit& edit, size_t index,
+                    std::vector<Light>& lights) {
   const auto l = findIn(lights, edit.id);
   if (!l) throw EditError(index, "id", "unknown light '" + edit.id + "'");
   if (!edit.polygon && !edit.radiance)
@@ -57,17 +58,19 @@ void checkLightEdit(const Scene& scene, const Edit& edit, size_t index, std::vec
     const double eps = scene.tolerance().length();
     for (size_t v = 0; v < edit.polygon->size(); ++v) {
       const Vec3& p = (*edit.polygon)[v];
-      if (glm::any(glm::lessThan(p, volume.min - Vec3(eps))) || glm::any(glm::greaterThan(p, volume.max + Vec3(eps)))) {
+      if (glm::any(glm::lessThan(p, volume.min - Vec3(eps))) ||
+          glm::any(glm::greaterThan(p, volume.max + Vec3(eps)))) {
         char text[200];
-        std::snprintf(text, sizeof text, "[%.4g, %.4g, %.4g]–[%.4g, %.4g, %.4g]", volume.min.x, volume.min.y,
-                      volume.min.z, volume.max.x, volume.max.y, volume.max.z);
+        std::snprintf(text, sizeof text, "[%.4g, %.4g, %.4g]–[%.4g, %.4g, %.4g]", volume.min.x,
+                      volume.min.y, volume.min.z, volume.max.x, volume.max.y, volume.max.z);
         throw EditError(index, "polygon[" + std::to_string(v) + "]",
                         "light '" + edit.id + "' would leave the edit volume " + text);
       }
     }
   }
   if (edit.radiance)
-    if (const auto problem = Scene::radianceProblem(*edit.radiance)) throw EditError(index, "radiance", *problem);
+    if (const auto problem = Scene::radianceProblem(*edit.radiance))
+      throw EditError(index, "radiance", *problem);
   lights[*l] = editedLight(lights[*l], edit);
 }
 
@@ -86,16 +89,19 @@ std::vector<Light> lightsAfter(const Scene& scene, const Frame& frame) {
 
 std::vector<OverlapCube::Box> cubesFor(const Scene& scene, const std::vector<Light>& lights) {
   std::vector<OverlapCube::Box> cubes;
-  for (const Light& light : lights) cubes.push_back(OverlapCube::enclosingCube(scene, light.polygon));
+  for (const Light& light : lights)
+    cubes.push_back(OverlapCube::enclosingCube(scene, light.polygon));
   return cubes;
 }
 
-bool insideCubes(const Scene& scene, const Polygon3& polygon, const std::vector<OverlapCube::Box>& cubes) {
+bool insideCubes(const Scene& scene, const Polygon3& polygon,
+                 const std::vector<OverlapCube::Box>& cubes) {
   const double eps = scene.tolerance().length();
   for (const OverlapCube::Box& cube : cubes)
     for (const Vec3& v : polygon) {
       const Vec3 rel = v - cube.min;
-      if (glm::any(glm::lessThan(rel, Vec3(-eps))) || glm::any(glm::greaterThan(rel, Vec3(cube.side + eps))))
+      if (glm::any(glm::lessThan(rel, Vec3(-eps))) ||
+          glm::any(glm::greaterThan(rel, Vec3(cube.side + eps))))
         return false;
     }
   return true;
@@ -125,7 +131,8 @@ void Engine::resumRadiance(FrameResult& result) {
   // The display lattice's points inside cells are lit with the scene's radiance too.
   forgetMeshMemo();
   result.changedReceivers.assign(changed.begin(), changed.end());
-  result.seconds.relight += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.seconds.relight +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace penumbra

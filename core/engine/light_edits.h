@@ -34,6 +34,7 @@ std::vector<Light> lightsAfter(const Scene& scene, const Frame& frame);
 std::vector<OverlapCube::Box> cubesFor(const Scene& scene, const std::vector<Light>& lights);
 
 // Whether every vertex of the polygon lies in each cube (within the scene's length tolerance).
-bool insideCubes(const Scene& scene, const Polygon3& polygon, const std::vector<OverlapCube::Box>& cubes);
+bool insideCubes(const Scene& scene, const Polygon3& polygon,
+                 const std::vector<OverlapCube::Box>& cubes);
 
 }  // namespace penumbra

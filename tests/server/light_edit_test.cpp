@@ -33,7 +33,8 @@ std::map<Key, json> receiversByKey(const json& mesh) {
 // Cornell's ceiling light scaled about its centre by `scale` and lowered by `drop`.
 json grownLight(double scale, double drop) {
   const double cx = 2.78, cz = 2.795, hx = 0.65 * scale, hz = 0.525 * scale, y = 5.48 - drop;
-  return {{cx - hx, y, cz - hz}, {cx + hx, y, cz - hz}, {cx + hx, y, cz + hz}, {cx - hx, y, cz + hz}};
+  return {
+      {cx - hx, y, cz - hz}, {cx + hx, y, cz - hz}, {cx + hx, y, cz + hz}, {cx - hx, y, cz + hz}};
 }
 
 json lightFrame(const json& fields) {
@@ -53,7 +54,8 @@ TEST(LightEdits, GrownLightMeshesAsAFreshUploadAndDeltasMerge) {
   const std::string base = "/api/scenes/" + id;
   const json before = bodyJson(client.Get((base + "/mesh").c_str()));
 
-  const auto edited = post(client, base + "/edits", lightFrame({{"polygon", grownLight(1.5, 0.1)}}));
+  const auto edited =
+      post(client, base + "/edits", lightFrame({{"polygon", grownLight(1.5, 0.1)}}));
   ASSERT_EQ(edited->status, 200) << edited->body;
   EXPECT_EQ(bodyJson(edited)["version"], 1);
   const json scene = bodyJson(client.Get(base.c_str()));
@@ -72,11 +74,13 @@ TEST(LightEdits, GrownLightMeshesAsAFreshUploadAndDeltasMerge) {
     copy.erase("scene_version");
     merged[{r["object"].get<std::string>(), r["face"].get<uint32_t>()}] = copy;
   }
-  for (const json& gone : delta["removed"]) merged.erase({gone["object"].get<std::string>(), gone["face"].get<uint32_t>()});
+  for (const json& gone : delta["removed"])
+    merged.erase({gone["object"].get<std::string>(), gone["face"].get<uint32_t>()});
   EXPECT_TRUE(merged == receiversByKey(whole));
   const auto fresh = post(client, "/api/scenes?name=fresh", scene["scene"]);
   ASSERT_EQ(fresh->status, 201) << fresh->body;
-  const json freshMesh = bodyJson(client.Get(("/api/scenes/" + bodyJson(fresh)["id"].get<std::string>() + "/mesh").c_str()));
+  const json freshMesh = bodyJson(
+      client.Get(("/api/scenes/" + bodyJson(fresh)["id"].get<std::string>() + "/mesh").c_str()));
   EXPECT_TRUE(receiversByKey(freshMesh) == receiversByKey(whole));
 
   // Power alone: every lit receiver changes, the version moves on.
@@ -116,8 +120,8 @@ TEST(LightEdits, BadLightEditsAre422WithThePathAndChangeNothing) {
 }
 
 TEST(LightEdits, JournalReplaysLightEditsAfterARestart) {
-  const std::filesystem::path data =
-      std::filesystem::temp_directory_path() / ("penumbra-light-journal-" + std::to_string(getpid()));
+  const std::filesystem::path data = std::filesystem::temp_directory_path() /
+                                     ("penumbra-light-journal-" + std::to_string(getpid()));
   std::filesystem::remove_all(data);
   ServerOptions options = RunningServer::loopback();
   options.dataDir = data.string();
@@ -127,8 +131,11 @@ TEST(LightEdits, JournalReplaysLightEditsAfterARestart) {
     id = first.addBundled("cornell");
     auto client = first.client();
     const std::string base = "/api/scenes/" + id;
-    ASSERT_EQ(post(client, base + "/edits", lightFrame({{"polygon", grownLight(0.6, 0.2)}}))->status, 200);
-    ASSERT_EQ(post(client, base + "/edits", moveFrame("short_block", 1.7, 0, 1.6, -10))->status, 200);
+    ASSERT_EQ(
+        post(client, base + "/edits", lightFrame({{"polygon", grownLight(0.6, 0.2)}}))->status,
+        200);
+    ASSERT_EQ(post(client, base + "/edits", moveFrame("short_block", 1.7, 0, 1.6, -10))->status,
+              200);
     ASSERT_EQ(post(client, base + "/edits", lightFrame({{"radiance", {5, 5, 5}}}))->status, 200);
     mesh = client.Get((base + "/mesh?format=bin").c_str())->body;
   }
@@ -169,7 +176,8 @@ TEST(LightEdits, FailedLightFramesLeaveNoTrace) {
   SceneSession tested("s", "cubes", scene, hooked);
   SceneSession reference("s", "cubes", scene);
   const Light light = scene.lights()[0];
-  auto setLight = [](const std::string& id, std::optional<Polygon3> polygon, std::optional<Vec3> radiance) {
+  auto setLight = [](const std::string& id, std::optional<Polygon3> polygon,
+                     std::optional<Vec3> radiance) {
     Edit edit;
     edit.op = Edit::Op::SetLight;
     edit.id = id;
@@ -184,11 +192,14 @@ TEST(LightEdits, FailedLightFramesLeaveNoTrace) {
       {setLight("light", std::nullopt, Vec3(3, 4, 5)), {"removed", "added", "meshing"}},
       {setLight("light", light.polygon, light.radiance), {"rebuild", "meshing"}},
   };
-  auto bytes = [](const SceneSnapshot& s) { return mesh_binary::encode(s, s.select(std::nullopt)); };
+  auto bytes = [](const SceneSnapshot& s) {
+    return mesh_binary::encode(s, s.select(std::nullopt));
+  };
   for (size_t f = 0; f < frames.size(); ++f) {
     for (const std::string& point : frames[f].second)
       for (bool outOfMemory : {false, true}) {
-        const std::string when = "frame " + std::to_string(f) + " at " + point + (outOfMemory ? " (no memory)" : "");
+        const std::string when =
+            "frame " + std::to_string(f) + " at " + point + (outOfMemory ? " (no memory)" : "");
         const auto before = tested.snapshot();
         *injector = Injector{point, true, outOfMemory, false};
         EXPECT_ANY_THROW(tested.apply(frames[f].first)) << when;

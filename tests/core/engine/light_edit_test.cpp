@@ -40,7 +40,8 @@ Polygon3 scaledMoved(const Polygon3& polygon, double scale, const Vec3& by) {
   return out;
 }
 
-Edit setLight(const std::string& id, std::optional<Polygon3> polygon, std::optional<Vec3> radiance) {
+Edit setLight(const std::string& id, std::optional<Polygon3> polygon,
+              std::optional<Vec3> radiance) {
   Edit edit;
   edit.op = Edit::Op::SetLight;
   edit.id = id;
@@ -58,7 +59,8 @@ Edit moveEdit(const Engine& engine, const std::string& id, const Vec3& by) {
   return edit;
 }
 
-void expectRefusedUnchanged(Engine& engine, const Frame& frame, size_t editIndex, const std::string& path) {
+void expectRefusedUnchanged(Engine& engine, const Frame& frame, size_t editIndex,
+                            const std::string& path) {
   const uint64_t version = engine.version();
   const std::string scene = sceneText(engine), mesh = meshText(engine);
   try {
@@ -96,7 +98,8 @@ TEST(LightEdit, MovedAndResizedLightEqualsAFreshBuild) {
   ASSERT_EQ(fresh.bounds().max, before.max);
   Engine rebuilt(fresh);
   EXPECT_EQ(meshText(engine), meshText(rebuilt));
-  const testing::EngineDiff diff = testing::compareEngines(engine, rebuilt, testing::peakIrradiance(rebuilt), 200, 7);
+  const testing::EngineDiff diff =
+      testing::compareEngines(engine, rebuilt, testing::peakIrradiance(rebuilt), 200, 7);
   EXPECT_EQ(diff.errors(), 0u) << diff.firstProblem;
 
   // A bigger light at the same place widens the penumbrae: more vertices in penumbra.
@@ -122,8 +125,10 @@ TEST(LightEdit, RadianceAloneRescalesExactly) {
   for (size_t r = 0; r < before.size(); ++r) {
     ASSERT_EQ(engine.receivers()[r].tree.vertexCount(), before[r].tree.vertexCount());
     for (VertexId v : before[r].tree.vertices()) {
-      EXPECT_EQ(engine.receivers()[r].values[v.index].irradiance, 2.0 * before[r].values[v.index].irradiance);
-      EXPECT_EQ(engine.receivers()[r].values[v.index].lightClass, before[r].values[v.index].lightClass);
+      EXPECT_EQ(engine.receivers()[r].values[v.index].irradiance,
+                2.0 * before[r].values[v.index].irradiance);
+      EXPECT_EQ(engine.receivers()[r].values[v.index].lightClass,
+                before[r].values[v.index].lightClass);
     }
   }
   Engine rebuilt(freshScene(engine.scene()));
@@ -138,7 +143,8 @@ TEST(LightEdit, MixedFramesEqualARebuild) {
   ASSERT_EQ(engine.scene().lights().size(), 2u);
   const Light second = engine.scene().lights()[1];
   const std::vector<Frame> frames = {
-      Frame{{moveEdit(engine, "cube_0", Vec3(0.04, 0, 0)), setLight("light_2", std::nullopt, Vec3(1, 2, 3))}},
+      Frame{{moveEdit(engine, "cube_0", Vec3(0.04, 0, 0)),
+             setLight("light_2", std::nullopt, Vec3(1, 2, 3))}},
       Frame{{setLight("light_2", scaledMoved(second.polygon, 0.7, Vec3(-0.2, 0, 0.1)), Vec3(5.0)),
              moveEdit(engine, "cube_0", Vec3(-0.04, 0, 0.02))}},
       Frame{{setLight("light", std::nullopt, Vec3(0.0))}},  // switched off
@@ -150,7 +156,8 @@ TEST(LightEdit, MixedFramesEqualARebuild) {
     EXPECT_EQ(sceneText(engine), expected);
     EXPECT_NO_THROW(engine.validate());
     const Engine rebuilt(engine.scene());
-    const testing::EngineDiff diff = testing::compareEngines(engine, rebuilt, testing::peakIrradiance(rebuilt), 100, f);
+    const testing::EngineDiff diff =
+        testing::compareEngines(engine, rebuilt, testing::peakIrradiance(rebuilt), 100, f);
     EXPECT_EQ(diff.errors(), 0u) << diff.firstProblem;
   }
 }
@@ -162,29 +169,39 @@ TEST(LightEdit, BadLightEditsChangeNothing) {
   const Edit move = moveEdit(engine, "cube_0", Vec3(0.02, 0, 0));
 
   expectRefusedUnchanged(engine, Frame{{move, setLight("lamp", std::nullopt, Vec3(1.0))}}, 1, "id");
-  expectRefusedUnchanged(engine, Frame{{setLight("cube_0", std::nullopt, Vec3(1.0))}}, 0, "id");  // an object
+  expectRefusedUnchanged(engine, Frame{{setLight("cube_0", std::nullopt, Vec3(1.0))}}, 0,
+                         "id");  // an object
   expectRefusedUnchanged(engine, Frame{{setLight("light", std::nullopt, std::nullopt)}}, 0, "");
-  expectRefusedUnchanged(engine, Frame{{move, setLight("light", std::nullopt, Vec3(1, -1, 1))}}, 1, "radiance");
-  expectRefusedUnchanged(engine, Frame{{setLight("light", std::nullopt, Vec3(1, NAN, 1))}}, 0, "radiance");
-  expectRefusedUnchanged(engine, Frame{{setLight("light", std::nullopt, Vec3(INFINITY))}}, 0, "radiance");
+  expectRefusedUnchanged(engine, Frame{{move, setLight("light", std::nullopt, Vec3(1, -1, 1))}}, 1,
+                         "radiance");
+  expectRefusedUnchanged(engine, Frame{{setLight("light", std::nullopt, Vec3(1, NAN, 1))}}, 0,
+                         "radiance");
+  expectRefusedUnchanged(engine, Frame{{setLight("light", std::nullopt, Vec3(INFINITY))}}, 0,
+                         "radiance");
 
   Polygon3 bent = square;
   bent[0].y += 0.3;
   expectRefusedUnchanged(engine, Frame{{setLight("light", bent, std::nullopt)}}, 0, "polygon");
   Polygon3 concave = square;
-  concave[1] = centroid(square) + 0.3 * (square[3] - centroid(square));  // a dent towards the opposite corner
+  concave[1] = centroid(square) +
+               0.3 * (square[3] - centroid(square));  // a dent towards the opposite corner
   expectRefusedUnchanged(engine, Frame{{setLight("light", concave, std::nullopt)}}, 0, "polygon");
-  expectRefusedUnchanged(engine, Frame{{setLight("light", Polygon3{square[0], square[1]}, std::nullopt)}}, 0, "polygon");
+  expectRefusedUnchanged(engine,
+                         Frame{{setLight("light", Polygon3{square[0], square[1]}, std::nullopt)}},
+                         0, "polygon");
   // Thinner than the scene's minimum face width.
   const Vec3 c = centroid(square);
   const Polygon3 sliver{c, c + Vec3(1, 0, 0), c + Vec3(1, 0, 1e-9), c + Vec3(0, 0, 1e-9)};
   expectRefusedUnchanged(engine, Frame{{setLight("light", sliver, std::nullopt)}}, 0, "polygon");
   // Out of the edit volume (the room grown by 5% of its diagonal), on a later edit.
-  expectRefusedUnchanged(engine, Frame{{move, setLight("light", scaledMoved(square, 1, Vec3(0, 50, 0)), std::nullopt)}},
-                         1, "polygon[0]");
+  expectRefusedUnchanged(
+      engine,
+      Frame{{move, setLight("light", scaledMoved(square, 1, Vec3(0, 50, 0)), std::nullopt)}}, 1,
+      "polygon[0]");
   // A later edit of the frame refers to the light as the earlier one left it.
   const Polygon3 moved = scaledMoved(square, 1, Vec3(0.1, 0, 0));
-  engine.apply(Frame{{setLight("light", moved, std::nullopt), setLight("light", std::nullopt, Vec3(3.0))}});
+  engine.apply(
+      Frame{{setLight("light", moved, std::nullopt), setLight("light", std::nullopt, Vec3(3.0))}});
   EXPECT_EQ(engine.scene().lights()[0].polygon, moved);
   EXPECT_EQ(engine.scene().lights()[0].radiance, Vec3(3.0));
 }
