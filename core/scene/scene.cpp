@@ -195,8 +195,11 @@ std::optional<std::string> Scene::radianceProblem(const Vec3& radiance) {
 
 void Scene::setLight(size_t index, const Polygon3& polygon, const Vec3& radiance) {
   if (index >= lights_.size()) throw std::invalid_argument("no light with index " + std::to_string(index));
-  if (const auto problem = lightProblem(polygon, tolerance_))
-    throw std::invalid_argument("light '" + lights_[index].id + "': " + *problem);
+  // A kept polygon is not checked again: a loaded scene's lights passed the file's checks,
+  // and a radiance edit must not fail on a rule (minFaceWidth) those did not apply.
+  if (polygon != lights_[index].polygon)
+    if (const auto problem = lightProblem(polygon, tolerance_))
+      throw std::invalid_argument("light '" + lights_[index].id + "': " + *problem);
   if (const auto problem = radianceProblem(radiance))
     throw std::invalid_argument("light '" + lights_[index].id + "': " + *problem);
   lights_[index].polygon = polygon;

@@ -164,7 +164,7 @@ class Scene {
   std::vector<Face> facesOf(const Object& object, uint32_t handle) const;
   // Replaces light `index`'s polygon and radiance (its id stays). Bounds and tolerance
   // stay as constructed, as for object edits. Throws std::invalid_argument (changing
-  // nothing) for a bad index, a polygon lightProblem() refuses or a radianceProblem().
+  // nothing) for a bad index, a new polygon lightProblem() refuses or a radianceProblem().
   void setLight(size_t index, const Polygon3& polygon, const Vec3& radiance);
   // Why a scene with tolerance `tolerance` cannot take this polygon as a light's
   // (degenerate, not planar, not convex, thinner than minFaceWidth()); nullopt if it can.

@@ -206,5 +206,20 @@ TEST(LightEdit, BadLightEditsChangeNothing) {
   EXPECT_EQ(engine.scene().lights()[0].radiance, Vec3(3.0));
 }
 
+// A loaded light thinner than the minimum face width (the file's checks do not apply that
+// rule to lights) still takes a new radiance; a new polygon that thin is refused.
+TEST(LightEdit, SceneSetLightChecksOnlyANewPolygon) {
+  Scene scene = makeCubesScene(CubesSceneOptions{2, 1});
+  const Vec3 c = centroid(scene.lights()[0].polygon);
+  const Polygon3 thin{c, c + Vec3(1, 0, 0), c + Vec3(1, 0, 1e-9), c + Vec3(0, 0, 1e-9)};
+  std::vector<Light> lights = scene.lights();
+  lights[0].polygon = thin;
+  Scene loaded(lights, scene.materials(), scene.objects());
+  EXPECT_NO_THROW(loaded.setLight(0, thin, Vec3(2.0)));
+  EXPECT_EQ(loaded.lights()[0].radiance, Vec3(2.0));
+  EXPECT_THROW(scene.setLight(0, thin, Vec3(2.0)), std::invalid_argument);
+  EXPECT_NE(scene.lights()[0].polygon, thin);
+}
+
 }  // namespace
 }  // namespace penumbra
