@@ -16,6 +16,7 @@
 #include <string>
 
 #include "core/engine/engine.h"
+#include "core/engine/light_edits.h"
 #include "core/illum/vertex_illumination.h"
 #include "protocol/edits_json.h"
 #include "protocol/frame_result_json.h"
@@ -46,6 +47,13 @@ void playOnScene(Scene& scene, const Frame& frame) {
   for (size_t i = 0; i < frame.edits.size(); ++i) {
     const Edit& edit = frame.edits[i];
     try {
+      if (edit.op == Edit::Op::SetLight) {
+        std::vector<Light> lights = scene.lights();
+        checkLightEdit(scene, edit, i, lights);  // the edit volume too, as Engine::apply
+        const size_t l = *scene.findLight(edit.id);
+        scene.setLight(l, lights[l].polygon, lights[l].radiance);
+        continue;
+      }
       if (edit.op == Edit::Op::Add) {
         if (scene.findObject(edit.object.id))
           throw EditError(i, "object.id", "duplicate object id '" + edit.object.id + "'");

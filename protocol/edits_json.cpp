@@ -8,7 +8,7 @@ namespace penumbra::protocol {
 
 namespace {
 
-constexpr std::string_view kOps = "expected \"move\", \"add\" or \"remove\"";
+constexpr std::string_view kOps = "expected \"move\", \"add\", \"remove\" or \"set_light\"";
 
 // Without a material list, any named material passes here (Engine::apply checks
 // it against the scene); every other object check still runs.
@@ -39,6 +39,15 @@ Edit editFromJson(const Json& value, const std::string& path,
     const Json& object = requireKey(value, "object", path);
     edit.object = objectFromJson(object, keyPath(path, "object"), materialsFor(object, materials));
     edit.id = edit.object.id;
+  } else if (op == "set_light") {
+    edit.op = Edit::Op::SetLight;
+    edit.id = expectName(requireKey(value, "id", path), keyPath(path, "id"));
+    if (const Json* polygon = optionalKey(value, "polygon"))
+      edit.polygon = lightPolygonFromJson(*polygon, keyPath(path, "polygon"));
+    if (const Json* radiance = optionalKey(value, "radiance"))
+      edit.radiance = radianceFromJson(*radiance, keyPath(path, "radiance"));
+    if (!edit.polygon && !edit.radiance)
+      fail(path, "set_light changes nothing: give \"polygon\", \"radiance\" or both");
   } else {
     fail(keyPath(path, "op"), "unknown op '" + op + "' (" + std::string(kOps) + ")");
   }
@@ -70,6 +79,13 @@ Json frameToJson(const Frame& frame) {
       case Edit::Op::Remove:
         edits.push_back({{"op", "remove"}, {"id", edit.id}});
         break;
+      case Edit::Op::SetLight: {
+        Json light{{"op", "set_light"}, {"id", edit.id}};
+        if (edit.polygon) light["polygon"] = polygonToJson(*edit.polygon);
+        if (edit.radiance) light["radiance"] = toJson(*edit.radiance);
+        edits.push_back(std::move(light));
+        break;
+      }
     }
   }
   return Json{{"edits", std::move(edits)}};

@@ -14,10 +14,11 @@
 
 namespace penumbra::protocol {
 
-// One frame: {"edits": [{"op": "move"|"add"|"remove", ...}, ...]}. Throws
+// One frame: {"edits": [{"op": "move"|"add"|"remove"|"set_light", ...}, ...]}. Throws
 // ValidationError at the first problem with the path inside the frame
 // (e.g. `edits[1].transform.scale`): unknown op, missing keys, wrong types,
-// non-finite numbers, zero scale, an invalid object. With `materials`, an added
+// non-finite numbers, zero scale, an invalid object, a light polygon that is not planar
+// and convex, a negative radiance, a set_light with neither. With `materials`, an added
 // object's material must be one of them; with nullptr, material names are left
 // to Engine::apply. Ids that must (not) exist are the engine's check (EditError).
 Frame frameFromJson(const nlohmann::json& value, const std::vector<Material>* materials = nullptr);

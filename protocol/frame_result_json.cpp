@@ -31,7 +31,9 @@ nlohmann::json frameResultToJson(const FrameResult& result, const Scene& scene) 
           {"changed_receivers", std::move(changed)},
           {"removed_receivers", std::move(removed)},
           {"nodes_deleted", result.nodesDeleted},
-          {"tree_rebuilds", result.treeRebuilds}};
+          {"tree_rebuilds", result.treeRebuilds},
+          {"full_rebuild", result.fullRebuild},
+          {"radiance_changed", result.radianceChanged}};
 }
 
 }  // namespace penumbra::protocol

@@ -47,18 +47,8 @@ Light lightFromJson(const Json& value, const std::string& path) {
   expectObject(value, path);
   Light light;
   light.id = expectName(requireKey(value, "id", path), keyPath(path, "id"));
-
-  const std::string polygonPath = keyPath(path, "polygon");
-  const Json& polygon = expectArray(requireKey(value, "polygon", path), polygonPath);
-  checkPolygonSize(polygon.size(), polygonPath, "light polygon");
-  for (size_t i = 0; i < polygon.size(); ++i)
-    light.polygon.push_back(expectVec3(polygon[i], indexPath(polygonPath, i)));
-  checkConvexPlanar(light.polygon, polygonPath, "light polygon");
-
-  const std::string radiancePath = keyPath(path, "radiance");
-  light.radiance = expectVec3(requireKey(value, "radiance", path), radiancePath);
-  for (int c = 0; c < 3; ++c)
-    if (light.radiance[c] < 0) fail(radiancePath, "radiance is negative");
+  light.polygon = lightPolygonFromJson(requireKey(value, "polygon", path), keyPath(path, "polygon"));
+  light.radiance = radianceFromJson(requireKey(value, "radiance", path), keyPath(path, "radiance"));
   return light;
 }
 
@@ -189,6 +179,28 @@ std::string peekId(const Json& value, const std::string& path) {
   return expectName(requireKey(value, "id", path), keyPath(path, "id"));
 }
 }  // namespace
+
+Polygon3 lightPolygonFromJson(const Json& value, const std::string& path) {
+  const Json& polygon = expectArray(value, path);
+  checkPolygonSize(polygon.size(), path, "light polygon");
+  Polygon3 out;
+  for (size_t i = 0; i < polygon.size(); ++i) out.push_back(expectVec3(polygon[i], indexPath(path, i)));
+  checkConvexPlanar(out, path, "light polygon");
+  return out;
+}
+
+Vec3 radianceFromJson(const Json& value, const std::string& path) {
+  const Vec3 radiance = expectVec3(value, path);
+  for (int c = 0; c < 3; ++c)
+    if (radiance[c] < 0) fail(path, "radiance is negative");
+  return radiance;
+}
+
+Json polygonToJson(const Polygon3& polygon) {
+  Json out = Json::array();
+  for (const Vec3& v : polygon) out.push_back(toJson(v));
+  return out;
+}
 
 Scene sceneFromJson(const Json& root) {
   expectHeader(root, kFormat, kVersion);

@@ -35,6 +35,11 @@ Object objectFromJson(const nlohmann::json& value, const std::string& path,
 Transform transformFromJson(const nlohmann::json& value, const std::string& path);
 nlohmann::json objectToJson(const Object& object);
 nlohmann::json transformToJson(const Transform& transform);
+// A light's polygon (3..kMaxPolygonVertices finite points, planar, convex) and radiance
+// (finite, ≥ 0) at `path`, as in a scene's lights (set_light reuses them).
+Polygon3 lightPolygonFromJson(const nlohmann::json& value, const std::string& path);
+Vec3 radianceFromJson(const nlohmann::json& value, const std::string& path);
+nlohmann::json polygonToJson(const Polygon3& polygon);
 
 // Files: limits from protocol/json_text.h (64 MiB, nesting depth 64); size,
 // depth and syntax errors are ValidationErrors with path `(json)`; a file that

@@ -11,8 +11,10 @@ std::optional<Frame> combinedFrame(const std::vector<const Frame*>& frames) {
   for (const Frame* frame : frames) {
     std::set<std::string> mine;
     for (const Edit& edit : frame->edits) {
-      if (earlier.count(edit.id)) return std::nullopt;
-      mine.insert(edit.id);
+      // Lights and objects are named apart: "lamp" the light is not "lamp" the object.
+      const std::string name = (edit.op == Edit::Op::SetLight ? "light:" : "object:") + edit.id;
+      if (earlier.count(name)) return std::nullopt;
+      mine.insert(name);
       combined.edits.push_back(edit);
     }
     earlier.insert(mine.begin(), mine.end());

@@ -11,6 +11,7 @@
 
 #include "core/engine/dirty_set.h"
 #include "core/engine/engine.h"
+#include "core/engine/light_edits.h"
 #include "core/illum/face_lookup.h"
 
 namespace penumbra {
@@ -45,6 +46,27 @@ void reach(const EngineSettings& settings, const char* point) {
 }
 constexpr size_t kFullRebuildMinFaces = 400;
 
+// The last edit giving a light a new polygon (a frame with none: not called).
+size_t lastLightMove(const Frame& frame) {
+  size_t last = 0;
+  for (size_t i = 0; i < frame.edits.size(); ++i)
+    if (frame.edits[i].op == Edit::Op::SetLight && frame.edits[i].polygon) last = i;
+  return last;
+}
+
+// A frame moving a light rebuilds every cube around it: the faces the frame leaves alone
+// must lie in the new cubes too (OverlapCube::insertFace refuses others).
+void checkUneditedFaces(const Scene& scene, const Frame& frame, const std::set<std::string, std::less<>>& edited,
+                        const std::vector<OverlapCube::Box>& cubes) {
+  for (const Face& face : scene.faces()) {
+    const Object& object = scene.object(face.id.object);
+    if (edited.count(object.id) || insideCubes(scene, face.polygon, cubes)) continue;
+    const size_t i = lastLightMove(frame);
+    throw EditError(i, "polygon", "light '" + frame.edits[i].id + "' would leave object '" + object.id +
+                                      "' outside its overlap cube (the lights' cubes enclose the scene)");
+  }
+}
+
 }  // namespace
 
 void Engine::checkFrame(const Frame& frame) const {
@@ -55,11 +77,21 @@ void Engine::checkFrame(const Frame& frame) const {
     if (const auto index = scene_.findObject(id)) return scene_.objects()[*index];
     return std::nullopt;
   };
-  // Faces as Scene::addObject / setTransform would make them (throws std::invalid_argument);
-  // the overlap cubes are sound only for faces inside them (OverlapCube::insertFace).
+  // The overlap cubes are sound only for faces inside them (OverlapCube::insertFace): the
+  // current ones, or those of the lights as the frame leaves them (a moved light's frame
+  // rebuilds every cube).
+  const bool lightMoved = movesLight(frame);
+  std::vector<OverlapCube::Box> cubes;
+  if (lightMoved) {
+    cubes = cubesFor(scene_, lightsAfter(scene_, frame));
+  } else {
+    for (const auto& cube : cubes_) cubes.push_back({cube->cubeMin(), cube->cubeSide()});
+  }
+  std::vector<Light> lights = scene_.lights();  // as the frame's earlier light edits leave them
+  // Faces as Scene::addObject / setTransform would make them (throws std::invalid_argument).
   auto checkFaces = [&](const Object& object, size_t i, const char* path) {
     for (const Face& face : scene_.facesOf(object, 0))
-      if (!insideEditVolume(face))
+      if (!insideCubes(scene_, face.polygon, cubes))
         throw EditError(i, path, "object '" + object.id + "' would leave the edit volume");
   };
   for (size_t i = 0; i < frame.edits.size(); ++i) {
@@ -84,6 +116,9 @@ void Engine::checkFrame(const Frame& frame) const {
           checkFaces(edit.object, i, "object");
           edited[edit.object.id] = edit.object;
           break;
+        case Edit::Op::SetLight:
+          checkLightEdit(scene_, edit, i, lights);
+          break;
       }
     } catch (const EditError&) {
       throw;
@@ -95,6 +130,11 @@ void Engine::checkFrame(const Frame& frame) const {
     } catch (const std::invalid_argument& error) {
       throw EditError(i, edit.op == Edit::Op::Add ? "object" : "transform", error.what());
     }
+  }
+  if (lightMoved) {
+    std::set<std::string, std::less<>> ids;
+    for (const auto& [id, object] : edited) ids.insert(id);
+    checkUneditedFaces(scene_, frame, ids, cubes);
   }
   size_t faces = scene_.faces().size();
   for (const auto& [id, object] : edited) {
@@ -118,15 +158,23 @@ void applyEdits(Scene& scene, const Frame& frame) {
       case Edit::Op::Add:
         scene.addObject(edit.object);
         break;
+      case Edit::Op::SetLight: {
+        const size_t l = *scene.findLight(edit.id);
+        const Light light = editedLight(scene.lights()[l], edit);
+        scene.setLight(l, light.polygon, light.radiance);
+        break;
+      }
     }
 }
 
 // The handles of the objects a frame's edits name, in `scene` (those it holds).
 std::set<uint32_t> namedHandles(const Scene& scene, const Frame& frame) {
   std::set<uint32_t> out;
-  for (const Edit& edit : frame.edits)
+  for (const Edit& edit : frame.edits) {
+    if (edit.op == Edit::Op::SetLight) continue;  // lights are no objects
     if (const auto index = scene.findObject(edit.op == Edit::Op::Add ? edit.object.id : edit.id))
       out.insert(scene.handleOf(*index));
+  }
   return out;
 }
 
@@ -248,7 +296,13 @@ FrameResult Engine::apply(const Frame& frame) {
   const size_t faceCount = scene_.faces().size();
   const bool largeFrame = faceCount >= kFullRebuildMinFaces &&
                           double(std::max(leavingFaces.size(), enteringCount)) > kFullRebuildShare * double(faceCount);
-  if (!largeFrame) try {
+  // A moved, resized or turned light changes its order, its cube and every shadow it
+  // casts, and which faces receive at all: the engine is rebuilt (counted as fullRebuild).
+  const bool lightMoved = movesLight(frame);
+  std::vector<FaceId> receiversBefore;
+  if (lightMoved)
+    for (const Receiver& r : receivers_) receiversBefore.push_back(r.face);
+  if (!largeFrame && !lightMoved) try {
     // REMOVE (§3.1): the leaving faces quit the orders and cubes, then every DM-tree
     // they shadowed loses their nodes and list entries.
     auto start = Clock::now();
@@ -445,6 +499,8 @@ FrameResult Engine::apply(const Frame& frame) {
     const bool anyDropped = std::find(dropped.begin(), dropped.end(), true) != dropped.end();
     if (anyDropped || appendedOutOfOrder) compactReceivers(dropped);
     recountBudget();
+    // A new radiance changes no shadow: every vertex's value is summed again (exact).
+    if (changesRadiance(frame)) resumRadiance(result);
   } catch (const ResourceLimitError&) {
     throw;  // usable_ stays false: the caller rebuilds from the previous scene
   } catch (const std::bad_alloc&) {
@@ -454,14 +510,17 @@ FrameResult Engine::apply(const Frame& frame) {
     // rebuilt for the new scene so no half-edited state survives.
     rebuildAll();
   }
-  if (largeFrame) {
+  if (largeFrame || lightMoved) {
     rebuildAll();
     result.fullRebuild = true;
   }
+  result.radianceChanged = changesRadiance(frame);
 
   std::sort(result.changedReceivers.begin(), result.changedReceivers.end());
   for (FaceId face : leavingReceivers)
     if (!receiver(face)) result.removedReceivers.push_back(face);
+  for (FaceId face : receiversBefore)  // faces a moved light no longer reaches
+    if (!receiver(face) && findFace(scene_, face)) result.removedReceivers.push_back(face);
   result.version = ++version_;
   usable_ = true;
   return result;

@@ -360,17 +360,6 @@ void Engine::recountBudget() {
   for (const Receiver& receiver : receivers_) budget_.change({}, usageOf(receiver.tree, scene_.lights().size()));
 }
 
-bool Engine::insideEditVolume(const Face& face) const {
-  const double eps = scene_.tolerance().length();
-  for (const auto& cube : cubes_)
-    for (const Vec3& v : face.polygon) {
-      const Vec3 rel = v - cube->cubeMin();
-      if (glm::any(glm::lessThan(rel, Vec3(-eps))) || glm::any(glm::greaterThan(rel, Vec3(cube->cubeSide() + eps))))
-        return false;
-    }
-  return true;
-}
-
 void Engine::pruneMeshMemo() {
   for (auto it = meshMemo_.begin(); it != meshMemo_.end();)
     it = receiverIndex_.count(it->first) ? std::next(it) : meshMemo_.erase(it);

@@ -86,6 +86,9 @@ class Engine {
   // unusable: usable() is false and apply() throws std::logic_error; rebuild it from
   // the previous scene. An unexpected exception from that rebuild leaves it half-edited
   // too: discard it (SceneSession restores one).
+  // Light edits (set_light): a new polygon rebuilds the whole engine for the edited
+  // scene (FrameResult::fullRebuild); a new radiance alone sums every vertex's stored
+  // per-light factors again (FrameResult::radianceChanged), no geometry work.
   FrameResult apply(const Frame& frame);
   // False after apply() failed part-way (see apply()).
   bool usable() const { return usable_; }
@@ -96,8 +99,9 @@ class Engine {
 
   // Checks every edit of a frame in order against the scene as the earlier edits leave
   // it, without copying the scene: ids, transforms and added objects (faces as
-  // Scene::addObject makes them), and that moved and added objects stay in the overlap
-  // cubes' edit volume. Throws EditError naming the edit and key path, or
+  // Scene::addObject makes them), light edits (light_edits.h: checkLightEdit), and that
+  // every face stays in the overlap cubes (those of the lights as the frame leaves them).
+  // Throws EditError naming the edit and key path, or
   // ResourceLimitError if the scene would pass limits.faces.
   void checkFrame(const Frame& frame) const;
   // The scene after a frame, without changing anything (throws EditError).
@@ -210,8 +214,10 @@ class Engine {
   void relightAfterRemoval(FaceId target, Receiver& receiver, const RemoveResult& removed, DirtySet& dirty);
   // Sorts receivers_ by face (Scene::faces() order), drops `dropped`, reindexes.
   void compactReceivers(const std::vector<bool>& dropped);
-  // Whether every vertex of the face lies in each light's overlap cube.
-  bool insideEditVolume(const Face& face) const;
+  // After a radiance-only light edit: every live vertex's value summed again from its
+  // stored per-light factors (light_edits.cpp); the mesh memo is dropped (lattice values
+  // inside cells depend on radiance too) and every receiver reported changed.
+  void resumRadiance(FrameResult& result);
   // Counts every receiver's tree against the limits afresh (drops drift).
   void recountBudget();
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,11 +13,14 @@
 namespace penumbra {
 
 struct Edit {
-  enum class Op { Move, Add, Remove };
+  enum class Op { Move, Add, Remove, SetLight };
   Op op = Op::Move;
-  std::string id;       // move, remove: an existing object's id; add: object.id
+  std::string id;       // move, remove: an existing object's id; add: object.id; set_light: a light's id
   Transform transform;  // move: the new absolute transform
   Object object;        // add: the new object (transform included)
+  // set_light: the light's new polygon and/or radiance (at least one); the other stays.
+  std::optional<Polygon3> polygon;
+  std::optional<Vec3> radiance;
 };
 
 struct Frame {
@@ -41,8 +45,12 @@ struct FrameResult {
   size_t nodesDeleted = 0;         // DM-tree nodes removed by node deletion
   size_t treeRebuilds = 0;         // fallback: receivers' DM-trees rebuilt from scratch
   // The frame edited more than a set share of a large scene's faces (apply_frame.cpp:
-  // kFullRebuildShare), so the engine was rebuilt instead (treeRebuilds = every receiver).
+  // kFullRebuildShare), or moved, resized or turned a light (its order, cube and every
+  // shadow change), so the engine was rebuilt instead (treeRebuilds = every receiver).
   bool fullRebuild = false;
+  // The frame changed a light's radiance only: every vertex's value was summed again from
+  // its stored per-light factors (no geometry work; counted in verticesRelit/Changed).
+  bool radianceChanged = false;
 };
 
 // A frame refused before anything changed: which edit, the key path inside it

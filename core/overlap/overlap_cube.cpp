@@ -111,6 +111,26 @@ int OverlapCube::gridForFaceCount(size_t faceCount) {
   return static_cast<int>(std::clamp(g, static_cast<double>(kMinGrid), static_cast<double>(kMaxGrid)));
 }
 
+OverlapCube::Box OverlapCube::enclosingCube(const Scene& scene, const Polygon3& light,
+                                            const OverlapCubeSettings& settings) {
+  // Enclose the scene, the light and the edit volume.
+  Bounds edit = settings.editVolume.value_or(Bounds{});
+  if (!settings.editVolume) {
+    const double margin = OverlapCubeSettings::kDefaultEditMargin * scene.bounds().diagonal();
+    edit = Bounds{scene.bounds().min - Vec3(margin), scene.bounds().max + Vec3(margin)};
+  }
+  Vec3 lo = glm::min(scene.bounds().min, edit.min), hi = glm::max(scene.bounds().max, edit.max);
+  for (const Vec3& p : light) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  const Vec3 extent = hi - lo;
+  Box box;
+  box.side = std::max({extent.x, extent.y, extent.z, scene.tolerance().length()});
+  box.min = 0.5 * (lo + hi) - Vec3(0.5 * box.side);
+  return box;
+}
+
 OverlapCube::OverlapCube(const Scene& scene, size_t light, OverlapCubeSettings settings) {
   if (light >= scene.lights().size())
     throw std::invalid_argument("OverlapCube: light index out of range");
@@ -119,20 +139,9 @@ OverlapCube::OverlapCube(const Scene& scene, size_t light, OverlapCubeSettings s
   tolerance_ = scene.tolerance();
   grid_ = settings.grid > 0 ? settings.grid : gridForFaceCount(scene.faces().size());
 
-  // Enclose the scene, the light and the edit volume.
-  Bounds edit = settings.editVolume.value_or(Bounds{});
-  if (!settings.editVolume) {
-    const double margin = OverlapCubeSettings::kDefaultEditMargin * scene.bounds().diagonal();
-    edit = Bounds{scene.bounds().min - Vec3(margin), scene.bounds().max + Vec3(margin)};
-  }
-  Vec3 lo = glm::min(scene.bounds().min, edit.min), hi = glm::max(scene.bounds().max, edit.max);
-  for (const Vec3& p : light_) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  const Vec3 extent = hi - lo;
-  cubeSide_ = std::max({extent.x, extent.y, extent.z, tolerance_.length()});
-  cubeMin_ = 0.5 * (lo + hi) - Vec3(0.5 * cubeSide_);
+  const Box box = enclosingCube(scene, light_, settings);
+  cubeSide_ = box.side;
+  cubeMin_ = box.min;
 
   facesInTile_.assign(static_cast<size_t>(kSides) * grid_ * grid_, {});
   for (const Face& face : scene.faces()) insertFace(face);

@@ -68,6 +68,14 @@ class OverlapCube {
   static constexpr int kMaxGrid = 256;
   static int gridForFaceCount(size_t faceCount);
 
+  // The cube a light's OverlapCube spans (min corner, side): it encloses the scene's
+  // bounds, the edit volume and the light polygon. A face must lie in it to be inserted.
+  struct Box {
+    Vec3 min{0.0};
+    double side = 0;
+  };
+  static Box enclosingCube(const Scene& scene, const Polygon3& light, const OverlapCubeSettings& settings = {});
+
   // Scan-converts PSV(face) into the tiles. Returns false (and stores nothing)
   // for a back face of this light. Throws std::invalid_argument if the face is
   // already held or reaches outside the cube (the edit volume was too small).

@@ -161,6 +161,51 @@ std::optional<size_t> Scene::findObject(std::string_view id) const {
   return std::nullopt;
 }
 
+std::optional<size_t> Scene::findLight(std::string_view id) const {
+  for (size_t i = 0; i < lights_.size(); ++i)
+    if (lights_[i].id == id) return i;
+  return std::nullopt;
+}
+
+std::optional<std::string> Scene::lightProblem(const Polygon3& polygon, const Tolerance& tolerance) {
+  if (polygon.size() < 3) return "light polygon needs at least 3 vertices";
+  for (const Vec3& p : polygon)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return "light polygon has a non-finite vertex";
+  if (!planeOf(polygon)) return "light polygon is degenerate (zero area or collinear vertices)";
+  if (planarityError(polygon) > kRelativePlanarity) return "light polygon is not planar";
+  if (!isConvex(polygon)) return "light polygon is not convex";
+  // As thin as a face the scene refuses: its shadows' critical lines would coincide.
+  const double w = width(polygon);
+  if (!(w >= tolerance.minFaceWidth())) {
+    char text[160];
+    std::snprintf(text, sizeof text, "light polygon is thinner (%.2e m) than the minimum width %.2e m", w,
+                  tolerance.minFaceWidth());
+    return std::string(text);
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> Scene::radianceProblem(const Vec3& radiance) {
+  for (int c = 0; c < 3; ++c) {
+    if (!std::isfinite(radiance[c])) return "radiance is not finite";
+    if (radiance[c] < 0) return "radiance is negative";
+  }
+  return std::nullopt;
+}
+
+void Scene::setLight(size_t index, const Polygon3& polygon, const Vec3& radiance) {
+  if (index >= lights_.size()) throw std::invalid_argument("no light with index " + std::to_string(index));
+  // A kept polygon is not checked again: a loaded scene's lights passed the file's checks,
+  // and a radiance edit must not fail on a rule (minFaceWidth) those did not apply.
+  if (polygon != lights_[index].polygon)
+    if (const auto problem = lightProblem(polygon, tolerance_))
+      throw std::invalid_argument("light '" + lights_[index].id + "': " + *problem);
+  if (const auto problem = radianceProblem(radiance))
+    throw std::invalid_argument("light '" + lights_[index].id + "': " + *problem);
+  lights_[index].polygon = polygon;
+  lights_[index].radiance = radiance;
+}
+
 std::optional<size_t> Scene::findMaterial(std::string_view id) const {
   for (size_t i = 0; i < materials_.size(); ++i)
     if (materials_[i].id == id) return i;

@@ -136,6 +136,7 @@ class Scene {
   const std::vector<Face>& faces() const { return faces_; }
 
   std::optional<size_t> findObject(std::string_view id) const;  // index into objects()
+  std::optional<size_t> findLight(std::string_view id) const;   // index into lights()
   std::optional<size_t> findMaterial(std::string_view id) const;
   // Albedo of a face's object (the default material when it names none).
   Vec3 albedo(FaceId face) const;
@@ -161,6 +162,15 @@ class Scene {
   // The world faces an object would have (checks it like addObject; FaceError
   // with objectIndex() == kUnknown).
   std::vector<Face> facesOf(const Object& object, uint32_t handle) const;
+  // Replaces light `index`'s polygon and radiance (its id stays). Bounds and tolerance
+  // stay as constructed, as for object edits. Throws std::invalid_argument (changing
+  // nothing) for a bad index, a new polygon lightProblem() refuses or a radianceProblem().
+  void setLight(size_t index, const Polygon3& polygon, const Vec3& radiance);
+  // Why a scene with tolerance `tolerance` cannot take this polygon as a light's
+  // (degenerate, not planar, not convex, thinner than minFaceWidth()); nullopt if it can.
+  static std::optional<std::string> lightProblem(const Polygon3& polygon, const Tolerance& tolerance);
+  // Why a light cannot have this radiance (not finite, negative); nullopt if it can.
+  static std::optional<std::string> radianceProblem(const Vec3& radiance);
   // Why the scene with tolerance `tolerance` cannot hold this world polygon as a
   // face (degenerate, thinner than minFaceWidth()); nullopt if it can.
   static std::optional<std::string> faceProblem(const Polygon3& world, const Tolerance& tolerance);

@@ -34,6 +34,22 @@ json baseFrame() {
             {{"op", "add"}, {"object", cube}}}}};
 }
 
+// A set_light edit: a 1 m square light facing down at y = 2.9, and a radiance.
+json lightEdit() {
+  return {{"op", "set_light"},
+          {"id", "lamp"},
+          {"polygon", {{-0.5, 2.9, -0.5}, {0.5, 2.9, -0.5}, {0.5, 2.9, 0.5}, {-0.5, 2.9, 0.5}}},
+          {"radiance", {10, 9, 8}}};
+}
+
+// Replaces edit 1 (the remove) by lightEdit() changed by `mutate`.
+std::function<void(json&)> withLight(std::function<void(json&)> mutate) {
+  return [mutate](json& f) {
+    f["edits"][1] = lightEdit();
+    mutate(f["edits"][1]);
+  };
+}
+
 std::vector<Material> materials() {
   return {Material{"red", Vec3(0.7, 0.1, 0.1)}, Material{"white", Vec3(0.8)}};
 }
@@ -113,6 +129,24 @@ const std::vector<MalformedFrame>& cases() {
        "edits[2].object.material", "unknown material 'gold'"},
       {"AddVertexNotArray", [](json& f) { f["edits"][2]["object"]["vertices"][0] = "x"; },
        "edits[2].object.vertices[0]", "3 numbers"},
+      {"SetLightMissingId", withLight([](json& e) { e.erase("id"); }), "edits[1].id", "missing required key"},
+      {"SetLightNeither", withLight([](json& e) { e.erase("polygon"), e.erase("radiance"); }), "edits[1]",
+       "changes nothing"},
+      {"SetLightPolygonNotArray", withLight([](json& e) { e["polygon"] = 1; }), "edits[1].polygon",
+       "expected an array"},
+      {"SetLightPolygonTwoPoints", withLight([](json& e) { e["polygon"].erase(2), e["polygon"].erase(2); }),
+       "edits[1].polygon", "at least 3"},
+      {"SetLightVertexNotArray", withLight([](json& e) { e["polygon"][2] = "x"; }), "edits[1].polygon[2]",
+       "3 numbers"},
+      {"SetLightPolygonNotPlanar", withLight([](json& e) { e["polygon"][2][1] = 2.5; }), "edits[1].polygon",
+       "planar"},
+      {"SetLightPolygonNotConvex", withLight([](json& e) { e["polygon"][2] = {-0.1, 2.9, -0.1}; }),
+       "edits[1].polygon", "convex"},
+      {"SetLightRadianceNegative", withLight([](json& e) { e["radiance"][0] = -1; }), "edits[1].radiance",
+       "negative"},
+      {"SetLightRadianceNaN",
+       withLight([](json& e) { e["radiance"][1] = std::numeric_limits<double>::quiet_NaN(); }),
+       "edits[1].radiance[1]", "finite"},
   };
   return all;
 }
@@ -190,6 +224,32 @@ TEST(EditsJson, RoundTripIsExact) {
   const std::vector<Frame> read = readEditScript(text, &known);
   ASSERT_EQ(read.size(), 3u);
   for (size_t i = 0; i < 3; ++i) EXPECT_EQ(frameToJson(read[i]), frameToJson(frames[i]));
+}
+
+TEST(EditsJson, SetLightReadsEitherOrBothAndRoundTrips) {
+  json source = {{"edits", {lightEdit()}}};
+  source["edits"][0]["polygon"][0] = {-0.5 + 1e-16, 2.9, -1.0 / 3.0};
+  const Frame frame = frameFromJson(source);
+  ASSERT_EQ(frame.edits.size(), 1u);
+  EXPECT_EQ(frame.edits[0].op, Edit::Op::SetLight);
+  EXPECT_EQ(frame.edits[0].id, "lamp");
+  ASSERT_TRUE(frame.edits[0].polygon && frame.edits[0].radiance);
+  EXPECT_EQ(frame.edits[0].polygon->size(), 4u);
+  EXPECT_EQ(*frame.edits[0].radiance, Vec3(10, 9, 8));
+  const Frame again = frameFromJson(frameToJson(frame));
+  EXPECT_EQ(again.edits[0].polygon, frame.edits[0].polygon);
+  EXPECT_EQ(frameToJson(again), frameToJson(frame));
+
+  json radianceOnly = lightEdit();
+  radianceOnly.erase("polygon");
+  const Frame power = frameFromJson(json{{"edits", {radianceOnly}}});
+  EXPECT_FALSE(power.edits[0].polygon);
+  EXPECT_FALSE(frameToJson(power)["edits"][0].contains("polygon"));
+  json polygonOnly = lightEdit();
+  polygonOnly.erase("radiance");
+  const Frame place = frameFromJson(json{{"edits", {polygonOnly}}});
+  EXPECT_FALSE(place.edits[0].radiance);
+  EXPECT_FALSE(frameToJson(place)["edits"][0].contains("radiance"));
 }
 
 TEST(EditScript, LinesAreCountedWithBlankLines) {

@@ -1,10 +1,10 @@
 #!/usr/bin/env node
 // The page as an editor (README "The page"), in Debian's chromium with real keys and clicks: add a
 // box (B), duplicate (Ctrl+D), delete (Delete) and undo them; typed transforms; scale mode (R) and
-// snapping; focus (F), frame all (A), camera home (H); the "?" sheet; a light selected read-only;
-// downloads of the scene JSON and GLB; reset to the file; an imported OBJ's pivots at their
-// objects' centres, its walls locked and its default camera on its open side; the scene list and
-// deleting a scene from it.
+// snapping; focus (F), frame all (A), camera home (H); the "?" sheet; a light selected (its edits:
+// light_e2e.mjs); downloads of the scene JSON and GLB; reset to the file; an imported OBJ's pivots
+// at their objects' centres, its walls locked and its default camera on its open side; the scene
+// list and deleting a scene from it.
 //
 // usage: node tests/web/editor_e2e.mjs --penumbra build/penumbra [--scene scenes/cubes15.scene.json]
 import fs from 'node:fs';
@@ -124,8 +124,8 @@ async function light(page) {
   await page.mouse.click(screen.x, screen.y);
   await sleep(100);
   const text = await page.evaluate(() => document.getElementById('inspector').textContent);
-  check((await state(page)).selected === 'light:light' && /radiance/.test(text) && /cannot be edited yet/.test(text),
-    'a click on the light selects it; the inspector shows it read-only', text);
+  check((await state(page)).selected === 'light:light' && /radiance/.test(text) && /intensity/.test(text),
+    'a click on the light selects it; the inspector shows it (its edits: light_e2e.mjs)', text);
   await press(page, 'Escape');
 }
 

@@ -37,18 +37,22 @@ export class DragLimit {
     return this.accepted.get(id) || null;
   }
 
-  // The server applied a frame: its moves are the objects' accepted places.
+  // The server applied a frame: its moves are the objects' accepted places, and a light's
+  // set_light its holder's (the `pose` the page attached to it, "light:ID").
   applied(edits) {
-    for (const edit of edits) if (edit.op === 'move') this.accepted.set(edit.id, edit.transform);
+    for (const edit of edits) {
+      if (edit.op === 'move') this.accepted.set(edit.id, edit.transform);
+      else if (edit.op === 'set_light' && edit.pose) this.accepted.set(`light:${edit.id}`, edit.pose);
+    }
   }
 
-  // The server refused a frame. Returns the dragged object's id when the refusal was of the drag
-  // (it is now held at its last good place), else null.
+  // The server refused a frame. Returns the dragged object's (or light's) id when the refusal was
+  // of the drag (it is now held at its last good place), else null.
   refused(edits) {
     if (!this.drag) return null;
-    const move = edits.find((edit) => edit.op === 'move' && edit.id === this.drag.id);
-    if (!move) return null;
-    this.drag.bound = Math.min(this.drag.bound, distance(move.transform, this.drag.start));
+    const edit = edits.find((e) => (e.op === 'move' && e.id === this.drag.id) || (e.op === 'set_light' && e.pose && `light:${e.id}` === this.drag.id));
+    if (!edit) return null;
+    this.drag.bound = Math.min(this.drag.bound, distance(edit.transform || edit.pose, this.drag.start));
     return this.drag.id;
   }
 }

@@ -1,6 +1,6 @@
-// Sends edits at the server's pace: at most one frame in flight; transforms submitted meanwhile
-// wait in one slot per object, a newer one replacing the older, and leave together as the next
-// frame. So a drag never queues stale frames, however fast the mouse moves.
+// Sends edits at the server's pace: at most one frame in flight; transforms (and light edits)
+// submitted meanwhile wait in one slot per object or light, a newer one replacing the older, and
+// leave together as the next frame. So a drag never queues stale frames, however fast the mouse moves.
 
 export class EditCoalescer {
   // sendFrame(frame) → promise of the server's answer (and whatever follow-up the page needs);
@@ -8,7 +8,7 @@ export class EditCoalescer {
   constructor(sendFrame, { onError } = {}) {
     this.sendFrame = sendFrame;
     this.onError = onError || (() => {});
-    this.pending = new Map(); // object id → latest absolute transform
+    this.pending = new Map(); // object id or "light:ID" → its latest edit
     this.inFlight = null;
     this.sent = 0;
     this.replaced = 0;
@@ -17,8 +17,23 @@ export class EditCoalescer {
 
   // Queues an absolute move of one object.
   move(objectId, transform) {
-    if (this.pending.has(objectId)) ++this.replaced;
-    this.pending.set(objectId, transform);
+    this.queue(objectId, { op: 'move', id: objectId, transform });
+  }
+
+  // Queues a light's new polygon and/or radiance (fields of a set_light; a newer one replaces
+  // an older one's fields, keeping those it does not name). `pose`: the light holder's transform
+  // for DragLimit (not sent).
+  setLight(lightId, fields, pose) {
+    const key = `light:${lightId}`;
+    const edit = { ...(this.pending.get(key) || {}), op: 'set_light', id: lightId, ...fields };
+    delete edit.pose; // an older pose does not describe the new fields
+    if (pose) edit.pose = pose;
+    this.queue(key, edit);
+  }
+
+  queue(key, edit) {
+    if (this.pending.has(key)) ++this.replaced;
+    this.pending.set(key, edit);
     this.pump();
   }
 
@@ -27,7 +42,7 @@ export class EditCoalescer {
       if (!this.inFlight) this.settle();
       return;
     }
-    const edits = [...this.pending].map(([id, transform]) => ({ op: 'move', id, transform }));
+    const edits = [...this.pending.values()];
     this.pending.clear();
     ++this.sent;
     this.inFlight = Promise.resolve()
@@ -39,9 +54,9 @@ export class EditCoalescer {
       });
   }
 
-  // Forgets a move of `objectId` not sent yet.
-  discard(objectId) {
-    this.pending.delete(objectId);
+  // Forgets an edit of `key` (an object id or "light:ID") not sent yet.
+  discard(key) {
+    this.pending.delete(key);
   }
 
   busy() {

@@ -1,5 +1,5 @@
 // The editor's commands beyond dragging: add a box, duplicate, delete (each one frame, undoable),
-// typed transforms, reset to the file, downloads, the scene list, and the camera (focus on the
+// typed transforms and lights, reset to the file, downloads, the scene list, and the camera (focus on the
 // selection, frame all, back home). Structural frames wait for pending moves, then reload the
 // stand-ins from the server's scene (the object list changed).
 import { addEdits, boxObject, duplicateObject, freshId, removeEdits, resetEdits } from './object_edits.js';
@@ -92,6 +92,18 @@ export class EditorActions {
     if (sameTransform(before, transform)) return;
     this.app.moveTo(id, transform);
     this.app.history.push({ id, before, after: transform });
+    this.app.updateUndoButtons();
+  }
+
+  // A light typed in the inspector: one set_light, undoable.
+  typedLight(lightId, light) {
+    const from = this.app.objects.lightJson.get(lightId);
+    if (!from) return;
+    const before = { polygon: from.polygon, radiance: from.radiance };
+    const after = { polygon: light.polygon, radiance: light.radiance };
+    if (sameTransform(before, after)) return;
+    this.app.lightTo(lightId, after);
+    this.app.history.push({ id: `light:${lightId}`, before, after });
     this.app.updateUndoButtons();
   }
 

@@ -1,17 +1,19 @@
-// The inspector: the selected object's transform as numbers (translate m, rotate °, scale), which
-// may be typed (Enter or leaving the field applies, as one undoable edit), or the selected light's
-// centre, size and radiance. Lights are shown, not edited: the server's edit frames have no light
-// operation yet (docs/SCENE_FORMAT.md lists set_light / add_light / remove_light as the names
-// it will take).
+// The inspector: the selected object's transform as numbers (translate m, rotate °, scale), or the
+// selected light's centre, size, radiance and intensity; either may be typed (Enter or leaving the
+// field applies, as one undoable edit: a move, or a set_light).
+
+import { centroid, intensityOf, movedTo, quadAxes, resized, resizedQuad, sizeOf, withIntensity } from './light_shape.js';
 
 const ROWS = [['translate', 'move (m)'], ['rotate_deg', 'rotate (°)'], ['scale', 'scale']];
 const round = (x) => String(Math.round(x * 1e4) / 1e4);
 
 export class Inspector {
-  // onTransform(id, transform): a typed transform to apply.
-  constructor(root, onTransform) {
+  // onTransform(id, transform): a typed transform to apply; onLight(lightId, {polygon, radiance}):
+  // a typed light.
+  constructor(root, onTransform, onLight) {
     this.root = root;
     this.onTransform = onTransform;
+    this.onLight = onLight;
     this.id = null;
     this.inputs = null;
   }
@@ -21,6 +23,7 @@ export class Inspector {
     this.id = id;
     this.root.replaceChildren();
     this.inputs = null;
+    this.light = null;
     if (!id) {
       this.root.textContent = 'Nothing selected: click an object or a light.';
       return;
@@ -53,9 +56,11 @@ export class Inspector {
     this.update(data);
   }
 
-  // The fields follow the object (after a drag or another client's edit) unless one is being typed in.
+  // The fields follow the object (after a drag or another client's edit) unless one is being typed
+  // in; for a selected light, `transform` is the light's JSON.
   update(transform) {
     if (!this.inputs || !transform) return;
+    if (this.light) return this.updateLight(transform);
     for (const [key] of ROWS) {
       const values = transform[key] || (key === 'scale' ? [1, 1, 1] : [0, 0, 0]);
       this.inputs[key].forEach((input, k) => { if (document.activeElement !== input) input.value = round(values[k]); });
@@ -76,22 +81,84 @@ export class Inspector {
     this.onTransform(this.id, transform);
   }
 
+  // A light's rows: centre (m), size (a parallelogram's width × depth along its edges, else the
+  // size of any polygon: scaled about its centre), radiance and intensity (its largest channel:
+  // typing it scales the radiance). A change becomes one set_light (onLight(id, {polygon, radiance})).
   showLight(lightId, light) {
-    const lines = [`light ${lightId}`];
-    if (light) {
-      const n = light.polygon.length;
-      const centre = [0, 1, 2].map((k) => light.polygon.reduce((s, p) => s + p[k], 0) / n);
-      const size = [0, 1, 2].map((k) => Math.max(...light.polygon.map((p) => p[k])) - Math.min(...light.polygon.map((p) => p[k])));
-      lines.push(`centre ${centre.map(round).join(', ')} m`, `size ${size.map(round).join(' × ')} m (${n} corners)`,
-        `radiance ${light.radiance.map(round).join(', ')}`);
-    }
-    lines.push('Lights cannot be edited yet: the server has no light edits (set_light).');
-    for (const [i, text] of lines.entries()) {
-      const line = document.createElement('div');
-      line.textContent = text;
-      if (i === 0) line.className = 'inspector-title';
-      if (i === lines.length - 1) line.className = 'muted';
-      this.root.append(line);
-    }
+    const title = document.createElement('div');
+    title.textContent = `light ${lightId}`;
+    title.className = 'inspector-title';
+    this.root.append(title);
+    this.light = light;
+    const quad = light && quadAxes(light.polygon);
+    const rows = [['centre', 'centre (m)', 3], quad ? ['quad', 'width × depth (m)', 2] : ['size', 'size (m)', 1],
+      ['radiance', 'radiance', 3], ['intensity', 'intensity', 1]];
+    this.inputs = {};
+    for (const [key, label, count] of rows) this.inputs[key] = this.row(key, label, count, () => this.typedLight(lightId));
+    const note = document.createElement('div');
+    note.className = 'muted';
+    note.textContent = 'Drag the light with the gizmo: W move, E turn, R resize. Each change relights the scene.';
+    this.root.append(note);
+    this.update(light);
+  }
+
+  row(key, label, count, onChange) {
+    const row = document.createElement('div');
+    row.className = 'row inspector-row';
+    const name = document.createElement('span');
+    name.textContent = label;
+    row.append(name);
+    const inputs = Array.from({ length: count }, (_, k) => {
+      const input = document.createElement('input');
+      input.type = 'text';
+      input.inputMode = 'decimal';
+      input.size = 6;
+      input.dataset.key = `${key}.${k}`;
+      input.addEventListener('change', onChange);
+      input.addEventListener('keydown', (event) => { if (event.key === 'Enter') input.blur(); });
+      row.append(input);
+      return input;
+    });
+    this.root.append(row);
+    return inputs;
+  }
+
+  // The light's fields from its JSON (unless one is being typed in).
+  updateLight(light) {
+    this.light = light;
+    const quad = quadAxes(light.polygon);
+    const values = { centre: centroid(light.polygon), radiance: light.radiance, intensity: [intensityOf(light.radiance)],
+      quad: quad ? [quad.width, quad.depth] : null, size: [sizeOf(light.polygon)] };
+    for (const [key, inputs] of Object.entries(this.inputs))
+      if (values[key]) inputs.forEach((input, k) => { if (document.activeElement !== input) input.value = round(values[key][k]); });
+  }
+
+  // The typed fields as a light: the fields that differ from the light's own are applied in order
+  // (centre, size, radiance, intensity). Invalid numbers are marked and nothing is sent.
+  typedLight(lightId) {
+    const read = (key) => this.inputs[key] && this.inputs[key].map((input) => Number(input.value.replace(',', '.')));
+    let bad = false;
+    for (const inputs of Object.values(this.inputs))
+      for (const input of inputs) {
+        const v = Number(input.value.replace(',', '.'));
+        const invalid = !Number.isFinite(v) || (input.dataset.key.startsWith('quad') || input.dataset.key.startsWith('size') ? v <= 0 : false)
+          || ((input.dataset.key.startsWith('radiance') || input.dataset.key.startsWith('intensity')) && v < 0);
+        input.classList.toggle('invalid', invalid);
+        bad ||= invalid;
+      }
+    if (bad || !this.light) return;
+    const near = (a, b) => a.every((x, k) => Math.abs(x - b[k]) < 6e-5);
+    let { polygon, radiance } = this.light;
+    const centre = read('centre');
+    if (!near(centre, centroid(polygon))) polygon = movedTo(polygon, centre);
+    const quad = read('quad'), size = read('size');
+    const axes = quadAxes(polygon);
+    if (quad && axes && !near(quad, [axes.width, axes.depth])) polygon = resizedQuad(polygon, quad[0], quad[1]);
+    if (size && !near(size, [sizeOf(polygon)])) polygon = resized(polygon, size[0]);
+    const typedRadiance = read('radiance');
+    if (!near(typedRadiance, radiance)) radiance = typedRadiance;
+    const intensity = read('intensity')[0];
+    if (Math.abs(intensity - intensityOf(this.light.radiance)) >= 6e-5) radiance = withIntensity(radiance, intensity);
+    this.onLight(lightId, { polygon, radiance });
   }
 }

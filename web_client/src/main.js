@@ -6,6 +6,7 @@ import { ApiClient } from './api_client.js';
 import { ConnectionStatus } from './connection_status.js';
 import { DragLimit } from './drag_limit.js';
 import { EditPlot } from './edit_plot.js';
+import { setLightEdit } from './light_shape.js';
 import { EditorActions } from './editor_actions.js';
 import { Inspector } from './inspector.js';
 import { Outliner } from './outliner.js';
@@ -30,6 +31,7 @@ import { ToneMap } from './tone_map.js';
 import { UndoHistory } from './undo_history.js';
 
 const $ = (id) => document.getElementById(id);
+const isLight = (id) => !!id && id.startsWith('light:');
 const MOTION_HOLD_MS = 100;
 
 class App {
@@ -64,7 +66,8 @@ class App {
     this.dragLimit = new DragLimit();
     this.history = new UndoHistory();
     this.editor = new EditorActions(this);
-    this.inspector = new Inspector($('inspector'), (id, transform) => this.editor.typedTransform(id, transform));
+    this.inspector = new Inspector($('inspector'), (id, transform) => this.editor.typedTransform(id, transform),
+      (lightId, light) => this.editor.typedLight(lightId, light));
     this.outliner = new Outliner($('outliner'), (id) => this.gizmo && this.gizmo.select(id));
     this.ownVersions = new Set();
     this.dragStart = null;
@@ -124,14 +127,17 @@ class App {
     this.gizmo = new SelectionGizmo(this.view, this.objects, {
       onSelect: (id) => this.selected(id),
       onDragStart: (id) => {
-        this.dragStart = { id, before: transformOf(this.gizmo.holder()) };
-        this.dragLimit.start(id, this.dragStart.before);
+        this.dragStart = { id, before: this.stateOf(id) };
+        this.dragLimit.start(id, transformOf(this.gizmo.holder()));
         this.view.setInteracting('drag', true);
       },
       onChange: (id) => {
         const transform = transformOf(this.gizmo.holder());
-        if (this.dragLimit.allows(id, transform)) this.coalescer.move(id, transform);
-        else applyTransform(this.gizmo.holder(), this.dragLimit.lastGood(id)); // held at the last good place
+        // A light scaled to nothing or mirrored (it would face the other way) is held too.
+        const flat = isLight(id) && !transform.scale.every((x) => x > 1e-3);
+        if (!this.dragLimit.allows(id, transform) || flat) applyTransform(this.gizmo.holder(), this.dragLimit.lastGood(id)); // held at the last good place
+        else if (isLight(id)) this.coalescer.setLight(id.slice(6), { polygon: this.objects.lightPolygon(id.slice(6)) }, transform);
+        else this.coalescer.move(id, transform);
       },
       onDragEnd: (id) => this.dragEnded(id),
       onMode: (mode) => this.showMode(mode),
@@ -179,7 +185,8 @@ class App {
   // requests made meanwhile into its next fetch), so edits run at the rate of the slower of the two.
   async sendFrame(frame) {
     const start = performance.now();
-    const result = await this.api.postEdits(this.sceneId, frame);
+    // A light edit's `pose` is the page's (DragLimit), not the server's.
+    const result = await this.api.postEdits(this.sceneId, { edits: frame.edits.map(({ pose, ...edit }) => edit) });
     const answered = performance.now();
     this.ownVersions.add(result.version);
     this.knownVersion = result.version;
@@ -214,7 +221,7 @@ class App {
     const held = refused && frame ? this.dragLimit.refused(frame.edits) : null;
     if (held) {
       this.coalescer.discard(held);
-      const holder = this.objects.byId.get(held);
+      const holder = this.objects.holderOf(held);
       if (holder && this.dragLimit.lastGood(held)) applyTransform(holder, this.dragLimit.lastGood(held));
       this.view.requestRender();
       return;
@@ -222,6 +229,8 @@ class App {
     try {
       const wrapped = await this.api.getScene(this.sceneId);
       this.objects.syncTransforms(wrapped.scene, null);
+      this.objects.syncLights(wrapped.scene, null);
+      this.refreshInspector();
     } catch (again) {
       this.fail(again);
     }
@@ -234,13 +243,48 @@ class App {
     const start = this.dragStart;
     this.dragStart = null;
     if (!start || start.id !== id) return;
-    const after = transformOf(this.gizmo.holder());
-    if (!sameTransform(start.before, after)) this.history.push({ id, before: start.before, after });
+    if (isLight(id)) {
+      // The light's holder back at the new polygon's centre, unturned (the next drag starts there).
+      const after = { polygon: this.objects.lightPolygon(id.slice(6)), radiance: start.before.radiance };
+      this.objects.setLight(id.slice(6), after);
+      if (!sameTransform(start.before, after)) this.history.push({ id, before: start.before, after });
+    } else {
+      const after = transformOf(this.gizmo.holder());
+      if (!sameTransform(start.before, after)) this.history.push({ id, before: start.before, after });
+    }
     this.updateUndoButtons();
-    this.inspector.update(after);
+    this.refreshInspector();
+  }
+
+  // What undo restores of a selection: an object's transform, a light's {polygon, radiance}.
+  stateOf(id) {
+    if (!isLight(id)) return transformOf(this.objects.byId.get(id));
+    const light = this.objects.lightJson.get(id.slice(6));
+    return { polygon: light.polygon, radiance: light.radiance };
+  }
+
+  refreshInspector() {
+    const id = this.inspector.id;
+    if (id && isLight(id)) this.inspector.update(this.objects.lightJson.get(id.slice(6)));
+    else if (id && this.objects.byId.get(id)) this.inspector.update(transformOf(this.objects.byId.get(id)));
+  }
+
+  // Takes a light to {polygon, radiance}: its stand-in at once, the server by one set_light naming
+  // only what changed (a new radiance alone is the engine's cheap path).
+  lightTo(lightId, light) {
+    const from = this.objects.lightJson.get(lightId);
+    if (!from) return;
+    const edit = setLightEdit(lightId, from, light);
+    if (!edit.polygon && !edit.radiance) return;
+    this.objects.setLight(lightId, light);
+    const { op, id, ...fields } = edit;
+    this.coalescer.setLight(lightId, fields);
+    this.refreshInspector();
+    this.view.requestRender();
   }
 
   moveTo(id, transform) {
+    if (isLight(id)) return this.lightTo(id.slice(6), transform);
     const holder = this.objects.byId.get(id);
     if (!holder) return;
     applyTransform(holder, transform);
@@ -268,7 +312,7 @@ class App {
   selected(id) {
     $('selection').textContent = id ? `selected ${id}` : 'click an object';
     this.outliner.highlight(id);
-    const light = id && id.startsWith('light:') ? this.objects.lightJson.get(id.slice(6)) : null;
+    const light = id && isLight(id) ? this.objects.lightJson.get(id.slice(6)) : null;
     this.inspector.show(id, light || (id ? transformOf(this.objects.byId.get(id)) : null));
     for (const button of ['duplicate', 'delete', 'focus']) $(button).disabled = !id || (button !== 'focus' && !!light);
   }
@@ -305,9 +349,10 @@ class App {
       this.sceneJson = wrapped.scene;
       this.toneMap.learnObjects(wrapped.scene);
       if (this.objects.sameObjects(wrapped.scene)) {
-        this.objects.syncTransforms(wrapped.scene, this.gizmo.dragging ? this.gizmo.selected : null);
-        const holder = this.gizmo.holder();
-        if (holder) this.inspector.update(transformOf(holder));
+        const dragged = this.gizmo.dragging ? this.gizmo.selected : null;
+        this.objects.syncTransforms(wrapped.scene, dragged);
+        this.objects.syncLights(wrapped.scene, dragged && isLight(dragged) ? dragged.slice(6) : null);
+        this.refreshInspector();
       } else {
         this.gizmo.select(null);
         this.buildStandIns(wrapped.scene);

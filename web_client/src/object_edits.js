@@ -36,8 +36,11 @@ export function duplicateObject(object, id, offset) {
 export const addEdits = (object) => ({ redo: [{ op: 'add', object }], undo: [{ op: 'remove', id: object.id }] });
 export const removeEdits = (object) => ({ redo: [{ op: 'remove', id: object.id }], undo: [{ op: 'add', object }] });
 
+const lightsById = (scene) => new Map((scene.lights || []).map((l) => [l.id, l]));
+
 // One frame taking `current` back to `source`: objects added since are removed, removed ones
-// added back, moved ones moved back (by transform; an object whose geometry changed is replaced).
+// added back, moved ones moved back (by transform; an object whose geometry changed is replaced),
+// edited lights set back (set_light).
 export function resetEdits(current, source) {
   const now = new Map(current.objects.map((o) => [o.id, o]));
   const then = new Map(source.objects.map((o) => [o.id, o]));
@@ -50,5 +53,15 @@ export function resetEdits(current, source) {
     else if (!same(object.transform || {}, original.transform || {})) edits.push({ op: 'move', id, transform: original.transform || {} });
   }
   for (const [id, object] of then) if (!now.has(id)) edits.push({ op: 'add', object });
+  // Lights (the same ids: the page does not add or remove lights) back to their polygon and power.
+  const lightsNow = lightsById(current);
+  for (const light of source.lights || []) {
+    const lit = lightsNow.get(light.id);
+    if (!lit) continue;
+    const edit = { op: 'set_light', id: light.id };
+    if (!same(lit.polygon, light.polygon)) edit.polygon = light.polygon;
+    if (!same(lit.radiance, light.radiance)) edit.radiance = light.radiance;
+    if (edit.polygon || edit.radiance) edits.push(edit);
+  }
   return edits;
 }

@@ -1,11 +1,13 @@
 // Three.js stand-ins for a scene JSON's objects and lights: one pickable Group per object
 // (local geometry under the object's transform, drawn in its ambient colour behind the lit
-// receivers, so faces that receive no light still show) and the lights' emitting polygons.
+// receivers, so faces that receive no light still show) and the lights' emitting polygons, each
+// under a holder at its centroid that the gizmo moves, turns and scales (set_light edits).
 // Each object turns about the centre of its vertex bounds (its pivot: scene_transform.js), so an
 // imported object, whose vertices are in world coordinates, gets its gizmo on itself rather than
 // at the origin. The room's shell (`static` objects, and thin objects spanning most of the scene
 // such as an imported file's walls and floor) is locked: not picked unless unlocked.
 import * as THREE from 'three';
+import { centroid } from './light_shape.js';
 import { applyTransform } from './scene_transform.js';
 
 // Convex polygon faces → a triangle fan geometry (counter-clockwise = front, as in the format),
@@ -54,6 +56,7 @@ export class SceneObjects {
     this.byId = new Map();
     this.json = new Map(); // object id → its scene JSON
     this.lightJson = new Map(); // light id → its scene JSON
+    this.lightHolders = new Map(); // light id → its Group (at the centroid; the gizmo moves it)
     this.bounds = new THREE.Box3();
     this.unlocked = false; // whether the locked shell may be picked
   }
@@ -63,12 +66,16 @@ export class SceneObjects {
   build(scene, toneMapFor, faceColour = () => null) {
     this.clear();
     for (const light of scene.lights) {
-      const geometry = polygonsGeometry(light.polygon, [light.polygon.map((_, i) => i)]);
-      const mesh = new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({ color: 0xffffff, side: THREE.DoubleSide }));
-      mesh.name = `light:${light.id}`;
+      // A holder at the light's centroid (the gizmo's place), its polygon drawn relative to it.
+      const holder = new THREE.Group();
+      holder.name = `light:${light.id}`;
+      holder.userData.lightId = light.id;
+      const mesh = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshBasicMaterial({ color: 0xffffff, side: THREE.DoubleSide }));
       mesh.userData.lightId = light.id;
-      this.lights.add(mesh);
-      this.lightJson.set(light.id, light);
+      holder.add(mesh);
+      this.lights.add(holder);
+      this.lightHolders.set(light.id, holder);
+      this.setLight(light.id, light);
     }
     for (const object of scene.objects) {
       const holder = new THREE.Group();
@@ -166,9 +173,50 @@ export class SceneObjects {
     return scene.objects.length === this.byId.size && scene.objects.every((o) => this.byId.has(o.id));
   }
 
+  // The Group the gizmo moves for a selection id: an object's holder, or a light's ("light:ID").
+  holderOf(id) {
+    if (!id) return null;
+    return id.startsWith('light:') ? this.lightHolders.get(id.slice(6)) || null : this.byId.get(id) || null;
+  }
+
+  // Takes light `id` to `light` ({polygon, radiance}, as in scene JSON): its holder back at
+  // the new centroid, unturned and unscaled, and its polygon drawn relative to it.
+  setLight(id, light) {
+    const holder = this.lightHolders.get(id);
+    if (!holder) return;
+    const c = centroid(light.polygon);
+    const local = light.polygon.map((p) => p.map((x, k) => x - c[k]));
+    const mesh = holder.children[0];
+    mesh.geometry.dispose();
+    mesh.geometry = polygonsGeometry(local, [local.map((_, i) => i)]);
+    holder.position.set(...c);
+    holder.rotation.set(0, 0, 0);
+    holder.scale.set(1, 1, 1);
+    holder.userData.local = local;
+    holder.updateMatrixWorld(true);
+    this.lightJson.set(id, { ...(this.lightJson.get(id) || { id }), polygon: light.polygon, radiance: light.radiance });
+  }
+
+  // Light `id`'s polygon as its holder places it now (during a gizmo drag: moved, turned, scaled).
+  lightPolygon(id) {
+    const holder = this.lightHolders.get(id);
+    holder.updateMatrixWorld(true);
+    const v = new THREE.Vector3();
+    return holder.userData.local.map((p) => v.fromArray(p).applyMatrix4(holder.matrixWorld).toArray());
+  }
+
+  // Lights to a scene's (another client's edits), except `skipId`.
+  syncLights(scene, skipId) {
+    for (const light of scene.lights) {
+      const known = this.lightJson.get(light.id);
+      if (light.id !== skipId && known && JSON.stringify([known.polygon, known.radiance]) !== JSON.stringify([light.polygon, light.radiance]))
+        this.setLight(light.id, light);
+    }
+  }
+
   // The meshes a click may pick: the lights, and the objects not locked (all when unlocked).
   pickable() {
-    const meshes = [...this.lights.children];
+    const meshes = [...this.lightHolders.values()].map((holder) => holder.children[0]);
     for (const holder of this.byId.values()) if (this.unlocked || !holder.userData.locked) meshes.push(holder.children[0]);
     return meshes;
   }
@@ -181,5 +229,6 @@ export class SceneObjects {
     this.byId.clear();
     this.json.clear();
     this.lightJson.clear();
+    this.lightHolders.clear();
   }
 }

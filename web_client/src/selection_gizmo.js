@@ -1,8 +1,9 @@
 // Click to select a movable object or a light (a raycast against the stand-ins; a press that
 // moved more than a few pixels is an orbit, not a click), and drag an object with
 // TransformControls: W translate, E rotate, R scale, Escape deselects; snapping (0.1 m, 15°, 0.1)
-// while Ctrl is held or the snap box is ticked. A light is selected as "light:ID" and gets no gizmo
-// (the server has no light edits yet). Reports each gesture's start, every change and end.
+// while Ctrl is held or the snap box is ticked. A light is selected as "light:ID" and gets the same
+// gizmo on its holder (moved, turned, resized: set_light). Reports each gesture's start, every
+// change and end.
 import * as THREE from 'three';
 import { TransformControls } from 'three/addons/controls/TransformControls.js';
 
@@ -91,9 +92,8 @@ export class SelectionGizmo {
 
   select(id) {
     if (this.selected) this.objects.setOutlined(this.selected, false);
-    const light = id && id.startsWith('light:') && this.objects.lightJson.has(id.slice(6));
-    const holder = id && !light ? this.objects.byId.get(id) : null;
-    this.selected = holder || light ? id : null;
+    const holder = this.objects.holderOf(id);
+    this.selected = holder ? id : null;
     if (holder) {
       this.objects.setOutlined(id, true);
       this.controls.attach(holder);
@@ -104,7 +104,8 @@ export class SelectionGizmo {
     this.view.requestRender();
   }
 
+  // The selection's Group: an object's holder or a light's.
   holder() {
-    return this.selected ? this.objects.byId.get(this.selected) || null : null;
+    return this.objects.holderOf(this.selected);
   }
 }

@@ -3,7 +3,7 @@
 // listed here too.
 
 export const SHORTCUTS = [
-  ['W / E / R', 'move / rotate / scale the selection'],
+  ['W / E / R', 'move / rotate / scale the selection (an object or a light)'],
   ['Ctrl (held while dragging)', 'snap: 0.1 m, 15°, 0.1 (or tick "snap")'],
   ['F', 'focus the selection (nothing selected: frame all)'],
   ['A', 'frame all'],

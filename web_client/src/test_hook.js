@@ -2,7 +2,7 @@
 // console: counts, versions, a receiver's arrays (its parts merged), projections to the screen;
 // and, for measuring, a timer-driven move of an object and a timed orbit of the camera.
 import * as THREE from 'three';
-import { receiverKey } from './mesh_binary.js';
+import { CLASS_PENUMBRA, receiverKey } from './mesh_binary.js';
 import { blockingShellFaces } from './default_camera.js';
 import { transformOf } from './scene_transform.js';
 
@@ -59,6 +59,20 @@ export function installTestHook(app) {
       const r = app.receivers.receiver(receiverKey(object, face));
       return r && { sceneVersion: r.sceneVersion, vertexCount: r.vertexCount, parts: r.parts, irradiance: Array.from(r.irradiance),
         classes: Array.from(r.classes), positions: Array.from(r.positions) };
+    },
+    // Area (m²) of a receiver's triangles with a corner in penumbra: how wide its soft shadows are.
+    penumbraArea(object, face) {
+      const r = app.receivers.receiver(receiverKey(object, face));
+      if (!r) return null;
+      const p = r.positions, idx = r.indices;
+      const corner = (i) => new THREE.Vector3(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+      let area = 0;
+      for (let t = 0; t < idx.length; t += 3) {
+        if (![0, 1, 2].some((k) => r.classes[idx[t + k]] === CLASS_PENUMBRA)) continue;
+        const a = corner(idx[t]);
+        area += corner(idx[t + 1]).sub(a).cross(corner(idx[t + 2]).sub(a)).length() / 2;
+      }
+      return area;
     },
     irradianceAt(object, face, point) {
       const r = app.receivers.receiver(receiverKey(object, face));
@@ -118,9 +132,13 @@ export function installTestHook(app) {
       return [...app.objects.byId].map(([id, holder]) => ({ id, locked: holder.userData.locked,
         pivot: holder.getWorldPosition(new THREE.Vector3()).toArray(), centre: app.objects.objectBounds(id).getCenter(new THREE.Vector3()).toArray() }));
     },
+    // An object's transform, or a light's holder's ("light:ID": translate = the light's centre).
     objectTransform(id) {
-      const holder = app.objects.byId.get(id);
+      const holder = app.objects.holderOf(id);
       return holder ? transformOf(holder) : null;
+    },
+    lightJson(id) {
+      return app.objects.lightJson.get(id) || null;
     },
     // Pixels of world points in a width × height image of the current view, by three.js.
     projectToPixels(points, width, height) {

@@ -1,0 +1,138 @@
+#include "core/engine/light_edits.h"
+
+#include <chrono>
+#include <cstdio>
+#include <set>
+
+#include "core/engine/engine.h"
+#include "core/illum/light_sum.h"
+
+namespace penumbra {
+
+bool movesLight(const Frame& frame) {
+  for (const Edit& edit : frame.edits)
+    if (edit.op == Edit::Op::SetLight && edit.polygon) return true;
+  return false;
+}
+
+bool changesRadiance(const Frame& frame) {
+  for (const Edit& edit : frame.edits)
+    if (edit.op == Edit::Op::SetLight && edit.radiance) return true;
+  return false;
+}
+
+Light editedLight(const Light& light, const Edit& edit) {
+  Light out = light;
+  if (edit.polygon) out.polygon = *edit.polygon;
+  if (edit.radiance) out.radiance = *edit.radiance;
+  return out;
+}
+
+namespace {
+
+std::optional<size_t> findIn(const std::vector<Light>& lights, const std::string& id) {
+  for (size_t l = 0; l < lights.size(); ++l)
+    if (lights[l].id == id) return l;
+  return std::nullopt;
+}
+
+// The space a light may take: where objects may go (OverlapCubeSettings::editVolume's
+// default), so the tolerance and the cubes keep the scene's scale.
+Bounds lightVolume(const Scene& scene) {
+  const double margin = OverlapCubeSettings::kDefaultEditMargin * scene.bounds().diagonal();
+  return Bounds{scene.bounds().min - Vec3(margin), scene.bounds().max + Vec3(margin)};
+}
+
+}  // namespace
+
+void checkLightEdit(const Scene& scene, const Edit& edit, size_t index,
+                    std::vector<Light>& lights) {
+  const auto l = findIn(lights, edit.id);
+  if (!l) throw EditError(index, "id", "unknown light '" + edit.id + "'");
+  if (!edit.polygon && !edit.radiance)
+    throw EditError(index, "", "set_light changes nothing: give \"polygon\", \"radiance\" or both");
+  if (edit.polygon) {
+    if (const auto problem = Scene::lightProblem(*edit.polygon, scene.tolerance()))
+      throw EditError(index, "polygon", *problem);
+    const Bounds volume = lightVolume(scene);
+    const double eps = scene.tolerance().length();
+    for (size_t v = 0; v < edit.polygon->size(); ++v) {
+      const Vec3& p = (*edit.polygon)[v];
+      if (glm::any(glm::lessThan(p, volume.min - Vec3(eps))) ||
+          glm::any(glm::greaterThan(p, volume.max + Vec3(eps)))) {
+        char text[200];
+        std::snprintf(text, sizeof text, "[%.4g, %.4g, %.4g]–[%.4g, %.4g, %.4g]", volume.min.x,
+                      volume.min.y, volume.min.z, volume.max.x, volume.max.y, volume.max.z);
+        throw EditError(index, "polygon[" + std::to_string(v) + "]",
+                        "light '" + edit.id + "' would leave the edit volume " + text);
+      }
+    }
+  }
+  if (edit.radiance)
+    if (const auto problem = Scene::radianceProblem(*edit.radiance))
+      throw EditError(index, "radiance", *problem);
+  lights[*l] = editedLight(lights[*l], edit);
+}
+
+std::vector<Light> lightsAfter(const Scene& scene, const Frame& frame) {
+  std::vector<Light> lights = scene.lights();
+  for (size_t i = 0; i < frame.edits.size(); ++i) {
+    if (frame.edits[i].op != Edit::Op::SetLight) continue;
+    try {
+      checkLightEdit(scene, frame.edits[i], i, lights);
+    } catch (const EditError&) {
+      // refused in order by the frame's check
+    }
+  }
+  return lights;
+}
+
+std::vector<OverlapCube::Box> cubesFor(const Scene& scene, const std::vector<Light>& lights) {
+  std::vector<OverlapCube::Box> cubes;
+  for (const Light& light : lights)
+    cubes.push_back(OverlapCube::enclosingCube(scene, light.polygon));
+  return cubes;
+}
+
+bool insideCubes(const Scene& scene, const Polygon3& polygon,
+                 const std::vector<OverlapCube::Box>& cubes) {
+  const double eps = scene.tolerance().length();
+  for (const OverlapCube::Box& cube : cubes)
+    for (const Vec3& v : polygon) {
+      const Vec3 rel = v - cube.min;
+      if (glm::any(glm::lessThan(rel, Vec3(-eps))) ||
+          glm::any(glm::greaterThan(rel, Vec3(cube.side + eps))))
+        return false;
+    }
+  return true;
+}
+
+}  // namespace penumbra
+
+namespace penumbra {
+
+void Engine::resumRadiance(FrameResult& result) {
+  const auto start = std::chrono::steady_clock::now();
+  std::set<FaceId> changed(result.changedReceivers.begin(), result.changedReceivers.end());
+  for (Receiver& receiver : receivers_) {
+    std::vector<VertexId>& relit = lastRelit_[receiver.face];
+    relit.clear();
+    for (VertexId v : receiver.tree.vertices()) {
+      const VertexIrradiance old = receiver.values[v.index];
+      receiver.values[v.index] = sumLights(scene_, receiver.perLight[v.index]);
+      relit.push_back(v);
+      ++result.verticesRelit;
+      if (!sameValue(old, receiver.values[v.index])) ++result.verticesChanged;
+      if (!identicalValue(old, receiver.values[v.index]))
+        for (CellId c : receiver.tree.cellsAround(v)) receiver.tree.touch(c);
+    }
+    changed.insert(receiver.face);
+  }
+  // The display lattice's points inside cells are lit with the scene's radiance too.
+  forgetMeshMemo();
+  result.changedReceivers.assign(changed.begin(), changed.end());
+  result.seconds.relight +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace penumbra
