@@ -31,11 +31,6 @@ std::vector<OccluderEntry> entriesFor(const OccluderList& list, size_t light) {
   return out;
 }
 
-bool holds(const std::vector<OccluderEntry>& entries, FaceId face) {
-  return std::any_of(entries.begin(), entries.end(),
-                     [&](const OccluderEntry& e) { return e.face == face; });
-}
-
 VertexLight fromView(const Backprojection& view, VertexCase decidedBy) {
   VertexLight out;
   out.applies = true;
@@ -78,32 +73,35 @@ Vec3 directionInPlane(const Vec3& n, const Vec3& d) {
 VertexLight illuminateVertex(const Scene& scene, size_t light, const Vec3& p, const Vec3& n,
                              const std::vector<const OccluderList*>& cellsAround) {
   if (cellsAround.empty()) throw std::invalid_argument("illuminateVertex: no cells around");
-  std::vector<std::vector<OccluderEntry>> cells;
-  cells.reserve(cellsAround.size());
-  for (const OccluderList* list : cellsAround) {
+  for (const OccluderList* list : cellsAround)
     if (!list) throw std::invalid_argument("illuminateVertex: null occluder list");
-    cells.push_back(entriesFor(*list, light));
-  }
+  // The lists are read in place, filtered by light: no copy per vertex.
+  auto forLight = [&](const OccluderEntry& e) { return e.light == light; };
+  auto holdsFace = [&](const OccluderList& list, FaceId face) {
+    return std::any_of(list.begin(), list.end(),
+                       [&](const OccluderEntry& e) { return e.light == light && e.face == face; });
+  };
 
   Backprojection view(scene, light, p, n);
   if (!view.applies()) return VertexLight{};
 
   // (1) Some cell sees the whole light, so p does (a blocker of p would block
   // positive area from every cell touching p).
-  for (const auto& cell : cells)
-    if (cell.empty()) return fromView(view, VertexCase::Unoccluded);
+  for (const OccluderList* list : cellsAround)
+    if (std::none_of(list->begin(), list->end(), forLight)) return fromView(view, VertexCase::Unoccluded);
 
   // (2) A face hiding the light from a cell hides it from p too, by continuity,
   // unless its plane contains p (a D⁰ contact): such a face is missing from the
   // cells on its front side, and the rule check below makes it exact.
   const double onPlane = scene.tolerance().onPlane();
-  for (const auto& cell : cells)
-    for (const OccluderEntry& e : cell) {
+  for (const OccluderList* list : cellsAround)
+    for (const OccluderEntry& e : *list) {
       if (!e.umbra) break;  // umbra entries come first
+      if (e.light != light) continue;
       const Face* face = findFace(scene, e.face);
       if (!face || !(face->plane.signedDistance(p) < -onPlane)) continue;
-      const bool everywhere = std::all_of(cells.begin(), cells.end(),
-                                          [&](const auto& other) { return holds(other, e.face); });
+      const bool everywhere = std::all_of(cellsAround.begin(), cellsAround.end(),
+                                          [&](const OccluderList* other) { return holdsFace(*other, e.face); });
       if (everywhere) return umbra(view);
     }
 
@@ -111,10 +109,12 @@ VertexLight illuminateVertex(const Scene& scene, size_t light, const Vec3& p, co
   // area from each cell around it, so this is a superset of p's blockers.
   // Subtracted in FaceId order: the visible pieces (and their last-bit rounding)
   // then do not depend on the order the cells' lists were built in.
-  std::vector<FaceId> covering;
-  for (const OccluderEntry& e : cells.front()) {
-    const bool everywhere = std::all_of(cells.begin() + 1, cells.end(),
-                                        [&](const auto& other) { return holds(other, e.face); });
+  thread_local std::vector<FaceId> covering;
+  covering.clear();
+  for (const OccluderEntry& e : *cellsAround.front()) {
+    if (e.light != light) continue;
+    const bool everywhere = std::all_of(cellsAround.begin() + 1, cellsAround.end(),
+                                        [&](const OccluderList* other) { return holdsFace(*other, e.face); });
     if (everywhere) covering.push_back(e.face);
   }
   std::sort(covering.begin(), covering.end());

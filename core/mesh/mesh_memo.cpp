@@ -7,19 +7,13 @@
 #include "core/illum/face_lookup.h"
 #include "core/illum/light_sum.h"
 #include "core/mesh/cell_triangulation.h"
+#include "core/mesh/fingerprint.h"
 #include "core/mesh/lattice_split.h"
 #include "core/mesh/receiver_mesh_builder.h"
 
 namespace penumbra {
 
 namespace {
-
-bool sameValues(const std::vector<VertexIrradiance>& a, const std::vector<VertexIrradiance>& b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (!identicalValue(a[i], b[i])) return false;
-  return true;
-}
 
 bool sameFrame(const PlaneFrame& a, const PlaneFrame& b) {
   return a.origin == b.origin && a.u == b.u && a.v == b.v && a.normal == b.normal;
@@ -33,24 +27,12 @@ Vec2 centroid(const Polygon2& polygon) {
 
 }  // namespace
 
-void ReceiverMeshMemo::CellMemo::clearInputs() {
-  outline.clear();
-  occluders.clear();
-  occluderPoints.clear();
-  occluderSizes.clear();
-  cornerFromCell.clear();
-  cornerValues.clear();
+void ReceiverMeshMemo::CellMemo::clearOutput() {
   emitted.clear();
   triangles.clear();
   pieceChunks.clear();
   pieceEmitted.clear();
   pieceTriangles.clear();
-}
-
-bool ReceiverMeshMemo::CellMemo::sameInputs(const CellMemo& o) const {
-  return valid && outline == o.outline && occluders == o.occluders && occluderSizes == o.occluderSizes &&
-         occluderPoints == o.occluderPoints && cornerFromCell == o.cornerFromCell &&
-         sameValues(cornerValues, o.cornerValues);
 }
 
 // One update() call: the cells touched since the last one, then the chunks they changed.
@@ -147,17 +129,57 @@ class MeshMemoUpdate {
       return;
     }
     gatherInputs(c);
-    if (slot.sameInputs(inputs_)) {
+    const uint64_t fingerprint = inputs_.fingerprint();
+    if (slot.valid && slot.inputs == fingerprint) {
       ++counters_.cellsReused;
       return;
     }
     ++counters_.cellsLit;
     leaveChunks(index);
+    output_.clearOutput();
     emitPieces(cell.occluders);
-    inputs_.valid = true;
-    std::swap(slot, inputs_);  // the old slot's buffers are reused for the next cell
+    output_.valid = true;
+    output_.inputs = fingerprint;
+    std::swap(slot, output_);  // the old slot's buffers are reused for the next cell
     enterChunks(index);
   }
+
+  // What a cell's triangles depend on, gathered for the cell being updated.
+  struct CellInputs {
+    Polygon2 outline;                     // the cell's loop positions
+    OccluderList occluders;               // its list
+    std::vector<Vec3> occluderPoints;     // the listed faces' world polygons, concatenated
+    std::vector<uint32_t> occluderSizes;  // their vertex counts (0: not a scene face)
+    // Per loop corner: 1 if lit from the cell (a contact vertex), else 0 and its value.
+    std::vector<uint8_t> cornerFromCell;
+    std::vector<VertexIrradiance> cornerValues;
+    void clear() {
+      outline.clear();
+      occluders.clear();
+      occluderPoints.clear();
+      occluderSizes.clear();
+      cornerFromCell.clear();
+      cornerValues.clear();
+    }
+    uint64_t fingerprint() const {
+      Fingerprint f;
+      f.addBytes(std::span<const Vec2>(outline));
+      f.add(uint64_t(occluders.size()));
+      for (const OccluderEntry& e : occluders) {
+        f.add(uint64_t(e.light) << 1 | uint64_t(e.umbra));
+        f.add(uint64_t(e.face.object) << 32 | uint64_t(e.face.face));
+      }
+      f.addBytes(std::span<const Vec3>(occluderPoints));
+      f.addBytes(std::span<const uint32_t>(occluderSizes));
+      f.addBytes(std::span<const uint8_t>(cornerFromCell));
+      f.add(uint64_t(cornerValues.size()));
+      for (const VertexIrradiance& v : cornerValues) {
+        for (int c = 0; c < 3; ++c) f.add(v.irradiance[c]);
+        f.add(uint64_t(v.lightClass));
+      }
+      return f.value();
+    }
+  };
 
   // The inputs this cell's triangles depend on, into inputs_ (dark_ and anyDark_ too).
   void gatherInputs(CellId c) {
@@ -166,7 +188,7 @@ class MeshMemoUpdate {
     for (const OccluderEntry& entry : list)
       if (entry.umbra) dark_[entry.light] = true;
     const bool anyDark = std::find(dark_.begin(), dark_.end(), true) != dark_.end();
-    inputs_.clearInputs();
+    inputs_.clear();
     corners_.clear();
     for (HalfEdgeId h : halfEdges_.loop(c)) corners_.push_back(halfEdges_.halfEdge(h).origin);
     for (VertexId v : corners_) inputs_.outline.push_back(tree_.position(v));
@@ -201,33 +223,33 @@ class MeshMemoUpdate {
     return illuminatePoint(scene_, p, normal, {&list});
   }
 
-  // The cell's pieces (lattice squares' parts), triangulated, into inputs_'s output.
+  // The cell's pieces (lattice squares' parts), triangulated, into output_.
   void emitPieces(const OccluderList& list) {
     const Polygon2& polygon = inputs_.outline;
     Vec3 centre{0.0};
     for (const Vec2& q : polygon) centre += source_.frame.to3D(q);
     centre /= double(polygon.size());
     for (const Polygon2& piece : splitByLattice(polygon, memo_.grid_.spacing, eps_)) {
-      inputs_.pieceChunks.push_back(chunkOf(piece));
-      inputs_.pieceEmitted.push_back(uint32_t(inputs_.emitted.size()));
-      inputs_.pieceTriangles.push_back(uint32_t(inputs_.triangles.size()));
+      output_.pieceChunks.push_back(chunkOf(piece));
+      output_.pieceEmitted.push_back(uint32_t(output_.emitted.size()));
+      output_.pieceTriangles.push_back(uint32_t(output_.triangles.size()));
       std::vector<uint32_t> pieceCorners;
       for (const Vec2& q : piece) {
-        pieceCorners.push_back(uint32_t(inputs_.emitted.size()));
-        inputs_.emitted.push_back({q, valueAt(q, list, centre)});
+        pieceCorners.push_back(uint32_t(output_.emitted.size()));
+        output_.emitted.push_back({q, valueAt(q, list, centre)});
       }
       const CellTriangulation triangulation = triangulateConvexCell(piece, eps_);
       if (triangulation.usesCentre) {
         const Vec2 middle = centroid(piece);
-        pieceCorners.push_back(uint32_t(inputs_.emitted.size()));
-        inputs_.emitted.push_back(
+        pieceCorners.push_back(uint32_t(output_.emitted.size()));
+        output_.emitted.push_back(
             {middle, illuminatePoint(scene_, source_.frame.to3D(middle), source_.frame.normal, {&list})});
       }
       for (const auto& t : triangulation.triangles)
-        inputs_.triangles.push_back({pieceCorners[t[0]], pieceCorners[t[1]], pieceCorners[t[2]]});
+        output_.triangles.push_back({pieceCorners[t[0]], pieceCorners[t[1]], pieceCorners[t[2]]});
     }
-    inputs_.pieceEmitted.push_back(uint32_t(inputs_.emitted.size()));
-    inputs_.pieceTriangles.push_back(uint32_t(inputs_.triangles.size()));
+    output_.pieceEmitted.push_back(uint32_t(output_.emitted.size()));
+    output_.pieceTriangles.push_back(uint32_t(output_.triangles.size()));
   }
 
   // The changed chunks are assembled again from their cells' pieces, in cell order;
@@ -268,7 +290,8 @@ class MeshMemoUpdate {
   const HalfEdgeMesh& halfEdges_;
   const double eps_, chunkSide_;  // chunkSide_ 0: one chunk
   std::set<MeshChunkKey> dirty_;
-  CellMemo inputs_;  // the current cell's inputs; swapped into the memo when lit afresh
+  CellInputs inputs_;  // the current cell's inputs
+  CellMemo output_;    // its output when lit afresh, swapped into the memo
   std::vector<bool> dark_;
   std::vector<VertexId> corners_;
   std::vector<int8_t> vertexContact_;

@@ -58,16 +58,14 @@ class ReceiverMeshMemo {
   // The non-empty chunks' meshes, in key order; an unchanged chunk keeps its object.
   const std::map<MeshChunkKey, std::shared_ptr<const ReceiverMesh>>& chunks() const { return chunks_; }
 
-  // What one cell emitted, and what that depends on. Buffers are reused from cell to cell.
+  // What one cell emitted, and a fingerprint of what that depends on (its outline,
+  // occluder list, the listed faces' polygons, its corners' values): an equal
+  // fingerprint means the cell would emit the same again. Keeping the inputs
+  // themselves cost ~1.5 kB a cell, most of a dense room's memory. Buffers are
+  // reused from cell to cell.
   struct CellMemo {
     bool valid = false;
-    Polygon2 outline;                     // the cell's loop positions
-    OccluderList occluders;               // its list
-    std::vector<Vec3> occluderPoints;     // the listed faces' world polygons, concatenated
-    std::vector<uint32_t> occluderSizes;  // their vertex counts (0: not a scene face)
-    // Per loop corner: 1 if lit from the cell (a contact vertex), else 0 and its value.
-    std::vector<uint8_t> cornerFromCell;
-    std::vector<VertexIrradiance> cornerValues;
+    uint64_t inputs = 0;
     // The output: builder calls (point, value) in order, and triangles into them,
     // per piece (a lattice square's part of the cell): its chunk and where its
     // points and triangles start (one more entry closes the last piece).
@@ -75,8 +73,7 @@ class ReceiverMeshMemo {
     std::vector<std::array<uint32_t, 3>> triangles;
     std::vector<MeshChunkKey> pieceChunks;
     std::vector<uint32_t> pieceEmitted, pieceTriangles;
-    void clearInputs();
-    bool sameInputs(const CellMemo& inputs) const;  // valid, and every input equal
+    void clearOutput();
   };
 
  private:
