@@ -68,7 +68,9 @@ int runBuild(const Args& args) {
   });
   casting.finish();
   illumination.finish();
-  const Mesh mesh = engine.mesh();
+  ProgressBar triangulation("triangulation");
+  const Mesh mesh = engine.mesh([&](const char*, size_t done, size_t total) { triangulation.update(done, total); });
+  triangulation.finish();
   if (std::filesystem::path(*out).extension() == ".glb") {  // glTF binary (interchange/glb_export.h)
     interchange::GlbOptions glb;
     glb.colorScale = args.doubleOption("color-scale", 0);

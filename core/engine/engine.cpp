@@ -365,11 +365,11 @@ void Engine::pruneMeshMemo() {
     it = receiverIndex_.count(it->first) ? std::next(it) : meshMemo_.erase(it);
 }
 
-Mesh Engine::mesh() {
+Mesh Engine::mesh(const EngineProgress& progress) {
   const auto start = Clock::now();
   std::vector<size_t> all(receivers_.size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  updateMeshMemos(all);
+  updateMeshMemos(all, progress);
   Mesh out;
   out.receivers.reserve(receivers_.size());
   for (const Receiver& receiver : receivers_) out.receivers.push_back(memoMesh(receiver));
@@ -387,8 +387,9 @@ std::vector<size_t> Engine::receiverIndices(const std::vector<FaceId>& only) con
   return indices;
 }
 
-void Engine::updateMeshMemos(const std::vector<size_t>& indices) {
+void Engine::updateMeshMemos(const std::vector<size_t>& indices, const EngineProgress& progress) {
   meshCounters_ = {};
+  SharedProgress report(progress, "triangulation", indices.size(), 1);
   std::vector<ReceiverMeshMemo*> memos;  // created here: the map is not changed in parallel
   for (size_t i : indices) memos.push_back(&meshMemo_[receivers_[i].face]);
   std::vector<MeshMemoCounters> counters(indices.size());
@@ -396,7 +397,9 @@ void Engine::updateMeshMemos(const std::vector<size_t>& indices) {
     const Receiver& receiver = receivers_[indices[k]];
     const MeshSource source{receiver.face, receiver.frame, receiver.tree, receiver.values, receiver.perLight};
     memos[k]->update(scene_, source, MeshGrid{meshSpacing(), meshChunkSquares_}, counters[k]);
+    report.add(1);
   });
+  report.finish();
   for (const MeshMemoCounters& c : counters) meshCounters_ += c;
 }
 

@@ -128,7 +128,7 @@ class Engine {
   // EngineSettings::meshSpacing). Vertices repeat once per side where the value
   // jumps (contact edges, cells in a light's umbra), so no triangle interpolates
   // across a value discontinuity and umbra cells stay dark. Records its time in stats().
-  Mesh mesh();
+  Mesh mesh(const EngineProgress& progress = {});  // progress: step "triangulation", per receiver
   // The same for the listed receivers only (in Scene::faces() order, each once;
   // faces that are not receivers are skipped). Equals the matching part of mesh().
   Mesh mesh(const std::vector<FaceId>& only);
@@ -227,7 +227,7 @@ class Engine {
   // A receiver's up-to-date memo as one mesh: its chunks concatenated.
   ReceiverMesh memoMesh(const Receiver& receiver) const;
   // The listed receivers' memos brought up to date, in parallel; counters summed in order.
-  void updateMeshMemos(const std::vector<size_t>& indices);
+  void updateMeshMemos(const std::vector<size_t>& indices, const EngineProgress& progress = {});
   std::vector<size_t> receiverIndices(const std::vector<FaceId>& only) const;
 
   Scene scene_;
