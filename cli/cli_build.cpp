@@ -29,6 +29,7 @@ nlohmann::json statsJson(const BuildStats& s, const Mesh& mesh) {
           {"receivers", s.receivers},
           {"lights", s.lights},
           {"candidate_pairs", s.candidatePairs},
+          {"closed_convex_pairs", s.closedConvexPairs},
           {"cast_attempts", s.castAttempts},
           {"pairs_with_shadow", s.pairsWithShadow},
           {"tiles", s.tiles},

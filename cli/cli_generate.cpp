@@ -2,6 +2,7 @@
 
 #include "bench/lib/cubes_scene.h"
 #include "bench/lib/dense_scene.h"
+#include "bench/lib/sphere_scene.h"
 #include "protocol/scene_json.h"
 #include "cli/commands.h"
 
@@ -20,10 +21,20 @@ Scene denseScene(const Args& args) {
   return makeDenseScene(options);
 }
 
+// `--sphere FACES`: one UV sphere of about FACES faces (radius 0.35 m) in the dense room.
+Scene sphereScene(const Args& args) {
+  if (args.flag("dense") || args.flag("tilted-light") || args.flag("two-lights") || args.option("cubes") ||
+      args.option("seed") || args.option("light-scale") || args.option("stacked-fraction") || args.option("tables"))
+    throw UsageError("--sphere takes only FACES and --out");
+  SphereSceneOptions options;
+  options.faces = args.intOption("sphere", options.faces, 6, 1000000);
+  return makeSphereScene(options);
+}
+
 }  // namespace
 
 int runGenerate(const Args& args) {
-  args.allowOnly({"cubes", "seed", "light-scale", "stacked-fraction", "tables", "out"});
+  args.allowOnly({"cubes", "seed", "light-scale", "stacked-fraction", "tables", "out", "sphere"});
   CubesSceneOptions options;
   options.cubes = args.intOption("cubes", options.cubes, 0, 100000);
   options.seed = uint64_t(args.intOption("seed", int(options.seed), 0, 1 << 30));
@@ -41,7 +52,9 @@ int runGenerate(const Args& args) {
   const auto out = args.option("out");
   if (!out) throw UsageError("generate needs --out SCENE");
 
-  const Scene scene = args.flag("dense") ? denseScene(args) : makeCubesScene(options);
+  const Scene scene = args.option("sphere") ? sphereScene(args)
+                      : args.flag("dense")   ? denseScene(args)
+                                             : makeCubesScene(options);
   protocol::saveSceneFile(scene, *out);
   std::printf("wrote %s: %zu objects, %zu faces, %zu lights\n", out->c_str(),
               scene.objects().size(), scene.faces().size(), scene.lights().size());

@@ -30,6 +30,7 @@ commands:
            [--seed S] [--light-scale F] [--stacked-fraction F] [--tilted-light]
            [--two-lights] [--tables FRACTION]
            [--dense]                   N boxes of random size and turn floating in a 6×3×6 m room
+  generate --sphere FACES --out SCENE  one UV sphere of ~FACES faces (radius 0.35 m) in that room
   replay SCENE EDITS.jsonl             apply an edit script frame by frame; per-frame times and counts
          [--verify] [--verify-every K] [--report OUT.json] [--out MESH] [--threads N]
   serve [SCENE...] [--host H]          the HTTP API and web page (docs/API.md) on the scenes;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace penumbra {
 
@@ -34,6 +35,35 @@ void addBox(Object& object, const Vec3& lo, const Vec3& hi) {
       object.faces.push_back(face);
     }
   }
+}
+
+void addUvSphere(Object& object, const Vec3& centre, double radius, int stacks, int slices) {
+  if (stacks < 2 || slices < 3) throw std::invalid_argument("addUvSphere: needs 2 stacks and 3 slices");
+  const double pi = std::acos(-1.0);
+  const int first = int(object.vertices.size());
+  // Vertex first: the north pole, then rings 1..stacks-1 of `slices` vertices, then the south pole.
+  object.vertices.push_back(centre + Vec3(0, radius, 0));
+  for (int ring = 1; ring < stacks; ++ring) {
+    const double theta = pi * ring / stacks;
+    for (int j = 0; j < slices; ++j) {
+      const double phi = 2 * pi * j / slices;
+      object.vertices.push_back(centre + radius * Vec3(std::sin(theta) * std::cos(phi), std::cos(theta),
+                                                       std::sin(theta) * std::sin(phi)));
+    }
+  }
+  object.vertices.push_back(centre - Vec3(0, radius, 0));
+  const int south = int(object.vertices.size()) - 1;
+  auto at = [&](int ring, int j) { return first + 1 + (ring - 1) * slices + (j % slices); };
+  auto outward = [&](std::vector<int> face) {
+    Polygon3 polygon;
+    for (int index : face) polygon.push_back(object.vertices[size_t(index)]);
+    if (glm::dot(newellVector(polygon), centroid(polygon) - centre) < 0) std::reverse(face.begin(), face.end());
+    object.faces.push_back(face);
+  };
+  for (int j = 0; j < slices; ++j) outward({first, at(1, j), at(1, j + 1)});
+  for (int ring = 1; ring + 1 < stacks; ++ring)
+    for (int j = 0; j < slices; ++j) outward({at(ring, j), at(ring + 1, j), at(ring + 1, j + 1), at(ring, j + 1)});
+  for (int j = 0; j < slices; ++j) outward({south, at(stacks - 1, j + 1), at(stacks - 1, j)});
 }
 
 Object quadObject(const std::string& id, const Polygon3& quad, const Vec3& front) {

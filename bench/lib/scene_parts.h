@@ -12,6 +12,10 @@ namespace penumbra {
 // Appends an axis-aligned box (8 vertices, 6 outward quads) to an object.
 void addBox(Object& object, const Vec3& lo, const Vec3& hi);
 
+// Appends a UV sphere (stacks ≥ 2 latitude bands × slices ≥ 3 longitudes: a triangle fan
+// round each pole, planar quads between, all outward) to an object.
+void addUvSphere(Object& object, const Vec3& centre, double radius, int stacks, int slices);
+
 // A one-quad static "white" object whose front faces `front`.
 Object quadObject(const std::string& id, const Polygon3& quad, const Vec3& front);
 

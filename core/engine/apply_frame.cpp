@@ -421,7 +421,8 @@ FrameResult Engine::apply(const Frame& frame) {
         if (!order.contains(face->id)) continue;
         keys[face->id];
         for (FaceId other : cubes_[l]->candidates(face->id)) {
-          if (!order.contains(other)) continue;
+          // Faces of one closed convex object never shadow each other (as in the build).
+          if (!order.contains(other) || !scene_.mayShadow(face->id, other)) continue;
           keys[other];
           pairs.push_back({face->id, other});
         }

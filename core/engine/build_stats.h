@@ -20,6 +20,7 @@ struct BuildStats {
   size_t receivers = 0;            // faces with a DM-tree (some light reaches their front)
   size_t lights = 0;
   size_t candidatePairs = 0;       // unordered pairs from the overlap cubes, summed over lights
+  size_t closedConvexPairs = 0;    // of those, not cast: both faces of one closed convex object
   size_t castAttempts = 0;         // (occluder, receiver, light) castShadow calls
   size_t pairsWithShadow = 0;      // of those, the ones that cast a shadow
   size_t tiles = 0;                // overlap-cube tiles, summed over lights

@@ -185,6 +185,10 @@ void Engine::castAllPairs(const EngineProgress& progress) {
     std::vector<Attempt> attempts;
     const FaceOrder& order = *orders_[l];
     for (const auto& [a, b] : pairs) {
+      if (!scene_.mayShadow(a, b)) {  // faces of one closed convex object
+        ++stats_.closedConvexPairs;
+        continue;
+      }
       if (!order.contains(a) || !order.contains(b)) continue;
       attempts.push_back({order.rank(a), order.rank(b), a, b});
       attempts.push_back({order.rank(b), order.rank(a), b, a});
@@ -281,7 +285,8 @@ void Engine::castAllOn(Receiver& receiver) {
     if (!order.contains(receiver.face)) continue;
     std::vector<std::pair<size_t, FaceId>> occluders;
     for (FaceId candidate : cubes_[l]->candidates(receiver.face))
-      if (order.contains(candidate)) occluders.push_back({order.rank(candidate), candidate});
+      if (order.contains(candidate) && scene_.mayShadow(candidate, receiver.face))
+        occluders.push_back({order.rank(candidate), candidate});
     std::sort(occluders.begin(), occluders.end());
     for (const auto& [rank, occluder] : occluders) castPair(l, *findFace(scene_, occluder), receiver);
   }

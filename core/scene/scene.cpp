@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/scene/closed_convex.h"
+
 namespace penumbra {
 
 Plane Light::plane() const {
@@ -100,9 +102,12 @@ void Scene::deriveFaces() {
       for (int index : indices) grow(object.transform.apply(object.vertices[size_t(index)]));
   tolerance_ = Tolerance::forSize(bounds_.diagonal());
   faces_.clear();
+  closedConvex_.clear();
   for (size_t o = 0; o < objects_.size(); ++o) {
     try {
-      for (Face& face : facesOf(objects_[o], handles_[o])) faces_.push_back(std::move(face));
+      std::vector<Face> faces = facesOf(objects_[o], handles_[o]);
+      closedConvex_.push_back(penumbra::isClosedConvex(objects_[o], faces, tolerance_));
+      for (Face& face : faces) faces_.push_back(std::move(face));
     } catch (const FaceError& error) {
       throw error.atObject(o);
     }
@@ -125,9 +130,11 @@ uint32_t Scene::addObject(Object object) {
   if (findObject(object.id)) throw std::invalid_argument("duplicate object id '" + object.id + "'");
   const uint32_t handle = nextHandle_;
   std::vector<Face> faces = facesOf(object, handle);  // checks before changing anything
+  const bool closedConvex = penumbra::isClosedConvex(object, faces, tolerance_);
   ++nextHandle_;
   objects_.push_back(std::move(object));
   handles_.push_back(handle);
+  closedConvex_.push_back(closedConvex);
   // Handles only grow: the new faces sort after every existing one.
   for (Face& face : faces) faces_.push_back(std::move(face));
   return handle;
@@ -138,6 +145,7 @@ void Scene::removeObject(uint32_t handle) {
   if (!index) throw std::invalid_argument("no object with handle " + std::to_string(handle));
   objects_.erase(objects_.begin() + long(*index));
   handles_.erase(handles_.begin() + long(*index));
+  closedConvex_.erase(closedConvex_.begin() + long(*index));
   faces_.erase(std::remove_if(faces_.begin(), faces_.end(),
                               [&](const Face& f) { return f.id.object == handle; }),
                faces_.end());
@@ -149,10 +157,18 @@ void Scene::setTransform(uint32_t handle, const Transform& transform) {
   Object moved = objects_[*index];
   moved.transform = transform;
   std::vector<Face> faces = facesOf(moved, handle);  // checks before changing anything
+  // Closed and convex is affine-invariant, but the test is at the scene's tolerance in
+  // world space: decided again, as a rebuild of the moved scene would.
+  closedConvex_[*index] = penumbra::isClosedConvex(moved, faces, tolerance_);
   objects_[*index] = std::move(moved);
   const auto first = std::lower_bound(faces_.begin(), faces_.end(), FaceId{handle, 0},
                                       [](const Face& f, const FaceId& id) { return f.id < id; });
   for (size_t f = 0; f < faces.size(); ++f) first[long(f)] = std::move(faces[f]);
+}
+
+bool Scene::isClosedConvex(uint32_t handle) const {
+  const auto index = indexOfHandle(handle);
+  return index && closedConvex_[*index];
 }
 
 std::optional<size_t> Scene::findObject(std::string_view id) const {

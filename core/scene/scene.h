@@ -135,6 +135,15 @@ class Scene {
   // All faces of all objects in world space, ordered by (object, face).
   const std::vector<Face>& faces() const { return faces_; }
 
+  // Whether the object is closed and convex (core/scene/closed_convex.h), decided when
+  // it enters the scene or moves. Such an object never shadows itself.
+  bool isClosedConvex(uint32_t handle) const;
+  // False when both faces belong to one closed convex object: neither can shadow the
+  // other, so the engine never casts the pair.
+  bool mayShadow(FaceId occluder, FaceId receiver) const {
+    return occluder.object != receiver.object || !isClosedConvex(occluder.object);
+  }
+
   std::optional<size_t> findObject(std::string_view id) const;  // index into objects()
   std::optional<size_t> findLight(std::string_view id) const;   // index into lights()
   std::optional<size_t> findMaterial(std::string_view id) const;
@@ -183,6 +192,7 @@ class Scene {
   std::vector<Material> materials_;
   std::vector<Object> objects_;
   std::vector<uint32_t> handles_;  // parallel to objects_, increasing
+  std::vector<char> closedConvex_; // parallel to objects_
   uint32_t nextHandle_ = 0;
   std::optional<Camera> camera_;
   std::vector<Face> faces_;

@@ -74,7 +74,7 @@ std::string engineDifference(const Engine& a, const Engine& b) {
 }
 
 std::string countersDifference(const BuildStats& a, const BuildStats& b) {
-  if (a.candidatePairs != b.candidatePairs || a.castAttempts != b.castAttempts ||
+  if (a.candidatePairs != b.candidatePairs || a.closedConvexPairs != b.closedConvexPairs || a.castAttempts != b.castAttempts ||
       a.pairsWithShadow != b.pairsWithShadow || a.tiles != b.tiles || a.orderFragments != b.orderFragments)
     return "casting counters";
   if (a.treeNodes != b.treeNodes || a.cells != b.cells || a.vertices != b.vertices ||
