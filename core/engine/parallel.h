@@ -1,6 +1,7 @@
 // Loops over independent items on up to N threads (TBB): each item writes only its own outputs,
-// so results are the same on any number of threads. Shared by the engine's build steps;
-// forEach may be called from inside another forEach of the same object (nested loops share it).
+// so results are the same on any number of threads. Shared by the engine's build steps and the
+// renderer's rows; forEach may be called from inside another forEach of the same object (nested
+// loops share it).
 #pragma once
 
 #include <tbb/blocked_range.h>
@@ -15,7 +16,8 @@ namespace penumbra {
 // ThreadSanitizer cannot see the synchronisation inside Debian's libtbb (not instrumented): every
 // join of a parallel_for would be reported as a race. A TSan build (the server tests, README
 // "Fuzzing and the thread sanitizer") runs every loop on the calling thread; the loops' own
-// independence is checked by the ThreadCount tests (same bytes on 1 and 2 threads) instead.
+// independence is checked by tests giving the same bytes on 1 and 2 threads instead (ThreadCount.*,
+// Renderer.OneAndTwoThreadsDrawTheSameBytes).
 #if defined(__SANITIZE_THREAD__)
 inline constexpr bool kLoopsOnOneThread = true;
 #else

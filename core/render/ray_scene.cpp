@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "core/engine/parallel.h"
+
 namespace penumbra {
 
 namespace {
@@ -83,7 +85,9 @@ void RayScene::check(const char* what) const {
 }
 
 RayScene::RayScene(const Scene& scene) : faces_(scene.faces()), tolerance_(scene.tolerance()) {
-  device_ = rtcNewDevice(nullptr);
+  // Embree builds its BVH on TBB, as uninstrumented as TBB itself: a TSan build builds it on the
+  // calling thread, like the engine's loops (core/engine/parallel.h).
+  device_ = rtcNewDevice(kLoopsOnOneThread ? "threads=1" : nullptr);
   if (!device_) throw RayTracingError("Embree: cannot create a device");
   rtcSetDeviceErrorFunction(device_, onEmbreeError, this);
   // The blocking rule needs back-side hits and filter callbacks.

@@ -1,8 +1,5 @@
 #include "core/render/renderer.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -11,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/engine/parallel.h"
 #include "core/illum/backprojection.h"
 #include "core/reference/exact_irradiance.h"
 #include "core/render/mesh_lookup.h"
@@ -130,52 +128,54 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
 
   std::atomic<size_t> rowsDone{0};
   std::mutex progressMutex;
-  tbb::parallel_for(tbb::blocked_range<int>(0, image.height), [&](const tbb::blocked_range<int>& rows) {
-    for (int j = rows.begin(); j != rows.end(); ++j) {
-      for (int i = 0; i < image.width; ++i) {
-        const CameraProjection::Ray ray = camera.rayThrough(Vec2(i + 0.5, j + 0.5));
-        // The near→far segment is t in [0, 1].
-        std::optional<RayScene::Hit> surface;
-        double tNear = 0;
-        for (int pass = 0; pass < kMaxBackFaceSkips; ++pass) {
-          auto hit = rays.intersect(ray.origin, ray.dir, tNear, 1.0);
-          if (!hit) break;
-          if (!settings.cullBackFaces || hit->frontFacing) {
-            surface = hit;
-            break;
-          }
-          tNear = hit->t + kSkipRelative * std::max(hit->t, 1e-3);
+  // Rows in parallel; each pixel's value depends only on the pixel (its generator too), so
+  // the image is the same on any number of threads (Renderer.OneAndTwoThreadsDrawTheSameBytes).
+  Parallel(settings.threads).forEach(size_t(image.height), [&](size_t row) {
+    const int j = int(row);
+    for (int i = 0; i < image.width; ++i) {
+      const CameraProjection::Ray ray = camera.rayThrough(Vec2(i + 0.5, j + 0.5));
+      // The near→far segment is t in [0, 1].
+      std::optional<RayScene::Hit> surface;
+      double tNear = 0;
+      for (int pass = 0; pass < kMaxBackFaceSkips; ++pass) {
+        auto hit = rays.intersect(ray.origin, ray.dir, tNear, 1.0);
+        if (!hit) break;
+        if (!settings.cullBackFaces || hit->frontFacing) {
+          surface = hit;
+          break;
         }
-        double closest = surface ? surface->t : INFINITY;
-        std::optional<size_t> light;
-        for (size_t l = 0; l < scene.lights().size(); ++l) {
-          const auto t = hitLight(scene.lights()[l], lightPlanes[l], ray.origin, ray.dir);
-          if (t && *t <= 1.0 && *t < closest) {
-            closest = *t;
-            light = l;
-          }
+        tNear = hit->t + kSkipRelative * std::max(hit->t, 1e-3);
+      }
+      double closest = surface ? surface->t : INFINITY;
+      std::optional<size_t> light;
+      for (size_t l = 0; l < scene.lights().size(); ++l) {
+        const auto t = hitLight(scene.lights()[l], lightPlanes[l], ray.origin, ray.dir);
+        if (t && *t <= 1.0 && *t < closest) {
+          closest = *t;
+          light = l;
         }
+      }
 
-        Vec3 radiance = settings.background;
-        const size_t p = size_t(j) * image.width + i;
-        if (light) {
-          radiance = scene.lights()[*light].radiance;
-          kind[p] = 2;
-        } else if (surface && microfacet.isMicrofacet(surface->faceIndex)) {
-          bsdf::Rng rng(settings.seed * 0x9E3779B97F4A7C15ull + p);
-          radiance = microfacet.radiance(surface->faceIndex, surface->position, -glm::normalize(ray.dir), rng);
-          kind[p] = 1;
-        } else if (surface) {
-          radiance = diffuseRadiance(surface->faceIndex, surface->position, surface->frontFacing);
-          kind[p] = 1;
-        }
-        for (int c = 0; c < 3; ++c) image.linear[3 * p + c] = float(radiance[c]);
+      Vec3 radiance = settings.background;
+      const size_t p = size_t(j) * image.width + i;
+      if (light) {
+        radiance = scene.lights()[*light].radiance;
+        kind[p] = 2;
+      } else if (surface && microfacet.isMicrofacet(surface->faceIndex)) {
+        bsdf::Rng rng(settings.seed * 0x9E3779B97F4A7C15ull + p);
+        radiance = microfacet.radiance(surface->faceIndex, surface->position,
+                                       -glm::normalize(ray.dir), rng);
+        kind[p] = 1;
+      } else if (surface) {
+        radiance = diffuseRadiance(surface->faceIndex, surface->position, surface->frontFacing);
+        kind[p] = 1;
       }
-      if (progress) {
-        const size_t done = ++rowsDone;
-        std::lock_guard lock(progressMutex);
-        progress(done, size_t(image.height));
-      }
+      for (int c = 0; c < 3; ++c) image.linear[3 * p + c] = float(radiance[c]);
+    }
+    if (progress) {
+      const size_t done = ++rowsDone;
+      std::lock_guard lock(progressMutex);
+      progress(done, size_t(image.height));
     }
   });
 
@@ -183,7 +183,8 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
   for (size_t p = 0; p < pixels; ++p) {
     if (kind[p] == 1) {
       ++image.surfacePixels;
-      surfaceValues.push_back(std::max({image.linear[3 * p], image.linear[3 * p + 1], image.linear[3 * p + 2]}));
+      surfaceValues.push_back(
+          std::max({image.linear[3 * p], image.linear[3 * p + 1], image.linear[3 * p + 2]}));
     } else if (kind[p] == 2) {
       ++image.lightPixels;
     }

@@ -42,6 +42,9 @@ struct RenderSettings {
   // Either way the visible light pieces are exact (Backprojection).
   std::function<void(FaceId face, const Vec3& p, size_t light, std::vector<FaceId>& out)> occluders;
   uint64_t seed = 1;  // microfacet estimates: per-pixel generators seeded from it
+  // Threads drawing rows: 0 = every core, 1 = the calling thread only (EngineSettings::threads;
+  // a TSan build always uses 1, core/engine/parallel.h). The image is the same for any count.
+  int threads = 0;
 };
 
 struct RenderedImage {
