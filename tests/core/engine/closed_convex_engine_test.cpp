@@ -75,9 +75,12 @@ TEST(ClosedConvexEngine, EditsEqualRebuildAndReference) {
     const testing::EngineDiff diff = testing::compareEngines(
         engine, rebuilt, testing::peakIrradiance(rebuilt), 200, uint64_t(f));
     EXPECT_EQ(diff.errors(), 0u) << "frame " << f << ": " << diff.firstProblem;
-    expectExact(engine, "sphere frame " + std::to_string(f));
     ++f;
   }
+  // Each frame equals a rebuild (above), and a rebuild of this sphere is exact
+  // (SphereOverFloorMatchesReference): the reference at every vertex once, at the end,
+  // keeps the test at a third of its time.
+  expectExact(engine, "sphere after the frames");
 }
 
 // The same sphere with one face missing is open: its pairs are cast as any others (they
