@@ -60,9 +60,9 @@ class ReceiverMeshMemo {
 
   // What one cell emitted, and a fingerprint of what that depends on (its outline,
   // occluder list, the listed faces' polygons, its corners' values): an equal
-  // fingerprint means the cell would emit the same again. Keeping the inputs
-  // themselves cost ~1.5 kB a cell, most of a dense room's memory. Buffers are
-  // reused from cell to cell.
+  // fingerprint means the cell would emit the same again (a 64-bit collision, ~2⁻⁶⁴ a
+  // compare, would keep a stale cell). Keeping the inputs themselves cost ~1.5 kB a
+  // cell, most of a dense room's memory. Buffers are reused from cell to cell.
   struct CellMemo {
     bool valid = false;
     uint64_t inputs = 0;
