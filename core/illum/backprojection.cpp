@@ -6,6 +6,7 @@
 #include "core/geom/clip.h"
 #include "core/illum/face_lookup.h"
 #include "core/illum/lambert.h"
+#include "core/illum/visible_contour.h"
 
 namespace penumbra {
 

@@ -12,7 +12,6 @@
 
 #include "core/geom/convex2d.h"
 #include "core/geom/plane_frame.h"
-#include "core/illum/visible_contour.h"
 #include "core/illum/visible_region.h"
 #include "core/mesh/mesh.h"
 #include "core/scene/scene.h"
