@@ -9,6 +9,7 @@
 
 #include "core/geom/polygon.h"
 #include "core/geom/tolerance.h"
+#include "interchange/light_polygons.h"
 #include "interchange/vertex_weld.h"
 #include "protocol/scene_json.h"
 #include "protocol/utf8.h"
@@ -69,7 +70,8 @@ struct RepairedGroup {
 };
 
 // minWidth: the scene's Tolerance::minFaceWidth() (thinner faces are refused by Scene).
-RepairedGroup repairGroup(const ImportedGroup& group, double scale, double weldEps, double minWidth,
+// Emissive groups are not joined here: lightPolygons() joins them once they face the scene.
+RepairedGroup repairGroup(const ImportedGroup& group, bool emissive, double scale, double weldEps, double minWidth,
                           ImportReport& report) {
   RepairedGroup out;
   out.source = &group;
@@ -102,7 +104,7 @@ RepairedGroup repairGroup(const ImportedGroup& group, double scale, double weldE
   for (int i : used)
     if (!welded.insert(weld.remap[size_t(i)]).second) ++joined;
   report.count("duplicate_vertices_merged", joined);
-  if (group.joinTriangles) report.count("coplanar_triangles_joined", joinCoplanarConvex(out.positions, pieces));
+  if (group.joinTriangles && !emissive) report.count("coplanar_triangles_joined", joinCoplanarConvex(out.positions, pieces));
   const size_t before = pieces.size();
   std::erase_if(pieces, [&](const IndexPolygon& piece) {
     Polygon3 points;
@@ -163,24 +165,23 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
     throw ValidationError("(import)", "the file has no faces with area");
   const double weldEps = kWeldFraction * bounds.diagonal();
 
+  auto emissionOf = [&](const ImportedGroup& g) {
+    return g.material >= 0 ? geometry.materials[size_t(g.material)].emission : Vec3(0.0);
+  };
   std::vector<RepairedGroup> groups;
   for (const ImportedGroup& group : geometry.groups) {
     // Undefined materials count once per group that uses them.
     if (group.material >= 0 && !geometry.materials[size_t(group.material)].defined)
       report.count("groups_with_undefined_material");
     // Dropping faces only shrinks the scene, and its minimum width with it.
-    groups.push_back(repairGroup(group, options.scale, weldEps,
+    groups.push_back(repairGroup(group, isEmissive(emissionOf(group)), options.scale, weldEps,
                                  Tolerance::forSize(bounds.diagonal()).minFaceWidth(), report));
   }
-
-  auto emissionOf = [&](const RepairedGroup& g) {
-    return g.source->material >= 0 ? geometry.materials[size_t(g.source->material)].emission : Vec3(0.0);
-  };
 
   // The centre of what is lit: lights are turned to face it.
   Bounds lit{Vec3(INFINITY), Vec3(-INFINITY)};
   for (const RepairedGroup& g : groups)
-    if (!isEmissive(emissionOf(g)))
+    if (!isEmissive(emissionOf(*g.source)))
       for (const IndexPolygon& face : g.faces)
         for (int i : face) {
           lit.min = glm::min(lit.min, g.positions[size_t(i)]);
@@ -198,16 +199,10 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
       if (!g.source->polygons.empty()) report.count("groups_emptied_by_repairs");
       continue;
     }
-    const Vec3 emission = emissionOf(g);
+    const Vec3 emission = emissionOf(*g.source);
     if (isEmissive(emission)) {
-      for (const IndexPolygon& face : g.faces) {
-        Polygon3 polygon;
-        for (int i : face) polygon.push_back(g.positions[size_t(i)]);
-        const auto plane = planeOf(polygon);
-        if (anyLit && plane && plane->signedDistance(lit.center()) < 0) {
-          std::reverse(polygon.begin(), polygon.end());
-          report.count("lights_turned_to_face_the_scene");
-        }
+      const std::optional<Vec3> litCentre = anyLit ? std::optional(lit.center()) : std::nullopt;
+      for (const Polygon3& polygon : lightPolygons(g.positions, g.faces, litCentre, report)) {
         Vec3 radiance = emission;
         if (options.lightRadiance) {
           radiance = *options.lightRadiance;
