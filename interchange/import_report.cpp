@@ -26,7 +26,7 @@ std::string ImportReport::summary() const {
                      std::to_string(materials) + " materials\n";
   if (repairs.empty()) text += "  no repairs\n";
   for (const auto& [repair, times] : repairs) text += "  repaired: " + repair + " × " + std::to_string(times) + "\n";
-  for (const std::string& warning : warnings) text += "  loader warning: " + warning + "\n";
+  for (const std::string& warning : warnings) text += "  warning: " + warning + "\n";
   return text;
 }
 

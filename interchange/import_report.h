@@ -1,6 +1,6 @@
-// What an import changed in its input: one counter per kind of repair, the
-// loader's own warnings, and the size of the result. Plain value filled by one
-// importer; not shared between threads while it is being filled.
+// What an import changed in its input: one counter per kind of repair (or of finding
+// left as it was, like coplanar overlaps), the warnings, and the size of the result.
+// Plain value filled by one importer; not shared between threads while it is being filled.
 #pragma once
 
 #include <map>
@@ -17,7 +17,8 @@ struct ImportReport {
   // Repair name → how many times it was made (README "Import" lists the names).
   // Only repairs that happened appear; nothing is ever changed without a count here.
   std::map<std::string, size_t> repairs;
-  std::vector<std::string> warnings;  // from the loader, one per line, verbatim
+  // The loader's, verbatim, and the importer's (missing files, coplanar overlaps), one per line.
+  std::vector<std::string> warnings;
   size_t objects = 0, faces = 0, lights = 0, materials = 0;
 
   void count(const std::string& repair, size_t times = 1) {

@@ -141,7 +141,8 @@ PolygonRepair repairPolygon(const std::vector<Vec3>& positions, const IndexPolyg
   return result;
 }
 
-size_t joinCoplanarConvex(const std::vector<Vec3>& positions, std::vector<IndexPolygon>& pieces) {
+size_t joinCoplanarConvex(const std::vector<Vec3>& positions, std::vector<IndexPolygon>& pieces,
+                          std::vector<size_t>* joinedInto) {
   std::map<std::pair<int, int>, size_t> owner;  // directed edge → piece
   auto forEdges = [](const IndexPolygon& p, auto&& visit) {
     for (size_t k = 0; k < p.size(); ++k) visit(p[k], p[(k + 1) % p.size()]);
@@ -149,6 +150,8 @@ size_t joinCoplanarConvex(const std::vector<Vec3>& positions, std::vector<IndexP
   for (size_t i = 0; i < pieces.size(); ++i)
     forEdges(pieces[i], [&](int a, int b) { owner.emplace(std::pair{a, b}, i); });
   std::vector<bool> alive(pieces.size(), true);
+  std::vector<size_t> into(pieces.size());  // the piece each one was joined to (itself while alive)
+  for (size_t i = 0; i < into.size(); ++i) into[i] = i;
   size_t joins = 0;
   for (size_t i = 0; i < pieces.size(); ++i) {
     bool joined = true;
@@ -171,6 +174,7 @@ size_t joinCoplanarConvex(const std::vector<Vec3>& positions, std::vector<IndexP
         release(p, i);
         release(pieces[j], j);
         alive[j] = false;
+        into[j] = i;
         pieces[i] = std::move(merged);
         forEdges(pieces[i], [&](int u, int v) { owner[{u, v}] = i; });
         ++joins;
@@ -179,8 +183,21 @@ size_t joinCoplanarConvex(const std::vector<Vec3>& positions, std::vector<IndexP
     }
   }
   std::vector<IndexPolygon> survivors;
+  std::vector<size_t> survivorIndex(pieces.size());
   for (size_t i = 0; i < pieces.size(); ++i)
-    if (alive[i]) survivors.push_back(std::move(pieces[i]));
+    if (alive[i]) {
+      survivorIndex[i] = survivors.size();
+      survivors.push_back(std::move(pieces[i]));
+    }
+  if (joinedInto) {
+    // Follow each chain of joins to the piece that survived it.
+    joinedInto->resize(pieces.size());
+    for (size_t i = 0; i < pieces.size(); ++i) {
+      size_t k = i;
+      while (into[k] != k) k = into[k];
+      (*joinedInto)[i] = survivorIndex[k];
+    }
+  }
   pieces = std::move(survivors);
   return joins;
 }

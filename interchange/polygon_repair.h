@@ -29,7 +29,9 @@ PolygonRepair repairPolygon(const std::vector<Vec3>& positions, const IndexPolyg
 
 // Greedily joins pieces sharing an edge (a→b in one, b→a in the other) while the
 // union is coplanar (1e-9 of its size) and convex, like Hertel–Mehlhorn. Returns
-// how many joins it made; `pieces` keeps the survivors.
-size_t joinCoplanarConvex(const std::vector<Vec3>& positions, std::vector<IndexPolygon>& pieces);
+// how many joins it made; `pieces` keeps the survivors. `joinedInto` (optional): for
+// each input piece, the index of the survivor that holds it.
+size_t joinCoplanarConvex(const std::vector<Vec3>& positions, std::vector<IndexPolygon>& pieces,
+                          std::vector<size_t>* joinedInto = nullptr);
 
 }  // namespace penumbra::interchange

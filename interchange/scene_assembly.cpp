@@ -6,9 +6,12 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "core/geom/polygon.h"
 #include "core/geom/tolerance.h"
+#include "interchange/coplanar_overlaps.h"
+#include "interchange/light_polygons.h"
 #include "interchange/vertex_weld.h"
 #include "protocol/scene_json.h"
 #include "protocol/utf8.h"
@@ -69,7 +72,8 @@ struct RepairedGroup {
 };
 
 // minWidth: the scene's Tolerance::minFaceWidth() (thinner faces are refused by Scene).
-RepairedGroup repairGroup(const ImportedGroup& group, double scale, double weldEps, double minWidth,
+// Emissive groups are not joined here: lightPolygons() joins them once they face the scene.
+RepairedGroup repairGroup(const ImportedGroup& group, bool emissive, double scale, double weldEps, double minWidth,
                           ImportReport& report) {
   RepairedGroup out;
   out.source = &group;
@@ -102,7 +106,7 @@ RepairedGroup repairGroup(const ImportedGroup& group, double scale, double weldE
   for (int i : used)
     if (!welded.insert(weld.remap[size_t(i)]).second) ++joined;
   report.count("duplicate_vertices_merged", joined);
-  if (group.joinTriangles) report.count("coplanar_triangles_joined", joinCoplanarConvex(out.positions, pieces));
+  if (group.joinTriangles && !emissive) report.count("coplanar_triangles_joined", joinCoplanarConvex(out.positions, pieces));
   const size_t before = pieces.size();
   std::erase_if(pieces, [&](const IndexPolygon& piece) {
     Polygon3 points;
@@ -123,6 +127,70 @@ RepairedGroup repairGroup(const ImportedGroup& group, double scale, double weldE
     out.faces.push_back(std::move(face));
   }
   return out;
+}
+
+// The faces of each group as points; lights' groups left empty (lights neither block nor receive).
+std::vector<std::vector<Polygon3>> facePolygons(const std::vector<RepairedGroup>& groups,
+                                                const std::vector<bool>& isLight) {
+  std::vector<std::vector<Polygon3>> polygons(groups.size());
+  for (size_t g = 0; g < groups.size(); ++g)
+    if (!isLight[g])
+      for (const IndexPolygon& face : groups[g].faces) {
+        Polygon3& points = polygons[g].emplace_back();
+        for (int i : face) points.push_back(groups[g].positions[size_t(i)]);
+      }
+  return polygons;
+}
+
+// Drops the faces the policy drops; afterIndex[g][f] is face f's index once they are gone (-1: dropped).
+std::vector<std::vector<int>> dropFaces(std::vector<RepairedGroup>& groups, const CoplanarDecision& decision) {
+  std::vector<std::vector<int>> afterIndex(groups.size());
+  for (size_t g = 0; g < groups.size(); ++g) {
+    std::vector<IndexPolygon> kept;
+    for (size_t f = 0; f < groups[g].faces.size(); ++f) {
+      const bool drop = decision.dropped.count(FaceRef{g, f}) > 0;
+      afterIndex[g].push_back(drop ? -1 : int(kept.size()));
+      if (!drop) kept.push_back(std::move(groups[g].faces[f]));
+    }
+    groups[g].faces = std::move(kept);
+  }
+  return afterIndex;
+}
+
+std::string pointText(const Vec3& p) {
+  std::ostringstream text;
+  text.precision(6);
+  text << "(" << p.x << ", " << p.y << ", " << p.z << ")";
+  return text.str();
+}
+
+// One warning per dropped face and per overlap kept, naming the faces as the scene has them
+// ("'floor' face 0"; a dropped face by its object and centre); at most kMaxWarnings, then a tally.
+void warnCoplanar(const CoplanarDecision& decision, const std::vector<std::vector<Polygon3>>& polygons,
+                  const std::vector<std::vector<int>>& afterIndex, const std::vector<std::string>& objectIds,
+                  ImportReport& report) {
+  constexpr size_t kMaxWarnings = 20;
+  auto name = [&](const FaceRef& r) {
+    const int index = afterIndex[r.group][r.face];
+    if (index >= 0) return "'" + objectIds[r.group] + "' face " + std::to_string(index);
+    return "a face of '" + objectIds[r.group] + "' around " + pointText(centroid(polygons[r.group][r.face]));
+  };
+  std::vector<std::string> lines;
+  for (const auto& [covered, by] : decision.dropped)
+    lines.push_back("coplanar face dropped: " + name(covered) + " lies wholly within " + name(by) +
+                    " in the same plane, facing the same way");
+  for (const CoplanarOverlap& o : decision.kept) {
+    std::ostringstream area;
+    area.precision(6);
+    area << o.area;
+    lines.push_back("coplanar faces overlap: " + name(o.a) + " and " + name(o.b) + " lie in one plane " +
+                    (o.backToBack ? "back to back" : "facing the same way") + " and share an area of " +
+                    area.str() + "; both kept");
+  }
+  for (size_t k = 0; k < lines.size() && k < kMaxWarnings; ++k) report.warnings.push_back(lines[k]);
+  if (lines.size() > kMaxWarnings)
+    report.warnings.push_back("… and " + std::to_string(lines.size() - kMaxWarnings) +
+                              " more coplanar faces dropped or overlapping (see the counts)");
 }
 
 }  // namespace
@@ -163,24 +231,32 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
     throw ValidationError("(import)", "the file has no faces with area");
   const double weldEps = kWeldFraction * bounds.diagonal();
 
+  auto emissionOf = [&](const ImportedGroup& g) {
+    return g.material >= 0 ? geometry.materials[size_t(g.material)].emission : Vec3(0.0);
+  };
+  const Tolerance tolerance = Tolerance::forSize(bounds.diagonal());
   std::vector<RepairedGroup> groups;
+  std::vector<bool> isLight;
   for (const ImportedGroup& group : geometry.groups) {
     // Undefined materials count once per group that uses them.
     if (group.material >= 0 && !geometry.materials[size_t(group.material)].defined)
       report.count("groups_with_undefined_material");
+    isLight.push_back(isEmissive(emissionOf(group)));
     // Dropping faces only shrinks the scene, and its minimum width with it.
-    groups.push_back(repairGroup(group, options.scale, weldEps,
-                                 Tolerance::forSize(bounds.diagonal()).minFaceWidth(), report));
+    groups.push_back(repairGroup(group, isLight.back(), options.scale, weldEps, tolerance.minFaceWidth(), report));
   }
 
-  auto emissionOf = [&](const RepairedGroup& g) {
-    return g.source->material >= 0 ? geometry.materials[size_t(g.source->material)].emission : Vec3(0.0);
-  };
+  // Faces in one plane overlapping (README "Import"): a covered one goes, the others stay; all reported.
+  const std::vector<std::vector<Polygon3>> polygons = facePolygons(groups, isLight);
+  const CoplanarDecision coplanar = decideCoplanarOverlaps(findCoplanarOverlaps(polygons, tolerance));
+  report.count("covered_coplanar_faces_dropped", coplanar.dropped.size());
+  report.count("coplanar_overlapping_face_pairs", coplanar.kept.size());
+  const std::vector<std::vector<int>> afterIndex = dropFaces(groups, coplanar);
 
   // The centre of what is lit: lights are turned to face it.
   Bounds lit{Vec3(INFINITY), Vec3(-INFINITY)};
   for (const RepairedGroup& g : groups)
-    if (!isEmissive(emissionOf(g)))
+    if (!isEmissive(emissionOf(*g.source)))
       for (const IndexPolygon& face : g.faces)
         for (int i : face) {
           lit.min = glm::min(lit.min, g.positions[size_t(i)]);
@@ -190,24 +266,20 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
 
   Json lights = Json::array(), objects = Json::array(), materials = Json::object();
   IdPool lightIds("light", "light_ids_made_unique", report);
-  IdPool objectIds("object", "object_ids_made_unique", report);
+  IdPool objectIdPool("object", "object_ids_made_unique", report);
   IdPool materialNames("material", "material_names_made_unique", report);
   std::map<int, std::string> usedMaterials;  // imported material → its name in the scene
+  std::vector<std::string> objectIds;          // per group: its object's id (its own name if it has none)
   for (const RepairedGroup& g : groups) {
+    objectIds.push_back(g.source->name);
     if (g.faces.empty()) {
       if (!g.source->polygons.empty()) report.count("groups_emptied_by_repairs");
       continue;
     }
-    const Vec3 emission = emissionOf(g);
+    const Vec3 emission = emissionOf(*g.source);
     if (isEmissive(emission)) {
-      for (const IndexPolygon& face : g.faces) {
-        Polygon3 polygon;
-        for (int i : face) polygon.push_back(g.positions[size_t(i)]);
-        const auto plane = planeOf(polygon);
-        if (anyLit && plane && plane->signedDistance(lit.center()) < 0) {
-          std::reverse(polygon.begin(), polygon.end());
-          report.count("lights_turned_to_face_the_scene");
-        }
+      const std::optional<Vec3> litCentre = anyLit ? std::optional(lit.center()) : std::nullopt;
+      for (const Polygon3& polygon : lightPolygons(g.positions, g.faces, litCentre, report)) {
         Vec3 radiance = emission;
         if (options.lightRadiance) {
           radiance = *options.lightRadiance;
@@ -232,7 +304,8 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
       faces.push_back(indices);
     }
     report.count("unused_vertices_dropped", g.positions.size() - compact.size());
-    Json object = {{"id", objectIds.take(g.source->name)}, {"vertices", vertices}, {"faces", faces}};
+    objectIds.back() = objectIdPool.take(g.source->name);
+    Json object = {{"id", objectIds.back()}, {"vertices", vertices}, {"faces", faces}};
     const int m = g.source->material;
     if (m >= 0 && geometry.materials[size_t(m)].defined) {
       if (!usedMaterials.count(m)) usedMaterials[m] = materialNames.take(geometry.materials[size_t(m)].name);
@@ -249,6 +322,7 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
     out.albedo = albedo;
     materials[name] = protocol::materialToJson(out);
   }
+  warnCoplanar(coplanar, polygons, afterIndex, objectIds, report);
   if (lights.empty())
     throw ValidationError("(import)",
                           "no emissive faces: give a material Ke (or Ka on a material named like a light), "

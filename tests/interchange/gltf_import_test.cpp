@@ -113,7 +113,9 @@ std::vector<uint8_t> smallModel(bool binary) {
 
 void expectSmallScene(const ImportResult& result) {
   const Scene& scene = result.scene;
-  EXPECT_EQ(result.report.repaired("coplanar_triangles_joined"), 3u) << result.report.summary();
+  // The floor's and the card's two triangles are one face each again; the lamp's one light.
+  EXPECT_EQ(result.report.repaired("coplanar_triangles_joined"), 2u) << result.report.summary();
+  EXPECT_EQ(result.report.repaired("coplanar_light_triangles_joined"), 1u);
   EXPECT_EQ(result.report.repaired("lights_turned_to_face_the_scene"), 1u);
   ASSERT_EQ(scene.lights().size(), 1u);
   EXPECT_EQ(scene.lights()[0].polygon.size(), 4u);
@@ -140,6 +142,22 @@ TEST(GltfImport, GltfFileWithEmbeddedBuffer) {
   const ImportResult result = importGltfFile((dir / "small.gltf").string(), {});
   EXPECT_EQ(result.report.format, "gltf");
   expectSmallScene(result);
+}
+
+// A lamp folded along its diagonal is two lights, each a triangle (coplanar ones join above).
+TEST(GltfImport, FoldedLampStaysTwoLights) {
+  ModelWriter w;
+  const int grey = w.material("grey", {0.5, 0.6, 0.7}, {0, 0, 0}, 1);
+  const int lamp = w.material("lamp", {1, 1, 1}, {1, 0.5, 0.25}, 8);
+  w.quad("floor", {{{-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}}}, grey, {0, 0, 0});
+  w.quad("lamp", {{{-0.5, 0, -0.5}, {0.5, 0, -0.5}, {0.5, 0, 0.5}, {-0.5, 0.2, 0.5}}}, lamp, {0, 3, 0});
+  const ImportResult result = importSceneBytes(w.write(true), "folded.glb", {}, {});
+  EXPECT_EQ(result.report.repaired("coplanar_light_triangles_joined"), 0u) << result.report.summary();
+  ASSERT_EQ(result.scene.lights().size(), 2u);
+  for (const Light& light : result.scene.lights()) {
+    EXPECT_EQ(light.polygon.size(), 3u);
+    EXPECT_EQ(light.radiance, Vec3(8, 4, 2));
+  }
 }
 
 TEST(GltfImport, UploadsCannotReadFilesAndBadAccessorsAreErrors) {

@@ -82,7 +82,9 @@ TEST(ObjImport, RoundTripGivesTheSameFacesLightsAndAlbedos) {
   const Scene original = protocol::loadSceneFile(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/cornell.scene.json");
   writeObj(original, dir / "cornell.obj", dir / "cornell.mtl");
   const ImportResult result = importObjFile((dir / "cornell.obj").string(), {});
-  EXPECT_TRUE(result.report.repairs.empty()) << result.report.summary();
+  // Nothing repaired; the two blocks' bottoms lie on the floor, back to back with it: reported, kept.
+  EXPECT_EQ(result.report.repairs, (std::map<std::string, size_t>{{"coplanar_overlapping_face_pairs", 2}}))
+      << result.report.summary();
 
   const Scene& imported = result.scene;
   ASSERT_EQ(imported.lights().size(), original.lights().size());
@@ -217,6 +219,14 @@ TEST(ObjImport, WilliamsStyleCornellBoxTakesTheLightFromKaAndTurnsItDown) {
   EXPECT_EQ(result.scene.objects().size(), 6u);
   EXPECT_EQ(result.scene.objects()[*result.scene.findObject("shortBox")].vertices.size(), 8u);
   EXPECT_EQ(report.toJson()["repairs"]["light_radiance_taken_from_ka"], 1);
+  // The box's bottom lies on the floor, back to back with it: kept, counted and named.
+  EXPECT_EQ(report.repaired("coplanar_overlapping_face_pairs"), 1u);
+  EXPECT_EQ(report.repaired("covered_coplanar_faces_dropped"), 0u);
+  EXPECT_NE(std::find(report.warnings.begin(), report.warnings.end(),
+                      "coplanar faces overlap: 'floor' face 0 and 'shortBox' face 4 lie in one plane back to back "
+                      "and share an area of 0.25; both kept"),
+            report.warnings.end())
+      << report.summary();
 }
 
 TEST(ObjImport, BadInputIsAClearErrorNotACrash) {
