@@ -47,11 +47,10 @@ void playOnScene(Scene& scene, const Frame& frame) {
   for (size_t i = 0; i < frame.edits.size(); ++i) {
     const Edit& edit = frame.edits[i];
     try {
-      if (edit.op == Edit::Op::SetLight) {
+      if (isLightEdit(edit)) {
         std::vector<Light> lights = scene.lights();
         checkLightEdit(scene, edit, i, lights);  // the edit volume too, as Engine::apply
-        const size_t l = *scene.findLight(edit.id);
-        scene.setLight(l, lights[l].polygon, lights[l].radiance);
+        applyLightEdit(scene, edit);
         continue;
       }
       if (edit.op == Edit::Op::Add) {

@@ -8,7 +8,8 @@ namespace penumbra::protocol {
 
 namespace {
 
-constexpr std::string_view kOps = "expected \"move\", \"add\", \"remove\" or \"set_light\"";
+constexpr std::string_view kOps =
+    "expected \"move\", \"add\", \"remove\", \"set_light\", \"add_light\" or \"remove_light\"";
 
 // Without a material list, any named material passes here (Engine::apply checks
 // it against the scene); every other object check still runs.
@@ -48,6 +49,13 @@ Edit editFromJson(const Json& value, const std::string& path,
       edit.radiance = radianceFromJson(*radiance, keyPath(path, "radiance"));
     if (!edit.polygon && !edit.radiance)
       fail(path, "set_light changes nothing: give \"polygon\", \"radiance\" or both");
+  } else if (op == "add_light") {
+    edit.op = Edit::Op::AddLight;
+    edit.light = lightFromJson(requireKey(value, "light", path), keyPath(path, "light"));
+    edit.id = edit.light.id;
+  } else if (op == "remove_light") {
+    edit.op = Edit::Op::RemoveLight;
+    edit.id = expectName(requireKey(value, "id", path), keyPath(path, "id"));
   } else {
     fail(keyPath(path, "op"), "unknown op '" + op + "' (" + std::string(kOps) + ")");
   }
@@ -86,6 +94,12 @@ Json frameToJson(const Frame& frame) {
         edits.push_back(std::move(light));
         break;
       }
+      case Edit::Op::AddLight:
+        edits.push_back({{"op", "add_light"}, {"light", lightToJson(edit.light)}});
+        break;
+      case Edit::Op::RemoveLight:
+        edits.push_back({{"op", "remove_light"}, {"id", edit.id}});
+        break;
     }
   }
   return Json{{"edits", std::move(edits)}};

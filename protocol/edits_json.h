@@ -14,11 +14,12 @@
 
 namespace penumbra::protocol {
 
-// One frame: {"edits": [{"op": "move"|"add"|"remove"|"set_light", ...}, ...]}. Throws
-// ValidationError at the first problem with the path inside the frame
-// (e.g. `edits[1].transform.scale`): unknown op, missing keys, wrong types,
-// non-finite numbers, zero scale, an invalid object, a light polygon that is not planar
-// and convex, a negative radiance, a set_light with neither. With `materials`, an added
+// One frame: {"edits": [{"op": "move"|"add"|"remove"|"set_light"|"add_light"|
+// "remove_light", ...}, ...]}. Throws ValidationError at the first problem with the path
+// inside the frame (e.g. `edits[1].transform.scale`, `edits[0].light.polygon[2]`): unknown
+// op, missing keys, wrong types, non-finite numbers, zero scale, an invalid object or
+// light, a light polygon that is not planar and convex, a negative radiance, a set_light
+// with neither. With `materials`, an added
 // object's material must be one of them; with nullptr, material names are left
 // to Engine::apply. Ids that must (not) exist are the engine's check (EditError).
 Frame frameFromJson(const nlohmann::json& value, const std::vector<Material>* materials = nullptr);

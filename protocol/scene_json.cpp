@@ -43,15 +43,6 @@ void checkPolygonSize(size_t count, const std::string& path, const std::string& 
                    std::to_string(kMaxPolygonVertices));
 }
 
-Light lightFromJson(const Json& value, const std::string& path) {
-  expectObject(value, path);
-  Light light;
-  light.id = expectName(requireKey(value, "id", path), keyPath(path, "id"));
-  light.polygon = lightPolygonFromJson(requireKey(value, "polygon", path), keyPath(path, "polygon"));
-  light.radiance = radianceFromJson(requireKey(value, "radiance", path), keyPath(path, "radiance"));
-  return light;
-}
-
 std::vector<Material> materialsFromJson(const Json& value, const std::string& path) {
   expectObject(value, path);
   std::vector<Material> materials;
@@ -202,6 +193,19 @@ Json polygonToJson(const Polygon3& polygon) {
   return out;
 }
 
+Light lightFromJson(const Json& value, const std::string& path) {
+  expectObject(value, path);
+  Light light;
+  light.id = expectName(requireKey(value, "id", path), keyPath(path, "id"));
+  light.polygon = lightPolygonFromJson(requireKey(value, "polygon", path), keyPath(path, "polygon"));
+  light.radiance = radianceFromJson(requireKey(value, "radiance", path), keyPath(path, "radiance"));
+  return light;
+}
+
+Json lightToJson(const Light& light) {
+  return Json{{"id", light.id}, {"polygon", polygonToJson(light.polygon)}, {"radiance", toJson(light.radiance)}};
+}
+
 Scene sceneFromJson(const Json& root) {
   expectHeader(root, kFormat, kVersion);
 
@@ -287,9 +291,7 @@ Json sceneToJson(const Scene& scene) {
 
   Json lights = Json::array();
   for (const Light& light : scene.lights()) {
-    Json polygon = Json::array();
-    for (const Vec3& v : light.polygon) polygon.push_back(toJson(v));
-    lights.push_back(Json{{"id", light.id}, {"polygon", std::move(polygon)}, {"radiance", toJson(light.radiance)}});
+    lights.push_back(lightToJson(light));
   }
   out["lights"] = std::move(lights);
 

@@ -40,6 +40,10 @@ nlohmann::json transformToJson(const Transform& transform);
 Polygon3 lightPolygonFromJson(const nlohmann::json& value, const std::string& path);
 Vec3 radianceFromJson(const nlohmann::json& value, const std::string& path);
 nlohmann::json polygonToJson(const Polygon3& polygon);
+// One light at `path` as in a scene's lights ({"id", "polygon", "radiance"}; add_light
+// reuses them). Id uniqueness needs the surrounding list: the caller's check.
+Light lightFromJson(const nlohmann::json& value, const std::string& path);
+nlohmann::json lightToJson(const Light& light);
 
 // Files: limits from protocol/json_text.h (64 MiB, nesting depth 64); size,
 // depth and syntax errors are ValidationErrors with path `(json)`; a file that

@@ -3,6 +3,8 @@
 #include <set>
 #include <string>
 
+#include "core/engine/light_edits.h"
+
 namespace penumbra::server {
 
 std::optional<Frame> combinedFrame(const std::vector<const Frame*>& frames) {
@@ -12,7 +14,7 @@ std::optional<Frame> combinedFrame(const std::vector<const Frame*>& frames) {
     std::set<std::string> mine;
     for (const Edit& edit : frame->edits) {
       // Lights and objects are named apart: "lamp" the light is not "lamp" the object.
-      const std::string name = (edit.op == Edit::Op::SetLight ? "light:" : "object:") + edit.id;
+      const std::string name = (isLightEdit(edit) ? "light:" : "object:") + edit.id;
       if (earlier.count(name)) return std::nullopt;
       mine.insert(name);
       combined.edits.push_back(edit);

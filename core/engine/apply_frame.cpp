@@ -46,24 +46,28 @@ void reach(const EngineSettings& settings, const char* point) {
 }
 constexpr size_t kFullRebuildMinFaces = 400;
 
-// The last edit giving a light a new polygon (a frame with none: not called).
+// The last edit giving a light a new polygon, or adding one (a frame with none: 0).
 size_t lastLightMove(const Frame& frame) {
   size_t last = 0;
-  for (size_t i = 0; i < frame.edits.size(); ++i)
-    if (frame.edits[i].op == Edit::Op::SetLight && frame.edits[i].polygon) last = i;
+  for (size_t i = 0; i < frame.edits.size(); ++i) {
+    const Edit& edit = frame.edits[i];
+    if ((edit.op == Edit::Op::SetLight && edit.polygon) || edit.op == Edit::Op::AddLight) last = i;
+  }
   return last;
 }
 
-// A frame moving a light rebuilds every cube around it: the faces the frame leaves alone
-// must lie in the new cubes too (OverlapCube::insertFace refuses others).
+// A frame reshaping the lights rebuilds every cube around them: the faces the frame leaves
+// alone must lie in the new cubes too (OverlapCube::insertFace refuses others).
 void checkUneditedFaces(const Scene& scene, const Frame& frame, const std::set<std::string, std::less<>>& edited,
                         const std::vector<OverlapCube::Box>& cubes) {
   for (const Face& face : scene.faces()) {
     const Object& object = scene.object(face.id.object);
     if (edited.count(object.id) || insideCubes(scene, face.polygon, cubes)) continue;
     const size_t i = lastLightMove(frame);
-    throw EditError(i, "polygon", "light '" + frame.edits[i].id + "' would leave object '" + object.id +
-                                      "' outside its overlap cube (the lights' cubes enclose the scene)");
+    const bool added = frame.edits[i].op == Edit::Op::AddLight;
+    throw EditError(i, added ? "light.polygon" : "polygon",
+                    "light '" + (added ? frame.edits[i].light.id : frame.edits[i].id) + "' would leave object '" + object.id +
+                        "' outside its overlap cube (the lights' cubes enclose the scene)");
   }
 }
 
@@ -78,9 +82,9 @@ void Engine::checkFrame(const Frame& frame) const {
     return std::nullopt;
   };
   // The overlap cubes are sound only for faces inside them (OverlapCube::insertFace): the
-  // current ones, or those of the lights as the frame leaves them (a moved light's frame
-  // rebuilds every cube).
-  const bool lightMoved = movesLight(frame);
+  // current ones, or those of the lights as the frame leaves them (a frame moving, adding
+  // or removing a light rebuilds every cube).
+  const bool lightMoved = reshapesLights(frame);
   std::vector<OverlapCube::Box> cubes;
   if (lightMoved) {
     cubes = cubesFor(scene_, lightsAfter(scene_, frame));
@@ -117,6 +121,8 @@ void Engine::checkFrame(const Frame& frame) const {
           edited[edit.object.id] = edit.object;
           break;
         case Edit::Op::SetLight:
+        case Edit::Op::AddLight:
+        case Edit::Op::RemoveLight:
           checkLightEdit(scene_, edit, i, lights);
           break;
       }
@@ -158,12 +164,11 @@ void applyEdits(Scene& scene, const Frame& frame) {
       case Edit::Op::Add:
         scene.addObject(edit.object);
         break;
-      case Edit::Op::SetLight: {
-        const size_t l = *scene.findLight(edit.id);
-        const Light light = editedLight(scene.lights()[l], edit);
-        scene.setLight(l, light.polygon, light.radiance);
+      case Edit::Op::SetLight:
+      case Edit::Op::AddLight:
+      case Edit::Op::RemoveLight:
+        applyLightEdit(scene, edit);
         break;
-      }
     }
 }
 
@@ -171,7 +176,7 @@ void applyEdits(Scene& scene, const Frame& frame) {
 std::set<uint32_t> namedHandles(const Scene& scene, const Frame& frame) {
   std::set<uint32_t> out;
   for (const Edit& edit : frame.edits) {
-    if (edit.op == Edit::Op::SetLight) continue;  // lights are no objects
+    if (isLightEdit(edit)) continue;  // lights are no objects
     if (const auto index = scene.findObject(edit.op == Edit::Op::Add ? edit.object.id : edit.id))
       out.insert(scene.handleOf(*index));
   }
@@ -296,9 +301,10 @@ FrameResult Engine::apply(const Frame& frame) {
   const size_t faceCount = scene_.faces().size();
   const bool largeFrame = faceCount >= kFullRebuildMinFaces &&
                           double(std::max(leavingFaces.size(), enteringCount)) > kFullRebuildShare * double(faceCount);
-  // A moved, resized or turned light changes its order, its cube and every shadow it
-  // casts, and which faces receive at all: the engine is rebuilt (counted as fullRebuild).
-  const bool lightMoved = movesLight(frame);
+  // A moved, resized, turned, added or removed light changes the orders, the cubes, every
+  // shadow it casts, the per-light values and which faces receive at all: the engine is
+  // rebuilt (counted as fullRebuild).
+  const bool lightMoved = reshapesLights(frame);
   std::vector<FaceId> receiversBefore;
   if (lightMoved)
     for (const Receiver& r : receivers_) receiversBefore.push_back(r.face);
@@ -520,7 +526,7 @@ FrameResult Engine::apply(const Frame& frame) {
   std::sort(result.changedReceivers.begin(), result.changedReceivers.end());
   for (FaceId face : leavingReceivers)
     if (!receiver(face)) result.removedReceivers.push_back(face);
-  for (FaceId face : receiversBefore)  // faces a moved light no longer reaches
+  for (FaceId face : receiversBefore)  // faces the lights no longer reach
     if (!receiver(face) && findFace(scene_, face)) result.removedReceivers.push_back(face);
   result.version = ++version_;
   usable_ = true;

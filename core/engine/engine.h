@@ -86,9 +86,10 @@ class Engine {
   // unusable: usable() is false and apply() throws std::logic_error; rebuild it from
   // the previous scene. An unexpected exception from that rebuild leaves it half-edited
   // too: discard it (SceneSession restores one).
-  // Light edits (set_light): a new polygon rebuilds the whole engine for the edited
-  // scene (FrameResult::fullRebuild); a new radiance alone sums every vertex's stored
-  // per-light factors again (FrameResult::radianceChanged), no geometry work.
+  // Light edits: a set_light with a new polygon, an add_light or a remove_light rebuilds
+  // the whole engine for the edited scene (FrameResult::fullRebuild); a new radiance
+  // alone sums every vertex's stored per-light factors again
+  // (FrameResult::radianceChanged), no geometry work.
   FrameResult apply(const Frame& frame);
   // False after apply() failed part-way (see apply()).
   bool usable() const { return usable_; }

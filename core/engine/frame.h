@@ -13,14 +13,17 @@
 namespace penumbra {
 
 struct Edit {
-  enum class Op { Move, Add, Remove, SetLight };
+  enum class Op { Move, Add, Remove, SetLight, AddLight, RemoveLight };
   Op op = Op::Move;
-  std::string id;       // move, remove: an existing object's id; add: object.id; set_light: a light's id
+  // move, remove: an existing object's id; add: object.id; set_light, remove_light: an
+  // existing light's id; add_light: light.id
+  std::string id;
   Transform transform;  // move: the new absolute transform
   Object object;        // add: the new object (transform included)
   // set_light: the light's new polygon and/or radiance (at least one); the other stays.
   std::optional<Polygon3> polygon;
   std::optional<Vec3> radiance;
+  Light light;  // add_light: the new light, as in a scene's lights (it comes last)
 };
 
 struct Frame {
@@ -45,8 +48,9 @@ struct FrameResult {
   size_t nodesDeleted = 0;         // DM-tree nodes removed by node deletion
   size_t treeRebuilds = 0;         // fallback: receivers' DM-trees rebuilt from scratch
   // The frame edited more than a set share of a large scene's faces (apply_frame.cpp:
-  // kFullRebuildShare), or moved, resized or turned a light (its order, cube and every
-  // shadow change), so the engine was rebuilt instead (treeRebuilds = every receiver).
+  // kFullRebuildShare), or moved, resized, turned, added or removed a light (orders,
+  // cubes and every shadow change), so the engine was rebuilt instead (treeRebuilds =
+  // every receiver).
   bool fullRebuild = false;
   // The frame changed a light's radiance only: every vertex's value was summed again from
   // its stored per-light factors (no geometry work; counted in verticesRelit/Changed).

@@ -9,9 +9,16 @@
 
 namespace penumbra {
 
-bool movesLight(const Frame& frame) {
+bool isLightEdit(const Edit& edit) {
+  return edit.op == Edit::Op::SetLight || edit.op == Edit::Op::AddLight ||
+         edit.op == Edit::Op::RemoveLight;
+}
+
+bool reshapesLights(const Frame& frame) {
   for (const Edit& edit : frame.edits)
-    if (edit.op == Edit::Op::SetLight && edit.polygon) return true;
+    if ((edit.op == Edit::Op::SetLight && edit.polygon) || edit.op == Edit::Op::AddLight ||
+        edit.op == Edit::Op::RemoveLight)
+      return true;
   return false;
 }
 
@@ -43,41 +50,80 @@ Bounds lightVolume(const Scene& scene) {
   return Bounds{scene.bounds().min - Vec3(margin), scene.bounds().max + Vec3(margin)};
 }
 
+// A light polygon the scene can take, inside the edit volume; `path` names the polygon
+// ("polygon", "light.polygon").
+void checkPolygon(const Scene& scene, const Polygon3& polygon, const std::string& lightId,
+                  size_t index, const std::string& path) {
+  if (const auto problem = Scene::lightProblem(polygon, scene.tolerance()))
+    throw EditError(index, path, *problem);
+  const Bounds volume = lightVolume(scene);
+  const double eps = scene.tolerance().length();
+  for (size_t v = 0; v < polygon.size(); ++v) {
+    const Vec3& p = polygon[v];
+    if (glm::any(glm::lessThan(p, volume.min - Vec3(eps))) ||
+        glm::any(glm::greaterThan(p, volume.max + Vec3(eps)))) {
+      char text[200];
+      std::snprintf(text, sizeof text, "[%.4g, %.4g, %.4g]–[%.4g, %.4g, %.4g]", volume.min.x,
+                    volume.min.y, volume.min.z, volume.max.x, volume.max.y, volume.max.z);
+      throw EditError(index, path + "[" + std::to_string(v) + "]",
+                      "light '" + lightId + "' would leave the edit volume " + text);
+    }
+  }
+}
+
+void checkRadiance(const Vec3& radiance, size_t index, const std::string& path) {
+  if (const auto problem = Scene::radianceProblem(radiance)) throw EditError(index, path, *problem);
+}
+
 }  // namespace
 
 void checkLightEdit(const Scene& scene, const Edit& edit, size_t index,
                     std::vector<Light>& lights) {
+  if (edit.op == Edit::Op::AddLight) {
+    const Light& light = edit.light;
+    if (findIn(lights, light.id))
+      throw EditError(index, "light.id", "duplicate light id '" + light.id + "'");
+    checkPolygon(scene, light.polygon, light.id, index, "light.polygon");
+    checkRadiance(light.radiance, index, "light.radiance");
+    lights.push_back(light);
+    return;
+  }
   const auto l = findIn(lights, edit.id);
   if (!l) throw EditError(index, "id", "unknown light '" + edit.id + "'");
+  if (edit.op == Edit::Op::RemoveLight) {
+    if (lights.size() == 1)
+      throw EditError(index, "id",
+                      "cannot remove light '" + edit.id + "': a scene keeps at least one light");
+    lights.erase(lights.begin() + std::ptrdiff_t(*l));
+    return;
+  }
   if (!edit.polygon && !edit.radiance)
     throw EditError(index, "", "set_light changes nothing: give \"polygon\", \"radiance\" or both");
-  if (edit.polygon) {
-    if (const auto problem = Scene::lightProblem(*edit.polygon, scene.tolerance()))
-      throw EditError(index, "polygon", *problem);
-    const Bounds volume = lightVolume(scene);
-    const double eps = scene.tolerance().length();
-    for (size_t v = 0; v < edit.polygon->size(); ++v) {
-      const Vec3& p = (*edit.polygon)[v];
-      if (glm::any(glm::lessThan(p, volume.min - Vec3(eps))) ||
-          glm::any(glm::greaterThan(p, volume.max + Vec3(eps)))) {
-        char text[200];
-        std::snprintf(text, sizeof text, "[%.4g, %.4g, %.4g]–[%.4g, %.4g, %.4g]", volume.min.x,
-                      volume.min.y, volume.min.z, volume.max.x, volume.max.y, volume.max.z);
-        throw EditError(index, "polygon[" + std::to_string(v) + "]",
-                        "light '" + edit.id + "' would leave the edit volume " + text);
-      }
+  if (edit.polygon) checkPolygon(scene, *edit.polygon, edit.id, index, "polygon");
+  if (edit.radiance) checkRadiance(*edit.radiance, index, "radiance");
+  lights[*l] = editedLight(lights[*l], edit);
+}
+
+void applyLightEdit(Scene& scene, const Edit& edit) {
+  switch (edit.op) {
+    case Edit::Op::AddLight:
+      scene.addLight(edit.light);
+      break;
+    case Edit::Op::RemoveLight:
+      scene.removeLight(*scene.findLight(edit.id));
+      break;
+    default: {
+      const size_t l = *scene.findLight(edit.id);
+      const Light light = editedLight(scene.lights()[l], edit);
+      scene.setLight(l, light.polygon, light.radiance);
     }
   }
-  if (edit.radiance)
-    if (const auto problem = Scene::radianceProblem(*edit.radiance))
-      throw EditError(index, "radiance", *problem);
-  lights[*l] = editedLight(lights[*l], edit);
 }
 
 std::vector<Light> lightsAfter(const Scene& scene, const Frame& frame) {
   std::vector<Light> lights = scene.lights();
   for (size_t i = 0; i < frame.edits.size(); ++i) {
-    if (frame.edits[i].op != Edit::Op::SetLight) continue;
+    if (!isLightEdit(frame.edits[i])) continue;
     try {
       checkLightEdit(scene, frame.edits[i], i, lights);
     } catch (const EditError&) {

@@ -222,6 +222,22 @@ void Scene::setLight(size_t index, const Polygon3& polygon, const Vec3& radiance
   lights_[index].radiance = radiance;
 }
 
+void Scene::addLight(Light light) {
+  if (findLight(light.id)) throw std::invalid_argument("duplicate light id '" + light.id + "'");
+  if (const auto problem = lightProblem(light.polygon, tolerance_))
+    throw std::invalid_argument("light '" + light.id + "': " + *problem);
+  if (const auto problem = radianceProblem(light.radiance))
+    throw std::invalid_argument("light '" + light.id + "': " + *problem);
+  lights_.push_back(std::move(light));
+}
+
+void Scene::removeLight(size_t index) {
+  if (index >= lights_.size()) throw std::invalid_argument("no light with index " + std::to_string(index));
+  if (lights_.size() == 1)
+    throw std::invalid_argument("light '" + lights_[index].id + "' is the scene's last light");
+  lights_.erase(lights_.begin() + std::ptrdiff_t(index));
+}
+
 std::optional<size_t> Scene::findMaterial(std::string_view id) const {
   for (size_t i = 0; i < materials_.size(); ++i)
     if (materials_[i].id == id) return i;

@@ -175,6 +175,11 @@ class Scene {
   // stay as constructed, as for object edits. Throws std::invalid_argument (changing
   // nothing) for a bad index, a new polygon lightProblem() refuses or a radianceProblem().
   void setLight(size_t index, const Polygon3& polygon, const Vec3& radiance);
+  // Appends a light (a new id, a polygon lightProblem() takes, a radiance radianceProblem()
+  // takes) / removes light `index` (a scene keeps at least one). Throw std::invalid_argument,
+  // changing nothing. Bounds and tolerance stay as constructed.
+  void addLight(Light light);
+  void removeLight(size_t index);
   // Why a scene with tolerance `tolerance` cannot take this polygon as a light's
   // (degenerate, not planar, not convex, thinner than minFaceWidth()); nullopt if it can.
   static std::optional<std::string> lightProblem(const Polygon3& polygon, const Tolerance& tolerance);

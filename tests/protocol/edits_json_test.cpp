@@ -50,6 +50,22 @@ std::function<void(json&)> withLight(std::function<void(json&)> mutate) {
   };
 }
 
+// An add_light edit: a new 1 m square light "lamp2" facing down at y = 2.9.
+json addLightEdit() {
+  json light = lightEdit();
+  light.erase("op");
+  light["id"] = "lamp2";
+  return {{"op", "add_light"}, {"light", light}};
+}
+
+// Replaces edit 1 (the remove) by `edit` changed by `mutate`.
+std::function<void(json&)> withEdit(json edit, std::function<void(json&)> mutate) {
+  return [edit, mutate](json& f) {
+    f["edits"][1] = edit;
+    mutate(f["edits"][1]);
+  };
+}
+
 std::vector<Material> materials() {
   return {Material{"red", Vec3(0.7, 0.1, 0.1)}, Material{"white", Vec3(0.8)}};
 }
@@ -147,6 +163,32 @@ const std::vector<MalformedFrame>& cases() {
       {"SetLightRadianceNaN",
        withLight([](json& e) { e["radiance"][1] = std::numeric_limits<double>::quiet_NaN(); }),
        "edits[1].radiance[1]", "finite"},
+      {"AddLightMissingLight", withEdit(addLightEdit(), [](json& e) { e.erase("light"); }), "edits[1].light",
+       "missing required key"},
+      {"AddLightNotObject", withEdit(addLightEdit(), [](json& e) { e["light"] = {1, 2}; }), "edits[1].light",
+       "object"},
+      {"AddLightMissingId", withEdit(addLightEdit(), [](json& e) { e["light"].erase("id"); }),
+       "edits[1].light.id", "missing required key"},
+      {"AddLightIdNumber", withEdit(addLightEdit(), [](json& e) { e["light"]["id"] = 7; }), "edits[1].light.id",
+       "expected a string"},
+      {"AddLightMissingPolygon", withEdit(addLightEdit(), [](json& e) { e["light"].erase("polygon"); }),
+       "edits[1].light.polygon", "missing required key"},
+      {"AddLightVertexNaN",
+       withEdit(addLightEdit(), [](json& e) { e["light"]["polygon"][1][2] = std::numeric_limits<double>::quiet_NaN(); }),
+       "edits[1].light.polygon[1][2]", "finite"},
+      {"AddLightPolygonNotConvex",
+       withEdit(addLightEdit(), [](json& e) { e["light"]["polygon"][2] = {-0.1, 2.9, -0.1}; }),
+       "edits[1].light.polygon", "convex"},
+      {"AddLightMissingRadiance", withEdit(addLightEdit(), [](json& e) { e["light"].erase("radiance"); }),
+       "edits[1].light.radiance", "missing required key"},
+      {"AddLightRadianceNegative", withEdit(addLightEdit(), [](json& e) { e["light"]["radiance"][2] = -1; }),
+       "edits[1].light.radiance", "negative"},
+      {"RemoveLightMissingId", withEdit({{"op", "remove_light"}}, [](json&) {}), "edits[1].id",
+       "missing required key"},
+      {"RemoveLightIdNumber", withEdit({{"op", "remove_light"}, {"id", 3}}, [](json&) {}), "edits[1].id",
+       "expected a string"},
+      {"UnknownLightOp", withEdit({{"op", "delete_light"}, {"id", "lamp"}}, [](json&) {}), "edits[1].op",
+       "remove_light"},
   };
   return all;
 }
@@ -250,6 +292,30 @@ TEST(EditsJson, SetLightReadsEitherOrBothAndRoundTrips) {
   const Frame place = frameFromJson(json{{"edits", {polygonOnly}}});
   EXPECT_FALSE(place.edits[0].radiance);
   EXPECT_FALSE(frameToJson(place)["edits"][0].contains("radiance"));
+}
+
+TEST(EditsJson, AddAndRemoveLightRoundTrip) {
+  json source = {{"edits", {addLightEdit(), {{"op", "remove_light"}, {"id", "lamp"}}}}};
+  source["edits"][0]["light"]["polygon"][0] = {-0.5 + 1e-16, 2.9, -1.0 / 3.0};
+  const Frame frame = frameFromJson(source);
+  ASSERT_EQ(frame.edits.size(), 2u);
+  EXPECT_EQ(frame.edits[0].op, Edit::Op::AddLight);
+  EXPECT_EQ(frame.edits[0].id, "lamp2");
+  EXPECT_EQ(frame.edits[0].light.id, "lamp2");
+  EXPECT_EQ(frame.edits[0].light.polygon.size(), 4u);
+  EXPECT_EQ(frame.edits[0].light.polygon[0].z, -1.0 / 3.0);
+  EXPECT_EQ(frame.edits[0].light.radiance, Vec3(10, 9, 8));
+  EXPECT_EQ(frame.edits[1].op, Edit::Op::RemoveLight);
+  EXPECT_EQ(frame.edits[1].id, "lamp");
+  const json written = frameToJson(frame);
+  EXPECT_EQ(written["edits"][0]["op"], "add_light");
+  EXPECT_EQ(written["edits"][1], (json{{"op", "remove_light"}, {"id", "lamp"}}));
+  const Frame again = frameFromJson(written);
+  EXPECT_EQ(again.edits[0].light.polygon, frame.edits[0].light.polygon);
+  EXPECT_EQ(frameToJson(again), written);
+  const std::vector<Frame> read = readEditScript(writeEditScript({frame}));
+  ASSERT_EQ(read.size(), 1u);
+  EXPECT_EQ(frameToJson(read[0]), written);
 }
 
 TEST(EditScript, LinesAreCountedWithBlankLines) {

@@ -1,5 +1,6 @@
 // Frames are atomic (issue 12): failures injected at random points of a frame — inside the
-// engine's apply (after removals, after additions, mid relight, its fallback rebuild) and in
+// engine's apply (after removals, after additions, mid relight, its fallback rebuild, the
+// rebuild of a frame adding or removing a light) and in
 // the session's meshing, as out-of-memory or internal errors — leave the published snapshot
 // as it was, and the session then goes on exactly as one that never saw the failed frame:
 // same scene JSON, version and mesh bytes (parts, versions, removals). Seeded.
@@ -57,8 +58,29 @@ void expectSame(const SceneSnapshot& a, const SceneSnapshot& b, const std::strin
   EXPECT_TRUE(meshBytes(a, 0) == meshBytes(b, 0)) << when << ": delta since 0";
 }
 
+// A light frame: a smaller copy of the first light added beside it (when there is one light),
+// else a random light removed. Both rebuild the engine (the "rebuild" point).
+Frame lightFrame(const Scene& scene, std::mt19937_64& rng) {
+  Edit edit;
+  if (scene.lights().size() == 1) {
+    const Light& first = scene.lights()[0];
+    Vec3 c(0.0);
+    for (const Vec3& p : first.polygon) c += p / double(first.polygon.size());
+    const Vec3 by(0.8 * (double(rng() % 3) - 1.0), 0, 0.6);
+    Light copy{"lamp_" + std::to_string(rng() % 1000), {}, 0.5 * first.radiance};
+    for (const Vec3& p : first.polygon) copy.polygon.push_back(c + 0.5 * (p - c) + by);
+    edit.op = Edit::Op::AddLight;
+    edit.id = copy.id;
+    edit.light = std::move(copy);
+  } else {
+    edit.op = Edit::Op::RemoveLight;
+    edit.id = scene.lights()[rng() % scene.lights().size()].id;
+  }
+  return Frame{{edit}};
+}
+
 // A random frame on a cubes scene: one or two cubes moved near where they are (turned, slid),
-// sometimes a cube removed, sometimes a removed one put back.
+// sometimes a cube removed, sometimes a removed one put back, sometimes a light added or removed.
 Frame randomFrame(const Scene& scene, std::mt19937_64& rng, std::vector<Object>& removed) {
   std::uniform_real_distribution<double> unit(0, 1);
   std::vector<const Object*> cubes;
@@ -78,6 +100,7 @@ Frame randomFrame(const Scene& scene, std::mt19937_64& rng, std::vector<Object>&
     frame.edits.push_back(std::move(add));
     return frame;
   }
+  if (roll < 0.42) return lightFrame(scene, rng);
   for (int e = 0, n = 1 + int(rng() % 2); e < n; ++e) {
     const Object& cube = *cubes[rng() % cubes.size()];
     Transform t = cube.transform;
@@ -90,8 +113,9 @@ Frame randomFrame(const Scene& scene, std::mt19937_64& rng, std::vector<Object>&
 }
 
 TEST(FrameFailureProperty, FailedFramesLeaveNoTraceSeeded) {
-  const char* points[] = {"removed", "added", "relight", "meshing"};
-  size_t failures = 0, byPoint[4] = {0, 0, 0, 0};
+  const char* points[] = {"removed", "added", "relight", "meshing", "rebuild"};
+  constexpr int kPoints = 5;
+  size_t failures = 0, byPoint[kPoints] = {0, 0, 0, 0, 0}, lightFrames = 0;
   for (uint64_t seed : {1u, 2u, 3u}) {
     std::mt19937_64 rng(seed);
     CubesSceneOptions options;
@@ -106,6 +130,8 @@ TEST(FrameFailureProperty, FailedFramesLeaveNoTraceSeeded) {
     std::vector<Object> removed;
     for (int step = 0; step < 14; ++step) {
       const Frame frame = randomFrame(reference.snapshot()->scene, rng, removed);
+      const bool lightFrame = frame.edits[0].op == Edit::Op::AddLight || frame.edits[0].op == Edit::Op::RemoveLight;
+      lightFrames += lightFrame;
       const std::string when = "seed " + std::to_string(seed) + " step " + std::to_string(step);
       if (rng() % 3 != 0) {  // this frame fails first, somewhere
         const auto before = tested.snapshot();
@@ -113,7 +139,8 @@ TEST(FrameFailureProperty, FailedFramesLeaveNoTraceSeeded) {
         injector->armed = true;
         injector->outOfMemory = rng() % 2 == 0;
         injector->failRestoreToo = injector->outOfMemory && rng() % 3 == 0;
-        injector->target = points[rng() % 4];
+        // A light frame is a full rebuild: it passes "rebuild" and "meshing" only.
+        injector->target = lightFrame ? points[3 + rng() % 2] : points[rng() % 4];
         // Each point but "relight" (once per relit receiver) comes once per frame.
         injector->countdown = injector->target == "relight" ? 1 + int(rng() % 3) : 1;
         bool threw = false;
@@ -130,7 +157,7 @@ TEST(FrameFailureProperty, FailedFramesLeaveNoTraceSeeded) {
         EXPECT_EQ(threw, injector->fired) << when;
         if (threw) {  // nothing published, nothing changed
           ++failures;
-          for (int p = 0; p < 4; ++p) byPoint[p] += injector->firedAt == points[p];
+          for (int p = 0; p < kPoints; ++p) byPoint[p] += injector->firedAt == points[p];
           EXPECT_EQ(tested.snapshot(), before) << when;
           expectSame(*tested.snapshot(), *reference.snapshot(), when + " after the failure");
         } else {  // fewer points than the countdown: it applied, as the reference will
@@ -148,7 +175,8 @@ TEST(FrameFailureProperty, FailedFramesLeaveNoTraceSeeded) {
   }
   // The seeds reach every point; if a change moves the points, widen the countdown.
   EXPECT_GE(failures, 15u);
-  for (int p = 0; p < 4; ++p) EXPECT_GT(byPoint[p], 0u) << points[p];
+  EXPECT_GE(lightFrames, 3u);
+  for (int p = 0; p < kPoints; ++p) EXPECT_GT(byPoint[p], 0u) << points[p];
 }
 
 }  // namespace

@@ -152,8 +152,8 @@ TEST(LightEdits, JournalReplaysLightEditsAfterARestart) {
   std::filesystem::remove_all(data);
 }
 
-// Light frames failing at each point they pass (the rebuild of a moved light, the incremental
-// path of a radiance-only one, the meshing), as out of memory or an internal error: nothing is
+// Light frames failing at each point they pass (the rebuild of a moved, added or removed light,
+// the incremental path of a radiance-only one, the meshing), as out of memory or an internal error: nothing is
 // published, and the session then goes on exactly as one that never saw the failure.
 TEST(LightEdits, FailedLightFramesLeaveNoTrace) {
   struct Injector {
@@ -187,10 +187,18 @@ TEST(LightEdits, FailedLightFramesLeaveNoTrace) {
   };
   Polygon3 moved = light.polygon;
   for (Vec3& p : moved) p += Vec3(0.3, -0.1, 0.2);
+  Frame added{{Edit{}}}, removed{{Edit{}}};
+  added.edits[0].op = Edit::Op::AddLight;
+  added.edits[0].id = "lamp2";
+  added.edits[0].light = Light{"lamp2", moved, Vec3(2.0)};
+  removed.edits[0].op = Edit::Op::RemoveLight;
+  removed.edits[0].id = "lamp2";
   const std::vector<std::pair<Frame, std::vector<std::string>>> frames = {
       {setLight("light", moved, std::nullopt), {"rebuild", "meshing"}},
       {setLight("light", std::nullopt, Vec3(3, 4, 5)), {"removed", "added", "meshing"}},
       {setLight("light", light.polygon, light.radiance), {"rebuild", "meshing"}},
+      {added, {"rebuild", "meshing"}},
+      {removed, {"rebuild", "meshing"}},
   };
   auto bytes = [](const SceneSnapshot& s) {
     return mesh_binary::encode(s, s.select(std::nullopt));

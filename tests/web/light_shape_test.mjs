@@ -2,12 +2,13 @@
 // Unit tests of web_client/src/light_shape.js and the light part of object_edits.js's reset frame
 // (node:test, no browser): a resized quad keeps its centre, edge directions and winding; any
 // polygon scales about its centre to the asked size; intensity keeps the colour; a set_light names
-// only what changed; Reset to file sets an edited light back.
+// only what changed; Reset to file sets an edited light back and adds / removes lights; an added
+// light's copy goes beside its source inside the bounds; add_light and remove_light invert each other.
 import assert from 'node:assert/strict';
 import test from 'node:test';
 
-import { centroid, movedTo, quadAxes, resized, resizedQuad, setLightEdit, sizeOf, withIntensity } from '../../web_client/src/light_shape.js';
-import { resetEdits } from '../../web_client/src/object_edits.js';
+import { besideOffset, centroid, movedTo, quadAxes, resized, resizedQuad, setLightEdit, sizeOf, withIntensity } from '../../web_client/src/light_shape.js';
+import { addLightEdits, freshId, lightCopy, removeLightEdits, resetEdits } from '../../web_client/src/object_edits.js';
 
 const close = (a, b, eps = 1e-12) => a.every((x, k) => Math.abs(x - b[k]) < eps);
 const normal = (p) => {
@@ -57,4 +58,38 @@ test('reset to file sets an edited light back, and its inverse edits it again', 
   assert.deepEqual(resetEdits(edited, source), [{ op: 'set_light', id: 'light', polygon: square }]);
   assert.deepEqual(resetEdits(source, edited), [{ op: 'set_light', id: 'light', polygon: edited.lights[0].polygon }]);
   assert.deepEqual(resetEdits(source, source), []);
+});
+
+test('an added copy goes beside its light, inside the bounds, never overlapping it', () => {
+  const room = { min: [-3, 0, -3], max: [3, 3, 3] };
+  const offset = besideOffset(square, room);
+  assert.deepEqual(offset, [1.875, 0, 0]); // 1.25 × its 1.5 m width along its first edge
+  const copy = lightCopy({ id: 'light', polygon: square, radiance: [1, 2, 3] }, 'light_2', offset);
+  assert.ok(copy.polygon.every((p) => p.every((x, k) => x >= room.min[k] && x <= room.max[k])));
+  assert.ok(Math.min(...copy.polygon.map((p) => p[0])) > Math.max(...square.map((p) => p[0])), 'beside, not over it');
+  assert.deepEqual(copy.radiance, [1, 2, 3]);
+  // Against the +x wall: the other way.
+  const east = movedTo(square, [2, 2.98, 0]);
+  assert.ok(besideOffset(east, room)[0] < 0);
+  // No room either way: none.
+  assert.equal(besideOffset(square, { min: [-1, 0, -1], max: [1, 3, 1] }), null);
+  assert.equal(freshId({ lights: [{ id: 'light' }, { id: 'light_2' }] }, 'light', 'lights'), 'light_3');
+});
+
+test('add_light and remove_light invert each other; the removal\'s inverse carries the whole light', () => {
+  const light = { id: 'lamp', polygon: square, radiance: [4, 5, 6], extra: 1 };
+  const added = addLightEdits(light), removed = removeLightEdits(light);
+  assert.deepEqual(added.redo, [{ op: 'add_light', light: { id: 'lamp', polygon: square, radiance: [4, 5, 6] } }]);
+  assert.deepEqual(added.undo, [{ op: 'remove_light', id: 'lamp' }]);
+  assert.deepEqual(removed.redo, added.undo);
+  assert.deepEqual(removed.undo, added.redo);
+});
+
+test('reset to file adds removed lights back before removing added ones', () => {
+  const lamp = { id: 'lamp', polygon: square, radiance: [1, 1, 1] };
+  const other = { id: 'other', polygon: movedTo(square, [1, 2.98, 1]), radiance: [2, 2, 2] };
+  const source = { objects: [], lights: [lamp] };
+  const edited = { objects: [], lights: [other] };
+  assert.deepEqual(resetEdits(edited, source), [{ op: 'add_light', light: lamp }, { op: 'remove_light', id: 'other' }]);
+  assert.deepEqual(resetEdits(source, edited), [{ op: 'add_light', light: other }, { op: 'remove_light', id: 'lamp' }]);
 });

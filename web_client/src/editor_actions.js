@@ -1,8 +1,11 @@
-// The editor's commands beyond dragging: add a box, duplicate, delete (each one frame, undoable),
+// The editor's commands beyond dragging: add a box, add a light, duplicate, delete (objects and
+// lights; each one frame, undoable),
 // typed transforms and lights, reset to the file, downloads, the scene list, and the camera (focus on the
 // selection, frame all, back home). Structural frames wait for pending moves, then reload the
 // stand-ins from the server's scene (the object list changed).
-import { addEdits, boxObject, duplicateObject, freshId, removeEdits, resetEdits } from './object_edits.js';
+import { addEdits, addLightEdits, boxObject, duplicateObject, freshId, lightCopy, removeEdits, removeLightEdits,
+  resetEdits } from './object_edits.js';
+import { besideOffset } from './light_shape.js';
 import { SceneList, download, forgetSource, rememberSource, sourceOf } from './scene_library.js';
 import { sameTransform, transformOf } from './scene_transform.js';
 import * as THREE from 'three';
@@ -66,8 +69,32 @@ export class EditorActions {
     return this.change(addEdits(box), `add ${box.id}`, box.id);
   }
 
+  // A copy of the selected light (else the first) beside it, inside the scene's bounds, with a
+  // fresh id: one add_light (a full rebuild on the server), selected afterwards.
+  addLight() {
+    const { objects } = this.app;
+    const selected = this.app.gizmo.selected;
+    const source = (selected && selected.startsWith('light:') && objects.lightJson.get(selected.slice(6)))
+      || objects.lightJson.values().next().value;
+    if (!source) return null;
+    const box = { min: objects.bounds.min.toArray(), max: objects.bounds.max.toArray() };
+    const offset = besideOffset(source.polygon, box);
+    if (!offset) {
+      this.app.fail(new Error(`no room beside light ${source.id} for a copy inside the scene`));
+      return null;
+    }
+    const light = lightCopy(source, freshId(this.scene(), source.id, 'lights'), offset);
+    return this.change(addLightEdits(light), `add light ${light.id}`, `light:${light.id}`, selected);
+  }
+
+  // A light can go while another stays (a scene keeps at least one).
+  canDeleteLight() {
+    return this.app.objects.lightJson.size > 1;
+  }
+
   duplicate() {
     const id = this.app.gizmo.selected;
+    if (id && id.startsWith('light:')) return this.addLight();
     const object = id && this.app.objects.json.get(id);
     if (!object) return null;
     const current = { ...object, transform: transformOf(this.app.objects.byId.get(id)) };
@@ -78,6 +105,11 @@ export class EditorActions {
 
   deleteSelected() {
     const id = this.app.gizmo.selected;
+    if (id && id.startsWith('light:')) {
+      const light = this.app.objects.lightJson.get(id.slice(6));
+      if (!light || !this.canDeleteLight()) return null;
+      return this.change(removeLightEdits(light), `delete ${id}`, null, id);
+    }
     const object = id && this.app.objects.json.get(id);
     if (!object) return null;
     const current = { ...object, transform: transformOf(this.app.objects.byId.get(id)) };

@@ -97,7 +97,8 @@ export class Inspector {
     for (const [key, label, count] of rows) this.inputs[key] = this.row(key, label, count, () => this.typedLight(lightId));
     const note = document.createElement('div');
     note.className = 'muted';
-    note.textContent = 'Drag the light with the gizmo: W move, E turn, R resize. Each change relights the scene.';
+    note.textContent = 'Drag the light with the gizmo: W move, E turn, R resize. Each change relights the scene. '
+      + 'Duplicate adds a copy beside it, Delete removes it (not the last light).';
     this.root.append(note);
     this.update(light);
   }

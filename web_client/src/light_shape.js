@@ -1,7 +1,8 @@
 // A light's shape and power as the inspector shows them (docs/SCENE_FORMAT.md lights): its centre,
 // a quad's width and depth (along its first and last edge) or any polygon's size (twice the
 // farthest corner's distance from the centre), and its intensity (the radiance's largest channel).
-// Pure functions of light JSON; each edit returns a new polygon or radiance for a set_light.
+// Pure functions of light JSON; each edit returns a new polygon or radiance for a set_light;
+// besideOffset places an added copy of a light.
 
 const sub = (a, b) => a.map((x, k) => x - b[k]);
 const add = (a, b) => a.map((x, k) => x + b[k]);
@@ -70,4 +71,19 @@ export function setLightEdit(id, from, to) {
   if (JSON.stringify(from.polygon) !== JSON.stringify(to.polygon)) edit.polygon = to.polygon;
   if (JSON.stringify(from.radiance) !== JSON.stringify(to.radiance)) edit.radiance = to.radiance;
   return edit;
+}
+
+// An offset moving the polygon beside itself — along its first edge or its last, either way, by
+// 1.25 × its extent that way — with every corner inside `box` ({min, max}: [x, y, z]); null if
+// none fits. A copy there neither overlaps its source nor leaves the scene's bounds.
+export function besideOffset(polygon, box) {
+  const directions = [sub(polygon[1], polygon[0]), sub(polygon[polygon.length - 1], polygon[0])];
+  for (const d of directions.flatMap((d) => [d, mul(d, -1)])) {
+    const unit = mul(d, 1 / norm(d));
+    const along = polygon.map((p) => dot(p, unit));
+    const offset = mul(unit, 1.25 * (Math.max(...along) - Math.min(...along)));
+    const inside = polygon.every((p) => add(p, offset).every((x, k) => x >= box.min[k] && x <= box.max[k]));
+    if (inside) return offset;
+  }
+  return null;
 }

@@ -314,7 +314,12 @@ class App {
     this.outliner.highlight(id);
     const light = id && isLight(id) ? this.objects.lightJson.get(id.slice(6)) : null;
     this.inspector.show(id, light || (id ? transformOf(this.objects.byId.get(id)) : null));
-    for (const button of ['duplicate', 'delete', 'focus']) $(button).disabled = !id || (button !== 'focus' && !!light);
+    for (const button of ['duplicate', 'delete', 'focus']) $(button).disabled = !id;
+    // A scene keeps at least one light.
+    const lastLight = !!light && !this.editor.canDeleteLight();
+    $('delete').disabled ||= lastLight;
+    $('delete').title = lastLight ? 'The scene\'s last light cannot be deleted' : 'Delete the selection (Delete)';
+    $('duplicate').title = light ? 'Add a copy of this light beside it (Ctrl+D)' : 'Duplicate the selection (Ctrl+D)';
   }
 
   // The stand-ins again from the server's scene (its object list changed), selecting `selectId`.

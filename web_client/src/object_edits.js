@@ -1,10 +1,11 @@
 // Frames (docs/SCENE_FORMAT.md "Edit scripts") for the page's structural edits: a box primitive,
-// a duplicate, a delete, and the frame that takes a scene back to its source. Pure functions of
-// scene JSON; the page sends them and keeps their inverses for undo.
+// a duplicate, a delete, an added or deleted light, and the frame that takes a scene back to its
+// source. Pure functions of scene JSON; the page sends them and keeps their inverses for undo.
 
-// An id not used by the scene's objects: base, else base_2, base_3, ...
-export function freshId(scene, base) {
-  const used = new Set(scene.objects.map((o) => o.id));
+// An id not used by the scene's objects (list 'objects') or lights ('lights'): base, else
+// base_2, base_3, ...
+export function freshId(scene, base, list = 'objects') {
+  const used = new Set((scene[list] || []).map((o) => o.id));
   if (!used.has(base)) return base;
   for (let n = 2; ; ++n) if (!used.has(`${base}_${n}`)) return `${base}_${n}`;
 }
@@ -35,12 +36,22 @@ export function duplicateObject(object, id, offset) {
 // {redo, undo} edits of one structural change.
 export const addEdits = (object) => ({ redo: [{ op: 'add', object }], undo: [{ op: 'remove', id: object.id }] });
 export const removeEdits = (object) => ({ redo: [{ op: 'remove', id: object.id }], undo: [{ op: 'add', object }] });
+// A light's: the inverse of add_light is remove_light, and remove_light's carries the whole light.
+const lightOf = ({ id, polygon, radiance }) => ({ id, polygon, radiance });
+export const addLightEdits = (light) => ({ redo: [{ op: 'add_light', light: lightOf(light) }], undo: [{ op: 'remove_light', id: light.id }] });
+export const removeLightEdits = (light) => ({ redo: [{ op: 'remove_light', id: light.id }], undo: [{ op: 'add_light', light: lightOf(light) }] });
+
+// A copy of `light` under a new id, its polygon moved by `offset` metres.
+export function lightCopy(light, id, offset) {
+  return { id, polygon: light.polygon.map((p) => p.map((x, k) => x + offset[k])), radiance: [...light.radiance] };
+}
 
 const lightsById = (scene) => new Map((scene.lights || []).map((l) => [l.id, l]));
 
 // One frame taking `current` back to `source`: objects added since are removed, removed ones
 // added back, moved ones moved back (by transform; an object whose geometry changed is replaced),
-// edited lights set back (set_light).
+// edited lights set back (set_light), lights added since removed and removed ones added back
+// (additions first: the frame never leaves the scene without a light).
 export function resetEdits(current, source) {
   const now = new Map(current.objects.map((o) => [o.id, o]));
   const then = new Map(source.objects.map((o) => [o.id, o]));
@@ -53,8 +64,9 @@ export function resetEdits(current, source) {
     else if (!same(object.transform || {}, original.transform || {})) edits.push({ op: 'move', id, transform: original.transform || {} });
   }
   for (const [id, object] of then) if (!now.has(id)) edits.push({ op: 'add', object });
-  // Lights (the same ids: the page does not add or remove lights) back to their polygon and power.
-  const lightsNow = lightsById(current);
+  const lightsNow = lightsById(current), lightsThen = lightsById(source);
+  for (const [id, light] of lightsThen) if (!lightsNow.has(id)) edits.push({ op: 'add_light', light: lightOf(light) });
+  for (const id of lightsNow.keys()) if (!lightsThen.has(id)) edits.push({ op: 'remove_light', id });
   for (const light of source.lights || []) {
     const lit = lightsNow.get(light.id);
     if (!lit) continue;

@@ -170,7 +170,8 @@ export class SceneObjects {
   }
 
   sameObjects(scene) {
-    return scene.objects.length === this.byId.size && scene.objects.every((o) => this.byId.has(o.id));
+    return scene.objects.length === this.byId.size && scene.objects.every((o) => this.byId.has(o.id))
+      && scene.lights.length === this.lightHolders.size && scene.lights.every((l) => this.lightHolders.has(l.id));
   }
 
   // The Group the gizmo moves for a selection id: an object's holder, or a light's ("light:ID").

@@ -298,7 +298,59 @@ Edit randomEdit(const Scene& scene, std::mt19937_64& rng, int& nextNewId) {
   return edit;
 }
 
+Vec3 centroid(const Polygon3& polygon) {
+  Vec3 c(0.0);
+  for (const Vec3& p : polygon) c += p;
+  return c / double(polygon.size());
+}
+
+// The polygon scaled by `scale` about its centroid and moved by `by`.
+Polygon3 scaledMoved(const Polygon3& polygon, double scale, const Vec3& by) {
+  const Vec3 c = centroid(polygon);
+  Polygon3 out;
+  for (const Vec3& p : polygon) out.push_back(c + scale * (p - c) + by);
+  return out;
+}
+
 }  // namespace
+
+Edit randomLightEdit(const Scene& scene, std::mt19937_64& rng, int& nextLightId) {
+  const std::vector<Light>& lights = scene.lights();
+  const Light& light = lights[std::uniform_int_distribution<size_t>(0, lights.size() - 1)(rng)];
+  // To a random spot at the same height, inside the room (never drifting out of it).
+  const double reach = 0.35 * roomHalf(scene);
+  const Vec3 c = centroid(light.polygon);
+  const Vec3 by(uniform(rng, -reach, reach) - c.x, 0, uniform(rng, -reach, reach) - c.z);
+  const double r = uniform(rng, 0, 1);
+  Edit edit;
+  edit.id = light.id;
+  if (r < 0.3 || (r < 0.6 && lights.size() == 1)) {  // a smaller copy elsewhere
+    edit.op = Edit::Op::AddLight;
+    edit.light = Light{"lamp_" + std::to_string(nextLightId++),
+                       scaledMoved(light.polygon, uniform(rng, 0.3, 1.0), by),
+                       light.radiance * uniform(rng, 0.5, 1.5)};
+    edit.id = edit.light.id;
+  } else if (r < 0.6) {
+    edit.op = Edit::Op::RemoveLight;
+  } else {
+    edit.op = Edit::Op::SetLight;
+    if (r < 0.85) edit.polygon = scaledMoved(light.polygon, 1.0, by);
+    if (r >= 0.8) edit.radiance = light.radiance * uniform(rng, 0.5, 2.0);
+  }
+  return edit;
+}
+
+Frame randomLightFrame(const Engine& engine, std::mt19937_64& rng, size_t objectEdits,
+                       int& nextNewId, int& nextLightId) {
+  Frame frame;
+  const size_t at = std::uniform_int_distribution<size_t>(0, objectEdits)(rng);
+  for (size_t i = 0; i <= objectEdits; ++i) {
+    const Scene working = engine.sceneAfter(frame);
+    frame.edits.push_back(i == at ? randomLightEdit(working, rng, nextLightId)
+                                  : randomEdit(working, rng, nextNewId));
+  }
+  return frame;
+}
 
 Frame randomFrame(const Engine& engine, std::mt19937_64& rng, size_t edits, int& nextNewId) {
   Frame frame;

@@ -44,4 +44,12 @@ double peakIrradiance(const Engine& engine);
 // on a cube; remove) on the generated cubes scene held by `engine`.
 Frame randomFrame(const Engine& engine, std::mt19937_64& rng, size_t edits, int& nextNewId);
 
+// A random light edit on a generated cubes scene: add a smaller copy of a light moved across
+// the ceiling (id lamp_N), remove a light (when there are two or more), move one, or give
+// one a new radiance (or both).
+Edit randomLightEdit(const Scene& scene, std::mt19937_64& rng, int& nextLightId);
+// A frame of one random light edit and `objectEdits` random object edits, in random order.
+Frame randomLightFrame(const Engine& engine, std::mt19937_64& rng, size_t objectEdits,
+                       int& nextNewId, int& nextLightId);
+
 }  // namespace penumbra::testing
