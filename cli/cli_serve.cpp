@@ -70,9 +70,10 @@ std::vector<std::string> serveScenes(server::HttpServer& server, const Args& arg
   std::vector<std::string> ids;
   for (const server::RestoredScene& restored : server.restore()) {
     if (restored.served) ids.push_back(restored.id);
-    std::fprintf(stderr, "penumbra serve: restored scene '%s' at version %llu (%zu frames) in %.2f s%s%s\n",
+    std::fprintf(stderr, "penumbra serve: restored scene '%s' at version %llu (%zu frames%s) in %.2f s%s%s\n",
                  restored.id.c_str(), static_cast<unsigned long long>(restored.version),
-                 restored.frames, restored.seconds, restored.problem.empty() ? "" : ": ",
+                 restored.frames, restored.meshedOnce ? ", meshed once" : "", restored.seconds,
+                 restored.problem.empty() ? "" : ": ",
                  restored.problem.c_str());
   }
   for (const std::string& path : args.positionals()) {

@@ -108,7 +108,7 @@ void HttpServer::applyFrameAlone(SceneSession& session, EditScheduler::Ticket& t
   try {
     // Journaled (committed) before it is published and acknowledged.
     applied = session.apply(queued.frame, [&](const SceneSnapshot& next) {
-      journalFrame(session, next.version, queued.body);
+      journalFrame(session, next, queued.body);
     });
   } catch (const EditError& error) {
     const std::string path = "edits[" + std::to_string(error.editIndex()) + "]" +
@@ -156,7 +156,7 @@ void HttpServer::applyFrameBatch(SceneSession& session, const std::vector<EditSc
   SceneSession::Applied applied;
   try {
     applied = session.apply(*combined, [&](const SceneSnapshot& next) {
-      journalFrame(session, next.version, protocol::frameToJson(*combined).dump());
+      journalFrame(session, next, protocol::frameToJson(*combined).dump());
     });
   } catch (...) {
     // One frame of the batch is refused (or failed): nothing was applied. Each frame on its

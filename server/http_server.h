@@ -54,6 +54,7 @@ struct RestoredScene {
   std::string id;
   uint64_t version = 0;  // the last acknowledged version it is back at
   size_t frames = 0;     // frames replayed
+  bool meshedOnce = false;  // replayed through the engine alone and meshed once (part changes journaled)
   double seconds = 0;    // build + replay
   bool served = true;    // false: the scene no longer builds (kept in the journal, not served)
   std::string problem;   // not empty: why not served, or which frames no longer replay (dropped)
@@ -99,7 +100,8 @@ class HttpServer {
   // request, a static path leading out of its root (access_control.cpp).
   bool refuseAccess(const httplib::Request& req, httplib::Response& res) const;
   // Journal writes (no-ops when ephemeral); throw ApiError 503 when the journal fails.
-  void journalFrame(const SceneSession& session, uint64_t version, const std::string& frame);
+  // `next`: the version the frame made (its number, and its part changes for a fast restore).
+  void journalFrame(const SceneSession& session, const SceneSnapshot& next, const std::string& frame);
   // Edit frames (edit_routes.cpp): a batch of queued frames applied as one frame when they
   // touch different objects, else (or when that fails) one by one; answers in the tickets.
   void applyFrameBatch(SceneSession& session, const std::vector<EditScheduler::Ticket*>& batch);

@@ -9,6 +9,7 @@ namespace penumbra::server {
 namespace {
 
 // Frames are keyed by (scene, version); deleting a scene deletes its frames (foreign key).
+// `parts` (PartChanges, part_changes.h) came later: NULL in older journals' rows.
 constexpr const char* kSchema = R"(
 CREATE TABLE IF NOT EXISTS scenes (
   key INTEGER PRIMARY KEY AUTOINCREMENT,
@@ -20,6 +21,7 @@ CREATE TABLE IF NOT EXISTS frames (
   scene INTEGER NOT NULL REFERENCES scenes(key) ON DELETE CASCADE,
   version INTEGER NOT NULL,
   frame BLOB NOT NULL,
+  parts BLOB,
   PRIMARY KEY (scene, version)) WITHOUT ROWID;
 )";
 
@@ -39,6 +41,8 @@ SceneJournal::SceneJournal(const std::string& dir) {
   db_->exec("PRAGMA synchronous=FULL; PRAGMA foreign_keys=ON;");
   db_->setBusyTimeout(2000);  // another process holding the file: wait, then fail the write
   db_->exec(kSchema);
+  if (db_->queryText("SELECT COUNT(*) FROM pragma_table_info('frames') WHERE name = 'parts'") == "0")
+    db_->exec("ALTER TABLE frames ADD COLUMN parts BLOB");  // a journal from before the column
 }
 
 SceneJournal::~SceneJournal() = default;
@@ -61,13 +65,13 @@ std::vector<SceneJournal::StoredScene> SceneJournal::load() {
     scenes.push_back(std::move(scene));
   }
   SqliteStatement frameRows =
-      db_->prepare("SELECT scene, version, frame FROM frames ORDER BY scene, version");
+      db_->prepare("SELECT scene, version, frame, parts FROM frames ORDER BY scene, version");
   while (frameRows.step()) {
     const auto it = index.find(frameRows.columnInt(0));
     if (it == index.end()) continue;
     StoredScene& scene = scenes[it->second];
     const uint64_t version = uint64_t(frameRows.columnInt(1));
-    scene.frames.emplace_back(version, frameRows.columnBytes(2));
+    scene.frames.push_back({version, frameRows.columnBytes(2), frameRows.columnBytes(3)});
     lastVersion_[scene.key] = version;
   }
   return scenes;
@@ -89,7 +93,8 @@ int64_t SceneJournal::addScene(const std::string& id, const std::string& name,
   return key;
 }
 
-void SceneJournal::addFrame(int64_t key, uint64_t version, const std::string& frame) {
+void SceneJournal::addFrame(int64_t key, uint64_t version, const std::string& frame,
+                            const std::string& parts) {
   std::lock_guard lock(mutex_);
   const auto last = lastVersion_.find(key);
   if (last == lastVersion_.end()) throw std::runtime_error("the scene is no longer journaled");
@@ -98,10 +103,11 @@ void SceneJournal::addFrame(int64_t key, uint64_t version, const std::string& fr
                              "journaled version " + std::to_string(last->second) +
                              " (an earlier frame could not be journaled)");
   SqliteTransaction transaction(*db_);
-  db_->prepare("INSERT INTO frames (scene, version, frame) VALUES (?, ?, ?)")
+  db_->prepare("INSERT INTO frames (scene, version, frame, parts) VALUES (?, ?, ?, ?)")
       .bind(1, key)
       .bind(2, int64_t(version))
       .bindBlob(3, frame)
+      .bindBlob(4, parts)
       .run();
   transaction.commit();
   last->second = version;

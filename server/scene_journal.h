@@ -23,7 +23,12 @@ class SceneJournal {
     std::string id, name;
     std::string source;  // scene JSON v1 (sceneToJson of the scene as created)
     uint64_t baseVersion = 0;
-    std::vector<std::pair<uint64_t, std::string>> frames;  // version → frame JSON as received
+    struct StoredFrame {
+      uint64_t version = 0;
+      std::string frame;  // frame JSON as received
+      std::string parts;  // what it did to the served mesh (part_changes.h); empty: not recorded
+    };
+    std::vector<StoredFrame> frames;  // in version order
   };
 
   // Opens DIR/journal.sqlite3, creating DIR and the schema. Throws std::runtime_error.
@@ -39,7 +44,8 @@ class SceneJournal {
                    uint64_t baseVersion);
   // `version` must follow the scene's last journaled version by exactly one: a gap means an
   // earlier frame was applied but never journaled, and the scene takes no more frames.
-  void addFrame(int64_t key, uint64_t version, const std::string& frame);
+  // `parts`: the frame's PartChanges as text, which lets a restart mesh once (scene_restore.cpp).
+  void addFrame(int64_t key, uint64_t version, const std::string& frame, const std::string& parts);
   void removeScene(int64_t key);
   // Drops a scene's frames after `version` (those that no longer replay; see restore).
   void truncateAfter(int64_t key, uint64_t version);

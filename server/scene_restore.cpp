@@ -1,12 +1,14 @@
 // The server's side of the journal (README "Durability"): frames and deletions recorded before
 // they are acknowledged, and every journaled scene brought back at start.
 #include <chrono>
+#include <cstdio>
 
 #include "protocol/edits_json.h"
 #include "protocol/json_text.h"
 #include "protocol/scene_json.h"
 #include "server/api_errors.h"
 #include "server/http_server.h"
+#include "server/part_changes.h"
 
 namespace penumbra::server {
 
@@ -20,7 +22,7 @@ ApiError journalError(const std::string& what, const std::exception& error) {
 
 }  // namespace
 
-void HttpServer::journalFrame(const SceneSession& session, uint64_t version,
+void HttpServer::journalFrame(const SceneSession& session, const SceneSnapshot& next,
                               const std::string& frame) {
   if (!journal_) return;
   int64_t key = 0;
@@ -32,7 +34,7 @@ void HttpServer::journalFrame(const SceneSession& session, uint64_t version,
     key = it->second;
   }
   try {
-    journal_->addFrame(key, version, frame);
+    journal_->addFrame(key, next.version, frame, partChangesText(partChangesOf(next)));
   } catch (const std::exception& error) {
     // Nothing is published and SceneSession::apply undoes the frame in the engine (atomic
     // frames): the scene stays at its last acknowledged version and the frame may be sent again.
@@ -58,6 +60,62 @@ void HttpServer::journalRemove(const SceneSession& session) {
   journalKeys_.erase(&session);
 }
 
+namespace {
+
+using StoredScene = SceneJournal::StoredScene;
+
+std::shared_ptr<SceneSession> freshSession(const StoredScene& stored, const EngineSettings& settings) {
+  return std::make_shared<SceneSession>(
+      stored.id, stored.name,
+      protocol::sceneFromJson(
+          protocol::parseJsonText(stored.source, stored.source.size(), protocol::kMaxJsonDepth)),
+      settings);
+}
+
+Frame storedFrame(const SceneSession& session, const std::string& text) {
+  const auto materials = session.snapshot()->scene.materials();  // edits change no material
+  return protocol::frameFromJson(protocol::parseJsonText(text, text.size(), protocol::kMaxJsonDepth),
+                                 &materials);
+}
+
+// Every frame through the engine, meshed once at the end (SceneSession::replayJournaled):
+// possible when each frame's part changes were journaled (journals before them: no).
+bool replayAtOnce(SceneSession& session, const StoredScene& stored, RestoredScene& report) {
+  std::vector<SceneSession::JournaledFrame> frames;
+  for (const SceneJournal::StoredScene::StoredFrame& stored : stored.frames) {
+    if (stored.parts.empty()) return false;
+    frames.push_back({storedFrame(session, stored.frame), stored.version,
+                      partChangesFromText(stored.parts)});
+  }
+  session.replayJournaled(frames);
+  report.version = session.snapshot()->version;
+  report.frames = frames.size();
+  report.meshedOnce = !frames.empty();
+  return true;
+}
+
+// Frame by frame through the path that served them, each meshed and published; a frame that no
+// longer applies ends the replay, and the journal drops it and the later ones.
+void replayOneByOne(SceneSession& session, const StoredScene& stored, SceneJournal& journal,
+                    RestoredScene& report) {
+  for (const SceneJournal::StoredScene::StoredFrame& frame : stored.frames) {
+    try {
+      const uint64_t reached = session.apply(storedFrame(session, frame.frame)).snapshot->version;
+      if (reached != frame.version)
+        throw std::runtime_error("replay reached version " + std::to_string(reached));
+    } catch (const std::exception& error) {
+      report.problem = "frame " + std::to_string(frame.version) + " no longer applies (" +
+                       error.what() + "); later frames were dropped";
+      journal.truncateAfter(stored.key, report.version);
+      return;
+    }
+    report.version = frame.version;
+    ++report.frames;
+  }
+}
+
+}  // namespace
+
 std::vector<RestoredScene> HttpServer::restore() {
   std::vector<RestoredScene> restored;
   if (!journal_) return restored;
@@ -67,11 +125,7 @@ std::vector<RestoredScene> HttpServer::restore() {
     report.id = stored.id;
     std::shared_ptr<SceneSession> session;
     try {
-      session = std::make_shared<SceneSession>(
-          stored.id, stored.name,
-          protocol::sceneFromJson(protocol::parseJsonText(stored.source, stored.source.size(),
-                                                          protocol::kMaxJsonDepth)),
-          options_.engine);
+      session = freshSession(stored, options_.engine);
     } catch (const std::exception& error) {  // kept in the journal, not served
       report.served = false;
       report.problem = std::string("not restored: the scene no longer builds (") + error.what() + ")";
@@ -79,25 +133,20 @@ std::vector<RestoredScene> HttpServer::restore() {
       continue;
     }
     report.version = session->snapshot()->version;
-    // Frames replay through the same incremental path that served them: incremental results
-    // match a rebuild only to 1e-9, so replaying is what gives back the served bytes.
-    for (const auto& [version, text] : stored.frames) {
-      try {
-        const auto materials = session->snapshot()->scene.materials();
-        const Frame frame = protocol::frameFromJson(
-            protocol::parseJsonText(text, text.size(), protocol::kMaxJsonDepth), &materials);
-        const uint64_t reached = session->apply(frame).snapshot->version;
-        if (reached != version)
-          throw std::runtime_error("replay reached version " + std::to_string(reached));
-      } catch (const std::exception& error) {
-        report.problem = "frame " + std::to_string(version) + " no longer applies (" +
-                         error.what() + "); later frames were dropped";
-        journal_->truncateAfter(stored.key, report.version);
-        break;
-      }
-      report.version = version;
-      ++report.frames;
+    // Frames replay through the same incremental engine path that served them: incremental
+    // results match a rebuild only to 1e-9, so replaying is what gives back the served bytes.
+    bool done = false;
+    try {
+      done = replayAtOnce(*session, stored, report);
+    } catch (const std::exception& error) {  // e.g. a frame that no longer applies: one by one
+      std::fprintf(stderr, "penumbra serve: scene '%s': %s; replaying frame by frame\n",
+                   stored.id.c_str(), error.what());
+      session = freshSession(stored, options_.engine);
+      report.version = session->snapshot()->version;
+      report.frames = 0;
+      report.meshedOnce = false;
     }
+    if (!done) replayOneByOne(*session, stored, *journal_, report);
     report.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::lock_guard lock(scenesMutex_);

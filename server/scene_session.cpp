@@ -2,6 +2,7 @@
 
 #include <map>
 #include <set>
+#include <stdexcept>
 
 #include "server/limits.h"
 
@@ -161,6 +162,55 @@ SceneSession::Applied SceneSession::applyToEngine(
   noteApplied(frame, result, published->scene);
   publish(published);
   return {std::move(result), std::move(published), meshSeconds, remesh.size(), cells};
+}
+
+void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames) {
+  std::lock_guard edit(editMutex_);
+  const std::shared_ptr<const SceneSnapshot> start = snapshot();
+  if (frames.empty()) return;
+  std::map<PartKey, uint64_t> versions;  // every live part's version, as the frames leave them
+  for (const MeshPart& part : start->parts) versions[part.key] = part.version;
+  auto next = std::make_shared<SceneSnapshot>();
+  next->removed = start->removed;
+  next->removedFloor = start->removedFloor;
+  FrameResult last;
+  for (const JournaledFrame& journaled : frames) {
+    last = engine_->apply(journaled.frame);
+    engine_->compactTrees(last.changedReceivers);  // as applyToEngine: the same trees after
+    if (last.version != journaled.version)
+      throw std::runtime_error("replay reached version " + std::to_string(last.version) +
+                               ", the journal says " + std::to_string(journaled.version));
+    noteApplied(journaled.frame, last, engine_->scene());
+    // As applyToEngine: a part that came back is live again; the parts that left go last.
+    const std::set<PartKey> changed(journaled.changes.changed.begin(), journaled.changes.changed.end());
+    std::erase_if(next->removed, [&](const auto& entry) { return changed.count(entry.first) > 0; });
+    for (const PartKey& key : changed) versions[key] = last.version;
+    for (const PartKey& key : journaled.changes.removed) {
+      versions.erase(key);
+      next->removed.emplace_back(key, last.version);
+    }
+    if (last.version > kSinceWindow) next->forgetRemovedUpTo(last.version - kSinceWindow);
+  }
+  next->id = start->id;
+  next->name = start->name;
+  next->version = last.version;
+  next->buildStats = start->buildStats;
+  next->scene = engine_->scene();
+  for (const Engine::ReceiverChunks& r : engine_->meshChunks(receiverFaces(*engine_)))
+    for (MeshPart& part : partsOf(next->scene, r, 0)) {
+      const auto it = versions.find(part.key);
+      if (it == versions.end())
+        throw std::runtime_error("a part of receiver '" + part.key.receiver.object +
+                                 "' has no journaled version");
+      part.version = it->second;
+      versions.erase(it);
+      next->parts.push_back(std::move(part));
+    }
+  if (!versions.empty())
+    throw std::runtime_error(std::to_string(versions.size()) +
+                             " journaled parts are not in the mesh");
+  next->lastFrame = last;
+  publish(std::move(next));
 }
 
 void SceneSession::publish(std::shared_ptr<const SceneSnapshot> next) {

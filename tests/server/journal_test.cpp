@@ -4,39 +4,15 @@
 // tests/server/kill_restore.py.)
 #include <gtest/gtest.h>
 #include <sqlite3.h>
-#include <unistd.h>
 
-#include <filesystem>
 #include <map>
 #include <random>
 
 #include "server_fixture.h"
+#include "temp_data_dir.h"
 
 namespace penumbra::server::test {
 namespace {
-
-namespace fs = std::filesystem;
-
-class TempDir {
- public:
-  TempDir() {
-    path_ = fs::temp_directory_path() /
-            ("penumbra-journal-test-" + std::to_string(getpid()) + "-" + std::to_string(counter_++));
-    fs::remove_all(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  std::string str() const { return path_.string(); }
-
- private:
-  static inline int counter_ = 0;
-  fs::path path_;
-};
-
-ServerOptions durable(const std::string& dir) {
-  ServerOptions options = RunningServer::loopback();
-  options.dataDir = dir;
-  return options;
-}
 
 std::string meshBin(httplib::Client& client, const std::string& id) {
   const auto res = client.Get(("/api/scenes/" + id + "/mesh?format=bin").c_str());
@@ -68,10 +44,10 @@ uint64_t drag(httplib::Client& client, const std::string& id, int frames, uint32
 }
 
 TEST(Journal, RestartRestoresEveryScenesLastVersionWithTheSameMeshBytes) {
-  TempDir data;
+  TempDataDir data;
   std::map<std::string, std::pair<uint64_t, std::string>> served;  // id → version, mesh
   {
-    RunningServer first(durable(data.str()));
+    RunningServer first(data.durable());
     auto client = first.client();
     const std::string cubes = first.addBundled("cubes15");
     const uint64_t version = drag(client, cubes, 12, 7);
@@ -86,7 +62,7 @@ TEST(Journal, RestartRestoresEveryScenesLastVersionWithTheSameMeshBytes) {
     drag(client, gone, 2, 8);
     EXPECT_EQ(client.Delete(("/api/scenes/" + gone).c_str())->status, 204);
   }
-  RunningServer second(durable(data.str()));
+  RunningServer second(data.durable());
   const std::vector<RestoredScene> restored = second.server().restore();
   ASSERT_EQ(restored.size(), served.size());
   auto client = second.client();
@@ -103,10 +79,10 @@ TEST(Journal, RestartRestoresEveryScenesLastVersionWithTheSameMeshBytes) {
 }
 
 TEST(Journal, FailedWriteAcknowledgesNothingAndUndoesTheFrame) {
-  TempDir data;
+  TempDataDir data;
   std::string mesh;
   {
-    RunningServer running(durable(data.str()));
+    RunningServer running(data.durable());
     auto client = running.client();
     const std::string id = running.addBundled("cubes15");
     ASSERT_EQ(drag(client, id, 3, 11), 3u);
@@ -138,7 +114,7 @@ TEST(Journal, FailedWriteAcknowledgesNothingAndUndoesTheFrame) {
     EXPECT_EQ(res->status, 200) << res->body;
     mesh = meshBin(client, id);
   }
-  RunningServer second(durable(data.str()));
+  RunningServer second(data.durable());
   ASSERT_EQ(second.server().restore().at(0).version, 4u);
   auto client = second.client();
   EXPECT_TRUE(meshBin(client, "cubes15") == mesh);

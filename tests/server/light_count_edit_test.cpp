@@ -2,12 +2,11 @@
 // rebuild, removing it gives back the mesh the scene had, bad ones are refused with 422 and the
 // key path (version unchanged), and the journal replays them after a restart.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <filesystem>
 #include <map>
 
 #include "server_fixture.h"
+#include "temp_data_dir.h"
 
 namespace penumbra::server::test {
 namespace {
@@ -112,11 +111,8 @@ TEST(LightCountEdits, BadAddAndRemoveAre422WithThePathAndChangeNothing) {
 }
 
 TEST(LightCountEdits, JournalReplaysAddAndRemoveLightAfterARestart) {
-  const std::filesystem::path data = std::filesystem::temp_directory_path() /
-                                     ("penumbra-light-count-journal-" + std::to_string(getpid()));
-  std::filesystem::remove_all(data);
-  ServerOptions options = RunningServer::loopback();
-  options.dataDir = data.string();
+  const TempDataDir data;
+  const ServerOptions options = data.durable();
   std::string id, mesh;
   json lights;
   {
@@ -142,7 +138,6 @@ TEST(LightCountEdits, JournalReplaysAddAndRemoveLightAfterARestart) {
   auto client = second.client();
   EXPECT_EQ(bodyJson(client.Get(("/api/scenes/" + id).c_str()))["scene"]["lights"], lights);
   EXPECT_TRUE(client.Get(("/api/scenes/" + id + "/mesh?format=bin").c_str())->body == mesh);
-  std::filesystem::remove_all(data);
 }
 
 }  // namespace

@@ -3,9 +3,7 @@
 // and the key path (version unchanged), the journal replays light edits after a restart, and a
 // light frame failing inside the engine or the meshing leaves no trace (atomic frames).
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <filesystem>
 #include <map>
 #include <memory>
 #include <new>
@@ -14,6 +12,7 @@
 #include "server/mesh_binary.h"
 #include "server/scene_session.h"
 #include "server_fixture.h"
+#include "temp_data_dir.h"
 
 namespace penumbra::server::test {
 namespace {
@@ -120,11 +119,8 @@ TEST(LightEdits, BadLightEditsAre422WithThePathAndChangeNothing) {
 }
 
 TEST(LightEdits, JournalReplaysLightEditsAfterARestart) {
-  const std::filesystem::path data = std::filesystem::temp_directory_path() /
-                                     ("penumbra-light-journal-" + std::to_string(getpid()));
-  std::filesystem::remove_all(data);
-  ServerOptions options = RunningServer::loopback();
-  options.dataDir = data.string();
+  const TempDataDir data;
+  const ServerOptions options = data.durable();
   std::string id, mesh;
   {
     RunningServer first(options);
@@ -149,7 +145,6 @@ TEST(LightEdits, JournalReplaysLightEditsAfterARestart) {
   EXPECT_EQ(scene["scene"]["lights"][0]["polygon"], grownLight(0.6, 0.2));
   EXPECT_EQ(scene["scene"]["lights"][0]["radiance"], json({5.0, 5.0, 5.0}));
   EXPECT_TRUE(client.Get(("/api/scenes/" + id + "/mesh?format=bin").c_str())->body == mesh);
-  std::filesystem::remove_all(data);
 }
 
 // Light frames failing at each point they pass (the rebuild of a moved, added or removed light,
