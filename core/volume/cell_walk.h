@@ -4,9 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-
 #include <glm/glm.hpp>
+#include <limits>
 
 #include "core/geom/vec.h"
 

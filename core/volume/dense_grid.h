@@ -4,10 +4,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <stdexcept>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 namespace penumbra::volume {
 

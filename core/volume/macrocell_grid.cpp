@@ -42,7 +42,8 @@ std::optional<VolumeHit> MacrocellGrid<T>::trace(const VolumeRay& ray, double is
   auto visitCell = [&](glm::ivec3 v, double ta, double tb) {
     CellCorners corners;
     for (int c = 0; c < 8; ++c)
-      corners[c] = double(grid_.values[grid_.index(v + glm::ivec3((c >> 2) & 1, (c >> 1) & 1, c & 1))]);
+      corners[c] =
+          double(grid_.values[grid_.index(v + glm::ivec3((c >> 2) & 1, (c >> 1) & 1, c & 1))]);
     if (counters) ++counters->cells;
     const auto [lo, hi] = std::minmax_element(corners.begin(), corners.end());
     if (!(*lo <= iso && iso < *hi) || !(ta <= tb)) return false;

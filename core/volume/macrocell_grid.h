@@ -29,7 +29,7 @@ class MacrocellGrid {
  private:
   const DenseGrid<T>& grid_;
   int side_;
-  glm::ivec3 count_;                   // macrocells per axis
+  glm::ivec3 count_;                      // macrocells per axis
   std::vector<std::array<T, 2>> ranges_;  // min, max per macrocell, x fastest
 };
 

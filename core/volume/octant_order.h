@@ -22,7 +22,7 @@ bool walkOctants(const Vec3& origin, const Vec3& dir, const Vec3& invDir, const 
   for (int a = 0; a < 3; ++a) {
     crossing[a] = dir[a] != 0.0 ? (center[a] - origin[a]) * invDir[a] : kInf;
     // Side of the mid-plane at t0 from where the crossing lies, not from a rounded position.
-    const bool upper = dir[a] == 0.0 ? origin[a] >= center[a]
+    const bool upper = dir[a] == 0.0       ? origin[a] >= center[a]
                        : crossing[a] <= t0 ? dir[a] > 0.0
                                            : dir[a] < 0.0;
     child |= int(upper) << (2 - a);

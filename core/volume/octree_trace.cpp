@@ -46,7 +46,8 @@ class Tracer {
     return walkOctants(o_, d_, inv_, Vec3(origin + h), t0, t1, [&](int c, double ta, double tb) {
       if (!holds(double(n.childMins[c]), double(n.childMaxs[c]))) return false;
       const glm::ivec3 co = origin + octant(c) * h;
-      if (n.childOffset[c] < 0) return uniform(depth, co, h, double(n.childScalars[c]), co, h, ta, tb);
+      if (n.childOffset[c] < 0)
+        return uniform(depth, co, h, double(n.childScalars[c]), co, h, ta, tb);
       const uint32_t child = n.childStart + uint32_t(n.childOffset[c]);
       if (depth == v_.maxDepth() - 2) return cap(depth, child, co, ta, tb);
       return node(depth + 1, child, co, ta, tb);
@@ -76,7 +77,8 @@ class Tracer {
       CellCorners corners;
       for (int dir = 0; dir < 8; ++dir) {
         const glm::ivec3 p = sub + octant(dir);
-        corners[dir] = p.x < end.x && p.y < end.y && p.z < end.z ? value : neighbour(parentDepth, p);
+        corners[dir] =
+            p.x < end.x && p.y < end.y && p.z < end.z ? value : neighbour(parentDepth, p);
       }
       return cell(corners, sub, t0, t1);
     }
@@ -132,7 +134,7 @@ template std::optional<VolumeHit> traceOctree(const OctreeVolume<uint8_t>&, cons
                                               double, TraceCounters*);
 template std::optional<VolumeHit> traceOctree(const OctreeVolume<uint16_t>&, const VolumeRay&,
                                               double, TraceCounters*);
-template std::optional<VolumeHit> traceOctree(const OctreeVolume<float>&, const VolumeRay&,
-                                              double, TraceCounters*);
+template std::optional<VolumeHit> traceOctree(const OctreeVolume<float>&, const VolumeRay&, double,
+                                              TraceCounters*);
 
 }  // namespace penumbra::volume

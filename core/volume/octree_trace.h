@@ -12,10 +12,10 @@
 namespace penumbra::volume {
 
 struct TraceCounters {
-  uint64_t nodes = 0;      // interior nodes entered
-  uint64_t cells = 0;      // cells whose corners were fetched
-  uint64_t cubics = 0;     // cells that straddled the isovalue (root finder run)
-  uint64_t neighbours = 0; // corner voxels found by neighbour finding
+  uint64_t nodes = 0;       // interior nodes entered
+  uint64_t cells = 0;       // cells whose corners were fetched
+  uint64_t cubics = 0;      // cells that straddled the isovalue (root finder run)
+  uint64_t neighbours = 0;  // corner voxels found by neighbour finding
 };
 
 // The first hit along the ray in [ray.tMin, ray.tMax] ∩ the box [0, size − 1]³, or nullopt.

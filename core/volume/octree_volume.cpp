@@ -47,7 +47,8 @@ struct OctreeVolume<T>::Built {
 };
 
 template <class T>
-OctreeVolume<T> OctreeVolume<T>::build(const DenseGrid<T>& grid, const OctreeBuildOptions& options) {
+OctreeVolume<T> OctreeVolume<T>::build(const DenseGrid<T>& grid,
+                                       const OctreeBuildOptions& options) {
   OctreeVolume out;
   out.size_ = grid.size;
   const int largest = std::max({grid.size.x, grid.size.y, grid.size.z});
@@ -148,7 +149,8 @@ std::array<T, 2> OctreeVolume<T>::fillMinMax(const DenseGrid<T>& field, int dept
     }
     node.childMins[c] = range[0];
     node.childMaxs[c] = range[1];
-    total = c == 0 ? range : std::array<T, 2>{std::min(total[0], range[0]), std::max(total[1], range[1])};
+    total = c == 0 ? range
+                   : std::array<T, 2>{std::min(total[0], range[0]), std::max(total[1], range[1])};
   }
   return total;
 }
@@ -200,11 +202,14 @@ void OctreeVolume<T>::validate() const {
     for (const OctNode<T>& node : nodes_[depth]) {
       int8_t next = 0;
       for (int c = 0; c < 8; ++c) {
-        if (node.childMins[c] > node.childMaxs[c]) fail("min > max at depth " + std::to_string(depth));
+        if (node.childMins[c] > node.childMaxs[c])
+          fail("min > max at depth " + std::to_string(depth));
         if (node.childOffset[c] < 0) continue;
-        if (node.childOffset[c] != next++) fail("offsets not packed at depth " + std::to_string(depth));
+        if (node.childOffset[c] != next++)
+          fail("offsets not packed at depth " + std::to_string(depth));
       }
-      if (next > 0 && node.childStart != expected) fail("child_start at depth " + std::to_string(depth));
+      if (next > 0 && node.childStart != expected)
+        fail("child_start at depth " + std::to_string(depth));
       expected += size_t(next);
     }
     if (expected != below) fail("unreached or shared nodes below depth " + std::to_string(depth));

@@ -6,9 +6,8 @@
 
 #include <array>
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "core/volume/dense_grid.h"
 
@@ -19,7 +18,7 @@ struct OctNode {
   std::array<T, 8> childScalars{};  // the value of a scalar-leaf child (else its average)
   std::array<T, 8> childMins{};     // min/max over the child's cells (forward neighbours)
   std::array<T, 8> childMaxs{};
-  uint32_t childStart = 0;           // first child in the next depth's array (or in caps)
+  uint32_t childStart = 0;              // first child in the next depth's array (or in caps)
   std::array<int8_t, 8> childOffset{};  // child index = childStart + offset; −1 = scalar leaf
 };
 
