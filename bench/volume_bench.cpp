@@ -49,8 +49,8 @@ void table1Row(const char* field, const char* kind, const volume::DenseGrid<T>& 
   const auto octree = volume::OctreeVolume<T>::build(grid, options);
   const double seconds = secondsSince(start);
   const double voxels = double(grid.values.size());
-  std::printf("| %-14s | %-13s | %4dx%dx%d | %10zu | %10zu | %5.1f | %8zu | %8zu | %6.1f |\n", field,
-              kind, grid.size.x, grid.size.y, grid.size.z, grid.bytes(), octree.bytes(),
+  std::printf("| %-14s | %-13s | %4dx%dx%d | %10zu | %10zu | %5.1f | %8zu | %8zu | %6.1f |\n",
+              field, kind, grid.size.x, grid.size.y, grid.size.z, grid.bytes(), octree.bytes(),
               100.0 * double(octree.bytes()) / double(grid.bytes()), octree.nodeCount(),
               octree.caps().size(), 1e9 * seconds / voxels);
 }
@@ -61,9 +61,11 @@ volume::DenseGrid<uint8_t> clamped(volume::DenseGrid<uint8_t> grid, int lo, int 
 }
 
 void table1(const Options& options) {
-  std::printf("\nTable 1: octree volume size (nodes + caps + embedded min/max tree) / raw array\n\n");
-  std::printf("| field          | data          | size        | raw bytes  | octree B   | %%     |"
-              " nodes    | caps     | ns/vox |\n");
+  std::printf(
+      "\nTable 1: octree volume size (nodes + caps + embedded min/max tree) / raw array\n\n");
+  std::printf(
+      "| field          | data          | size        | raw bytes  | octree B   | %%     |"
+      " nodes    | caps     | ns/vox |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   for (int n : options.sizes)
     for (VolumeField field : kVolumeFields) {
@@ -83,7 +85,8 @@ struct Camera {
   Vec3 eye, forward, right, up;
   double scale;
   volume::VolumeRay ray(int px, int py, int res) const {
-    const double x = (2.0 * (px + 0.5) / res - 1.0) * scale, y = (1.0 - 2.0 * (py + 0.5) / res) * scale;
+    const double x = (2.0 * (px + 0.5) / res - 1.0) * scale,
+                 y = (1.0 - 2.0 * (py + 0.5) / res) * scale;
     return {eye, glm::normalize(forward + right * x + up * y)};
   }
 };
@@ -125,30 +128,37 @@ void table2(const Options& options) {
   const int n = options.renderSize, res = options.res;
   std::printf("\nTable 2: %d^2 frames of the isosurface of %d^3 8-bit fields (first hit only)\n\n",
               res, n);
-  std::printf("| field          | iso   | structure / data         | threads | hits   | Mrays/s | fps   | memory MB |\n");
+  std::printf(
+      "| field          | iso   | structure / data         | threads | hits   | Mrays/s | fps   | "
+      "memory MB |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
   const double isos[] = {127.5, 127.5, 60.5, 127.5};  // ML, sphere, smoke, mixing
   int which = 0;
   for (VolumeField field : kVolumeFields) {
     const double iso = isos[which++];
-    std::fprintf(stderr, "table 2: %s %d^3: generating and building\n", volumeFieldName(field).c_str(), n);
+    std::fprintf(stderr, "table 2: %s %d^3: generating and building\n",
+                 volumeFieldName(field).c_str(), n);
     const auto grid = quantise8(makeVolumeField({field, glm::ivec3(n), 1}));
     const auto octree = volume::OctreeVolume<uint8_t>::build(grid);
     const volume::MacrocellGrid<uint8_t> macro(grid, 8);
     const Camera camera = cameraFor(grid.size);
     for (int threads : options.threads) {
       std::fprintf(stderr, "table 2: %s, %d thread(s)\n", volumeFieldName(field).c_str(), threads);
-      const auto [tOct, hOct] = renderFrames(camera, res, threads, options.frames,
+      const auto [tOct, hOct] = renderFrames(
+          camera, res, threads, options.frames,
           [&](const volume::VolumeRay& r) { return volume::traceOctree(octree, r, iso); });
-      const auto [tMac, hMac] = renderFrames(camera, res, threads, options.frames,
-          [&](const volume::VolumeRay& r) { return macro.trace(r, iso); });
+      const auto [tMac, hMac] =
+          renderFrames(camera, res, threads, options.frames,
+                       [&](const volume::VolumeRay& r) { return macro.trace(r, iso); });
       const double rays = double(res) * res;
-      std::printf("| %-14s | %5.1f | octree / octree volume   | %7d | %6ld | %7.2f | %5.2f | %9.2f |\n",
-                  volumeFieldName(field).c_str(), iso, threads, hOct, rays / tOct / 1e6, 1.0 / tOct,
-                  double(octree.bytes()) / 1e6);
-      std::printf("| %-14s | %5.1f | macrocell 8³ / raw array | %7d | %6ld | %7.2f | %5.2f | %9.2f |\n",
-                  volumeFieldName(field).c_str(), iso, threads, hMac, rays / tMac / 1e6, 1.0 / tMac,
-                  double(grid.bytes() + macro.bytes()) / 1e6);
+      std::printf(
+          "| %-14s | %5.1f | octree / octree volume   | %7d | %6ld | %7.2f | %5.2f | %9.2f |\n",
+          volumeFieldName(field).c_str(), iso, threads, hOct, rays / tOct / 1e6, 1.0 / tOct,
+          double(octree.bytes()) / 1e6);
+      std::printf(
+          "| %-14s | %5.1f | macrocell 8³ / raw array | %7d | %6ld | %7.2f | %5.2f | %9.2f |\n",
+          volumeFieldName(field).c_str(), iso, threads, hMac, rays / tMac / 1e6, 1.0 / tMac,
+          double(grid.bytes() + macro.bytes()) / 1e6);
       std::fflush(stdout);
     }
   }
@@ -162,12 +172,18 @@ int main(int argc, char** argv) {
   try {
     for (int i = 1; i + 1 < argc; i += 2) {
       const std::string name = argv[i], value = argv[i + 1];
-      if (name == "--sizes") options.sizes = penumbra::intList(value);
-      else if (name == "--render-size") options.renderSize = std::stoi(value);
-      else if (name == "--res") options.res = std::stoi(value);
-      else if (name == "--threads") options.threads = penumbra::intList(value);
-      else if (name == "--frames") options.frames = std::stoi(value);
-      else throw std::invalid_argument("unknown option " + name);
+      if (name == "--sizes")
+        options.sizes = penumbra::intList(value);
+      else if (name == "--render-size")
+        options.renderSize = std::stoi(value);
+      else if (name == "--res")
+        options.res = std::stoi(value);
+      else if (name == "--threads")
+        options.threads = penumbra::intList(value);
+      else if (name == "--frames")
+        options.frames = std::stoi(value);
+      else
+        throw std::invalid_argument("unknown option " + name);
     }
     if (argc % 2 == 0) throw std::invalid_argument("an option needs a value");
   } catch (const std::exception& error) {

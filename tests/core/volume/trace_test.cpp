@@ -7,10 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <optional>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "bench/lib/volume_fields.h"
 #include "core/volume/macrocell_grid.h"
@@ -143,14 +146,14 @@ struct Agreement {
 // change of the reference field inside a march step whose ends agree in sign (a root pair
 // closer than the reference's 1e-10 floor): none are allowed.
 template <class T>
-Agreement compareWithReference(const DenseGrid<T>& grid, double iso, int count, uint64_t seed,
-                               const std::string& what) {
+Agreement compareWithReference(const DenseGrid<T>& grid, double iso,
+                               const std::vector<RayCase>& rays, const std::string& what) {
   const auto octree = volume::OctreeVolume<T>::build(grid);
   const volume::MacrocellGrid<T> macro(grid, 4);
   Agreement out;
   constexpr double kStep = 1.0 / 64.0;
   const double lipschitz = refLipschitz(grid);
-  for (const RayCase& ray : randomRays(grid.size, count, seed)) {
+  for (const RayCase& ray : rays) {
     const volume::VolumeRay vray{ray.origin, ray.dir};
     const auto got = volume::traceOctree(octree, vray, iso);
     const auto grid_hit = macro.trace(vray, iso);
@@ -202,7 +205,7 @@ Agreement compareWithReference(const DenseGrid<T>& grid, double iso, int count, 
 template <class T>
 void expectAgreement(const DenseGrid<T>& grid, double iso, uint64_t seed, const std::string& what) {
   const int count = raysPerField();
-  const Agreement a = compareWithReference(grid, iso, count, seed, what);
+  const Agreement a = compareWithReference(grid, iso, randomRays(grid.size, count, seed), what);
   std::printf("%s: %d rays, %d hits, %d misses, %d finer than the reference's march\n",
               what.c_str(), count, a.hits, a.misses, a.coarseReference);
   EXPECT_GT(a.hits, count / 10) << what;
@@ -218,6 +221,38 @@ TEST(VolumeTrace, OctreeHitsMatchIndependentMarch) {
                   23, "mixing-8");
   expectAgreement(makeVolumeField({VolumeField::Sphere, {32, 31, 33}, 4}), 0.5123, 24,
                   "sphere-float");
+}
+
+// Rays along cell faces and edges and through cell corners: ties in the octant order, spans of
+// zero length, a ray lying in the face two cells share.
+std::vector<RayCase> latticeRays(glm::ivec3 size, int count, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<RayCase> rays;
+  const Vec3 dirs[] = {{1, 0, 0},  {0, -1, 0}, {0, 0, 1},  {1, 1, 0},
+                       {0, -1, 1}, {1, 1, 1},  {-1, 1, -1}};
+  while (int(rays.size()) < count) {
+    const Vec3 dir = glm::normalize(dirs[rng() % std::size(dirs)]);
+    Vec3 at;  // a lattice point (or half-way between) inside, then stepped back outside
+    for (int a = 0; a < 3; ++a) at[a] = double(rng() % (2 * (size[a] - 1) + 1)) * 0.5;
+    const double back = rng() % 3 == 0 ? 0.0 : double(size.x + size.y + size.z);
+    rays.push_back({at - dir * back, dir});
+  }
+  return rays;
+}
+
+TEST(VolumeTrace, RaysAlongCellFacesEdgesAndCorners) {
+  const auto ml = quantise8(makeVolumeField({VolumeField::MarschnerLobb, {33, 30, 35}, 1}));
+  const auto mixing = quantise8(makeVolumeField({VolumeField::MixingLayer, {40, 33, 37}, 2}));
+  const auto smoke = quantise16(makeVolumeField({VolumeField::Smoke, {35, 35, 35}, 3}));
+  const Agreement a = compareWithReference(ml, 127.37, latticeRays(ml.size, 1500, 41), "ml");
+  const Agreement b =
+      compareWithReference(mixing, 100.25, latticeRays(mixing.size, 1500, 42), "mix");
+  const Agreement c =
+      compareWithReference(smoke, 9000.5, latticeRays(smoke.size, 1500, 43), "smoke");
+  std::printf("lattice rays: %d, %d, %d hits\n", a.hits, b.hits, c.hits);
+  EXPECT_GT(a.hits, 100);
+  EXPECT_GT(b.hits, 100);
+  EXPECT_GT(c.hits, 100);
 }
 
 TEST(VolumeTrace, SphereHitsLieOnTheSphereWithinTheTrilinearBound) {
