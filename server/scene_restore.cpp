@@ -82,10 +82,10 @@ Frame storedFrame(const SceneSession& session, const std::string& text) {
 // possible when each frame's part changes were journaled (journals before them: no).
 bool replayAtOnce(SceneSession& session, const StoredScene& stored, RestoredScene& report) {
   std::vector<SceneSession::JournaledFrame> frames;
-  for (const SceneJournal::StoredScene::StoredFrame& stored : stored.frames) {
-    if (stored.parts.empty()) return false;
-    frames.push_back({storedFrame(session, stored.frame), stored.version,
-                      partChangesFromText(stored.parts)});
+  for (const SceneJournal::StoredScene::StoredFrame& frame : stored.frames) {
+    if (frame.parts.empty()) return false;
+    frames.push_back({storedFrame(session, frame.frame), frame.version,
+                      partChangesFromText(frame.parts)});
   }
   session.replayJournaled(frames);
   report.version = session.snapshot()->version;
