@@ -18,10 +18,6 @@ namespace {
 
 using Answers = std::map<std::string, std::string>;  // query → body
 
-httplib::Result post(httplib::Client& client, const std::string& path, const json& body) {
-  return client.Post(path.c_str(), body.dump(), "application/json");
-}
-
 // A frame of each kind the restore must replay (unit cubes standing on the floor, clear of the
 // others); returns the last acknowledged version.
 uint64_t play(httplib::Client& client, const std::string& id) {
@@ -46,7 +42,7 @@ uint64_t play(httplib::Client& client, const std::string& id) {
   };
   uint64_t version = 0;
   for (const json& frame : frames) {
-    const auto res = post(client, edits, frame);
+    const auto res = postJson(client, edits, frame);
     EXPECT_TRUE(res && res->status == 200) << frame.dump() << " → " << (res ? res->body : "none");
     version = bodyJson(res)["version"];
   }

@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "protocol/json_text.h"
 #include "protocol/scene_json.h"
@@ -82,6 +84,26 @@ inline json moveFrame(const std::string& id, double x, double y, double z, doubl
                {{{"op", "move"},
                  {"id", id},
                  {"transform", {{"translate", {x, y, z}}, {"rotate_deg", {0, rotateY, 0}}}}}})}};
+}
+
+inline httplib::Result postJson(httplib::Client& client, const std::string& path, const json& body) {
+  return client.Post(path.c_str(), body.dump(), "application/json");
+}
+
+// Each frame POSTed to scene `base` (/api/scenes/ID) is refused with 422 naming its key path; then
+// the scene is still at version 0 with the lights `original`.
+inline void expectLightFramesRefused(httplib::Client& client, const std::string& base,
+                                     const std::vector<std::pair<json, std::string>>& cases,
+                                     const json& original) {
+  for (const auto& [frame, path] : cases) {
+    const auto res = postJson(client, base + "/edits", frame);
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 422) << frame.dump() << " → " << res->body;
+    EXPECT_EQ(bodyJson(res)["error"]["path"], path) << res->body;
+  }
+  const json scene = bodyJson(client.Get(base.c_str()));
+  EXPECT_EQ(scene["version"], 0);
+  EXPECT_EQ(scene["scene"]["lights"], original);
 }
 
 // The bytes of a gzip stream (what a gzip-encoded answer carries).

@@ -12,14 +12,14 @@
 #include "protocol/mesh_json.h"
 #include "protocol/scene_json.h"
 #include "tests/core/engine/incremental_compare.h"
+#include "tests/core/engine/refused_frame.h"
 
 namespace penumbra {
 namespace {
 
-std::string meshText(Engine& engine) {
-  return protocol::meshToJson(engine.scene(), engine.mesh(), "s").dump();
-}
-std::string sceneText(const Engine& engine) { return protocol::sceneToJson(engine.scene()).dump(); }
+using testing::expectRefusedUnchanged;
+using testing::sceneText;
+
 
 Edit moveEdit(const Engine& engine, const std::string& id, const Vec3& by) {
   Edit edit;
@@ -28,22 +28,6 @@ Edit moveEdit(const Engine& engine, const std::string& id, const Vec3& by) {
   edit.transform = engine.scene().objects()[*engine.scene().findObject(id)].transform;
   edit.transform.translate += by;
   return edit;
-}
-
-void expectRefusedUnchanged(Engine& engine, const Frame& frame, size_t editIndex, const std::string& path) {
-  const uint64_t version = engine.version();
-  const std::string scene = sceneText(engine), mesh = meshText(engine);
-  try {
-    engine.apply(frame);
-    ADD_FAILURE() << "frame accepted";
-  } catch (const EditError& error) {
-    EXPECT_EQ(error.editIndex(), editIndex) << error.what();
-    EXPECT_EQ(error.path(), path) << error.what();
-  }
-  EXPECT_EQ(engine.version(), version);
-  EXPECT_EQ(sceneText(engine), scene);
-  EXPECT_EQ(meshText(engine), mesh);
-  EXPECT_NO_THROW(engine.validate());
 }
 
 TEST(IncrementalFrame, InvalidFramesChangeNothing) {

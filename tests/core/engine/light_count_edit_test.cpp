@@ -10,14 +10,14 @@
 #include "protocol/mesh_json.h"
 #include "protocol/scene_json.h"
 #include "tests/core/engine/incremental_compare.h"
+#include "tests/core/engine/refused_frame.h"
 
 namespace penumbra {
 namespace {
 
-std::string meshText(Engine& engine) {
-  return protocol::meshToJson(engine.scene(), engine.mesh(), "s").dump();
-}
-std::string sceneText(const Engine& engine) { return protocol::sceneToJson(engine.scene()).dump(); }
+using testing::expectRefusedUnchanged;
+using testing::meshText;
+
 
 Polygon3 scaledMoved(const Polygon3& polygon, double scale, const Vec3& by) {
   Vec3 c(0.0);
@@ -61,23 +61,6 @@ void expectEqualsRebuild(Engine& engine, uint64_t seed, bool fresh) {
   const testing::EngineDiff diff =
       testing::compareEngines(engine, rebuilt, testing::peakIrradiance(rebuilt), 100, seed);
   EXPECT_EQ(diff.errors(), 0u) << diff.firstProblem;
-}
-
-void expectRefusedUnchanged(Engine& engine, const Frame& frame, size_t editIndex,
-                            const std::string& path) {
-  const uint64_t version = engine.version();
-  const std::string scene = sceneText(engine), mesh = meshText(engine);
-  try {
-    engine.apply(frame);
-    ADD_FAILURE() << "frame accepted";
-  } catch (const EditError& error) {
-    EXPECT_EQ(error.editIndex(), editIndex) << error.what();
-    EXPECT_EQ(error.path(), path) << error.what();
-  }
-  EXPECT_EQ(engine.version(), version);
-  EXPECT_EQ(sceneText(engine), scene);
-  EXPECT_TRUE(meshText(engine) == mesh) << "mesh changed";
-  EXPECT_NO_THROW(engine.validate());
 }
 
 TEST(LightCountEdit, AddedLightEqualsAFreshBuildAndRemovingItRestoresTheMesh) {
