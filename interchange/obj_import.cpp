@@ -61,9 +61,11 @@ std::vector<double> numbers(const std::string& line, size_t from, size_t count) 
   return out;
 }
 
-// Kd, Ka, Ke of each material in MTL text, read exactly (see ObjDirectives::vertices).
+// Kd, Ka, Ke of each material in MTL text, read exactly (see ObjDirectives::vertices), and
+// whether it has an Ns line (tinyobjloader gives a missing Ns the exponent 1: α 0.82, not the default).
 struct ExactColors {
   std::optional<Vec3> kd, ka, ke;
+  bool ns = false;
 };
 std::map<std::string, ExactColors> exactColors(const std::string& mtlText) {
   std::map<std::string, ExactColors> colors;
@@ -77,6 +79,7 @@ std::map<std::string, ExactColors> exactColors(const std::string& mtlText) {
       words >> current;
       continue;
     }
+    if (!current.empty() && keyword == "Ns") colors[current].ns = true;
     if (current.empty() || (keyword != "Kd" && keyword != "Ka" && keyword != "Ke")) continue;
     const std::vector<double> rgb = numbers(line, line.find(keyword) + 2, 3);
     if (rgb.size() != 3) continue;  // tinyobjloader's reading stands
@@ -185,7 +188,7 @@ ImportedMaterial materialFrom(const tinyobj::material_t& m, const ExactColors& e
   material.albedo = exact.kd.value_or(vec3(m.diffuse));
   // PBR extension Pm/Pr, transparency d/Tr with Ni; Ns gives the roughness without Pr.
   const double alpha = m.roughness > 0 ? alphaFromPerceptual(m.roughness)
-                       : m.shininess > 0 ? alphaFromPhong(m.shininess) : Material{}.roughness.x;
+                       : exact.ns && m.shininess > 0 ? alphaFromPhong(m.shininess) : Material{}.roughness.x;
   if (m.metallic >= 0.5) {
     setConductorFromBaseColor(material.surface, material.albedo);
     material.surface.roughness = Vec2(alpha);

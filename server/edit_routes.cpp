@@ -87,6 +87,8 @@ void sendFrameApplied(httplib::Response& res, const SceneSession::Applied& appli
                         {"lit", applied.meshCells.cellsLit},
                         {"chunks_meshed", applied.meshCells.chunksMeshed},
                         {"chunks_kept", applied.meshCells.chunksKept}};
+  body["occluder_seconds"] = applied.occluderSeconds;
+  body["occluder_receivers_count"] = applied.occluderReceivers;
   body["coalesced_frames"] = frames;
   sendJson(res, 200, body);
 }

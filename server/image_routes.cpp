@@ -3,9 +3,13 @@
 
 #include <httplib.h>
 
+#include <algorithm>
+
 #include "core/render/renderer.h"
 #include "server/image_encoding.h"
+#include "server/limits.h"
 #include "server/request_io.h"
+#include "server/scene_occluders.h"
 
 namespace penumbra::server {
 
@@ -52,6 +56,20 @@ Camera cameraFromQuery(const httplib::Request& req, const Scene& scene) {
   return camera;
 }
 
+// Microfacet paths per pixel: `samples`, else the default as far as the budget allows. Bounded:
+// samples × pixels ≤ kMaxImageSampleBudget, so one request's work is bounded whatever it asks.
+uint64_t samplesFromQuery(const httplib::Request& req, uint64_t pixels) {
+  const uint64_t most = std::max<uint64_t>(1, kMaxImageSampleBudget / pixels);
+  const auto samples = queryUnsigned(req, "samples", 1, kMaxImageSamples);
+  if (!samples) return std::min(kDefaultImageSamples, most);
+  if (*samples > most)
+    throw ApiError(400, error_code::kBadParameter, "query.samples",
+                   "samples × width × height must be at most " + std::to_string(kMaxImageSampleBudget) +
+                       ": at this size samples can be at most " + std::to_string(most) + ", got " +
+                       std::to_string(*samples));
+  return *samples;
+}
+
 }  // namespace
 
 void HttpServer::registerImageRoutes() {
@@ -77,6 +95,13 @@ void HttpServer::registerImageRoutes() {
         settings.width = int(*width);
         settings.height = int(*height);
         settings.camera = cameraFromQuery(req, snapshot->scene);
+        // Progressive passes ask for few samples first (README "The page"): paths per pixel,
+        // and stratified samples per visible light piece from 4 (2 × 2) up to the CLI's 16.
+        const uint64_t samples = samplesFromQuery(req, *width * *height);
+        settings.microfacet.pathsPerPixel = int(samples);
+        settings.microfacet.lightSamples = int(std::clamp<uint64_t>(samples, 4, 16));
+        // The DM's exact visibility from the snapshot's frozen occluder lists: no engine, no lock.
+        settings.occluders = occluderLookup(snapshot->occluders);
         RenderedImage image;
         try {
           image = render(snapshot->scene, snapshot->mesh(), settings);
@@ -88,6 +113,7 @@ void HttpServer::registerImageRoutes() {
         res.set_header("Cache-Control", "no-store");
         res.set_header("X-Penumbra-Version", std::to_string(snapshot->version));
         res.set_header("X-Penumbra-Render-Seconds", std::to_string(image.seconds));
+        res.set_header("X-Penumbra-Samples", std::to_string(samples));
         res.set_content(std::string(bytes.begin(), bytes.end()),
                         format == "png" ? "image/png" : "image/x-exr");
       }));

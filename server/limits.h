@@ -29,6 +29,11 @@ inline constexpr int kMallocArenas = 2;
 // Versions back that mesh deltas name removed parts for; an older `since` gets the whole mesh.
 inline constexpr uint64_t kSinceWindow = 256;
 inline constexpr int kMaxImageSide = 4096;  // image width/height in [1, 4096]
+// Microfacet paths per pixel an image may ask for (`samples`), and the work one image may take:
+// samples × width × height at most this (a 4096² image at 1 sample, 1024² at 16).
+inline constexpr uint64_t kMaxImageSamples = 256;
+inline constexpr uint64_t kMaxImageSampleBudget = uint64_t(1) << 24;
+inline constexpr uint64_t kDefaultImageSamples = 16;  // the CLI's MicrofacetSettings
 // Scene ids in URLs: letters, digits, '_', '-', '.' (so file stems work).
 inline constexpr const char* kIdPattern = "([A-Za-z0-9_.-]+)";
 inline constexpr size_t kMaxIdLength = 64;

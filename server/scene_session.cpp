@@ -50,6 +50,7 @@ SceneSession::SceneSession(std::string id, std::string name, Scene scene, Engine
     std::vector<MeshPart> parts = partsOf(first->scene, r, first->version);
     first->parts.insert(first->parts.end(), parts.begin(), parts.end());
   }
+  first->occluders = std::make_shared<const OccluderIndexes>(freezeOccluders(*engine_, {}, {}).indexes);
   current_ = std::move(first);
 }
 
@@ -156,12 +157,17 @@ SceneSession::Applied SceneSession::applyToEngine(
   next->removedFloor = previous->removedFloor;
   if (next->version > kSinceWindow) next->forgetRemovedUpTo(next->version - kSinceWindow);
 
+  // Occluder lists for images: the trees of receivers meshed again may have changed.
+  FrozenOccluders frozen =
+      freezeOccluders(*engine_, *previous->occluders, std::set<FaceId>(remesh.begin(), remesh.end()));
+  next->occluders = std::make_shared<const OccluderIndexes>(std::move(frozen.indexes));
+
   next->lastFrame = result;
   std::shared_ptr<const SceneSnapshot> published = std::move(next);
   if (beforePublish) beforePublish(*published);  // the journal: a throw undoes the frame
   noteApplied(frame, result, published->scene);
   publish(published);
-  return {std::move(result), std::move(published), meshSeconds, remesh.size(), cells};
+  return {std::move(result), std::move(published), meshSeconds, remesh.size(), cells, frozen.seconds, frozen.frozen};
 }
 
 void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames) {
@@ -209,6 +215,7 @@ void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames) {
   if (!versions.empty())
     throw std::runtime_error(std::to_string(versions.size()) +
                              " journaled parts are not in the mesh");
+  next->occluders = std::make_shared<const OccluderIndexes>(freezeOccluders(*engine_, {}, {}).indexes);
   next->lastFrame = last;
   publish(std::move(next));
 }

@@ -53,6 +53,8 @@ class SceneSession {
     double meshSeconds = 0;     // re-meshing the changed receivers and assembling the mesh
     size_t meshedReceivers = 0;  // receivers meshed again (the others kept their mesh)
     Engine::MeshCacheCounters meshCells;  // of those receivers' cells: replayed / lit afresh
+    double occluderSeconds = 0;   // freezing the changed microfacet receivers' occluder lists
+    size_t occluderReceivers = 0;  // receivers frozen afresh (scene_occluders.h)
   };
   Applied apply(const Frame& frame,
                 const std::function<void(const SceneSnapshot&)>& beforePublish = nullptr);

@@ -14,6 +14,7 @@
 #include "core/engine/frame.h"
 #include "core/mesh/mesh.h"
 #include "core/scene/scene.h"
+#include "server/scene_occluders.h"
 
 namespace penumbra::server {
 
@@ -61,6 +62,9 @@ struct SceneSnapshot {
   // forgotten, so the list stays bounded; a `since` older than the floor gets the whole mesh).
   std::vector<std::pair<PartKey, uint64_t>> removed;
   uint64_t removedFloor = 0;
+  // Per microfacet receiver its DM cells' occluder lists, frozen at this version: images shade
+  // microfacet surfaces with the DM's exact visibility without touching the engine.
+  std::shared_ptr<const OccluderIndexes> occluders = std::make_shared<const OccluderIndexes>();
   BuildStats buildStats;                 // of the initial build
   std::optional<FrameResult> lastFrame;  // the frame that made this version
 

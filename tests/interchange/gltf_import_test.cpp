@@ -250,3 +250,56 @@ TEST(GltfImport, PbrMaterialsMapOntoMicrofacetTypes) {
 
 }  // namespace
 }  // namespace penumbra::interchange
+
+namespace penumbra::interchange {
+namespace {
+
+// The rules' edges: glTF's default roughnessFactor (1) and metallicFactor (1), transmission
+// before metallic, below-half factors staying diffuse, a missing or impossible ior, unlit.
+TEST(GltfImport, PbrMappingEdges) {
+  ModelWriter w;
+  const int rough = w.material("rough_metal", {0.8, 0.8, 0.8}, {0, 0, 0}, 1);  // factors at their defaults
+  const int both = w.material("metal_glass", {1, 1, 1}, {0, 0, 0}, 1);
+  const int weak = w.material("weak", {0.5, 0.5, 0.5}, {0, 0, 0}, 1);
+  const int noIor = w.material("no_ior", {1, 1, 1}, {0, 0, 0}, 1);
+  const int badIor = w.material("bad_ior", {1, 1, 1}, {0, 0, 0}, 1);
+  const int unlit = w.material("unlit", {0.5, 0.5, 0.5}, {0, 0, 0}, 1);
+  const int lamp = w.material("lamp", {1, 1, 1}, {1, 1, 1}, 8);
+  tinygltf::Model& model = w.model();
+  auto transmit = [&](int m, double factor) {
+    model.materials[size_t(m)].extensions["KHR_materials_transmission"] =
+        tinygltf::Value(tinygltf::Value::Object{{"transmissionFactor", tinygltf::Value(factor)}});
+  };
+  transmit(both, 1);
+  model.materials[size_t(weak)].pbrMetallicRoughness.metallicFactor = 0.4;
+  transmit(weak, 0.4);
+  model.materials[size_t(noIor)].pbrMetallicRoughness.metallicFactor = 0;
+  transmit(noIor, 0.9);
+  model.materials[size_t(badIor)].pbrMetallicRoughness.metallicFactor = 0;
+  transmit(badIor, 1);
+  model.materials[size_t(badIor)].extensions["KHR_materials_ior"] =
+      tinygltf::Value(tinygltf::Value::Object{{"ior", tinygltf::Value(0.8)}});
+  model.materials[size_t(unlit)].extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object{});
+  model.materials[size_t(lamp)].pbrMetallicRoughness.metallicFactor = 0;
+  const std::array<Vec3, 4> quad = {{{-0.5, 0, -0.5}, {-0.5, 0, 0.5}, {0.5, 0, 0.5}, {0.5, 0, -0.5}}};
+  int y = 0;
+  for (int m : {rough, both, weak, noIor, badIor, unlit}) w.quad("q" + std::to_string(m), quad, m, {0, double(y++), 0});
+  w.quad("lamp", quad, lamp, {0, double(y), 0});
+  const ImportResult result = importSceneBytes(w.write(true), "edges.glb", {}, {});
+  const Scene& scene = result.scene;
+  auto material = [&](const char* name) { return scene.materials()[*scene.findMaterial(name)]; };
+  EXPECT_EQ(material("rough_metal").type, MaterialType::Conductor);
+  EXPECT_DOUBLE_EQ(material("rough_metal").roughness.x, 1.0);  // roughnessFactor 1 → α 1
+  EXPECT_EQ(material("metal_glass").type, MaterialType::Dielectric);  // transmission first
+  EXPECT_DOUBLE_EQ(material("metal_glass").ior, 1.5);
+  EXPECT_EQ(material("weak").type, MaterialType::Diffuse);
+  EXPECT_EQ(material("no_ior").type, MaterialType::Dielectric);
+  EXPECT_DOUBLE_EQ(material("no_ior").ior, 1.5);
+  EXPECT_DOUBLE_EQ(material("bad_ior").ior, 1.5);  // an ior ≤ 1 would not refract: the default
+  EXPECT_EQ(material("unlit").type, MaterialType::Diffuse);
+  EXPECT_EQ(result.report.repaired("materials_mapped_to_dielectric"), 3u) << result.report.summary();
+  EXPECT_EQ(result.report.repaired("materials_mapped_to_conductor"), 1u);
+}
+
+}  // namespace
+}  // namespace penumbra::interchange

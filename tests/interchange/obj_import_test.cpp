@@ -317,3 +317,54 @@ TEST(ObjImport, MtlParametersMapOntoMicrofacetTypes) {
 
 }  // namespace
 }  // namespace penumbra::interchange
+
+namespace penumbra::interchange {
+namespace {
+
+// The rules' edges: a Pm metal's F0 is its Kd; Ns gives α without Pr; Pm below a half stays
+// diffuse; Tr is transparency too; an Ni missing or out of (1, 4] is 1.5; neither Pr nor Ns: α 0.5.
+TEST(ObjImport, MtlMappingEdges) {
+  const std::string mtl =
+      "newmtl metal_ns\nKd 0.9 0.6 0.3\nPm 1\nNs 48\n"
+      "newmtl half\nKd 0.5 0.5 0.5\nPm 0.3\nPr 0.2\n"
+      "newmtl tr_glass\nKd 1 1 1\nTr 0.9\n"
+      "newmtl bad_ni\nKd 1 1 1\nd 0.5\nNi 7\n"
+      "newmtl plain_metal\nKd 0.7 0.7 0.7\nPm 0.9\n"
+      "newmtl light\nKe 5 5 5\n";
+  const std::vector<std::string> names = {"metal_ns", "half", "tr_glass", "bad_ni", "plain_metal", "light"};
+  std::string obj = "mtllib m.mtl\n";
+  for (size_t i = 0; i < names.size(); ++i) {
+    obj += "o " + names[i] + "\nusemtl " + names[i] + "\n";
+    for (const char* corner : {"-1 %d -1", "-1 %d 1", "1 %d 1", "1 %d -1"}) {
+      char line[64];
+      std::snprintf(line, sizeof line, corner, int(i));
+      obj += "v " + std::string(line) + "\n";
+    }
+    const int b = 4 * int(i) + 1;
+    const bool top = i + 1 == names.size();  // the light faces down towards the others
+    obj += "f " + std::to_string(b) + " " + std::to_string(top ? b + 3 : b + 1) + " " + std::to_string(b + 2) + " " +
+           std::to_string(top ? b + 1 : b + 3) + "\n";
+  }
+  const ImportResult result = importObjText(obj, {{"m.mtl", mtl}}, {}, "m.obj");
+  const Scene& scene = result.scene;
+  auto material = [&](const std::string& name) { return scene.materials()[*scene.findMaterial(name)]; };
+  const Material metal = material("metal_ns");
+  EXPECT_EQ(metal.type, MaterialType::Conductor);
+  EXPECT_NEAR(metal.roughness.x, std::sqrt(2.0 / 50.0), 1e-12);
+  const Vec3 kd(0.9, 0.6, 0.3);
+  for (int c = 0; c < 3; ++c)  // normal-incidence reflectance of eta + ik is Kd
+    EXPECT_NEAR((std::pow(metal.eta[c] - 1, 2) + metal.k[c] * metal.k[c]) /
+                    (std::pow(metal.eta[c] + 1, 2) + metal.k[c] * metal.k[c]),
+                kd[c], 1e-6);
+  EXPECT_EQ(material("half").type, MaterialType::Diffuse);
+  EXPECT_EQ(material("tr_glass").type, MaterialType::Dielectric);
+  EXPECT_DOUBLE_EQ(material("tr_glass").ior, 1.5);
+  EXPECT_DOUBLE_EQ(material("bad_ni").ior, 1.5);
+  EXPECT_EQ(material("plain_metal").type, MaterialType::Conductor);
+  EXPECT_DOUBLE_EQ(material("plain_metal").roughness.x, 0.5);
+  EXPECT_EQ(result.report.repaired("materials_mapped_to_conductor"), 2u) << result.report.summary();
+  EXPECT_EQ(result.report.repaired("materials_mapped_to_dielectric"), 2u);
+}
+
+}  // namespace
+}  // namespace penumbra::interchange

@@ -148,14 +148,17 @@ export class ApiClient {
     return bytes.buffer;
   }
 
-  // A PNG for a camera (cameraQuery: URLSearchParams entries from cameraToQuery).
-  async image(id, width, height, cameraQuery, signal) {
+  // A PNG for a camera (cameraQuery: URLSearchParams entries from cameraToQuery); `samples`:
+  // microfacet paths per pixel (null: the server's default).
+  async image(id, width, height, cameraQuery, signal, samples = null) {
     const params = new URLSearchParams({ width: String(width), height: String(height), ...cameraQuery });
+    if (samples) params.set('samples', String(samples));
     const response = await this.request('GET', `${this.scenePath(id)}/image?${params}`, { signal });
     return {
       blob: await response.blob(),
       version: Number(response.headers.get('X-Penumbra-Version')),
       seconds: Number(response.headers.get('X-Penumbra-Render-Seconds')),
+      samples: Number(response.headers.get('X-Penumbra-Samples')),
     };
   }
 

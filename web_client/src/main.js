@@ -10,10 +10,12 @@ import { setLightEdit } from './light_shape.js';
 import { EditorActions } from './editor_actions.js';
 import { Inspector } from './inspector.js';
 import { Outliner } from './outliner.js';
+import { hasPhysicalMaterials } from './physical_materials.js';
 import { installPanelControls } from './panel_controls.js';
 import { ErrorBanner } from './error_banner.js';
 import { EditCoalescer } from './edit_coalescer.js';
 import { EventSync } from './event_sync.js';
+import { GlossyLayer } from './glossy_layer.js';
 import { LoadingIndicator } from './loading_indicator.js';
 import { MeshSync } from './mesh_sync.js';
 import { receiverKey } from './mesh_binary.js';
@@ -46,6 +48,10 @@ class App {
       dragScale: query.get('drag_scale') || 'auto' });
     this.objects = new SceneObjects(this.view.scene);
     this.receivers = new ReceiverLayer(this.view.scene);
+    // Microfacet materials' glossy part over the DM colours, rebuilt with the stand-ins.
+    this.glossy = new GlossyLayer(this.objects, this.receivers);
+    this.objects.onBuilt = (scene) => this.glossy.build(scene).then(() => this.view.requestRender(), (e) => this.fail(e));
+    this.objects.onLight = (id, light) => this.glossy.setLight(id, light);
     // keys: the receivers whose parts changed (null: all, after a whole mesh).
     this.receivers.onColours = (keys) => {
       if (!keys) {
@@ -113,6 +119,7 @@ class App {
     this.meshSync = new MeshSync(this.api, sceneId, (decoded) => {
       // The exposure is fixed from the first whole mesh, before its colours are made.
       if (!this.toneMap.calibrated) this.toneMap.calibrate(decoded.parts);
+      this.glossy.setExposure(this.toneMap.exposure);
       this.receivers.apply(decoded, this.toneMap);
       $('version').textContent = String(decoded.sceneVersion);
       this.view.requestRender();
@@ -143,7 +150,8 @@ class App {
       onMode: (mode) => this.showMode(mode),
     });
     this.showMode('translate');
-    this.renderPanel = new RenderPanel(this.api, sceneId, this.view, $('render'), $('render-info'), this.fail);
+    this.renderPanel = new RenderPanel(this.api, sceneId, this.view, $('render'), $('render-info'), this.fail,
+      () => hasPhysicalMaterials(this.sceneJson));
     this.view.onCameraChange(() => this.renderPanel.schedule());
     this.events = new EventSync(this.api.eventsUrl(sceneId), {
       onVersion: (version) => this.versionAnnounced(version),

@@ -104,6 +104,7 @@ export class ReceiverLayer {
     this.edgeGroup.visible = false;
     parent.add(this.group, this.edgeGroup);
     this.material = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.FrontSide });
+    this.objectMaterials = new Map(); // object id → its batches' material instead (glass: glossy_layer.js)
     this.edgeMaterial = new THREE.LineBasicMaterial({ vertexColors: true, depthTest: true });
     this.entries = new Map(); // part key → {part, colours, edges}
     this.batches = new Map(); // batch key → {keys: Set of part keys, mesh}
@@ -183,11 +184,25 @@ export class ReceiverLayer {
         this.batches.delete(key);
         continue;
       }
-      batch.mesh = batchMesh([...batch.keys].map((k) => this.entries.get(k)), this.material);
+      const entries = [...batch.keys].map((k) => this.entries.get(k));
+      batch.mesh = batchMesh(entries, this.materialOf(entries[0].part.object));
       batch.mesh.name = key;
       this.group.add(batch.mesh);
     }
     this.stale.clear();
+  }
+
+  materialOf(objectId) {
+    return this.objectMaterials.get(objectId) || this.material;
+  }
+
+  // Other materials for some objects' batches (object id → material; the rest keep the DM's own).
+  setObjectMaterials(materials) {
+    this.objectMaterials = materials;
+    for (const batch of this.batches.values()) {
+      if (!batch.mesh || !batch.keys.size) continue;
+      batch.mesh.material = this.materialOf(this.entries.get(batch.keys.values().next().value).part.object);
+    }
   }
 
   addEdges(entry) {

@@ -1,18 +1,24 @@
 // The server's rendering of the page's current view (GET /image with the camera as query
-// parameters), refreshed a short while after the camera or the scene version stops changing;
-// a newer request aborts the older one.
+// parameters), refreshed a short while after the camera or the scene version stops changing.
+// Scenes with microfacet materials refine progressively: a fast image with few samples first,
+// then better ones, each replacing the shown one; a new camera or version aborts the passes left.
 
 const DEBOUNCE_MS = 250;
 const WIDTH = 320;
+// Microfacet paths per pixel of each pass (the last is the server's default, as `penumbra render`).
+export const PROGRESSIVE_SAMPLES = [1, 4, 16];
 
 export class RenderPanel {
-  constructor(api, sceneId, view, img, info, onError) {
-    Object.assign(this, { api, sceneId, view, img, info, onError });
+  // progressive(): whether the scene has materials that need samples (else one pass).
+  constructor(api, sceneId, view, img, info, onError, progressive = () => false) {
+    Object.assign(this, { api, sceneId, view, img, info, onError, progressive });
     this.timer = null;
     this.abort = null;
     this.url = null;
     this.renders = 0;
     this.lastVersion = null;
+    this.passes = []; // {version, samples, seconds} of each image shown, the newest last (bounded)
+    this.aborted = 0;
   }
 
   schedule() {
@@ -21,23 +27,37 @@ export class RenderPanel {
   }
 
   async refresh() {
-    if (this.abort) this.abort.abort();
+    if (this.abort) {
+      this.abort.abort();
+      ++this.aborted;
+    }
     const abort = new AbortController();
     this.abort = abort;
     const width = WIDTH;
     const height = Math.max(1, Math.round(WIDTH / this.view.aspect()));
+    const camera = this.view.cameraQuery();
+    const passes = this.progressive() ? PROGRESSIVE_SAMPLES : [null];
     try {
-      const { blob, version, seconds } = await this.api.image(this.sceneId, width, height, this.view.cameraQuery(), abort.signal);
-      if (this.url) URL.revokeObjectURL(this.url);
-      this.url = URL.createObjectURL(blob);
-      this.img.src = this.url;
-      this.lastVersion = version;
-      ++this.renders;
-      this.info.textContent = `v${version}, ${width}×${height}, ${(seconds * 1000).toFixed(0)} ms`;
+      for (const samples of passes) {
+        const image = await this.api.image(this.sceneId, width, height, camera, abort.signal, samples);
+        if (abort.signal.aborted) return;
+        this.show(image, width, height, passes.length > 1 ? `${image.samples}/${passes.at(-1)} samples, ` : '');
+      }
     } catch (error) {
       if (error.name !== 'AbortError') this.onError(error);
     } finally {
       if (this.abort === abort) this.abort = null;
     }
+  }
+
+  show({ blob, version, seconds, samples }, width, height, pass) {
+    if (this.url) URL.revokeObjectURL(this.url);
+    this.url = URL.createObjectURL(blob);
+    this.img.src = this.url;
+    this.lastVersion = version;
+    ++this.renders;
+    this.passes.push({ version, samples, seconds });
+    if (this.passes.length > 64) this.passes.shift();
+    this.info.textContent = `v${version}, ${width}×${height}, ${pass}${(seconds * 1000).toFixed(0)} ms`;
   }
 }

@@ -100,6 +100,7 @@ export class SceneObjects {
     for (const holder of this.byId.values()) {
       holder.userData.locked = holder.userData.static || isShell(new THREE.Box3().setFromObject(holder.children[0]), this.bounds);
     }
+    if (this.onBuilt) this.onBuilt(scene); // the glossy layer (glossy_layer.js)
   }
 
   // Shows or hides an object's selection outline (made on first use: most objects are never selected).
@@ -196,6 +197,7 @@ export class SceneObjects {
     holder.userData.local = local;
     holder.updateMatrixWorld(true);
     this.lightJson.set(id, { ...(this.lightJson.get(id) || { id }), polygon: light.polygon, radiance: light.radiance });
+    if (this.onLight) this.onLight(id, this.lightJson.get(id));
   }
 
   // Light `id`'s polygon as its holder places it now (during a gizmo drag: moved, turned, scaled).

@@ -144,6 +144,14 @@ export function installTestHook(app) {
     projectToPixels(points, width, height) {
       return points.map((p) => app.view.projectToPixel(p, width, height));
     },
+    // The glossy layer's physical materials and area lights (glossy_layer.js describe()).
+    physicalMaterials() {
+      return app.glossy.describe();
+    },
+    // The server images shown so far ({version, samples, seconds}, newest last) and aborted passes.
+    renderPasses() {
+      return app.renderPanel ? { passes: [...app.renderPanel.passes], aborted: app.renderPanel.aborted } : null;
+    },
     cameraQuery() {
       return app.view.cameraQuery();
     },
