@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/engine/engine.h"
+#include "core/gi/sensor_map.h"
 #include "core/render/renderer.h"
 #include "protocol/json_text.h"
 #include "protocol/mesh_json.h"
@@ -35,10 +36,30 @@ Camera cameraFromOption(const Scene& scene, const std::string& value) {
   return *protocol::sceneFromJson(document).camera();
 }
 
+// --gi sensors and its settings (README "Global illumination").
+std::optional<gi::GiSettings> giFromOptions(const Args& args) {
+  const auto mode = args.option("gi");
+  if (!mode) {
+    for (const char* name : {"sensor-size", "tile", "threshold", "bounces"})
+      if (args.option(name)) throw UsageError(std::string("--") + name + " needs --gi sensors");
+    return std::nullopt;
+  }
+  if (*mode != "sensors") throw UsageError("--gi must be 'sensors', got '" + *mode + "'");
+  if (args.flag("reference")) throw UsageError("--gi lights bounces with the DM mesh: leave out --reference");
+  gi::GiSettings gi;
+  gi.sensorSize = args.intOption("sensor-size", gi.sensorSize, 1, gi::SensorMap::kMaxSize);
+  gi.placement.tile = args.intOption("tile", gi.placement.tile, 1, 256);
+  gi.placement.threshold = args.doubleOption("threshold", gi.placement.threshold);
+  if (!(gi.placement.threshold >= 0 && gi.placement.threshold <= 10))
+    throw UsageError("--threshold must be in [0, 10]");
+  gi.bounces = args.intOption("bounces", gi.bounces, 1, gi::GiSettings::kMaxBounces);
+  return gi;
+}
+
 }  // namespace
 
 int runRender(const Args& args) {
-  args.allowOnly({"out", "width", "height", "camera", "mesh"});
+  args.allowOnly({"out", "width", "height", "camera", "mesh", "gi", "sensor-size", "tile", "threshold", "bounces"});
   const std::string scenePath = args.positional(0, "SCENE");
   const auto out = args.option("out");
   if (!out) throw UsageError("render needs --out IMAGE (.png or .exr)");
@@ -54,6 +75,7 @@ int runRender(const Args& args) {
   settings.reference = args.flag("reference");
   const Scene scene = protocol::loadSceneFile(scenePath);
   if (const auto camera = args.option("camera")) settings.camera = cameraFromOption(scene, *camera);
+  settings.gi = giFromOptions(args);
 
   const auto meshStart = std::chrono::steady_clock::now();
   Mesh mesh;
@@ -78,8 +100,13 @@ int runRender(const Args& args) {
   const double meshSeconds = secondsSince(meshStart);
 
   ProgressBar bar(settings.reference ? "render (reference)" : "render");
-  const RenderedImage image =
-      render(scene, mesh, settings, [&](size_t done, size_t total) { bar.update(done, total); });
+  const RenderedImage image = render(scene, mesh, settings, [&](size_t done, size_t total) {
+    if (total == 0) {  // GI: sensors so far, before the rows
+      std::fprintf(stderr, "gi: %zu sensors placed\n", done);
+    } else {
+      bar.update(done, total);
+    }
+  });
   bar.finish();
   const auto encodeStart = std::chrono::steady_clock::now();
   server::writeImageFile(image, *out);
@@ -94,6 +121,13 @@ int runRender(const Args& args) {
         {"surface_pixels", image.surfacePixels},
         {"light_pixels", image.lightPixels},
         {"exposure", image.exposure},
+        {"gi", image.gi ? nlohmann::json{{"sensors", image.gi->placement.sensors},
+                                         {"sensors_per_level", image.gi->placement.sensorsPerLevel},
+                                         {"interpolated_pixels", image.gi->placement.interpolated},
+                                         {"vertex_sensors", image.gi->vertexSensors},
+                                         {"bounce_change", image.gi->bounceChange},
+                                         {"seconds", image.gi->seconds}}
+                        : nlohmann::json()},
         {"seconds", {{"mesh", meshSeconds}, {"render", image.seconds}, {"encode", encodeSeconds}}},
         {"megapixels_per_second", image.seconds > 0 ? 1e-6 * image.width * image.height / image.seconds : 0.0}};
     std::printf("%s\n", stats.dump(2).c_str());
@@ -101,6 +135,9 @@ int runRender(const Args& args) {
     std::printf("wrote %s: %dx%d, %s shading (render %.3f s, mesh %.3f s, encode %.3f s)\n", out->c_str(),
                 image.width, image.height, settings.reference ? "reference" : "mesh", image.seconds,
                 meshSeconds, encodeSeconds);
+    if (image.gi)
+      std::printf("gi: %zu sensors (%zu pixels interpolated), %.3f s of the render\n", image.gi->placement.sensors,
+                  image.gi->placement.interpolated, image.gi->seconds);
   }
   return 0;
 }

@@ -222,4 +222,18 @@ std::optional<RayScene::Hit> RayScene::intersect(const Vec3& origin, const Vec3&
   return hit;
 }
 
+std::optional<RayScene::Hit> RayScene::intersectFront(const Vec3& origin, const Vec3& dir, double tNear,
+                                                      double tFar) const {
+  // Back faces are skipped by re-tracing just past them (relative to the ray parameter:
+  // Embree's t is float); a ray crosses few of them.
+  constexpr int kMaxBackFaceSkips = 64;
+  constexpr double kSkipRelative = 1e-5;
+  for (int pass = 0; pass < kMaxBackFaceSkips; ++pass) {
+    auto hit = intersect(origin, dir, tNear, tFar);
+    if (!hit || hit->frontFacing) return hit;
+    tNear = hit->t + kSkipRelative * std::max(hit->t, 1e-3);
+  }
+  return std::nullopt;
+}
+
 }  // namespace penumbra

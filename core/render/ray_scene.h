@@ -60,6 +60,10 @@ class RayScene {
   // Closest face hit by origin + t·dir, t in [tNear, tFar], from either side.
   std::optional<Hit> intersect(const Vec3& origin, const Vec3& dir, double tNear = 0,
                                double tFar = INFINITY) const;
+  // Closest front-facing hit: faces seen from behind are passed through (faces are
+  // single-sided: a face blocks only what lies in front of it), at most 64 of them.
+  std::optional<Hit> intersectFront(const Vec3& origin, const Vec3& dir, double tNear = 0,
+                                    double tFar = INFINITY) const;
 
   const Face& face(uint32_t faceIndex) const { return faces_[faceIndex]; }
   size_t triangleCount() const;

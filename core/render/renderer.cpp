@@ -12,16 +12,13 @@
 #include "core/illum/backprojection.h"
 #include "core/reference/exact_irradiance.h"
 #include "core/render/mesh_lookup.h"
+#include "core/render/light_hit.h"
 #include "core/render/ray_scene.h"
 
 namespace penumbra {
 
 namespace {
 
-// Back faces are skipped by re-tracing just past them; a ray crosses few of them.
-constexpr int kMaxBackFaceSkips = 64;
-// Re-trace start past a skipped hit, relative to the ray parameter (Embree's t is float).
-constexpr double kSkipRelative = 1e-5;
 constexpr double kSurfacePercentile = 0.99;
 
 Vec3 ambientIrradiance(const Scene& scene, double fraction) {
@@ -31,22 +28,6 @@ Vec3 ambientIrradiance(const Scene& scene, double fraction) {
   const double surface = 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
   if (!(surface > 0)) return Vec3(0.0);
   return fraction * power / surface;
-}
-
-// Ray parameter where origin + t·dir meets the emitting front of a light, if it does.
-std::optional<double> hitLight(const Light& light, const Plane& plane, const Vec3& origin, const Vec3& dir) {
-  const double facing = glm::dot(plane.normal, dir);
-  if (!(facing < 0)) return std::nullopt;  // seen from behind or edge-on: lights emit forward only
-  const double t = -plane.signedDistance(origin) / facing;
-  if (!(t >= 0)) return std::nullopt;
-  const Vec3 x = origin + t * dir;
-  const Polygon3& polygon = light.polygon;
-  for (size_t k = 0; k < polygon.size(); ++k) {
-    const Vec3& a = polygon[k];
-    const Vec3& b = polygon[(k + 1) % polygon.size()];
-    if (glm::dot(glm::cross(b - a, x - a), plane.normal) < 0) return std::nullopt;
-  }
-  return t;
 }
 
 }  // namespace
@@ -85,7 +66,8 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
 
   // Radiance of a diffuse face at a point: albedo/π · (E + ambient); faces receive light on
   // their front only, so a back seen with culling off (or from a glossy path) is ambient.
-  const Vec3 ambient = ambientIrradiance(scene, settings.ambientFraction);
+  // With GI the sensors' indirect irradiance takes the ambient term's place.
+  const Vec3 ambient = settings.gi ? Vec3(0.0) : ambientIrradiance(scene, settings.ambientFraction);
   auto diffuseRadiance = [&](uint32_t faceIndex, const Vec3& position, bool frontFacing) {
     const Face& face = scene.faces()[faceIndex];
     Vec3 irradiance(0.0);
@@ -117,7 +99,45 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
   };
   const MicrofacetShading microfacet(scene, rays, visiblePieces, diffuseRadiance, settings.microfacet);
 
+  const Parallel parallel(settings.threads);
+  // The first front-facing surface and the closest light along the ray of pixel (i, j).
+  auto primaryHit = [&](int i, int j, std::optional<size_t>& light) {
+    const CameraProjection::Ray ray = camera.rayThrough(Vec2(i + 0.5, j + 0.5));
+    // The near→far segment is t in [0, 1].
+    const std::optional<RayScene::Hit> surface = settings.cullBackFaces
+                                                     ? rays.intersectFront(ray.origin, ray.dir, 0, 1.0)
+                                                     : rays.intersect(ray.origin, ray.dir, 0, 1.0);
+    const auto lightHit =
+        closestLightHit(scene.lights(), lightPlanes, ray.origin, ray.dir, surface ? surface->t : 1.0);
+    light.reset();
+    if (lightHit && (!surface || lightHit->t < surface->t)) light = lightHit->light;
+    return std::make_pair(ray, light ? std::nullopt : surface);
+  };
+
   RenderedImage image;
+  std::vector<Vec3> indirect;  // per pixel, with GI
+  if (settings.gi) {
+    gi::GBuffer gbuffer{settings.width, settings.height, {}, {}};
+    const size_t n = size_t(settings.width) * size_t(settings.height);
+    gbuffer.face.assign(n, -1);
+    gbuffer.position.assign(n, Vec3(0.0));
+    parallel.forEach(size_t(settings.height), [&](size_t row) {
+      std::optional<size_t> light;
+      for (int i = 0; i < settings.width; ++i) {
+        const auto surface = primaryHit(i, int(row), light).second;
+        const size_t p = row * size_t(settings.width) + size_t(i);
+        if (surface && surface->frontFacing && !microfacet.isMicrofacet(surface->faceIndex)) {
+          gbuffer.face[p] = int32_t(surface->faceIndex);
+          gbuffer.position[p] = surface->position;
+        }
+      }
+    });
+    auto sensors = [&](size_t placed) { if (progress) progress(placed, 0); };
+    image.gi = gi::indirectImage(scene, rays, mesh, gbuffer, *settings.gi, parallel, sensors);
+    indirect = std::move(image.gi->irradiance);
+    image.gi->irradiance.clear();
+  }
+
   image.width = settings.width;
   image.height = settings.height;
   image.ambientIrradiance = ambient;
@@ -130,31 +150,11 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
   std::mutex progressMutex;
   // Rows in parallel; each pixel's value depends only on the pixel (its generator too), so
   // the image is the same on any number of threads (Renderer.OneAndTwoThreadsDrawTheSameBytes).
-  Parallel(settings.threads).forEach(size_t(image.height), [&](size_t row) {
+  parallel.forEach(size_t(image.height), [&](size_t row) {
     const int j = int(row);
     for (int i = 0; i < image.width; ++i) {
-      const CameraProjection::Ray ray = camera.rayThrough(Vec2(i + 0.5, j + 0.5));
-      // The near→far segment is t in [0, 1].
-      std::optional<RayScene::Hit> surface;
-      double tNear = 0;
-      for (int pass = 0; pass < kMaxBackFaceSkips; ++pass) {
-        auto hit = rays.intersect(ray.origin, ray.dir, tNear, 1.0);
-        if (!hit) break;
-        if (!settings.cullBackFaces || hit->frontFacing) {
-          surface = hit;
-          break;
-        }
-        tNear = hit->t + kSkipRelative * std::max(hit->t, 1e-3);
-      }
-      double closest = surface ? surface->t : INFINITY;
       std::optional<size_t> light;
-      for (size_t l = 0; l < scene.lights().size(); ++l) {
-        const auto t = hitLight(scene.lights()[l], lightPlanes[l], ray.origin, ray.dir);
-        if (t && *t <= 1.0 && *t < closest) {
-          closest = *t;
-          light = l;
-        }
-      }
+      const auto [ray, surface] = primaryHit(i, j, light);
 
       Vec3 radiance = settings.background;
       const size_t p = size_t(j) * image.width + i;
@@ -168,6 +168,7 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
         kind[p] = 1;
       } else if (surface) {
         radiance = diffuseRadiance(surface->faceIndex, surface->position, surface->frontFacing);
+        if (!indirect.empty()) radiance += scene.albedo(surface->face) / M_PI * indirect[p];
         kind[p] = 1;
       }
       for (int c = 0; c < 3; ++c) image.linear[3 * p + c] = float(radiance[c]);

@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/gi/sensor_gi.h"
 #include "core/mesh/mesh.h"
 #include "core/render/camera_projection.h"
 #include "core/render/microfacet_shading.h"
@@ -41,6 +42,9 @@ struct RenderSettings {
   // the DM cell's occluder list (Engine::Receiver::tree). Empty: every face of the scene.
   // Either way the visible light pieces are exact (Backprojection).
   std::function<void(FaceId face, const Vec3& p, size_t light, std::vector<FaceId>& out)> occluders;
+  // Bounced light by sensors (README "Global illumination", core/gi/): replaces the ambient
+  // term with the indirect irradiance at each visible point. Empty: direct light + ambient.
+  std::optional<gi::GiSettings> gi;
   uint64_t seed = 1;  // microfacet estimates: per-pixel generators seeded from it
   // Threads drawing rows: 0 = every core, 1 = the calling thread only (EngineSettings::threads;
   // a TSan build always uses 1, core/engine/parallel.h). The image is the same for any count.
@@ -60,6 +64,9 @@ struct RenderedImage {
   Vec3 ambientIrradiance{0.0};
   size_t surfacePixels = 0, lightPixels = 0;
   double seconds = 0;  // wall time of render()
+  // With RenderSettings::gi: sensors placed, seconds, bounce convergence (the irradiance
+  // buffer is dropped).
+  std::optional<gi::IndirectImage> gi;
 
   Vec3 pixel(int i, int j) const {
     const size_t k = 3 * (size_t(j) * size_t(width) + size_t(i));
@@ -67,7 +74,8 @@ struct RenderedImage {
   }
 };
 
-// Called as rows complete (rows done, total rows), from one thread at a time.
+// Called as rows complete (rows done, total rows), from one thread at a time; with GI first as
+// sensors are placed (sensors so far, 0).
 using RenderProgress = std::function<void(size_t done, size_t total)>;
 
 // Throws std::invalid_argument if width or height is outside 1..kMaxSize or the camera is

@@ -1,0 +1,57 @@
+// Sensor-based indirect light for an image (seed 001 on top of the DM): sensors placed over the
+// view's visible points by tiles (sensor_placement.h), each capturing the light its point
+// receives from the scene's surfaces (sensor.h) — whose outgoing radiance is the DM's exact
+// direct light, albedo/π · E(q) — then composed with the id-aware Gaussian (id_filter.h).
+// More bounces: the indirect irradiance at every mesh vertex is captured the same way (with a
+// smaller sensor) and added to E(q) for the next bounce. Thread-safe (no state).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "core/engine/parallel.h"
+#include "core/gi/sensor_placement.h"
+#include "core/mesh/mesh.h"
+#include "core/render/ray_scene.h"
+
+namespace penumbra::gi {
+
+struct GiSettings {
+  int sensorSize = 32;         // texels per side of the view's sensors (SensorMap)
+  PlacementSettings placement;
+  int filterRadius = 2;        // id-aware Gaussian, pixels (0: none)
+  double filterSigma = 1.0;
+  int bounces = 1;             // 1: the DM's direct light reflected once; up to kMaxBounces
+  int vertexSensorSize = 12;   // sensors at mesh vertices, for bounces > 1
+  static constexpr int kMaxBounces = 8;
+};
+
+// The view's visible points: per pixel the Scene::faces() index of the front-facing face seen
+// there (-1: a light, the background or a back face) and the point.
+struct GBuffer {
+  int width = 0, height = 0;
+  std::vector<int32_t> face;
+  std::vector<Vec3> position;
+};
+
+struct IndirectImage {
+  std::vector<Vec3> irradiance;  // per pixel, W·m⁻² (0 where GBuffer::face < 0)
+  PlacementStats placement;
+  size_t vertexSensors = 0;      // sensors at mesh vertices (bounces > 1)
+  // Per extra bounce: the mean relative change of the vertices' indirect irradiance.
+  std::vector<double> bounceChange;
+  double seconds = 0;
+};
+
+// Throws std::invalid_argument for settings out of range. progress(sensors so far) as levels end.
+IndirectImage indirectImage(const Scene& scene, const RayScene& rays, const Mesh& mesh, const GBuffer& gbuffer,
+                            const GiSettings& settings, const Parallel& parallel,
+                            const std::function<void(size_t sensors)>& progress = {});
+
+// The indirect irradiance at every vertex of `mesh` after `bounces` bounces (1: light the DM's
+// direct light sends once), as a Mesh of the same shape. change: as IndirectImage::bounceChange.
+Mesh vertexIndirect(const Scene& scene, const RayScene& rays, const Mesh& mesh, int sensorSize, int bounces,
+                    const Parallel& parallel, std::vector<double>* change = nullptr);
+
+}  // namespace penumbra::gi
