@@ -40,7 +40,7 @@ Camera cameraFromOption(const Scene& scene, const std::string& value) {
 std::optional<gi::GiSettings> giFromOptions(const Args& args) {
   const auto mode = args.option("gi");
   if (!mode) {
-    for (const char* name : {"sensor-size", "tile", "threshold", "bounces"})
+    for (const char* name : {"sensor-size", "tile", "threshold", "bounces", "filter"})
       if (args.option(name)) throw UsageError(std::string("--") + name + " needs --gi sensors");
     return std::nullopt;
   }
@@ -53,13 +53,14 @@ std::optional<gi::GiSettings> giFromOptions(const Args& args) {
   if (!(gi.placement.threshold >= 0 && gi.placement.threshold <= 10))
     throw UsageError("--threshold must be in [0, 10]");
   gi.bounces = args.intOption("bounces", gi.bounces, 1, gi::GiSettings::kMaxBounces);
+  gi.filterRadius = args.intOption("filter", gi.filterRadius, 0, 16);
   return gi;
 }
 
 }  // namespace
 
 int runRender(const Args& args) {
-  args.allowOnly({"out", "width", "height", "camera", "mesh", "gi", "sensor-size", "tile", "threshold", "bounces"});
+  args.allowOnly({"out", "width", "height", "camera", "mesh", "gi", "sensor-size", "tile", "threshold", "bounces", "filter"});
   const std::string scenePath = args.positional(0, "SCENE");
   const auto out = args.option("out");
   if (!out) throw UsageError("render needs --out IMAGE (.png or .exr)");

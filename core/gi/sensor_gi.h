@@ -20,7 +20,11 @@ namespace penumbra::gi {
 struct GiSettings {
   int sensorSize = 32;         // texels per side of the view's sensors (SensorMap)
   PlacementSettings placement;
-  int filterRadius = 2;        // id-aware Gaussian, pixels (0: none)
+  // The id-aware Gaussian (pixels; 0: none). Off by default: these sensors are deterministic
+  // (no noise to hide), so the filter only blurs true gradients — on the Cornell room at 64²,
+  // radius 2 took the RMS error against the path tracer from 2.4% to 8.3%. It smooths the
+  // tiles' seams for small sensor maps.
+  int filterRadius = 0;
   double filterSigma = 1.0;
   int bounces = 1;             // 1: the DM's direct light reflected once; up to kMaxBounces
   int vertexSensorSize = 12;   // sensors at mesh vertices, for bounces > 1

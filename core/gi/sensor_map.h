@@ -28,7 +28,8 @@ class SensorMap {
 
   int size() const { return size_; }
   size_t texels() const { return directions_.size(); }
-  // The direction through texel k's centre, in the normal's frame (z along the normal; unit).
+  // Texel k's direction: the lifted centroid of its disc image, in the normal's frame (z along
+  // the normal; unit).
   const Vec3& direction(size_t k) const { return directions_[k]; }
   // F_ij of texel k: its projected solid angle / π (the weights sum to 1).
   double weight() const { return weight_; }

@@ -1,0 +1,158 @@
+// Sensor GI against the independent one-bounce path tracer (bench/lib/gi_path_tracer.h): single
+// sensors at random surface points, and the whole pipeline (tiles, interpolation, id-aware
+// filter) on an image of the Cornell-style room; colour bleeds from the red wall. Seeded.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "bench/lib/gi_path_tracer.h"
+#include "core/engine/engine.h"
+#include "core/gi/sensor.h"
+#include "core/gi/sensor_gi.h"
+#include "core/render/camera_projection.h"
+#include "protocol/scene_json.h"
+
+namespace penumbra::gi {
+namespace {
+
+struct Room {
+  Scene scene = protocol::loadSceneFile(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/cornell.scene.json");
+  Engine engine{scene};
+  Mesh mesh = engine.mesh();
+  RayScene rays{scene};
+  MeshLookup direct{scene, mesh};
+  Vec3 irradianceAt(uint32_t faceIndex, const Vec3& q) const {
+    return direct.irradiance(faceIndex, q).value_or(Vec3(0.0));
+  }
+};
+
+double largest(const Vec3& v) { return std::max({v.x, v.y, v.z}); }
+
+// A random point inside face f (fan triangles by area), away from its edges by a margin.
+Vec3 randomPointOn(const Face& face, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const Polygon3& poly = face.polygon;
+  double total = 0;
+  std::vector<double> areas;
+  for (size_t k = 1; k + 1 < poly.size(); ++k)
+    total += areas.emplace_back(glm::length(glm::cross(poly[k] - poly[0], poly[k + 1] - poly[0])));
+  double pick = unit(rng) * total;
+  size_t k = 1;
+  while (k < areas.size() && pick > areas[k - 1]) pick -= areas[k++ - 1];
+  double a = 0.05 + 0.9 * unit(rng), b = 0.05 + 0.9 * unit(rng);
+  if (a + b > 1) a = 1 - a, b = 1 - b;
+  return poly[0] + a * (poly[k] - poly[0]) + b * (poly[k + 1] - poly[0]);
+}
+
+TEST(SensorGi, SensorsAgreeWithThePathTracerAtRandomPoints) {
+  const Room room;
+  const SensorMap map(32);
+  const Sensor sensor(room.scene, room.rays, map,
+                      diffuseOutgoing(room.scene, [&](uint32_t f, const Vec3& q) { return room.irradianceAt(f, q); }));
+  std::mt19937_64 rng(11);
+  double squares = 0;
+  int points = 0;
+  for (int k = 0; k < 60; ++k) {
+    const Face& face = room.scene.faces()[rng() % room.scene.faces().size()];
+    const Vec3 p = randomPointOn(face, rng);
+    const Vec3 sensed = sensor.irradiance(p, face.plane.normal);
+    const auto traced = bench::pathTracedIndirect(room.scene, room.rays, room.direct, p, face.plane.normal, 40000, rng);
+    const double scale = largest(traced.mean);
+    if (scale == 0) {  // a face seen from nowhere in the room (a block's base): no light at all
+      EXPECT_EQ(sensed, Vec3(0.0)) << "point " << k;
+      continue;
+    }
+    const double error = largest(glm::abs(sensed - traced.mean)) / scale;
+    EXPECT_LT(error, 0.08 + 4 * largest(traced.stdError) / scale) << "point " << k;
+
+    squares += error * error;
+    ++points;
+  }
+  const double rms = std::sqrt(squares / points);
+  RecordProperty("rms_relative_error", std::to_string(rms));
+  EXPECT_LT(rms, 0.03);
+}
+
+// The view's G-buffer as the renderer makes it (front-facing surfaces; lights are not surfaces).
+GBuffer viewOf(const Room& room, int width, int height) {
+  const CameraProjection camera(*room.scene.camera(), width, height);
+  GBuffer g{width, height, std::vector<int32_t>(size_t(width) * height, -1), std::vector<Vec3>(size_t(width) * height)};
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i) {
+      const auto ray = camera.rayThrough(Vec2(i + 0.5, j + 0.5));
+      if (const auto hit = room.rays.intersectFront(ray.origin, ray.dir, 0, 1.0)) {
+        g.face[size_t(j) * width + i] = int32_t(hit->faceIndex);
+        g.position[size_t(j) * width + i] = hit->position;
+      }
+    }
+  return g;
+}
+
+TEST(SensorGi, TheImagePipelineAgreesWithThePathTracerPerPixel) {
+  const Room room;
+  const GBuffer view = viewOf(room, 64, 64);
+  GiSettings settings;  // the defaults: 32² sensors, tiles of 16, threshold 0.05, no filter
+  const IndirectImage image = indirectImage(room.scene, room.rays, room.mesh, view, settings, Parallel(0));
+  // At 64² most tiles split (a pixel spans 9 cm of the room); the bench measures the savings at
+  // real sizes (README "Global illumination").
+  EXPECT_LT(image.placement.sensors, view.face.size());
+  EXPECT_GT(image.placement.interpolated, 0u);
+  std::mt19937_64 rng(3);
+  double squares = 0;
+  int pixels = 0;
+  while (pixels < 120) {
+    const size_t p = rng() % view.face.size();
+    if (view.face[p] < 0) continue;
+    const Face& face = room.scene.faces()[size_t(view.face[p])];
+    const auto traced =
+        bench::pathTracedIndirect(room.scene, room.rays, room.direct, view.position[p], face.plane.normal, 20000, rng);
+    const double error = largest(glm::abs(image.irradiance[p] - traced.mean)) / largest(traced.mean);
+
+    squares += error * error;
+    ++pixels;
+  }
+  const double rms = std::sqrt(squares / pixels);
+  RecordProperty("rms_relative_error", std::to_string(rms));
+  EXPECT_LT(rms, 0.03);
+}
+
+TEST(SensorGi, RedBleedsOntoTheFloorNearTheRedWall) {
+  const Room room;
+  const SensorMap map(32);
+  const Sensor sensor(room.scene, room.rays, map,
+                      diffuseOutgoing(room.scene, [&](uint32_t f, const Vec3& q) { return room.irradianceAt(f, q); }));
+  const Vec3 up(0, 1, 0);
+  const Vec3 nearRed = sensor.irradiance(Vec3(5.40, 0, 1.0), up);    // red wall at x = 5.56
+  const Vec3 nearGreen = sensor.irradiance(Vec3(0.16, 0, 1.0), up);  // green wall at x = 0
+  EXPECT_GT(nearRed.x / nearRed.y, 1.3 * nearGreen.x / nearGreen.y);
+  EXPECT_GT(nearGreen.y / nearGreen.x, 1.3 * nearRed.y / nearRed.x);
+}
+
+TEST(SensorGi, MoreBouncesAddLightAndConverge) {
+  const Room room;
+  std::vector<double> change;
+  const Mesh one = vertexIndirect(room.scene, room.rays, room.mesh, 8, 1, Parallel(0));
+  const Mesh three = vertexIndirect(room.scene, room.rays, room.mesh, 8, 3, Parallel(0), &change);
+  ASSERT_EQ(change.size(), 2u);
+  EXPECT_GT(change[0], change[1]);  // each bounce adds less (albedos < 1)
+  for (size_t r = 0; r < one.receivers.size(); ++r)
+    for (size_t v = 0; v < one.receivers[r].irradiance.size(); ++v)
+      ASSERT_GE(largest(three.receivers[r].irradiance[v] - one.receivers[r].irradiance[v]), -1e-12);
+}
+
+TEST(SensorGi, SettingsOutOfRangeAreRefused) {
+  const Room room;
+  const GBuffer view = viewOf(room, 8, 8);
+  for (auto edit : std::vector<std::function<void(GiSettings&)>>{
+           [](GiSettings& s) { s.sensorSize = 0; }, [](GiSettings& s) { s.bounces = 0; },
+           [](GiSettings& s) { s.bounces = GiSettings::kMaxBounces + 1; }, [](GiSettings& s) { s.placement.tile = 0; },
+           [](GiSettings& s) { s.placement.threshold = NAN; }, [](GiSettings& s) { s.filterSigma = 0; }}) {
+    GiSettings settings;
+    edit(settings);
+    EXPECT_THROW(indirectImage(room.scene, room.rays, room.mesh, view, settings, Parallel(1)), std::invalid_argument);
+  }
+}
+
+}  // namespace
+}  // namespace penumbra::gi
