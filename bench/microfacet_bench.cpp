@@ -104,38 +104,45 @@ std::string percent(double x) {
   return buf;
 }
 
-// The time both need for the error of each DM rung and their ratio, in wall and CPU seconds;
-// markdown and JSON.
-nlohmann::json matchErrors(const Ladder& dm, const Ladder& sr, std::string& markdown) {
+// For each rung of `measured`, the time `other` needs for the same RMS (interpolated on its
+// ladder) and the ratio DM time : shadow-ray time the other way up (shadow rays / DM), in wall and
+// CPU seconds; markdown and JSON.
+nlohmann::json matchErrors(const Ladder& measured, const Ladder& other, bool measuredIsDm,
+                           std::string& markdown) {
   nlohmann::json rows = nlohmann::json::array();
-  markdown +=
-      "\n| relative RMS | DM samples | DM s (CPU s) | shadow rays s to the same RMS (CPU s) | "
-      "ratio wall (CPU) |\n"
-      "|---|---|---|---|---|\n";
-  for (size_t k = 0; k < dm.points.size(); ++k) {
-    const LadderPoint& d = dm.points[k];
-    const double dmCpu = dm.cpuPoints[k].seconds;
-    const auto wall = timeToReach(sr.points, d.rms);
-    const auto cpu = timeToReach(sr.cpuPoints, d.rms);
-    nlohmann::json row = {{"relative_rms", d.rms},
-                          {"dm_samples", d.samples},
-                          {"dm_seconds", d.seconds},
-                          {"dm_cpu_seconds", dmCpu}};
+  markdown += "\n| relative RMS | " + measured.name + " samples | " + measured.name +
+              " s (CPU s) | " + other.name +
+              " s to the same RMS (CPU s) | ratio shadow rays / DM, wall (CPU) |\n" +
+              "|---|---|---|---|---|\n";
+  for (size_t k = 0; k < measured.points.size(); ++k) {
+    const LadderPoint& m = measured.points[k];
+    const double mCpu = measured.cpuPoints[k].seconds;
+    const auto wall = timeToReach(other.points, m.rms);
+    const auto cpu = timeToReach(other.cpuPoints, m.rms);
+    nlohmann::json row = {{"relative_rms", m.rms},
+                          {"samples", m.samples},
+                          {"seconds", m.seconds},
+                          {"cpu_seconds", mCpu}};
     char line[320];
     if (wall && cpu) {
-      row["shadow_ray_seconds"] = wall->seconds;
-      row["shadow_ray_cpu_seconds"] = cpu->seconds;
-      row["ratio"] = wall->seconds / d.seconds;
-      row["cpu_ratio"] = cpu->seconds / dmCpu;
+      const double ratio = measuredIsDm ? wall->seconds / m.seconds : m.seconds / wall->seconds;
+      const double cpuRatio = measuredIsDm ? cpu->seconds / mCpu : mCpu / cpu->seconds;
+      row["other_seconds"] = wall->seconds;
+      row["other_cpu_seconds"] = cpu->seconds;
+      row["ratio"] = ratio;
+      row["cpu_ratio"] = cpuRatio;
       row["extrapolated"] = wall->extrapolated;
+      row["first_rung"] = wall->firstRung;
       std::snprintf(line, sizeof line,
                     "| %s | %d | %.3f (%.3f) | %.3f (%.3f)%s | %.1f× (%.1f×) |\n",
-                    percent(d.rms).c_str(), d.samples, d.seconds, dmCpu, wall->seconds,
-                    cpu->seconds, wall->extrapolated ? ", extrapolated" : "",
-                    wall->seconds / d.seconds, cpu->seconds / dmCpu);
+                    percent(m.rms).c_str(), m.samples, m.seconds, mCpu, wall->seconds, cpu->seconds,
+                    wall->extrapolated ? ", extrapolated"
+                    : wall->firstRung  ? ", its first rung"
+                                       : "",
+                    ratio, cpuRatio);
     } else {
       std::snprintf(line, sizeof line, "| %s | %d | %.3f (%.3f) | — | — |\n",
-                    percent(d.rms).c_str(), d.samples, d.seconds, dmCpu);
+                    percent(m.rms).c_str(), m.samples, m.seconds, mCpu);
     }
     markdown += line;
     rows.push_back(row);
@@ -274,7 +281,9 @@ int runMicrofacetBench(const MicrofacetBenchArgs& args) {
                                         reference.variance, args, args.seed * 37);
 
   std::string markdown = ladderTable(dmLadder, srLadder);
-  const nlohmann::json matched = matchErrors(dmLadder, srLadder, markdown);
+  const nlohmann::json matched = {
+      {"dm_rungs", matchErrors(dmLadder, srLadder, true, markdown)},
+      {"shadow_ray_rungs", matchErrors(srLadder, dmLadder, false, markdown)}};
   std::printf("%s", markdown.c_str());
 
   BenchImages images{

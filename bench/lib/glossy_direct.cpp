@@ -132,11 +132,13 @@ GlossyView::Run GlossyView::render(const DirectFn& estimate, int samples, uint64
   const double cpuStart = processCpuSeconds();
   Parallel(threads).forEach(size_t(height()), [&](size_t row) {
     const int j = int(row);
+    // One generator per row: seeding a Mersenne twister costs about a microsecond, as much as a
+    // few samples, and both estimators would pay it per pixel.
+    bsdf::Rng rng(seed * 0x9E3779B97F4A7C15ull + row);
     for (int i = 0; i < width(); ++i) {
       const auto hit = primaryHit(i, j);
       if (!hit || !isMicrofacet_(hit->faceIndex)) continue;
       const size_t p = size_t(j) * size_t(width()) + size_t(i);
-      bsdf::Rng rng(seed * 0x9E3779B97F4A7C15ull + p);
       const Vec3 toViewer = -glm::normalize(camera_.rayThrough(Vec2(i + 0.5, j + 0.5)).dir);
       const Vec3 value = estimate(hit->faceIndex, hit->position, toViewer, samples, rng);
       for (int c = 0; c < 3; ++c) run.linear[3 * p + size_t(c)] = float(value[c]);

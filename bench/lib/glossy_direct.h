@@ -3,7 +3,7 @@
 // cosθ cosθ_L / r² dA with stratified uniform points on the light. The DM estimator integrates
 // over the exactly visible pieces (MicrofacetShading::direct, no shadow rays); the shadow-ray
 // estimator over the whole light with one Embree shadow ray per point. Same BSDF, same frame,
-// same stratification. Immutable after construction; thread-safe (one Rng per pixel).
+// same stratification. Immutable after construction; thread-safe (one Rng per row).
 #pragma once
 
 #include <functional>
@@ -53,7 +53,7 @@ class GlossyView {
     double cpuSeconds = 0;      // the process's CPU time over the same span
   };
   // Traces every pixel's primary ray again (timed with the estimator) and estimates the
-  // microfacet pixels with `samples`; each pixel's generator is seeded from (seed, pixel).
+  // microfacet pixels with `samples`; each row's generator is seeded from (seed, row).
   Run render(const DirectFn& estimate, int samples, uint64_t seed, int threads) const;
 
   // The first front-facing hit along the pixel centre's ray (backs are passed through).

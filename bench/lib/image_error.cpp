@@ -41,11 +41,8 @@ std::optional<TimeToError> timeToReach(const std::vector<LadderPoint>& ladder, d
         (std::log(b.seconds) - std::log(a.seconds)) / (std::log(b.rms) - std::log(a.rms));
     return std::exp(std::log(a.seconds) + slope * (std::log(rms) - std::log(a.rms)));
   };
-  if (rms >= ladder.front().rms) {  // reached at the first rung already: no cheaper rung measured
-    const auto t = along(ladder[0], ladder[1]);
-    if (!t) return std::nullopt;
-    return TimeToError{std::min(*t, ladder.front().seconds), rms > ladder.front().rms};
-  }
+  // Fewer samples than the first rung's are not measured (one is the least): its time.
+  if (rms >= ladder.front().rms) return TimeToError{ladder.front().seconds, false, true};
   for (size_t k = 1; k < ladder.size(); ++k)
     if (ladder[k].rms <= rms) {
       const auto t = along(ladder[k - 1], ladder[k]);

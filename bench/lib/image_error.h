@@ -25,6 +25,7 @@ struct LadderPoint {
 struct TimeToError {
   double seconds = 0;
   bool extrapolated = false;  // beyond the ladder: the last two rungs' log–log slope
+  bool firstRung = false;     // the first rung is already as good: its time (the least it costs)
 };
 
 // The time at which the ladder (errors falling as samples grow) reaches `rms`; nothing with

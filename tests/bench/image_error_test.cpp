@@ -28,10 +28,11 @@ TEST(ImageError, TimeToReachFollowsThePowerLawBetweenAndBeyondRungs) {
   ASSERT_TRUE(beyond);
   EXPECT_NEAR(beyond->seconds, 64.0, 1e-9);
   EXPECT_TRUE(beyond->extrapolated);
-  // Above the first rung's error: never more than the first rung's time.
+  // Above the first rung's error: the first rung's time, flagged.
   const auto above = timeToReach(ladder, 2.0);
   ASSERT_TRUE(above);
-  EXPECT_LE(above->seconds, 1.0);
+  EXPECT_EQ(above->seconds, 1.0);
+  EXPECT_TRUE(above->firstRung);
   EXPECT_FALSE(timeToReach({ladder[0]}, 0.5));
 }
 
