@@ -37,36 +37,57 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Repeats each rung with fresh seeds until minSeconds are spent (at most 8 times) and averages
-// time and squared error; the reference's own noise variance is taken off the error.
-Ladder measureLadder(const std::string& name, const GlossyView& view, const DirectFn& estimate,
-                     const std::vector<int>& samples, const std::vector<float>& reference,
-                     double referenceVariance, const MicrofacetBenchArgs& args, uint64_t seedBase) {
-  Ladder ladder;
-  ladder.name = name;
+// The estimators being measured: a name, the estimator, its sample ladder, a seed base.
+struct Contender {
+  std::string name;
+  DirectFn estimate;
+  std::vector<int> samples;
+  uint64_t seedBase = 0;
+};
+
+// Repeats one rung with fresh seeds until minSeconds are spent (at most 8 times) and appends
+// the mean time and squared error; the reference's own noise variance is taken off the error.
+void measureRung(const GlossyView& view, const Contender& c, int n,
+                 const std::vector<float>& reference, double referenceVariance,
+                 const MicrofacetBenchArgs& args, Ladder& ladder) {
+  double seconds = 0, cpuSeconds = 0, mse = 0;
+  int repeats = 0;
+  do {
+    const GlossyView::Run run = view.render(
+        c.estimate, n, c.seedBase + 1000 * uint64_t(n) + uint64_t(repeats), args.threads);
+    seconds += run.seconds;
+    cpuSeconds += run.cpuSeconds;
+    mse += meanSquaredError(run.linear, reference, view.glossyMask());
+    ++repeats;
+  } while (seconds < args.minSeconds && repeats < 8);
+  seconds /= repeats;
+  cpuSeconds /= repeats;
+  mse /= repeats;
   const double mean = maskedMean(reference, view.glossyMask());
-  for (int n : samples) {
-    double seconds = 0, cpuSeconds = 0, mse = 0;
-    int repeats = 0;
-    do {
-      const GlossyView::Run run =
-          view.render(estimate, n, seedBase + 1000 * uint64_t(n) + uint64_t(repeats), args.threads);
-      seconds += run.seconds;
-      cpuSeconds += run.cpuSeconds;
-      mse += meanSquaredError(run.linear, reference, view.glossyMask());
-      ++repeats;
-    } while (seconds < args.minSeconds && repeats < 8);
-    seconds /= repeats;
-    cpuSeconds /= repeats;
-    mse /= repeats;
-    ladder.points.push_back({n, seconds, std::sqrt(std::max(0.0, mse - referenceVariance)) / mean});
-    ladder.cpuPoints.push_back({n, cpuSeconds, ladder.points.back().rms});
-    ladder.rawRms.push_back(std::sqrt(mse) / mean);
-    ladder.repeats.push_back(repeats);
-    std::fprintf(stderr, "  %-11s %5d samples: %8.4f s (CPU %8.4f s), RMS %.4f%%\n", name.c_str(),
-                 n, seconds, cpuSeconds, 100 * ladder.points.back().rms);
+  ladder.points.push_back({n, seconds, std::sqrt(std::max(0.0, mse - referenceVariance)) / mean});
+  ladder.cpuPoints.push_back({n, cpuSeconds, ladder.points.back().rms});
+  ladder.rawRms.push_back(std::sqrt(mse) / mean);
+  ladder.repeats.push_back(repeats);
+  std::fprintf(stderr, "  %-11s %5d samples: %8.4f s (CPU %8.4f s), RMS %.4f%%\n", c.name.c_str(),
+               n, seconds, cpuSeconds, 100 * ladder.points.back().rms);
+}
+
+// Both ladders, rung by rung in turn (DM rung k, then shadow-ray rung k), so a change in the
+// shared machine's load falls on both rather than on whichever ran second.
+std::pair<Ladder, Ladder> measureLadders(const GlossyView& view, const Contender& a,
+                                         const Contender& b, const std::vector<float>& reference,
+                                         double referenceVariance,
+                                         const MicrofacetBenchArgs& args) {
+  Ladder la, lb;
+  la.name = a.name;
+  lb.name = b.name;
+  for (size_t k = 0; k < std::max(a.samples.size(), b.samples.size()); ++k) {
+    if (k < a.samples.size())
+      measureRung(view, a, a.samples[k], reference, referenceVariance, args, la);
+    if (k < b.samples.size())
+      measureRung(view, b, b.samples[k], reference, referenceVariance, args, lb);
   }
-  return ladder;
+  return {la, lb};
 }
 
 // The diffuse pixels (DM mesh irradiance · albedo/π), for the pictures only.
@@ -275,10 +296,10 @@ int runMicrofacetBench(const MicrofacetBenchArgs& args) {
   };
 
   const Reference reference = measureReference(view, sr, args);
-  const Ladder dmLadder = measureLadder("DM", view, dm, args.dmSamples, reference.image,
-                                        reference.variance, args, args.seed * 31);
-  const Ladder srLadder = measureLadder("shadow rays", view, sr, args.srSamples, reference.image,
-                                        reference.variance, args, args.seed * 37);
+  const auto [dmLadder, srLadder] =
+      measureLadders(view, {"DM", dm, args.dmSamples, args.seed * 31},
+                     {"shadow rays", sr, args.srSamples, args.seed * 37}, reference.image,
+                     reference.variance, args);
 
   std::string markdown = ladderTable(dmLadder, srLadder);
   const nlohmann::json matched = {
