@@ -55,8 +55,8 @@ struct BenchImages {
 };
 
 // Writes into args.outDir: dm.png, shadow_rays.png, reference.png, the error heat maps, the
-// side-by-side comparison.png, error_vs_time.svg, report.html and microfacet.json. Throws on
-// a write failure.
+// side-by-side comparison.png, comparison_middle.png (the middle half of each picture),
+// error_vs_time.svg, report.html and microfacet.json. Throws on a write failure.
 void writeMicrofacetReport(const MicrofacetBenchArgs& args, const BenchImages& images,
                            const Ladder& dm, const Ladder& shadowRays,
                            const nlohmann::json& numbers, const std::string& markdown);

@@ -66,6 +66,21 @@ RenderedImage grid(const std::vector<const RenderedImage*>& tiles, int columns) 
   return out;
 }
 
+// The middle half of an image (half its width and height, centred a little below the middle,
+// where the box's penumbra lies): the small comparison for the README.
+RenderedImage middle(const RenderedImage& image) {
+  RenderedImage out;
+  out.width = std::max(1, image.width / 2);
+  out.height = std::max(1, image.height / 2);
+  const int x0 = image.width / 4, y0 = std::min(image.height - out.height, image.height * 3 / 10);
+  out.srgb.resize(3 * size_t(out.width) * size_t(out.height));
+  out.linear.assign(out.srgb.size(), 0.0f);
+  for (int j = 0; j < out.height; ++j)
+    std::copy_n(image.srgb.begin() + 3 * (long(y0 + j) * image.width + x0), 3 * out.width,
+                out.srgb.begin() + 3 * long(j) * out.width);
+  return out;
+}
+
 void requireFinite(const std::vector<float>& values, const char* what) {
   for (float v : values)
     if (!std::isfinite(v))
@@ -162,6 +177,9 @@ void writeMicrofacetReport(const MicrofacetBenchArgs& args, const BenchImages& i
   server::writeImageFile(srHeat, dir + "shadow_rays_error.png");
   server::writeImageFile(grid({&dmImage, &srImage, &refImage, &dmHeat, &srHeat}, 3),
                          dir + "comparison.png");
+  const RenderedImage small[] = {middle(dmImage), middle(srImage), middle(refImage), middle(dmHeat), middle(srHeat)};
+  server::writeImageFile(grid({&small[0], &small[1], &small[2], &small[3], &small[4]}, 3),
+                         dir + "comparison_middle.png");
   const std::string svg = plotSvg(dm, shadowRays);
   std::ofstream(dir + "error_vs_time.svg")
       << svg.substr(svg.find("<svg"), svg.rfind("</svg>") + 6 - svg.find("<svg")) << "\n";

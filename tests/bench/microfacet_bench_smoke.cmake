@@ -8,7 +8,7 @@ execute_process(COMMAND "${BENCH}" --width 40 --height 30 --dm-samples 1,4 --sr-
 if(NOT result EQUAL 0)
   message(FATAL_ERROR "penumbra-microfacet-bench exited with ${result}")
 endif()
-foreach(name report.html comparison.png dm.png shadow_rays.png reference.png dm_error.png
+foreach(name report.html comparison.png comparison_middle.png dm.png shadow_rays.png reference.png dm_error.png
              shadow_rays_error.png error_vs_time.svg microfacet.json)
   if(NOT EXISTS "${OUT}/${name}")
     message(FATAL_ERROR "missing ${OUT}/${name}")
