@@ -136,6 +136,28 @@ std::string htmlTables(const std::string& markdown) {
   return open ? out + "</table>\n" : out;
 }
 
+// What was measured and how, above the tables.
+std::string introHtml(const MicrofacetBenchArgs& args) {
+  return "<p>Direct light on the glossy floor (GGX conductor, α " + shortNumber(args.roughness) +
+         ", " + (args.singleScattering ? "single" : "multiple") +
+         " scattering) under one rectangular light, a box casting a wide penumbra. <b>DM</b>: "
+         "MicrofacetShading::direct over the light pieces the DM cell's occluder list leaves "
+         "visible (a "
+         "Backprojection; the light's samples split over the pieces by area, no shadow rays). "
+         "<b>Shadow "
+         "rays</b>: the same BSDF and stratification over the whole light, one Embree shadow ray "
+         "per sample. "
+         "Both at " +
+         std::to_string(args.threads) +
+         " thread(s), DM and shadow-ray rungs in turn; times of whole images (primary rays "
+         "included). The "
+         "reference is the mean of two shadow-ray images of " +
+         std::to_string(args.referenceSamples) +
+         " samples per pixel; its noise is taken off the squared errors. RMS over the microfacet "
+         "pixels, "
+         "relative to their mean.</p>\n";
+}
+
 }  // namespace
 
 void writeMicrofacetReport(const MicrofacetBenchArgs& args, const BenchImages& images,
@@ -177,7 +199,8 @@ void writeMicrofacetReport(const MicrofacetBenchArgs& args, const BenchImages& i
   server::writeImageFile(srHeat, dir + "shadow_rays_error.png");
   server::writeImageFile(grid({&dmImage, &srImage, &refImage, &dmHeat, &srHeat}, 3),
                          dir + "comparison.png");
-  const RenderedImage small[] = {middle(dmImage), middle(srImage), middle(refImage), middle(dmHeat), middle(srHeat)};
+  const RenderedImage small[] = {middle(dmImage), middle(srImage), middle(refImage), middle(dmHeat),
+                                 middle(srHeat)};
   server::writeImageFile(grid({&small[0], &small[1], &small[2], &small[3], &small[4]}, 3),
                          dir + "comparison_middle.png");
   const std::string svg = plotSvg(dm, shadowRays);
@@ -186,25 +209,9 @@ void writeMicrofacetReport(const MicrofacetBenchArgs& args, const BenchImages& i
   std::ofstream(dir + "microfacet.json") << numbers.dump(2) << "\n";
 
   const std::string body =
-      "<p>Direct light on the glossy floor (GGX conductor, α " + shortNumber(args.roughness) +
-      ", " + (args.singleScattering ? "single" : "multiple") +
-      " scattering) under one rectangular light, a box casting a wide penumbra. <b>DM</b>: "
-      "MicrofacetShading::direct over the light pieces the DM cell's occluder list leaves visible "
-      "(a "
-      "Backprojection; stratified samples per piece, no shadow rays). <b>Shadow rays</b>: the same "
-      "BSDF and "
-      "stratification over the whole light, one Embree shadow ray per sample. Both at " +
-      std::to_string(args.threads) +
-      " thread(s), times of whole images (primary rays included). The reference "
-      "is the mean of two shadow-ray images of " +
-      std::to_string(args.referenceSamples) +
-      " samples per pixel; its noise is taken off the squared errors. RMS over the microfacet "
-      "pixels, relative to "
-      "their mean.</p>\n" +
-      htmlTables(markdown) + svg + "<h2>Images at " + n +
-      " samples</h2>\n<p>Top: DM, shadow rays, reference (same exposure). Bottom: "
-      "|error| of DM and shadow rays (black 0, white ≥ 4× the shadow-ray image's mean "
-      "|error|).</p>\n"
+      introHtml(args) + htmlTables(markdown) + svg + "<h2>Images at " + n +
+      " samples</h2>\n<p>Top: DM, shadow rays, reference (same exposure). Bottom: |error| "
+      "of DM and shadow rays (black 0, white ≥ 4× the shadow-ray image's mean |error|).</p>\n"
       "<img src='comparison.png' alt='comparison'/>\n";
   std::ofstream(dir + "report.html")
       << htmlPage("Microfacet direct light: DM pieces vs shadow rays", body, numbers);
