@@ -301,6 +301,16 @@ int runMicrofacetBench(const MicrofacetBenchArgs& args) {
                      {"shadow rays", sr, args.srSamples, args.seed * 37}, reference.image,
                      reference.variance, args);
 
+  char header[320];
+  std::snprintf(
+      header, sizeof header,
+      "Direct light, DM pieces vs shadow rays: GGX conductor α %g, %s scattering, %dx%d (%zu "
+      "microfacet "
+      "pixels), %d thread(s); reference 2 x %d shadow-ray samples, relative noise %.3g %%\n\n",
+      args.roughness, args.singleScattering ? "single" : "multiple", args.width, args.height,
+      view.glossyPixels(), args.threads, args.referenceSamples,
+      100 * std::sqrt(reference.variance) / reference.mean);
+  std::printf("%s", header);
   std::string markdown = ladderTable(dmLadder, srLadder);
   const nlohmann::json matched = {
       {"dm_rungs", matchErrors(dmLadder, srLadder, true, markdown)},
