@@ -6,6 +6,7 @@
 
 #include "core/engine/engine.h"
 #include "core/gi/sensor_map.h"
+#include "core/render/dm_visibility.h"
 #include "core/render/renderer.h"
 #include "protocol/json_text.h"
 #include "protocol/mesh_json.h"
@@ -91,12 +92,7 @@ int runRender(const Args& args) {
     casting.finish();
     illumination.finish();
     mesh = engine->mesh();
-    settings.occluders = [&engine](FaceId face, const Vec3& p, size_t light, std::vector<FaceId>& out) {
-      const Engine::Receiver* receiver = engine->receiver(face);
-      if (!receiver) return;
-      for (const OccluderEntry& e : receiver->tree.occluders(receiver->tree.locate(receiver->frame.to2D(p))))
-        if (e.light == light && e.face != kLightPlaneOccluder) out.push_back(e.face);
-    };
+    settings.occluders = dmOccluderLists(*engine);
   }
   const double meshSeconds = secondsSince(meshStart);
 

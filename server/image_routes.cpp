@@ -70,6 +70,37 @@ uint64_t samplesFromQuery(const httplib::Request& req, uint64_t pixels) {
   return *samples;
 }
 
+// Bounced light by sensors (`gi=sensors`, README "Global illumination"): its settings from the
+// query, every value checked; work bounded by pixels × sensor_size² ≤ kMaxGiRayBudget (the rays
+// if every pixel got a sensor).
+std::optional<gi::GiSettings> giFromQuery(const httplib::Request& req, uint64_t pixels) {
+  const auto mode = queryText(req, "gi");
+  if (!mode || *mode == "none") {
+    for (const char* key : {"sensor_size", "tile", "threshold", "bounces", "filter"})
+      if (req.has_param(key))
+        throw ApiError(400, error_code::kBadParameter, std::string("query.") + key,
+                       std::string(key) + " needs gi=sensors");
+    return std::nullopt;
+  }
+  if (*mode != "sensors")
+    throw ApiError(400, error_code::kBadParameter, "query.gi", "gi must be 'sensors' or 'none', got '" + *mode + "'");
+  gi::GiSettings gi;
+  gi.sensorSize = int(queryUnsigned(req, "sensor_size", 1, kMaxGiSensorSize).value_or(gi.sensorSize));
+  if (pixels * uint64_t(gi.sensorSize) * uint64_t(gi.sensorSize) > kMaxGiRayBudget)
+    throw ApiError(400, error_code::kBadParameter, "query.sensor_size",
+                   "width × height × sensor_size² must be at most " + std::to_string(kMaxGiRayBudget) +
+                       ": use a smaller image or sensor");
+  gi.placement.tile = int(queryUnsigned(req, "tile", 1, 256).value_or(gi.placement.tile));
+  gi.bounces = int(queryUnsigned(req, "bounces", 1, kMaxGiBounces).value_or(gi.bounces));
+  gi.filterRadius = int(queryUnsigned(req, "filter", 0, 16).value_or(gi.filterRadius));
+  if (const auto threshold = queryNumber(req, "threshold")) {
+    if (!(*threshold >= 0 && *threshold <= 10))
+      throw ApiError(400, error_code::kBadParameter, "query.threshold", "threshold must be in [0, 10]");
+    gi.placement.threshold = *threshold;
+  }
+  return gi;
+}
+
 }  // namespace
 
 void HttpServer::registerImageRoutes() {
@@ -102,6 +133,7 @@ void HttpServer::registerImageRoutes() {
         settings.microfacet.lightSamples = int(std::clamp<uint64_t>(samples, 4, 16));
         // The DM's exact visibility from the snapshot's frozen occluder lists: no engine, no lock.
         settings.occluders = occluderLookup(snapshot->occluders);
+        settings.gi = giFromQuery(req, *width * *height);
         RenderedImage image;
         try {
           image = render(snapshot->scene, snapshot->mesh(), settings);
@@ -114,6 +146,10 @@ void HttpServer::registerImageRoutes() {
         res.set_header("X-Penumbra-Version", std::to_string(snapshot->version));
         res.set_header("X-Penumbra-Render-Seconds", std::to_string(image.seconds));
         res.set_header("X-Penumbra-Samples", std::to_string(samples));
+        if (image.gi) {
+          res.set_header("X-Penumbra-Gi-Sensors", std::to_string(image.gi->placement.sensors));
+          res.set_header("X-Penumbra-Gi-Seconds", std::to_string(image.gi->seconds));
+        }
         res.set_content(std::string(bytes.begin(), bytes.end()),
                         format == "png" ? "image/png" : "image/x-exr");
       }));

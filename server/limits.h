@@ -33,6 +33,11 @@ inline constexpr int kMaxImageSide = 4096;  // image width/height in [1, 4096]
 // samples × width × height at most this (a 4096² image at 1 sample, 1024² at 16).
 inline constexpr uint64_t kMaxImageSamples = 256;
 inline constexpr uint64_t kMaxImageSampleBudget = uint64_t(1) << 24;
+// Sensor GI on images (`gi=sensors`): sensor maps up to 64², bounces up to 4, and
+// width × height × sensor_size² at most 2^27 (a 512 × 256 image with 32² sensors).
+inline constexpr uint64_t kMaxGiSensorSize = 64;
+inline constexpr uint64_t kMaxGiBounces = 4;
+inline constexpr uint64_t kMaxGiRayBudget = uint64_t(1) << 27;
 inline constexpr uint64_t kDefaultImageSamples = 16;  // the CLI's MicrofacetSettings
 // Scene ids in URLs: letters, digits, '_', '-', '.' (so file stems work).
 inline constexpr const char* kIdPattern = "([A-Za-z0-9_.-]+)";

@@ -1,20 +1,49 @@
 #include "core/render/microfacet_shading.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra {
 namespace {
 
-// A point of a convex polygon from (u1, u2) in [0, 1)², uniform in area: u1 picks a triangle of
-// the fan by cumulative area and is rescaled inside it, so strata of (u1, u2) stay strata.
-Vec3 samplePolygon(const Polygon3& poly, const std::vector<double>& cumulative, double u1, double u2) {
-  const double total = cumulative.back();
-  size_t k = 0;
-  while (k + 1 < cumulative.size() && u1 * total >= cumulative[k]) ++k;
-  const double lo = k ? cumulative[k - 1] : 0.0, width = cumulative[k] - lo;
-  const double v1 = width > 0 ? std::clamp((u1 * total - lo) / width, 0.0, 1.0) : 0.5;
-  const double s = std::sqrt(v1);  // uniform in the triangle (poly[0], poly[k+1], poly[k+2])
-  return (1 - s) * poly[0] + s * (1 - u2) * poly[k + 1] + s * u2 * poly[k + 2];
+// One convex piece as a sampling domain: its fan triangles with cumulative areas.
+struct PieceSampler {
+  const Polygon3* piece = nullptr;
+  // Area up to and including fan triangle k: (poly[0], poly[k + 1], poly[k + 2]).
+  std::vector<double> cumulative;
+  bool parallelogram = false;  // sampled bilinearly: rectangular strata
+
+  void assign(const Polygon3& poly) {
+    piece = &poly;
+    cumulative.clear();
+    double total = 0;
+    for (size_t k = 1; k + 1 < poly.size(); ++k)
+      cumulative.push_back(total +=
+                           0.5 * glm::length(glm::cross(poly[k] - poly[0], poly[k + 1] - poly[0])));
+    parallelogram = poly.size() == 4 && glm::length(poly[2] - poly[1] - poly[3] + poly[0]) <=
+                                            1e-12 * glm::length(poly[2] - poly[0]);
+  }
+  double area() const { return cumulative.empty() ? 0.0 : cumulative.back(); }
+
+  // A point uniform in area from (u1, u2) in [0, 1)²: u1 picks a fan triangle by cumulative area
+  // and is rescaled inside it, so strata of (u1, u2) stay strata.
+  Vec3 sample(double u1, double u2) const {
+    const Polygon3& poly = *piece;
+    if (parallelogram) return poly[0] + u1 * (poly[1] - poly[0]) + u2 * (poly[3] - poly[0]);
+    const double total = cumulative.back();
+    const size_t k = size_t(std::upper_bound(cumulative.begin(), cumulative.end() - 1, u1 * total) -
+                            cumulative.begin());
+    const double lo = k ? cumulative[k - 1] : 0.0, width = cumulative[k] - lo;
+    const double v1 = width > 0 ? std::clamp((u1 * total - lo) / width, 0.0, 1.0) : 0.5;
+    const double s = std::sqrt(v1);
+    return (1 - s) * poly[0] + s * (1 - u2) * poly[k + 1] + s * u2 * poly[k + 2];
+  }
+};
+
+// A rows × columns stratification of at least n points, as square as n allows.
+std::pair<int, int> strataOf(int n) {
+  const int rows = std::max(1, int(std::floor(std::sqrt(double(n)))));
+  return {rows, std::max(1, (n + rows - 1) / rows)};
 }
 
 }  // namespace
@@ -63,27 +92,29 @@ Vec3 MicrofacetShading::direct(uint32_t faceIndex, const Vec3& p, const Vec3& to
   const bsdf::MicrofacetBsdf& bsdf = bsdfs_[size_t(bsdfIndex_[faceIndex])];
   const Frame frame = frameOf(faceIndex);
   const Vec3 wo = frame.toLocal(toViewer);
-  const int side = std::max(1, int(std::ceil(std::sqrt(double(samples)))));
+  const int budget = std::max(1, samples);
   Vec3 sum(0.0);
   std::vector<Polygon3> pieces;
-  std::vector<double> cumulative;
+  std::vector<PieceSampler> samplers;
   for (size_t l = 0; l < scene_.lights().size(); ++l) {
     const Light& light = scene_.lights()[l];
     const Vec3 lightNormal = light.plane().normal;
     pieces.clear();
     visible_(faceIndex, p, l, pieces);
-    for (const Polygon3& piece : pieces) {
-      cumulative.clear();
-      double area = 0;
-      for (size_t k = 1; k + 1 < piece.size(); ++k) {
-        area += 0.5 * glm::length(glm::cross(piece[k] - piece[0], piece[k + 1] - piece[0]));
-        cumulative.push_back(area);
-      }
-      if (!(area > 0)) continue;
+    samplers.resize(pieces.size());
+    double visibleArea = 0;
+    for (size_t k = 0; k < pieces.size(); ++k) {
+      samplers[k].assign(pieces[k]);
+      visibleArea += samplers[k].area();
+    }
+    for (const PieceSampler& piece : samplers) {
+      if (!(piece.area() > 0)) continue;
+      // The light's budget split by area, each piece stratified on its own (compact strata).
+      const auto [rows, columns] = strataOf(int(std::lround(budget * piece.area() / visibleArea)));
       Vec3 pieceSum(0.0);
-      for (int i = 0; i < side; ++i)
-        for (int j = 0; j < side; ++j) {
-          const Vec3 q = samplePolygon(piece, cumulative, (i + rng.uniform()) / side, (j + rng.uniform()) / side);
+      for (int i = 0; i < rows; ++i)
+        for (int j = 0; j < columns; ++j) {
+          const Vec3 q = piece.sample((i + rng.uniform()) / rows, (j + rng.uniform()) / columns);
           const Vec3 d = q - p;
           const double r2 = glm::dot(d, d);
           if (!(r2 > 0)) continue;
@@ -93,7 +124,7 @@ Vec3 MicrofacetShading::direct(uint32_t faceIndex, const Vec3& p, const Vec3& to
           const Vec3 wiLocal = frame.toLocal(wi);
           pieceSum += bsdf.eval(wo, wiLocal, rng) * (std::abs(wiLocal.z) * cosLight / r2);
         }
-      sum += light.radiance * pieceSum * (area / (side * side));
+      sum += light.radiance * pieceSum * (piece.area() / (rows * columns));
     }
   }
   return sum;

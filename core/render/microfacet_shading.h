@@ -15,7 +15,7 @@
 namespace penumbra {
 
 struct MicrofacetSettings {
-  int lightSamples = 16;  // stratified samples per visible light piece
+  int lightSamples = 16;  // stratified samples per light, split over its visible pieces by area
   int pathsPerPixel = 16; // sampled paths averaged per microfacet point
   int maxDepth = 4;       // microfacet vertices along a path (the last one gets direct light only)
 };
@@ -38,7 +38,8 @@ class MicrofacetShading {
   // microfacet vertices take direct light with lightSamples / 4 samples).
   Vec3 radiance(uint32_t faceIndex, const Vec3& p, const Vec3& toViewer, bsdf::Rng& rng) const;
   // The light-piece integral alone at one vertex: Σ ∫ f(wo, wi) L_e cosθ cosθ_L / r² dA, with
-  // `samples` stratified samples per visible piece.
+  // `samples` per light split over its visible pieces by area (at least one each), each piece
+  // stratified on its own.
   Vec3 direct(uint32_t faceIndex, const Vec3& p, const Vec3& toViewer, int samples, bsdf::Rng& rng) const;
   // One path's radiance beyond the first vertex's direct light.
   Vec3 indirect(uint32_t faceIndex, const Vec3& p, const Vec3& toViewer, bsdf::Rng& rng) const;

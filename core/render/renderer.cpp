@@ -9,8 +9,8 @@
 #include <string>
 
 #include "core/engine/parallel.h"
-#include "core/illum/backprojection.h"
 #include "core/reference/exact_irradiance.h"
+#include "core/render/dm_visibility.h"
 #include "core/render/mesh_lookup.h"
 #include "core/render/light_hit.h"
 #include "core/render/ray_scene.h"
@@ -80,22 +80,11 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
     }
     return scene.albedo(face.id) / M_PI * (irradiance + ambient);
   };
+  const VisiblePiecesFn fromOccluders =
+      settings.occluders && !settings.reference ? backprojectedPieces(scene, settings.occluders) : VisiblePiecesFn{};
   auto visiblePieces = [&](uint32_t faceIndex, const Vec3& p, size_t light, std::vector<Polygon3>& pieces) {
-    const Face& face = scene.faces()[faceIndex];
-    if (!settings.occluders || settings.reference) {
-      pieces = reference.visibility(p, face.plane.normal, light).visiblePieces;
-      return;
-    }
-    Backprojection backprojection(scene, light, p, face.plane.normal);
-    if (!backprojection.applies()) return;
-    std::vector<FaceId> candidates;
-    settings.occluders(face.id, p, light, candidates);
-    for (const FaceId& id : candidates) {
-      const auto it = std::lower_bound(scene.faces().begin(), scene.faces().end(), id,
-                                       [](const Face& f, const FaceId& x) { return f.id < x; });
-      if (it != scene.faces().end() && it->id == id) backprojection.occlude(*it);
-    }
-    pieces = backprojection.visiblePieces();
+    if (fromOccluders) return fromOccluders(faceIndex, p, light, pieces);
+    pieces = reference.visibility(p, scene.faces()[faceIndex].plane.normal, light).visiblePieces;
   };
   const MicrofacetShading microfacet(scene, rays, visiblePieces, diffuseRadiance, settings.microfacet);
 

@@ -96,6 +96,42 @@ TEST(MicrofacetShading, LightPiecesMatchShadowRaysInAPenumbra) {
   EXPECT_LT(sigma, 0.01 * mean);
 }
 
+// The light's budget is split over its pieces by area (at least one sample each): a small
+// budget averaged over many generators equals a large one, where the plate cuts the light.
+TEST(MicrofacetShading, SmallBudgetsOverPiecesStayUnbiased) {
+  const Scene scene = penumbraScene(true);
+  const RayScene rays(scene);
+  const ExactReference reference(scene);
+  // Two pieces from the one visible polygon: a budget of 2 gives each piece its own samples.
+  const MicrofacetShading shading(
+      scene, rays,
+      [&](uint32_t f, const Vec3& p, size_t l, std::vector<Polygon3>& pieces) {
+        for (const Polygon3& piece :
+             reference.visibility(p, scene.faces()[f].plane.normal, l).visiblePieces) {
+          pieces.push_back({piece[0], piece[1], piece[2]});
+          for (size_t k = 3; k < piece.size(); ++k)
+            pieces.push_back({piece[0], piece[k - 1], piece[k]});
+        }
+      },
+      [](uint32_t, const Vec3&, bool) { return Vec3(0.0); });
+  const uint32_t floor = faceOf(scene, "floor");
+  const Vec3 p(0.05, 0, 0.1), toViewer = glm::normalize(Vec3(0.3, 1.0, -0.8));
+  bsdf::Rng rng(11);
+  const double exact = shading.direct(floor, p, toViewer, 1 << 16, rng).x;
+  for (int budget : {1, 2, 5}) {
+    const int runs = 20000;
+    double sum = 0, sum2 = 0;
+    for (int i = 0; i < runs; ++i) {
+      const double v = shading.direct(floor, p, toViewer, budget, rng).x;
+      sum += v;
+      sum2 += v * v;
+    }
+    const double mean = sum / runs, sigma = std::sqrt((sum2 / runs - mean * mean) / runs);
+    EXPECT_NEAR(mean, exact, 4 * sigma + 1e-3 * exact)
+        << "budget " << budget << ", sigma " << sigma;
+  }
+}
+
 TEST(MicrofacetShading, DmOccluderListsGiveTheExactVisibleLight) {
   const Scene scene = penumbraScene(false);
   Engine engine(scene);
