@@ -24,7 +24,7 @@ TEST(ImageGi, SensorsImageEqualsTheInProcessRenderAndDiffersFromDirectLight) {
   EXPECT_FALSE(direct->has_header("X-Penumbra-Gi-Sensors"));
   EXPECT_GT(std::stoul(bounced->get_header_value("X-Penumbra-Gi-Sensors")), 0u);
 
-  const Engine engine(protocol::loadSceneFile(scenePath("cornell")));
+  Engine engine(protocol::loadSceneFile(scenePath("cornell")));
   RenderSettings settings;
   settings.width = settings.height = 40;
   settings.microfacet.pathsPerPixel = 1;
