@@ -61,7 +61,7 @@ std::optional<gi::GiSettings> giFromOptions(const Args& args) {
 }  // namespace
 
 int runRender(const Args& args) {
-  args.allowOnly({"out", "width", "height", "camera", "mesh", "gi", "sensor-size", "tile", "threshold", "bounces", "filter"});
+  args.allowOnly({"out", "width", "height", "camera", "mesh", "gi", "sensor-size", "tile", "threshold", "bounces", "filter", "exposure"});
   const std::string scenePath = args.positional(0, "SCENE");
   const auto out = args.option("out");
   if (!out) throw UsageError("render needs --out IMAGE (.png or .exr)");
@@ -78,6 +78,9 @@ int runRender(const Args& args) {
   const Scene scene = protocol::loadSceneFile(scenePath);
   if (const auto camera = args.option("camera")) settings.camera = cameraFromOption(scene, *camera);
   settings.gi = giFromOptions(args);
+  settings.exposure = args.doubleOption("exposure", 0);
+  if (!(settings.exposure >= 0 && settings.exposure < 1e12))
+    throw UsageError("--exposure must be a non-negative number (0: automatic)");
 
   const auto meshStart = std::chrono::steady_clock::now();
   Mesh mesh;

@@ -28,6 +28,7 @@ commands:
          [--sensor-size N] [--tile N]  sensor map N×N (32), first tiles (16 px),
          [--threshold F] [--bounces B] corner spread interpolated (0.05), bounces (1..8),
          [--filter R]                  id-aware Gaussian radius in pixels (0: off)
+         [--exposure E]                linear scale before the PNG's sRGB (0: automatic)
   import FILE --out SCENE               an OBJ (+MTL), glTF or GLB file as a scene; repairs on stderr
            [--scale S] [--light-radiance R,G,B] [--report REPORT.json]
   generate --cubes N --out SCENE       a seeded 'N random cubes in a room' scene
