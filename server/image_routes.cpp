@@ -127,7 +127,7 @@ void HttpServer::registerImageRoutes() {
         settings.height = int(*height);
         settings.camera = cameraFromQuery(req, snapshot->scene);
         // Progressive passes ask for few samples first (README "The page"): paths per pixel,
-        // and stratified samples per visible light piece from 4 (2 × 2) up to the CLI's 16.
+        // and stratified samples per light (split over its visible pieces) from 4 up to the CLI's 16.
         const uint64_t samples = samplesFromQuery(req, *width * *height);
         settings.microfacet.pathsPerPixel = int(samples);
         settings.microfacet.lightSamples = int(std::clamp<uint64_t>(samples, 4, 16));

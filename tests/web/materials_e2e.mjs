@@ -20,12 +20,14 @@ const state = (page) => page.evaluate(() => window.penumbra.state());
 const passes = (page) => page.evaluate(() => window.penumbra.renderPasses());
 
 // Waits until the panel has shown all passes for `version`, in order, as its last images.
-async function refinedAt(page, version, seconds = 120) {
+// With `rendersAfter`: only images shown after that many renders count (a new view's passes).
+async function refinedAt(page, version, seconds = 120, rendersAfter = 0) {
   const deadline = Date.now() + seconds * 1000;
   for (;;) {
-    const { passes: shown } = await passes(page);
+    const { passes: shown, renders } = await passes(page);
     const last = shown.slice(-SAMPLES.length);
-    if (last.length === SAMPLES.length && last.every((p, i) => p.version === version && p.samples === SAMPLES[i])) return last;
+    if (renders >= rendersAfter + SAMPLES.length && last.length === SAMPLES.length
+        && last.every((p, i) => p.version === version && p.samples === SAMPLES[i])) return last;
     if (Date.now() > deadline) return null;
     await sleep(200);
   }
@@ -75,9 +77,13 @@ async function main() {
     const abortedBefore = (await passes(page)).aborted;
     await page.keyboard.press('Escape');
     await page.keyboard.press('a');
-    await sleep(600); // the first pass of the new view is on its way
+    // Waits (not a fixed sleep: a loaded machine is slow) until the new view's passes are
+    // being fetched, then changes the view again while they run.
+    const waitUntil = Date.now() + 60000;
+    while (!(await passes(page)).inFlight && Date.now() < waitUntil) await sleep(20);
+    const rendersBefore = (await passes(page)).renders;
     await page.keyboard.press('h');
-    const again = await refinedAt(page, after.version);
+    const again = await refinedAt(page, after.version, 120, rendersBefore);
     check(again !== null && (await passes(page)).aborted > abortedBefore, 'a new camera aborts the passes left and refines the new view',
       JSON.stringify(await passes(page)));
     const final = await state(page);

@@ -150,7 +150,9 @@ export function installTestHook(app) {
     },
     // The server images shown so far ({version, samples, seconds}, newest last) and aborted passes.
     renderPasses() {
-      return app.renderPanel ? { passes: [...app.renderPanel.passes], aborted: app.renderPanel.aborted } : null;
+      const panel = app.renderPanel;
+      // renders: images shown so far (passes keeps the last 64); inFlight: a pass is being fetched.
+      return panel ? { passes: [...panel.passes], aborted: panel.aborted, renders: panel.renders, inFlight: panel.abort !== null } : null;
     },
     cameraQuery() {
       return app.view.cameraQuery();
