@@ -208,19 +208,23 @@ class MeshMemoUpdate {
   }
 
   // The value of a point of the cell's closure, as seen from the cell (centre: its centroid).
-  VertexIrradiance valueAt(const Vec2& q, const OccluderList& list, const Vec3& centre) const {
+  // A point lit here is kept for the cell: a lattice point is a corner of up to four of its
+  // pieces, and the same inputs give the same bits, so it is lit once.
+  VertexIrradiance valueAt(const Vec2& q, const OccluderList& list, const Vec3& centre) {
     const Polygon2& polygon = inputs_.outline;
-    const Vec3 normal = source_.frame.normal;
+    const size_t corner = size_t(std::find(polygon.begin(), polygon.end(), q) - polygon.begin());
+    if (corner < polygon.size() && !inputs_.cornerFromCell[corner]) return inputs_.cornerValues[corner];
+    for (const auto& [at, value] : litInCell_)
+      if (at == q) return value;
     const Vec3 p = source_.frame.to3D(q);
-    for (size_t i = 0; i < polygon.size(); ++i) {
-      if (polygon[i] != q) continue;
-      if (inputs_.cornerFromCell[i]) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
-      return inputs_.cornerValues[i];
-    }
-    // A lattice point: lit exactly from this cell's list (cases 2 and 3 keep it
-    // dark in a light's umbra).
-    if (onContact(p, list)) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
-    return illuminatePoint(scene_, p, normal, {&list});
+    const Vec3 normal = source_.frame.normal;
+    // A contact corner or lattice point takes the limit from the cell; another lattice
+    // point is lit exactly from this cell's list (cases 2 and 3 keep it dark in a light's umbra).
+    const VertexIrradiance value = corner < polygon.size() || onContact(p, list)
+                                       ? illuminatePointFromCell(scene_, p, normal, centre - p, list)
+                                       : illuminatePoint(scene_, p, normal, {&list});
+    litInCell_.push_back({q, value});
+    return value;
   }
 
   // The cell's pieces (lattice squares' parts), triangulated, into output_.
@@ -229,6 +233,7 @@ class MeshMemoUpdate {
     Vec3 centre{0.0};
     for (const Vec2& q : polygon) centre += source_.frame.to3D(q);
     centre /= double(polygon.size());
+    litInCell_.clear();
     for (const Polygon2& piece : splitByLattice(polygon, memo_.grid_.spacing, eps_)) {
       output_.pieceChunks.push_back(chunkOf(piece));
       output_.pieceEmitted.push_back(uint32_t(output_.emitted.size()));
@@ -295,6 +300,7 @@ class MeshMemoUpdate {
   std::vector<bool> dark_;
   std::vector<VertexId> corners_;
   std::vector<int8_t> vertexContact_;
+  std::vector<std::pair<Vec2, VertexIrradiance>> litInCell_;  // points lit for the current cell
 };
 
 void ReceiverMeshMemo::update(const Scene& scene, const MeshSource& source, MeshGrid grid, MeshMemoCounters& counters) {
