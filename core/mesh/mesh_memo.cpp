@@ -44,7 +44,7 @@ class MeshMemoUpdate {
       : memo_(memo), scene_(scene), source_(source), counters_(counters), tree_(source.tree),
         halfEdges_(source.tree.mesh()), eps_(scene.tolerance().length()),
         chunkSide_(memo.grid_.spacing * memo.grid_.chunkSquares),
-        dark_(scene.lights().size()), vertexContact_(halfEdges_.vertexSlots(), -1) {}
+        dark_(scene.lights().size()) {}
 
   void run() {
     const uint64_t stamp = HalfEdgeMesh::stampNow();
@@ -82,7 +82,8 @@ class MeshMemoUpdate {
 
   // A point is on a value discontinuity (D0) when an occluder of a cell around it
   // has its plane through it (it touches the receiver there): it then takes its
-  // value per side, as the limit from each cell. "Through it" is the geometric
+  // value per side, as the limit from each cell whose list holds such a face (in a
+  // cell without one the value is continuous up to the point). "Through it" is the geometric
   // predicate (length tolerance), not onPlane(): a point within onPlane() of the
   // plane but off the contact line (e.g. on a line meeting it at a shallow angle
   // near a footprint corner) lies inside one side, where the value is the point
@@ -94,19 +95,6 @@ class MeshMemoUpdate {
       if (face && std::abs(face->plane.signedDistance(p)) <= eps_) return true;
     }
     return false;
-  }
-  bool onContactAround(VertexId v) {
-    int8_t& known = vertexContact_[v.index];  // -1: not asked yet
-    if (known < 0) {
-      known = 0;
-      const Vec3 p = source_.frame.to3D(tree_.position(v));
-      for (CellId c : tree_.cellsAround(v))
-        if (onContact(p, tree_.occluders(c))) {
-          known = 1;
-          break;
-        }
-    }
-    return known == 1;
   }
   MeshChunkKey chunkOf(const Polygon2& piece) const {
     if (!(chunkSide_ > 0)) return MeshChunkKey{};
@@ -150,7 +138,7 @@ class MeshMemoUpdate {
     OccluderList occluders;               // its list
     std::vector<Vec3> occluderPoints;     // the listed faces' world polygons, concatenated
     std::vector<uint32_t> occluderSizes;  // their vertex counts (0: not a scene face)
-    // Per loop corner: 1 if lit from the cell (a contact vertex), else 0 and its value.
+    // Per loop corner: 1 if lit from the cell (a face of its list through it), else 0 and its value.
     std::vector<uint8_t> cornerFromCell;
     std::vector<VertexIrradiance> cornerValues;
     void clear() {
@@ -199,7 +187,9 @@ class MeshMemoUpdate {
       if (face) inputs_.occluderPoints.insert(inputs_.occluderPoints.end(), face->polygon.begin(), face->polygon.end());
     }
     for (VertexId v : corners_) {
-      const bool fromCell = onContactAround(v);
+      // Only a face of this cell's list can hide light from the cell and not from the
+      // corner (it passes through the corner); with none, the corner's value is the limit.
+      const bool fromCell = onContact(source_.frame.to3D(tree_.position(v)), list);
       inputs_.cornerFromCell.push_back(fromCell ? 1 : 0);
       inputs_.cornerValues.push_back(fromCell ? VertexIrradiance{}
                                      : anyDark ? sumLights(scene_, source_.perLight[v.index], &dark_)
@@ -299,7 +289,6 @@ class MeshMemoUpdate {
   CellMemo output_;    // its output when lit afresh, swapped into the memo
   std::vector<bool> dark_;
   std::vector<VertexId> corners_;
-  std::vector<int8_t> vertexContact_;
   std::vector<std::pair<Vec2, VertexIrradiance>> litInCell_;  // points lit for the current cell
 };
 
