@@ -22,7 +22,8 @@ bool mergeableShadows(const Scene& scene, uint32_t handle, const Plane& lightPla
 void convexHullInto(std::span<const Vec2> points, double eps, std::vector<Vec2>& out) {
   thread_local std::vector<Vec2> sorted;
   sorted.assign(points.begin(), points.end());
-  std::sort(sorted.begin(), sorted.end(), [](const Vec2& a, const Vec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  std::sort(sorted.begin(), sorted.end(),
+            [](const Vec2& a, const Vec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
   sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
   out.clear();
   if (sorted.size() < 3) return;
@@ -34,7 +35,8 @@ void convexHullInto(std::span<const Vec2> points, double eps, std::vector<Vec2>&
   }
   const size_t lower = out.size() + 1;
   for (size_t i = sorted.size() - 1; i-- > 0;) {
-    while (out.size() >= lower && !(turn(out[out.size() - 2], out.back(), sorted[i]) > 0)) out.pop_back();
+    while (out.size() >= lower && !(turn(out[out.size() - 2], out.back(), sorted[i]) > 0))
+      out.pop_back();
     out.push_back(sorted[i]);
   }
   out.pop_back();  // the first point again

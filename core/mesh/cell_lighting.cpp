@@ -58,9 +58,14 @@ uint64_t CellLighter::Inputs::fingerprint() const {
   return f.value();
 }
 
-CellLighter::CellLighter(const Scene& scene, const MeshSource& source, double spacing, double chunkSide)
-    : scene_(scene), source_(source), eps_(scene.tolerance().length()), spacing_(spacing),
-      chunkSide_(chunkSide), dark_(scene.lights().size()) {}
+CellLighter::CellLighter(const Scene& scene, const MeshSource& source, double spacing,
+                         double chunkSide)
+    : scene_(scene),
+      source_(source),
+      eps_(scene.tolerance().length()),
+      spacing_(spacing),
+      chunkSide_(chunkSide),
+      dark_(scene.lights().size()) {}
 
 // A point is on a value discontinuity (D0) when an occluder of a cell around it
 // has its plane through it (it touches the receiver there): it then takes its
@@ -82,7 +87,8 @@ bool CellLighter::onContact(const Vec3& p, const OccluderList& list) const {
 MeshChunkKey CellLighter::chunkOf(const Polygon2& piece) const {
   if (!(chunkSide_ > 0)) return MeshChunkKey{};
   const Vec2 middle = centroid(piece);
-  return MeshChunkKey{int64_t(std::floor(middle.x / chunkSide_)), int64_t(std::floor(middle.y / chunkSide_))};
+  return MeshChunkKey{int64_t(std::floor(middle.x / chunkSide_)),
+                      int64_t(std::floor(middle.y / chunkSide_))};
 }
 
 uint64_t CellLighter::gather(CellId c) {
@@ -101,7 +107,9 @@ uint64_t CellLighter::gather(CellId c) {
   for (const OccluderEntry& entry : list) {
     const Face* face = findFace(scene_, entry.face);
     inputs_.occluderSizes.push_back(face ? uint32_t(face->polygon.size()) : 0);
-    if (face) inputs_.occluderPoints.insert(inputs_.occluderPoints.end(), face->polygon.begin(), face->polygon.end());
+    if (face)
+      inputs_.occluderPoints.insert(inputs_.occluderPoints.end(), face->polygon.begin(),
+                                    face->polygon.end());
   }
   for (size_t i = 0; i < corners_.size(); ++i) {
     const VertexId v = corners_[i];
@@ -109,7 +117,7 @@ uint64_t CellLighter::gather(CellId c) {
     // corner (it passes through the corner); with none, the corner's value is the limit.
     const bool fromCell = onContact(source_.frame.to3D(inputs_.outline[i]), list);
     inputs_.cornerFromCell.push_back(fromCell ? 1 : 0);
-    inputs_.cornerValues.push_back(fromCell ? VertexIrradiance{}
+    inputs_.cornerValues.push_back(fromCell  ? VertexIrradiance{}
                                    : anyDark ? sumLights(scene_, source_.perLight[v.index], &dark_)
                                              : source_.values[v.index]);
   }
@@ -123,7 +131,8 @@ uint64_t CellLighter::gather(CellId c) {
 VertexIrradiance CellLighter::valueAt(const Vec2& q, const OccluderList& list, const Vec3& centre) {
   const Polygon2& polygon = inputs_.outline;
   const size_t corner = size_t(std::find(polygon.begin(), polygon.end(), q) - polygon.begin());
-  if (corner < polygon.size() && !inputs_.cornerFromCell[corner]) return inputs_.cornerValues[corner];
+  if (corner < polygon.size() && !inputs_.cornerFromCell[corner])
+    return inputs_.cornerValues[corner];
   for (const auto& [at, value] : litInCell_)
     if (at == q) return value;
   const Vec3 p = source_.frame.to3D(q);
@@ -161,7 +170,8 @@ void CellLighter::emit(CellId c, CellMemo& out) {
     if (triangulation.usesCentre) {
       const Vec2 middle = centroid(piece);
       pieceCorners.push_back(uint32_t(out.emitted.size()));
-      out.emitted.push_back({middle, illuminatePoint(scene_, source_.frame.to3D(middle), source_.frame.normal, {&list})});
+      out.emitted.push_back({middle, illuminatePoint(scene_, source_.frame.to3D(middle),
+                                                     source_.frame.normal, {&list})});
     }
     for (const auto& t : triangulation.triangles)
       out.triangles.push_back({pieceCorners[t[0]], pieceCorners[t[1]], pieceCorners[t[2]]});

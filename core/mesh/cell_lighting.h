@@ -26,7 +26,7 @@ struct MeshSource {
   FaceId face;
   const PlaneFrame& frame;
   const DmTree& tree;
-  const std::vector<VertexIrradiance>& values;           // by VertexId
+  const std::vector<VertexIrradiance>& values;            // by VertexId
   const std::vector<std::vector<VertexLight>>& perLight;  // [vertex][light]
 };
 
@@ -71,7 +71,8 @@ class CellLighter {
     OccluderList occluders;               // its list
     std::vector<Vec3> occluderPoints;     // the listed faces' world polygons, concatenated
     std::vector<uint32_t> occluderSizes;  // their vertex counts (0: not a scene face)
-    // Per loop corner: 1 if lit from the cell (a face of its list through it), else 0 and its value.
+    // Per loop corner: 1 if lit from the cell (a face of its list through it), else 0 and its
+    // value.
     std::vector<uint8_t> cornerFromCell;
     std::vector<VertexIrradiance> cornerValues;
     void clear();

@@ -16,7 +16,8 @@ namespace penumbra {
 namespace {
 
 TEST(ShadowMerge, HullDropsInnerCollinearAndNearDuplicatePoints) {
-  const std::vector<Vec2> points{{0, 0}, {1, 0}, {2, 0}, {2, 2}, {1, 1}, {0, 2}, {2, 2 + 1e-17}, {0, 1}};
+  const std::vector<Vec2> points{{0, 0}, {1, 0}, {2, 0},         {2, 2},
+                                 {1, 1}, {0, 2}, {2, 2 + 1e-17}, {0, 1}};
   std::vector<Vec2> hull;
   convexHullInto(points, 1e-9, hull);
   const std::vector<Vec2> expected{{0, 0}, {2, 0}, {2, 2}, {0, 2}};
@@ -27,8 +28,8 @@ TEST(ShadowMerge, HullDropsInnerCollinearAndNearDuplicatePoints) {
 
 TEST(ShadowMerge, GroupsOfTwoOrMoreBecomeOneHullAtTheFirstPlace) {
   // Two unit squares side by side (group 7), a lone triangle, a lone square of group 9.
-  const std::vector<Vec2> points{{0, 0}, {1, 0}, {1, 1}, {0, 1},  {5, 5}, {6, 5}, {5, 6},
-                                 {1, 0}, {2, 0}, {2, 1}, {1, 1},  {8, 8}, {9, 8}, {9, 9}, {8, 9}};
+  const std::vector<Vec2> points{{0, 0}, {1, 0}, {1, 1}, {0, 1}, {5, 5}, {6, 5}, {5, 6}, {1, 0},
+                                 {2, 0}, {2, 1}, {1, 1}, {8, 8}, {9, 8}, {9, 9}, {8, 9}};
   const std::vector<uint32_t> starts{0, 4, 7, 11, 15};
   const std::vector<uint32_t> groups{7, kNoGroup, 7, 9};
   std::vector<Vec2> outPoints;
@@ -58,7 +59,8 @@ void expectExactOnFloor(const Scene& scene, int points, uint64_t seed, double ha
     const Vec3 p(u(rng), 0, u(rng));
     const LightVisibleFactor mine = backproject(scene, 0, p, n, all);
     const LightVisibility truth = reference.visibility(p, n, 0);
-    EXPECT_NEAR(mine.visibleFactor, truth.visibleFactor, 1e-9 * truth.unoccludedFactor) << "point " << i;
+    EXPECT_NEAR(mine.visibleFactor, truth.visibleFactor, 1e-9 * truth.unoccludedFactor)
+        << "point " << i;
     penumbra += mine.lightClass == LightClass::Penumbra;
   }
   EXPECT_GT(penumbra, points / 10);  // the check is about partly hidden lights
