@@ -401,7 +401,7 @@ void Engine::updateMeshMemos(const std::vector<size_t>& indices, const EnginePro
   parallel_.forEach(indices.size(), [&](size_t k) {
     const Receiver& receiver = receivers_[indices[k]];
     const MeshSource source{receiver.face, receiver.frame, receiver.tree, receiver.values, receiver.perLight};
-    memos[k]->update(scene_, source, MeshGrid{meshSpacing(), meshChunkSquares_}, counters[k]);
+    memos[k]->update(scene_, source, MeshGrid{meshSpacing(), meshChunkSquares_}, counters[k], parallel_);
     report.add(1);
   });
   report.finish();
@@ -451,7 +451,7 @@ ReceiverMesh Engine::memoMesh(const Receiver& receiver) const {
 const ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver, MeshMemoCounters& counters) {
   ReceiverMeshMemo& memo = meshMemo_[receiver.face];
   const MeshSource source{receiver.face, receiver.frame, receiver.tree, receiver.values, receiver.perLight};
-  memo.update(scene_, source, MeshGrid{meshSpacing(), meshChunkSquares_}, counters);
+  memo.update(scene_, source, MeshGrid{meshSpacing(), meshChunkSquares_}, counters, parallel_);
   return memo;
 }
 

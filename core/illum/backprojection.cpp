@@ -6,12 +6,13 @@
 #include "core/geom/clip.h"
 #include "core/illum/face_lookup.h"
 #include "core/illum/lambert.h"
+#include "core/illum/shadow_merge.h"
 #include "core/illum/visible_contour.h"
 
 namespace penumbra {
 
 Backprojection::Backprojection(const Scene& scene, size_t light, const Vec3& p, const Vec3& n)
-    : tolerance_(scene.tolerance()), p_(p), n_(n) {
+    : scene_(&scene), tolerance_(scene.tolerance()), p_(p), n_(n) {
   const Light& source = scene.lights().at(light);
   const double eps = tolerance_.length();
   lightPlane_ = source.plane();
@@ -99,7 +100,7 @@ bool Backprojection::occlude(const Face& face) {
   // Central projection from p onto the light's plane: along the ray p→x the
   // height above the light falls linearly from pHeight to 0.
   for (Vec3& x : blocker) x = p_ + (x - p_) * (pHeight_ / (pHeight_ - lightPlane_.signedDistance(x)));
-  subtractShadow(blocker);
+  subtractShadow(blocker, groupOf(face.id.object));
   return true;
 }
 
@@ -142,11 +143,19 @@ bool Backprojection::occludeApproaching(const Face& face, const Vec3& d) {
     hidden = clipFront(hidden, plane, eps);
     if (hidden.size() < 3) return false;
   }
-  subtractShadow(hidden);
+  subtractShadow(hidden, kNoGroup);
   return true;
 }
 
-void Backprojection::subtractShadow(const Polygon3& onLightPlane) {
+uint32_t Backprojection::groupOf(uint32_t object) {
+  for (const auto& [known, group] : groups_)
+    if (known == object) return group;
+  const uint32_t group = mergeableShadows(*scene_, object, lightPlane_, p_) ? object : kNoGroup;
+  groups_.push_back({object, group});
+  return group;
+}
+
+void Backprojection::subtractShadow(const Polygon3& onLightPlane, uint32_t group) {
   ++comparisons_;
   // Appended to the gathered shadows in the frame, counter-clockwise.
   const size_t begin = shadowPoints_.size();
@@ -159,12 +168,12 @@ void Backprojection::subtractShadow(const Polygon3& onLightPlane) {
     return;
   }
   shadowStarts_.push_back(uint32_t(shadowPoints_.size()));
+  shadowGroups_.push_back(group);
   resolved_ = false;
 }
 
-std::span<const Vec2> Backprojection::shadow(size_t i) const {
-  return std::span<const Vec2>(shadowPoints_.data() + shadowStarts_[i],
-                               shadowPoints_.data() + shadowStarts_[i + 1]);
+bool Backprojection::mergedShadows(std::vector<Vec2>& points, std::vector<uint32_t>& starts) const {
+  return mergeShadowGroups(shadowPoints_, shadowStarts_, shadowGroups_, tolerance_.length(), points, starts);
 }
 
 // Cut at a tenth of length(): a vertex within the cut tolerance of a shadow edge
@@ -179,7 +188,12 @@ void Backprojection::resolve() const {
   // One contour per thread, its buffers reused from vertex to vertex; what is read
   // of it is kept here before another view on this thread computes again.
   thread_local VisibleContour contour;
-  contour.compute(front2_, shadowPoints_, shadowStarts_, cutEps());
+  thread_local std::vector<Vec2> mergedPoints;
+  thread_local std::vector<uint32_t> mergedStarts;
+  if (mergedShadows(mergedPoints, mergedStarts))
+    contour.compute(front2_, mergedPoints, mergedStarts, cutEps());
+  else
+    contour.compute(front2_, shadowPoints_, shadowStarts_, cutEps());
   occluded_ = contour.occluded();
   anyVisible_ = contour.area() > tolerance_.area() && contour.anyLeft(tolerance_.length());
   visibleFactor_ = 0;
@@ -200,7 +214,11 @@ void Backprojection::resolve() const {
 
 void Backprojection::resolvePieces(VisibleRegion& region) const {
   region.reset(front2_);
-  const size_t count = shadowStarts_.size() - 1;
+  std::vector<Vec2> points;
+  std::vector<uint32_t> starts;
+  if (!mergedShadows(points, starts)) points = shadowPoints_, starts = shadowStarts_;
+  auto shadow = [&](size_t i) { return std::span<const Vec2>(points.data() + starts[i], points.data() + starts[i + 1]); };
+  const size_t count = starts.size() - 1;
   // Largest overlap with the light's box first: in an umbra the light is gone
   // after few shadows, elsewhere later shadows find few pieces left to cut. Ties
   // keep the order given, so the result depends only on the set of shadows.

@@ -56,15 +56,20 @@ class Backprojection {
   std::vector<Polygon3> visiblePieces() const;
 
  private:
-  void subtractShadow(const Polygon3& onLightPlane);
+  void subtractShadow(const Polygon3& onLightPlane, uint32_t group);
+  // The merge group of an object's shadows (its handle, or kNoGroup; shadow_merge.h).
+  uint32_t groupOf(uint32_t object);
+  // The gathered shadows with each object's group merged: the given buffers, or the
+  // gathered ones when nothing merges.
+  bool mergedShadows(std::vector<Vec2>& points, std::vector<uint32_t>& starts) const;
   // The boundary of what the gathered shadows leave and its Lambert integral, once
   // per set of shadows.
   void resolve() const;
   // The visible part as convex pieces: the shadows subtracted, largest first.
   void resolvePieces(VisibleRegion& region) const;
-  std::span<const Vec2> shadow(size_t i) const;
   double cutEps() const;
 
+  const Scene* scene_ = nullptr;
   Tolerance tolerance_;
   Vec3 p_{0.0}, n_{0.0};
   Plane lightPlane_;
@@ -76,6 +81,8 @@ class Backprojection {
   Polygon2 front2_;             // front_ in the frame, CCW
   std::vector<Vec2> shadowPoints_;      // gathered shadows in the frame, flat, CCW
   std::vector<uint32_t> shadowStarts_;  // shadow i: [starts[i], starts[i+1])
+  std::vector<uint32_t> shadowGroups_;  // shadow i's merge group
+  std::vector<std::pair<uint32_t, uint32_t>> groups_;  // (object, group) decided so far
   // Resolved state (filled lazily by resolve(); one thread owns the object).
   mutable bool resolved_ = false;
   mutable bool occluded_ = false, anyVisible_ = false;

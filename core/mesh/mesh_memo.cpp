@@ -1,14 +1,8 @@
 #include "core/mesh/mesh_memo.h"
 
 #include <algorithm>
-#include <cmath>
 #include <set>
 
-#include "core/illum/face_lookup.h"
-#include "core/illum/light_sum.h"
-#include "core/mesh/cell_triangulation.h"
-#include "core/mesh/fingerprint.h"
-#include "core/mesh/lattice_split.h"
 #include "core/mesh/receiver_mesh_builder.h"
 
 namespace penumbra {
@@ -19,40 +13,25 @@ bool sameFrame(const PlaneFrame& a, const PlaneFrame& b) {
   return a.origin == b.origin && a.u == b.u && a.v == b.v && a.normal == b.normal;
 }
 
-Vec2 centroid(const Polygon2& polygon) {
-  Vec2 middle{0.0};
-  for (const Vec2& q : polygon) middle += q;
-  return middle / double(polygon.size());
-}
-
 }  // namespace
-
-void ReceiverMeshMemo::CellMemo::clearOutput() {
-  emitted.clear();
-  triangles.clear();
-  pieceChunks.clear();
-  pieceEmitted.clear();
-  pieceTriangles.clear();
-}
 
 // One update() call: the cells touched since the last one, then the chunks they changed.
 class MeshMemoUpdate {
  public:
-  using CellMemo = ReceiverMeshMemo::CellMemo;
-
   MeshMemoUpdate(ReceiverMeshMemo& memo, const Scene& scene, const MeshSource& source, MeshMemoCounters& counters)
-      : memo_(memo), scene_(scene), source_(source), counters_(counters), tree_(source.tree),
-        halfEdges_(source.tree.mesh()), eps_(scene.tolerance().length()),
-        chunkSide_(memo.grid_.spacing * memo.grid_.chunkSquares),
-        dark_(scene.lights().size()), vertexContact_(halfEdges_.vertexSlots(), -1) {}
+      : memo_(memo), scene_(scene), source_(source), counters_(counters), halfEdges_(source.tree.mesh()),
+        eps_(scene.tolerance().length()), chunkSide_(memo.grid_.spacing * memo.grid_.chunkSquares) {}
 
-  void run() {
+  void run(const Parallel& parallel) {
     const uint64_t stamp = HalfEdgeMesh::stampNow();
     for (size_t i = halfEdges_.cellSlots(); i < memo_.cells_.size(); ++i) leaveChunks(uint32_t(i));  // a smaller rebuilt tree
     memo_.cells_.resize(halfEdges_.cellSlots());
-    for (uint32_t index = 0; index < halfEdges_.cellSlots(); ++index) updateCell(index);
+    std::vector<uint32_t> touched;
+    for (uint32_t index = 0; index < halfEdges_.cellSlots(); ++index)
+      if (needsLight(index)) touched.push_back(index);
+    lightCells(touched, parallel);
     memo_.stamp_ = stamp;
-    assembleChunks();
+    assembleChunks(parallel);
     counters_.chunksMeshed += dirty_.size();
     for (const auto& entry : memo_.chunks_) counters_.chunksKept += dirty_.count(entry.first) ? 0 : 1;
   }
@@ -80,205 +59,82 @@ class MeshMemoUpdate {
     }
   }
 
-  // A point is on a value discontinuity (D0) when an occluder of a cell around it
-  // has its plane through it (it touches the receiver there): it then takes its
-  // value per side, as the limit from each cell. "Through it" is the geometric
-  // predicate (length tolerance), not onPlane(): a point within onPlane() of the
-  // plane but off the contact line (e.g. on a line meeting it at a shallow angle
-  // near a footprint corner) lies inside one side, where the value is the point
-  // value (the face does not shadow it, SCENE_FORMAT.md), with no other side's
-  // copy to carry that value.
-  bool onContact(const Vec3& p, const OccluderList& list) const {
-    for (const OccluderEntry& entry : list) {
-      const Face* face = findFace(scene_, entry.face);
-      if (face && std::abs(face->plane.signedDistance(p)) <= eps_) return true;
-    }
-    return false;
-  }
-  bool onContactAround(VertexId v) {
-    int8_t& known = vertexContact_[v.index];  // -1: not asked yet
-    if (known < 0) {
-      known = 0;
-      const Vec3 p = source_.frame.to3D(tree_.position(v));
-      for (CellId c : tree_.cellsAround(v))
-        if (onContact(p, tree_.occluders(c))) {
-          known = 1;
-          break;
-        }
-    }
-    return known == 1;
-  }
-  MeshChunkKey chunkOf(const Polygon2& piece) const {
-    if (!(chunkSide_ > 0)) return MeshChunkKey{};
-    const Vec2 middle = centroid(piece);
-    return MeshChunkKey{int64_t(std::floor(middle.x / chunkSide_)), int64_t(std::floor(middle.y / chunkSide_))};
-  }
-
-  // A cell touched since the last call is lit again unless every input is equal.
-  void updateCell(uint32_t index) {
-    const CellId c(index);
-    const HalfEdgeMesh::Cell& cell = halfEdges_.cell(c);
+  // A live cell touched since the last call may need lighting; a dead one leaves its chunks.
+  bool needsLight(uint32_t index) {
+    const HalfEdgeMesh::Cell& cell = halfEdges_.cell(CellId(index));
     CellMemo& slot = memo_.cells_[index];
     if (cell.touched <= memo_.stamp_ && (slot.valid || !cell.alive)) {
       if (cell.alive) ++counters_.cellsReused;
-      return;
+      return false;
     }
-    if (!cell.alive) {
-      leaveChunks(index);
-      slot = CellMemo{};
-      return;
-    }
-    gatherInputs(c);
-    const uint64_t fingerprint = inputs_.fingerprint();
-    if (slot.valid && slot.inputs == fingerprint) {
-      ++counters_.cellsReused;
-      return;
-    }
-    ++counters_.cellsLit;
+    if (cell.alive) return true;
     leaveChunks(index);
-    output_.clearOutput();
-    emitPieces(cell.occluders);
-    output_.valid = true;
-    output_.inputs = fingerprint;
-    std::swap(slot, output_);  // the old slot's buffers are reused for the next cell
-    enterChunks(index);
+    slot = CellMemo{};
+    return false;
   }
 
-  // What a cell's triangles depend on, gathered for the cell being updated.
-  struct CellInputs {
-    Polygon2 outline;                     // the cell's loop positions
-    OccluderList occluders;               // its list
-    std::vector<Vec3> occluderPoints;     // the listed faces' world polygons, concatenated
-    std::vector<uint32_t> occluderSizes;  // their vertex counts (0: not a scene face)
-    // Per loop corner: 1 if lit from the cell (a contact vertex), else 0 and its value.
-    std::vector<uint8_t> cornerFromCell;
-    std::vector<VertexIrradiance> cornerValues;
-    void clear() {
-      outline.clear();
-      occluders.clear();
-      occluderPoints.clear();
-      occluderSizes.clear();
-      cornerFromCell.clear();
-      cornerValues.clear();
-    }
-    uint64_t fingerprint() const {
-      Fingerprint f;
-      f.addBytes(std::span<const Vec2>(outline));
-      f.add(uint64_t(occluders.size()));
-      for (const OccluderEntry& e : occluders) {
-        f.add(uint64_t(e.light) << 1 | uint64_t(e.umbra));
-        f.add(uint64_t(e.face.object) << 32 | uint64_t(e.face.face));
+  // The touched cells are lit in blocks on the threads, each into its own result (kept
+  // when its fingerprint equals the slot's); then, in cell order, the results replace
+  // the slots and enter their chunks.
+  void lightCells(const std::vector<uint32_t>& touched, const Parallel& parallel) {
+    constexpr size_t kBlock = 64;
+    std::vector<CellMemo> results(touched.size());
+    const double spacing = memo_.grid_.spacing;
+    parallel.forEach((touched.size() + kBlock - 1) / kBlock, [&](size_t block) {
+      CellLighter lighter(scene_, source_, spacing, chunkSide_);
+      for (size_t k = block * kBlock; k < std::min(touched.size(), (block + 1) * kBlock); ++k) {
+        const CellId c(touched[k]);
+        const uint64_t fingerprint = lighter.gather(c);
+        const CellMemo& slot = memo_.cells_[touched[k]];
+        if (slot.valid && slot.inputs == fingerprint) continue;  // results[k] stays invalid: kept
+        lighter.emit(c, results[k]);
       }
-      f.addBytes(std::span<const Vec3>(occluderPoints));
-      f.addBytes(std::span<const uint32_t>(occluderSizes));
-      f.addBytes(std::span<const uint8_t>(cornerFromCell));
-      f.add(uint64_t(cornerValues.size()));
-      for (const VertexIrradiance& v : cornerValues) {
-        for (int c = 0; c < 3; ++c) f.add(v.irradiance[c]);
-        f.add(uint64_t(v.lightClass));
+    });
+    for (size_t k = 0; k < touched.size(); ++k) {
+      if (!results[k].valid) {
+        ++counters_.cellsReused;
+        continue;
       }
-      return f.value();
+      ++counters_.cellsLit;
+      leaveChunks(touched[k]);
+      memo_.cells_[touched[k]] = std::move(results[k]);
+      enterChunks(touched[k]);
     }
-  };
-
-  // The inputs this cell's triangles depend on, into inputs_ (dark_ and anyDark_ too).
-  void gatherInputs(CellId c) {
-    const OccluderList& list = halfEdges_.cell(c).occluders;
-    std::fill(dark_.begin(), dark_.end(), false);
-    for (const OccluderEntry& entry : list)
-      if (entry.umbra) dark_[entry.light] = true;
-    const bool anyDark = std::find(dark_.begin(), dark_.end(), true) != dark_.end();
-    inputs_.clear();
-    corners_.clear();
-    for (HalfEdgeId h : halfEdges_.loop(c)) corners_.push_back(halfEdges_.halfEdge(h).origin);
-    for (VertexId v : corners_) inputs_.outline.push_back(tree_.position(v));
-    inputs_.occluders = list;
-    for (const OccluderEntry& entry : list) {
-      const Face* face = findFace(scene_, entry.face);
-      inputs_.occluderSizes.push_back(face ? uint32_t(face->polygon.size()) : 0);
-      if (face) inputs_.occluderPoints.insert(inputs_.occluderPoints.end(), face->polygon.begin(), face->polygon.end());
-    }
-    for (VertexId v : corners_) {
-      const bool fromCell = onContactAround(v);
-      inputs_.cornerFromCell.push_back(fromCell ? 1 : 0);
-      inputs_.cornerValues.push_back(fromCell ? VertexIrradiance{}
-                                     : anyDark ? sumLights(scene_, source_.perLight[v.index], &dark_)
-                                               : source_.values[v.index]);
-    }
-  }
-
-  // The value of a point of the cell's closure, as seen from the cell (centre: its centroid).
-  VertexIrradiance valueAt(const Vec2& q, const OccluderList& list, const Vec3& centre) const {
-    const Polygon2& polygon = inputs_.outline;
-    const Vec3 normal = source_.frame.normal;
-    const Vec3 p = source_.frame.to3D(q);
-    for (size_t i = 0; i < polygon.size(); ++i) {
-      if (polygon[i] != q) continue;
-      if (inputs_.cornerFromCell[i]) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
-      return inputs_.cornerValues[i];
-    }
-    // A lattice point: lit exactly from this cell's list (cases 2 and 3 keep it
-    // dark in a light's umbra).
-    if (onContact(p, list)) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
-    return illuminatePoint(scene_, p, normal, {&list});
-  }
-
-  // The cell's pieces (lattice squares' parts), triangulated, into output_.
-  void emitPieces(const OccluderList& list) {
-    const Polygon2& polygon = inputs_.outline;
-    Vec3 centre{0.0};
-    for (const Vec2& q : polygon) centre += source_.frame.to3D(q);
-    centre /= double(polygon.size());
-    for (const Polygon2& piece : splitByLattice(polygon, memo_.grid_.spacing, eps_)) {
-      output_.pieceChunks.push_back(chunkOf(piece));
-      output_.pieceEmitted.push_back(uint32_t(output_.emitted.size()));
-      output_.pieceTriangles.push_back(uint32_t(output_.triangles.size()));
-      std::vector<uint32_t> pieceCorners;
-      for (const Vec2& q : piece) {
-        pieceCorners.push_back(uint32_t(output_.emitted.size()));
-        output_.emitted.push_back({q, valueAt(q, list, centre)});
-      }
-      const CellTriangulation triangulation = triangulateConvexCell(piece, eps_);
-      if (triangulation.usesCentre) {
-        const Vec2 middle = centroid(piece);
-        pieceCorners.push_back(uint32_t(output_.emitted.size()));
-        output_.emitted.push_back(
-            {middle, illuminatePoint(scene_, source_.frame.to3D(middle), source_.frame.normal, {&list})});
-      }
-      for (const auto& t : triangulation.triangles)
-        output_.triangles.push_back({pieceCorners[t[0]], pieceCorners[t[1]], pieceCorners[t[2]]});
-    }
-    output_.pieceEmitted.push_back(uint32_t(output_.emitted.size()));
-    output_.pieceTriangles.push_back(uint32_t(output_.triangles.size()));
   }
 
   // The changed chunks are assembled again from their cells' pieces, in cell order;
-  // the builder sees the same calls in the same order as for a fresh mesh.
-  void assembleChunks() {
-    std::vector<uint32_t> ids;
-    for (const MeshChunkKey& key : dirty_) {
-      ReceiverMesh mesh;
-      mesh.face = source_.face;
-      mesh.normal = source_.frame.normal;
-      ReceiverMeshBuilder builder(mesh, source_.frame, eps_);
-      auto listed = memo_.chunkCells_.find(key);
-      if (listed != memo_.chunkCells_.end())
-        for (uint32_t index : listed->second) {
-          const CellMemo& m = memo_.cells_[index];
-          for (size_t j = 0; j < m.pieceChunks.size(); ++j) {
-            if (m.pieceChunks[j] != key) continue;
-            ids.resize(m.emitted.size());
-            for (uint32_t e = m.pieceEmitted[j]; e < m.pieceEmitted[j + 1]; ++e)
-              ids[e] = builder.vertex(m.emitted[e].first, m.emitted[e].second);
-            for (uint32_t t = m.pieceTriangles[j]; t < m.pieceTriangles[j + 1]; ++t)
-              mesh.triangles.push_back({ids[m.triangles[t][0]], ids[m.triangles[t][1]], ids[m.triangles[t][2]]});
-          }
-        }
+  // the builder sees the same calls in the same order as for a fresh mesh. Chunks are
+  // independent: built on the threads, stored in key order.
+  void assembleChunks(const Parallel& parallel) {
+    const std::vector<MeshChunkKey> keys(dirty_.begin(), dirty_.end());
+    std::vector<ReceiverMesh> meshes(keys.size());
+    parallel.forEach(keys.size(), [&](size_t k) { assembleChunk(keys[k], meshes[k]); });
+    for (size_t k = 0; k < keys.size(); ++k) {
+      const auto listed = memo_.chunkCells_.find(keys[k]);
       if (listed != memo_.chunkCells_.end() && listed->second.empty()) memo_.chunkCells_.erase(listed);
-      if (mesh.triangles.empty())
-        memo_.chunks_.erase(key);
+      if (meshes[k].triangles.empty())
+        memo_.chunks_.erase(keys[k]);
       else
-        memo_.chunks_[key] = std::make_shared<const ReceiverMesh>(std::move(mesh));
+        memo_.chunks_[keys[k]] = std::make_shared<const ReceiverMesh>(std::move(meshes[k]));
+    }
+  }
+  void assembleChunk(const MeshChunkKey& key, ReceiverMesh& mesh) const {
+    mesh.face = source_.face;
+    mesh.normal = source_.frame.normal;
+    ReceiverMeshBuilder builder(mesh, source_.frame, eps_);
+    const auto listed = memo_.chunkCells_.find(key);
+    if (listed == memo_.chunkCells_.end()) return;
+    std::vector<uint32_t> ids;
+    for (uint32_t index : listed->second) {
+      const CellMemo& m = memo_.cells_[index];
+      for (size_t j = 0; j < m.pieceChunks.size(); ++j) {
+        if (m.pieceChunks[j] != key) continue;
+        ids.resize(m.emitted.size());
+        for (uint32_t e = m.pieceEmitted[j]; e < m.pieceEmitted[j + 1]; ++e)
+          ids[e] = builder.vertex(m.emitted[e].first, m.emitted[e].second);
+        for (uint32_t t = m.pieceTriangles[j]; t < m.pieceTriangles[j + 1]; ++t)
+          mesh.triangles.push_back({ids[m.triangles[t][0]], ids[m.triangles[t][1]], ids[m.triangles[t][2]]});
+      }
     }
   }
 
@@ -286,18 +142,13 @@ class MeshMemoUpdate {
   const Scene& scene_;
   const MeshSource& source_;
   MeshMemoCounters& counters_;
-  const DmTree& tree_;
   const HalfEdgeMesh& halfEdges_;
   const double eps_, chunkSide_;  // chunkSide_ 0: one chunk
   std::set<MeshChunkKey> dirty_;
-  CellInputs inputs_;  // the current cell's inputs
-  CellMemo output_;    // its output when lit afresh, swapped into the memo
-  std::vector<bool> dark_;
-  std::vector<VertexId> corners_;
-  std::vector<int8_t> vertexContact_;
 };
 
-void ReceiverMeshMemo::update(const Scene& scene, const MeshSource& source, MeshGrid grid, MeshMemoCounters& counters) {
+void ReceiverMeshMemo::update(const Scene& scene, const MeshSource& source, MeshGrid grid, MeshMemoCounters& counters,
+                              const Parallel& parallel) {
   // The memo is only valid for the same face frame, lattice, chunks and tolerance.
   const double eps = scene.tolerance().length();
   if (!sameFrame(frame_, source.frame) || grid_.spacing != grid.spacing || eps_ != eps ||
@@ -307,7 +158,7 @@ void ReceiverMeshMemo::update(const Scene& scene, const MeshSource& source, Mesh
     grid_ = grid;
     eps_ = eps;
   }
-  MeshMemoUpdate(*this, scene, source, counters).run();
+  MeshMemoUpdate(*this, scene, source, counters).run(parallel);
 }
 
 }  // namespace penumbra

@@ -1,0 +1,183 @@
+#include "core/mesh/cell_lighting.h"
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+
+#include "core/illum/face_lookup.h"
+#include "core/illum/light_sum.h"
+#include "core/mesh/cell_triangulation.h"
+#include "core/mesh/fingerprint.h"
+#include "core/mesh/lattice_split.h"
+
+namespace penumbra {
+
+namespace {
+
+Vec2 centroid(const Polygon2& polygon) {
+  Vec2 middle{0.0};
+  for (const Vec2& q : polygon) middle += q;
+  return middle / double(polygon.size());
+}
+
+}  // namespace
+
+void CellMemo::clearOutput() {
+  emitted.clear();
+  triangles.clear();
+  pieceChunks.clear();
+  pieceEmitted.clear();
+  pieceTriangles.clear();
+}
+
+void CellLighter::Inputs::clear() {
+  outline.clear();
+  occluders.clear();
+  occluderPoints.clear();
+  occluderSizes.clear();
+  cornerFromCell.clear();
+  cornerValues.clear();
+}
+
+uint64_t CellLighter::Inputs::fingerprint() const {
+  Fingerprint f;
+  f.addBytes(std::span<const Vec2>(outline));
+  f.add(uint64_t(occluders.size()));
+  for (const OccluderEntry& e : occluders) {
+    f.add(uint64_t(e.light) << 1 | uint64_t(e.umbra));
+    f.add(uint64_t(e.face.object) << 32 | uint64_t(e.face.face));
+  }
+  f.addBytes(std::span<const Vec3>(occluderPoints));
+  f.addBytes(std::span<const uint32_t>(occluderSizes));
+  f.addBytes(std::span<const uint8_t>(cornerFromCell));
+  f.add(uint64_t(cornerValues.size()));
+  for (const VertexIrradiance& v : cornerValues) {
+    for (int c = 0; c < 3; ++c) f.add(v.irradiance[c]);
+    f.add(uint64_t(v.lightClass));
+  }
+  return f.value();
+}
+
+CellLighter::CellLighter(const Scene& scene, const MeshSource& source, double spacing,
+                         double chunkSide)
+    : scene_(scene),
+      source_(source),
+      eps_(scene.tolerance().length()),
+      spacing_(spacing),
+      chunkSide_(chunkSide),
+      dark_(scene.lights().size()) {}
+
+// A point is on a value discontinuity (D0) when an occluder of a cell around it
+// has its plane through it (it touches the receiver there): it then takes its
+// value per side, as the limit from each cell whose list holds such a face (in a
+// cell without one the value is continuous up to the point). "Through it" is the
+// geometric predicate (length tolerance), not onPlane(): a point within onPlane() of
+// the plane but off the contact line (e.g. on a line meeting it at a shallow angle
+// near a footprint corner) lies inside one side, where the value is the point
+// value (the face does not shadow it, SCENE_FORMAT.md), with no other side's
+// copy to carry that value.
+bool CellLighter::onContact(const Vec3& p, const OccluderList& list) const {
+  for (const OccluderEntry& entry : list) {
+    const Face* face = findFace(scene_, entry.face);
+    if (face && std::abs(face->plane.signedDistance(p)) <= eps_) return true;
+  }
+  return false;
+}
+
+MeshChunkKey CellLighter::chunkOf(const Polygon2& piece) const {
+  if (!(chunkSide_ > 0)) return MeshChunkKey{};
+  const Vec2 middle = centroid(piece);
+  return MeshChunkKey{int64_t(std::floor(middle.x / chunkSide_)),
+                      int64_t(std::floor(middle.y / chunkSide_))};
+}
+
+uint64_t CellLighter::gather(CellId c) {
+  const DmTree& tree = source_.tree;
+  const HalfEdgeMesh& halfEdges = tree.mesh();
+  const OccluderList& list = halfEdges.cell(c).occluders;
+  std::fill(dark_.begin(), dark_.end(), false);
+  for (const OccluderEntry& entry : list)
+    if (entry.umbra) dark_[entry.light] = true;
+  const bool anyDark = std::find(dark_.begin(), dark_.end(), true) != dark_.end();
+  inputs_.clear();
+  corners_.clear();
+  for (HalfEdgeId h : halfEdges.loop(c)) corners_.push_back(halfEdges.halfEdge(h).origin);
+  for (VertexId v : corners_) inputs_.outline.push_back(tree.position(v));
+  inputs_.occluders = list;
+  for (const OccluderEntry& entry : list) {
+    const Face* face = findFace(scene_, entry.face);
+    inputs_.occluderSizes.push_back(face ? uint32_t(face->polygon.size()) : 0);
+    if (face)
+      inputs_.occluderPoints.insert(inputs_.occluderPoints.end(), face->polygon.begin(),
+                                    face->polygon.end());
+  }
+  for (size_t i = 0; i < corners_.size(); ++i) {
+    const VertexId v = corners_[i];
+    // Only a face of this cell's list can hide light from the cell and not from the
+    // corner (it passes through the corner); with none, the corner's value is the limit.
+    const bool fromCell = onContact(source_.frame.to3D(inputs_.outline[i]), list);
+    inputs_.cornerFromCell.push_back(fromCell ? 1 : 0);
+    inputs_.cornerValues.push_back(fromCell  ? VertexIrradiance{}
+                                   : anyDark ? sumLights(scene_, source_.perLight[v.index], &dark_)
+                                             : source_.values[v.index]);
+  }
+  fingerprint_ = inputs_.fingerprint();
+  return fingerprint_;
+}
+
+// The value of a point of the cell's closure, as seen from the cell (centre: its centroid).
+// A point lit here is kept for the cell: a lattice point is a corner of up to four of its
+// pieces, and the same inputs give the same bits, so it is lit once.
+VertexIrradiance CellLighter::valueAt(const Vec2& q, const OccluderList& list, const Vec3& centre) {
+  const Polygon2& polygon = inputs_.outline;
+  const size_t corner = size_t(std::find(polygon.begin(), polygon.end(), q) - polygon.begin());
+  if (corner < polygon.size() && !inputs_.cornerFromCell[corner])
+    return inputs_.cornerValues[corner];
+  for (const auto& [at, value] : litInCell_)
+    if (at == q) return value;
+  const Vec3 p = source_.frame.to3D(q);
+  const Vec3 normal = source_.frame.normal;
+  // A contact corner or lattice point takes the limit from the cell; another lattice
+  // point is lit exactly from this cell's list (cases 2 and 3 keep it dark in a light's umbra).
+  const VertexIrradiance value = corner < polygon.size() || onContact(p, list)
+                                     ? illuminatePointFromCell(scene_, p, normal, centre - p, list)
+                                     : illuminatePoint(scene_, p, normal, {&list});
+  litInCell_.push_back({q, value});
+  return value;
+}
+
+void CellLighter::emit(CellId c, CellMemo& out) {
+  const OccluderList& list = source_.tree.mesh().cell(c).occluders;
+  const Polygon2& polygon = inputs_.outline;
+  out.clearOutput();
+  out.valid = true;
+  out.inputs = fingerprint_;
+  Vec3 centre{0.0};
+  for (const Vec2& q : polygon) centre += source_.frame.to3D(q);
+  centre /= double(polygon.size());
+  litInCell_.clear();
+  std::vector<uint32_t> pieceCorners;
+  for (const Polygon2& piece : splitByLattice(polygon, spacing_, eps_)) {
+    out.pieceChunks.push_back(chunkOf(piece));
+    out.pieceEmitted.push_back(uint32_t(out.emitted.size()));
+    out.pieceTriangles.push_back(uint32_t(out.triangles.size()));
+    pieceCorners.clear();
+    for (const Vec2& q : piece) {
+      pieceCorners.push_back(uint32_t(out.emitted.size()));
+      out.emitted.push_back({q, valueAt(q, list, centre)});
+    }
+    const CellTriangulation triangulation = triangulateConvexCell(piece, eps_);
+    if (triangulation.usesCentre) {
+      const Vec2 middle = centroid(piece);
+      pieceCorners.push_back(uint32_t(out.emitted.size()));
+      out.emitted.push_back({middle, illuminatePoint(scene_, source_.frame.to3D(middle),
+                                                     source_.frame.normal, {&list})});
+    }
+    for (const auto& t : triangulation.triangles)
+      out.triangles.push_back({pieceCorners[t[0]], pieceCorners[t[1]], pieceCorners[t[2]]});
+  }
+  out.pieceEmitted.push_back(uint32_t(out.emitted.size()));
+  out.pieceTriangles.push_back(uint32_t(out.triangles.size()));
+}
+
+}  // namespace penumbra

@@ -1,0 +1,92 @@
+// What one DM-tree cell hands the display mesh: its pieces (lattice squares' parts of the
+// cell), their points with values and their triangles, and a fingerprint of the inputs
+// they come from. A CellLighter reads the scene and the receiver; one per thread, its
+// buffers reused from cell to cell.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "core/dmtree/dm_tree.h"
+#include "core/geom/plane_frame.h"
+#include "core/illum/vertex_illumination.h"
+
+namespace penumbra {
+
+// A display chunk: the lattice-aligned block (x, y) of a receiver's 2D frame.
+struct MeshChunkKey {
+  int64_t x = 0, y = 0;
+  auto operator<=>(const MeshChunkKey&) const = default;
+};
+
+// What meshing a receiver reads: its tree and its vertices' values (the engine's Receiver).
+struct MeshSource {
+  FaceId face;
+  const PlaneFrame& frame;
+  const DmTree& tree;
+  const std::vector<VertexIrradiance>& values;            // by VertexId
+  const std::vector<std::vector<VertexLight>>& perLight;  // [vertex][light]
+};
+
+// What one cell emitted, and a fingerprint of what that depends on (its outline,
+// occluder list, the listed faces' polygons, its corners' values): an equal
+// fingerprint means the cell would emit the same again (a 64-bit collision, ~2⁻⁶⁴ a
+// compare, would keep a stale cell). Keeping the inputs themselves cost ~1.5 kB a
+// cell, most of a dense room's memory.
+struct CellMemo {
+  bool valid = false;
+  uint64_t inputs = 0;
+  // The output: builder calls (point, value) in order, and triangles into them,
+  // per piece (a lattice square's part of the cell): its chunk and where its
+  // points and triangles start (one more entry closes the last piece).
+  std::vector<std::pair<Vec2, VertexIrradiance>> emitted;
+  std::vector<std::array<uint32_t, 3>> triangles;
+  std::vector<MeshChunkKey> pieceChunks;
+  std::vector<uint32_t> pieceEmitted, pieceTriangles;
+  void clearOutput();
+};
+
+class CellLighter {
+ public:
+  // spacing: the lattice (0: none); chunkSide: a chunk's side (0: one chunk).
+  CellLighter(const Scene& scene, const MeshSource& source, double spacing, double chunkSide);
+
+  // Gathers cell c's inputs and returns their fingerprint.
+  uint64_t gather(CellId c);
+  // Triangulates the gathered cell (cut by the lattice) into `out`: valid, with the
+  // fingerprint. Vertices repeat once per side where the value jumps (contact edges,
+  // cells in a light's umbra) through the values handed in.
+  void emit(CellId c, CellMemo& out);
+
+ private:
+  bool onContact(const Vec3& p, const OccluderList& list) const;
+  VertexIrradiance valueAt(const Vec2& q, const OccluderList& list, const Vec3& centre);
+  MeshChunkKey chunkOf(const Polygon2& piece) const;
+
+  // What a cell's triangles depend on, gathered for the cell being lit.
+  struct Inputs {
+    Polygon2 outline;                     // the cell's loop positions
+    OccluderList occluders;               // its list
+    std::vector<Vec3> occluderPoints;     // the listed faces' world polygons, concatenated
+    std::vector<uint32_t> occluderSizes;  // their vertex counts (0: not a scene face)
+    // Per loop corner: 1 if lit from the cell (a face of its list through it), else 0 and its
+    // value.
+    std::vector<uint8_t> cornerFromCell;
+    std::vector<VertexIrradiance> cornerValues;
+    void clear();
+    uint64_t fingerprint() const;
+  };
+
+  const Scene& scene_;
+  const MeshSource& source_;
+  const double eps_, spacing_, chunkSide_;
+  Inputs inputs_;
+  uint64_t fingerprint_ = 0;
+  std::vector<bool> dark_;
+  std::vector<VertexId> corners_;
+  std::vector<std::pair<Vec2, VertexIrradiance>> litInCell_;  // points lit for the current cell
+};
+
+}  // namespace penumbra
