@@ -23,6 +23,9 @@ struct GlbOptions {
   double colorScale = 0;
   bool lights = true;           // a mesh "lights": the light polygons, COLOR_0 = radiance × colorScale
   std::vector<Segment3> edges;  // non-empty: a mesh "discontinuities" of LINES (dmEdges())
+  // Not null: indirect irradiance per vertex (gi::vertexIndirect of the same mesh, same shape),
+  // added to the direct one: radiance = albedo / π × (E_direct + E_indirect).
+  const Mesh* indirect = nullptr;
 };
 
 struct GlbFile {
