@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include <chrono>
 #include <cstring>
+#include <optional>
+#include <thread>
 
 #include "core/engine/engine.h"
 #include "core/engine/parallel.h"
@@ -107,6 +110,41 @@ TEST(MeshIndirect, AnEditBakesTheNewVersion) {
   EXPECT_EQ(after->get_header_value("X-Penumbra-Version"), "1");
   EXPECT_EQ(after->get_header_value("X-Penumbra-Indirect-Cached"), "0");
   EXPECT_NE(binaryIndirect(before->body), binaryIndirect(after->body));
+}
+
+// A bake runs outside the engine: an edit and a plain mesh read sent while it runs answer long
+// before it ends; the bake is of the version it started from, and a second request shares it.
+TEST(MeshIndirect, EditsAndReadsDoNotWaitForABake) {
+  RunningServer running;
+  const std::string id = running.addBundled("cubes15");
+  const std::string url = "/api/scenes/" + id + "/mesh?format=bin&indirect=1&sensor_size=16";
+  std::optional<httplib::Result> baking, sharing;
+  std::thread first([&] { baking.emplace(running.client().Get(url.c_str())); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  std::thread second([&] { sharing.emplace(running.client().Get(url.c_str())); });
+  auto client = running.client();
+  const auto start = std::chrono::steady_clock::now();
+  const json served = bodyJson(client.Get(("/api/scenes/" + id).c_str()));
+  const json& cube = served["scene"]["objects"].back();
+  json frame = moveFrame(cube["id"], 0, 0, 0);
+  frame["edits"][0]["transform"] = cube["transform"];
+  frame["edits"][0]["transform"]["translate"][0] = cube["transform"]["translate"][0].get<double>() + 0.01;
+  const auto edit = postJson(client, "/api/scenes/" + id + "/edits", frame);
+  const auto plain = client.Get(("/api/scenes/" + id + "/mesh?format=bin").c_str());
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  first.join();
+  second.join();
+  ASSERT_EQ(edit->status, 200) << edit->body;
+  ASSERT_EQ(plain->status, 200);
+  ASSERT_TRUE(*baking && *sharing);
+  ASSERT_EQ((*baking)->status, 200);
+  const double bakeSeconds = std::stod((*baking)->get_header_value("X-Penumbra-Indirect-Seconds"));
+  EXPECT_LT(waited, bakeSeconds / 2) << "edit + read " << waited << " s, bake " << bakeSeconds << " s";
+  EXPECT_EQ((*baking)->get_header_value("X-Penumbra-Version"), "0");
+  EXPECT_EQ(plain->get_header_value("X-Penumbra-Version"), "1");
+  EXPECT_EQ((*baking)->get_header_value("X-Penumbra-Indirect-Cached"), "0");
+  EXPECT_EQ((*sharing)->get_header_value("X-Penumbra-Indirect-Cached"), "1");
+  EXPECT_EQ((*baking)->body, (*sharing)->body);
 }
 
 std::vector<float> colorsOf(const std::string& glb) {
