@@ -35,7 +35,8 @@ struct GlbFile {
 };
 
 // Every face of every object is in its object's mesh: receivers with their mesh
-// vertices, faces that receive no light as black triangles.
+// vertices, faces that receive no light as black triangles. Throws std::invalid_argument when
+// options.indirect has not the mesh's receivers.
 GlbFile meshToGlb(const Scene& scene, const Mesh& mesh, const GlbOptions& options = {});
 // Throws std::runtime_error when the file cannot be written.
 GlbFile saveMeshGlb(const Scene& scene, const Mesh& mesh, const std::string& path, const GlbOptions& options = {});
