@@ -1,10 +1,15 @@
 #include <sys/resource.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "core/engine/engine.h"
+#include "core/engine/parallel.h"
+#include "core/gi/sensor_gi.h"
+#include "core/render/ray_scene.h"
 #include "interchange/dm_edges.h"
 #include "interchange/glb_export.h"
 #include "protocol/mesh_json.h"
@@ -51,10 +56,26 @@ nlohmann::json statsJson(const BuildStats& s, const Mesh& mesh) {
                        {"total", t.total()}}}};
 }
 
+// --indirect: every vertex's indirect irradiance (sensors of --sensor-size², core/gi), timed.
+std::optional<Mesh> bakedIndirect(const Args& args, const Scene& scene, const Mesh& mesh, int threads) {
+  if (!args.flag("indirect")) {
+    if (args.option("sensor-size") || args.option("bounces")) throw UsageError("--sensor-size and --bounces need --indirect");
+    return std::nullopt;
+  }
+  const int sensorSize = args.intOption("sensor-size", 8, 1, 64);
+  const int bounces = args.intOption("bounces", 1, 1, 4);
+  const auto start = std::chrono::steady_clock::now();
+  const RayScene rays(scene);
+  Mesh indirect = gi::vertexIndirect(scene, rays, mesh, sensorSize, bounces, Parallel(threads));
+  std::fprintf(stderr, "indirect light: %zu vertices, sensors of %d², %d bounce(s), %.3f s\n", mesh.vertexCount(),
+               sensorSize, bounces, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return indirect;
+}
+
 }  // namespace
 
 int runBuild(const Args& args) {
-  args.allowOnly({"out", "grid", "color-scale", "threads"});
+  args.allowOnly({"out", "grid", "color-scale", "threads", "sensor-size", "bounces"});
   const std::string scenePath = args.positional(0, "SCENE");
   const auto out = args.option("out");
   if (!out) throw UsageError("build needs --out MESH");
@@ -76,6 +97,8 @@ int runBuild(const Args& args) {
     interchange::GlbOptions glb;
     glb.colorScale = args.doubleOption("color-scale", 0);
     if (args.flag("edges")) glb.edges = interchange::dmEdges(engine);
+    const std::optional<Mesh> indirect = bakedIndirect(args, engine.scene(), mesh, settings.threads);
+    if (indirect) glb.indirect = &*indirect;
     const interchange::GlbFile file = interchange::saveMeshGlb(engine.scene(), mesh, *out, glb);
     std::fprintf(stderr, "GLB COLOR_0 = radiance (W m^-2 sr^-1) x %.9g\n", file.colorScale);
   } else {

@@ -18,6 +18,7 @@ commands:
   reference SCENE --grid N --out MESH  exact reference irradiance on an N×N grid per receiving face
   build SCENE --out MESH [--stats]     the discontinuity mesh; --stats prints counters and timings as JSON
            [--color-scale S] [--edges] MESH ending in .glb: glTF binary, COLOR_0 = radiance × S
+           [--indirect [--sensor-size N] [--bounces B]]  .glb: COLOR_0 with the indirect light (sensors of N², 8)
            [--grid G]                  overlap-cube tiles per side (default: from the face count)
            [--threads N]               build threads (also replay, serve); default: every core
   render SCENE --out IMG.png|IMG.exr   an image shaded by the DM mesh (built, or --mesh MESH);
@@ -57,7 +58,7 @@ int dispatch(int argc, char** argv) {
   if (command == "validate") return runValidate(Args(argc, argv, 2, {}));
   if (command == "info") return runInfo(Args(argc, argv, 2, {}));
   if (command == "reference") return runReference(Args(argc, argv, 2, {}));
-  if (command == "build") return runBuild(Args(argc, argv, 2, {"stats", "edges"}));
+  if (command == "build") return runBuild(Args(argc, argv, 2, {"stats", "edges", "indirect"}));
   if (command == "import") return runImport(Args(argc, argv, 2, {}));
   if (command == "render") return runRender(Args(argc, argv, 2, {"reference", "stats"}));
   if (command == "replay") return runReplay(Args(argc, argv, 2, {"verify"}));

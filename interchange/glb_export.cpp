@@ -115,20 +115,27 @@ class GltfBuilder {
   tinygltf::Model model_;
 };
 
-Vec3 radianceOf(const Scene& scene, const ReceiverMesh& receiver, size_t vertex) {
-  return scene.albedo(receiver.face) / M_PI * receiver.irradiance[vertex];
+// indirect: the same receiver's indirect irradiance (GlbOptions::indirect), or null.
+Vec3 radianceOf(const Scene& scene, const ReceiverMesh& receiver, const ReceiverMesh* indirect, size_t vertex) {
+  const Vec3 e = receiver.irradiance[vertex] + (indirect ? indirect->irradiance.at(vertex) : Vec3(0.0));
+  return scene.albedo(receiver.face) / M_PI * e;
 }
 
 }  // namespace
 
 GlbFile meshToGlb(const Scene& scene, const Mesh& mesh, const GlbOptions& options) {
+  if (options.indirect && options.indirect->receivers.size() != mesh.receivers.size())
+    throw std::invalid_argument("GLB: the indirect mesh is not of the lit mesh's shape");
+  auto indirectOf = [&](const ReceiverMesh& receiver) {
+    return options.indirect ? &options.indirect->receivers[size_t(&receiver - mesh.receivers.data())] : nullptr;
+  };
   GlbFile file;
   file.colorScale = options.colorScale;
   if (!(file.colorScale > 0)) {
     double brightest = 0;
     for (const ReceiverMesh& receiver : mesh.receivers)
       for (size_t v = 0; v < receiver.positions.size(); ++v) {
-        const Vec3 radiance = radianceOf(scene, receiver, v);
+        const Vec3 radiance = radianceOf(scene, receiver, indirectOf(receiver), v);
         brightest = std::max({brightest, radiance.x, radiance.y, radiance.z});
       }
     file.colorScale = brightest > 0 ? 1 / brightest : 1;
@@ -152,7 +159,7 @@ GlbFile meshToGlb(const Scene& scene, const Mesh& mesh, const GlbOptions& option
     for (const ReceiverMesh* receiver : receiversOf[handle]) {
       const uint32_t first = uint32_t(data.vertexCount());
       for (size_t v = 0; v < receiver->positions.size(); ++v)
-        data.add(receiver->positions[v], radianceOf(scene, *receiver, v) * file.colorScale);
+        data.add(receiver->positions[v], radianceOf(scene, *receiver, indirectOf(*receiver), v) * file.colorScale);
       for (const auto& t : receiver->triangles) data.indices.insert(data.indices.end(), {first + t[0], first + t[1], first + t[2]});
     }
     for (const Face* face : darkFacesOf[handle]) {  // lit by nothing: black, as a fan (faces are convex)
@@ -189,6 +196,7 @@ GlbFile meshToGlb(const Scene& scene, const Mesh& mesh, const GlbOptions& option
     ++file.meshes;
   }
   builder.setExtras({{"color_scale", tinygltf::Value(file.colorScale)},
+                     {"indirect", tinygltf::Value(options.indirect != nullptr)},
                      {"color", tinygltf::Value(std::string("COLOR_0 = linear radiance (W m^-2 sr^-1) x color_scale"))}});
   file.bytes = builder.glb();
   return file;

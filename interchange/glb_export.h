@@ -23,6 +23,9 @@ struct GlbOptions {
   double colorScale = 0;
   bool lights = true;           // a mesh "lights": the light polygons, COLOR_0 = radiance × colorScale
   std::vector<Segment3> edges;  // non-empty: a mesh "discontinuities" of LINES (dmEdges())
+  // Not null: indirect irradiance per vertex (gi::vertexIndirect of the same mesh, same shape),
+  // added to the direct one: radiance = albedo / π × (E_direct + E_indirect).
+  const Mesh* indirect = nullptr;
 };
 
 struct GlbFile {
@@ -32,7 +35,8 @@ struct GlbFile {
 };
 
 // Every face of every object is in its object's mesh: receivers with their mesh
-// vertices, faces that receive no light as black triangles.
+// vertices, faces that receive no light as black triangles. Throws std::invalid_argument when
+// options.indirect has not the mesh's receivers.
 GlbFile meshToGlb(const Scene& scene, const Mesh& mesh, const GlbOptions& options = {});
 // Throws std::runtime_error when the file cannot be written.
 GlbFile saveMeshGlb(const Scene& scene, const Mesh& mesh, const std::string& path, const GlbOptions& options = {});

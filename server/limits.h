@@ -38,6 +38,12 @@ inline constexpr uint64_t kMaxImageSampleBudget = uint64_t(1) << 24;
 inline constexpr uint64_t kMaxGiSensorSize = 64;
 inline constexpr uint64_t kMaxGiBounces = 4;
 inline constexpr uint64_t kMaxGiRayBudget = uint64_t(1) << 27;
+// Indirect light baked on the mesh (`mesh?indirect=1`): sensors of 8² texels at every vertex by
+// default, vertices × sensor_size² × bounces at most 2^27 (the 150-cube scene's 62 799 vertices at
+// 8²: 2^22), and the bakes of the newest 2 (version, settings) kept per scene.
+inline constexpr int kDefaultIndirectSensorSize = 8;
+inline constexpr uint64_t kMaxIndirectRayBudget = uint64_t(1) << 27;
+inline constexpr size_t kIndirectCacheEntries = 2;
 inline constexpr uint64_t kDefaultImageSamples = 16;  // the CLI's MicrofacetSettings
 // Scene ids in URLs: letters, digits, '_', '-', '.' (so file stems work).
 inline constexpr const char* kIdPattern = "([A-Za-z0-9_.-]+)";

@@ -54,9 +54,17 @@ uint8_t classCode(LightClass c) {
   return kLit;
 }
 
+// A part's vertices' indirect irradiance: its run of its receiver's vertices in the bake.
+void writeIndirect(Writer& out, const IndirectBake& bake, const SceneSnapshot& snapshot, size_t part) {
+  const size_t count = snapshot.parts[part].mesh->positions.size();
+  const std::vector<Vec3>& e = bake.mesh.receivers.at(bake.partReceiver[part]).irradiance;
+  for (size_t v = bake.partOffset[part]; v < bake.partOffset[part] + count; ++v)
+    for (int c = 0; c < 3; ++c) out.f32(e.at(v)[c]);
+}
+
 }  // namespace
 
-std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection) {
+std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection, const IndirectBake* indirect) {
   // Object names: each named once, parts refer to them by index.
   std::vector<std::string> names;
   std::map<std::string, uint32_t> nameIndex;
@@ -78,13 +86,13 @@ std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection
   size_t namesBytes = 0;
   for (const std::string& n : names) namesBytes += 4 + (n.size() + 3) / 4 * 4;
   Writer out(kHeaderBytes + namesBytes + selection.parts.size() * kPartRecordBytes +
-             selection.removedParts.size() * kRemovedRecordBytes + vertices * 25 + triangles * 12 +
+             selection.removedParts.size() * kRemovedRecordBytes + vertices * (indirect ? 37 : 25) + triangles * 12 +
              selection.parts.size() * 4);
 
   out.raw(kMagic, 4);
   out.u32(kLayoutVersion);
   out.u32(snapshot.version);
-  out.u32(selection.since ? kFlagDelta : 0);
+  out.u32((selection.since ? kFlagDelta : 0) | (indirect ? kFlagIndirect : 0));
   out.u32(selection.since.value_or(0));
   out.u32(names.size());
   out.u32(selection.parts.size());
@@ -122,6 +130,7 @@ std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection
       for (int c = 0; c < 3; ++c) out.f32(p[c]);
     for (const Vec3& e : r.irradiance)
       for (int c = 0; c < 3; ++c) out.f32(e[c]);
+    if (indirect) writeIndirect(out, *indirect, snapshot, i);
     for (LightClass c : r.classes) out.u8(classCode(c));
     out.padTo4();
     for (const auto& t : r.triangles)

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "server/indirect_cache.h"
 #include "server/scene_snapshot.h"
 
 namespace penumbra::server::mesh_binary {
@@ -15,11 +16,16 @@ inline constexpr size_t kHeaderBytes = 40;
 inline constexpr size_t kPartRecordBytes = 40;
 inline constexpr size_t kRemovedRecordBytes = 16;
 inline constexpr uint32_t kFlagDelta = 1;  // header flags: a `since` delta, not the whole mesh
+// header flags: each part's irradiance is followed by its indirect irradiance (f32[3V]); only
+// when the request asked (indirect=1), so readers of layout 2 without it see the same bytes.
+inline constexpr uint32_t kFlagIndirect = 2;
 // Class codes in the classes array.
 inline constexpr uint8_t kLit = 0, kPenumbra = 1, kUmbra = 2;
 
-// Encodes the selected parts (receivers' display chunks) of a snapshot. Throws std::overflow_error if a
+// Encodes the selected parts (receivers' display chunks) of a snapshot, with each vertex's
+// indirect irradiance when `indirect` (a bake of this snapshot) is given. Throws std::overflow_error if a
 // count or version does not fit 32 bits.
-std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection);
+std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection,
+                   const IndirectBake* indirect = nullptr);
 
 }  // namespace penumbra::server::mesh_binary

@@ -14,6 +14,7 @@
 
 #include "core/engine/engine.h"
 #include "server/edit_scheduler.h"
+#include "server/indirect_cache.h"
 #include "server/limits.h"
 #include "server/part_changes.h"
 #include "server/scene_snapshot.h"
@@ -86,6 +87,9 @@ class SceneSession {
   // so waiting frames are bounded and clients take turns.
   EditScheduler& editQueue() { return editQueue_; }
 
+  // Indirect light baked per version on first request (mesh?indirect=1); independent of edits.
+  IndirectCache& indirectCache() const { return indirect_; }
+
   // Marks the session deleted: waiters wake, event streams end.
   void close();
   bool closed() const;
@@ -118,6 +122,7 @@ class SceneSession {
   std::shared_ptr<const SceneSnapshot> current_;
   std::optional<RebuildReport> lastRebuild_;
   bool closed_ = false;
+  mutable IndirectCache indirect_{kIndirectCacheEntries};
 };
 
 }  // namespace penumbra::server

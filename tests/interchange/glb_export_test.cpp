@@ -150,6 +150,41 @@ TEST(GlbExport, ExplicitScaleAndDiscontinuityLines) {
   }
 }
 
+// GlbOptions::indirect: COLOR_0 = albedo/π × (E_direct + E_indirect) × scale, flagged in the extras.
+TEST(GlbExport, IndirectIrradianceIsAddedToTheColours) {
+  const Scene scene = protocol::loadSceneFile(kCornell);
+  Engine engine(scene);
+  const Mesh mesh = engine.mesh();
+  Mesh indirect = mesh;
+  for (ReceiverMesh& r : indirect.receivers)
+    for (Vec3& e : r.irradiance) e = Vec3(1.0, 2.0, 3.0);
+  GlbOptions options;
+  options.colorScale = 0.25;
+  options.indirect = &indirect;
+  const tinygltf::Model model = readGlb(meshToGlb(engine.scene(), mesh, options).bytes);
+  EXPECT_TRUE(model.asset.extras.Get("penumbra").Get("indirect").Get<bool>());
+  const ReceiverMesh& first = mesh.receivers[0];
+  ASSERT_EQ(first.face.object, scene.handleOf(0));
+  const std::vector<float> colors = floats(model, model.meshes[0].primitives[0].attributes.at("COLOR_0"));
+  for (int c = 0; c < 3; ++c)
+    EXPECT_FLOAT_EQ(colors[size_t(c)],
+                    float(scene.albedo(first.face)[c] / M_PI * (first.irradiance[0][c] + double(c + 1)) * 0.25));
+  Mesh wrongShape = mesh;
+  wrongShape.receivers.pop_back();
+  options.indirect = &wrongShape;
+  EXPECT_THROW(meshToGlb(engine.scene(), mesh, options), std::invalid_argument);
+}
+
+TEST(GlbExport, BuildCommandWritesIndirectGlb) {
+  const auto dir = scratchDir();
+  const std::string out = (dir / "cornell_gi.glb").string();
+  ASSERT_EQ(runPenumbra("build " + kCornell + " --out " + out + " --indirect --sensor-size 4", dir / "build"), 0);
+  std::ifstream in(out, std::ios::binary);
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_TRUE(readGlb(bytes).asset.extras.Get("penumbra").Get("indirect").Get<bool>());
+  EXPECT_NE(runPenumbra("build " + kCornell + " --out " + out + " --sensor-size 4", dir / "build2"), 0);
+}
+
 TEST(GlbExport, BuildCommandWritesGlbByExtension) {
   const auto dir = scratchDir();
   const std::string out = (dir / "cornell.glb").string();

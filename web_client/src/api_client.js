@@ -150,15 +150,25 @@ export class ApiClient {
 
   // A PNG for a camera (cameraQuery: URLSearchParams entries from cameraToQuery); `samples`:
   // microfacet paths per pixel (null: the server's default).
-  async image(id, width, height, cameraQuery, signal, samples = null) {
+  // The whole binary mesh with each vertex's baked indirect light (docs/API.md "Indirect light").
+  async meshIndirect(id, signal) {
+    const response = await this.request('GET', `${this.scenePath(id)}/mesh?format=bin&indirect=1`, { signal });
+    return { buffer: await response.arrayBuffer(), seconds: Number(response.headers.get('X-Penumbra-Indirect-Seconds')) };
+  }
+
+  // gi: bounced light by sensors (the server's defaults) instead of the flat ambient term.
+  async image(id, width, height, cameraQuery, signal, samples = null, gi = false) {
     const params = new URLSearchParams({ width: String(width), height: String(height), ...cameraQuery });
     if (samples) params.set('samples', String(samples));
+    if (gi) params.set('gi', 'sensors');
     const response = await this.request('GET', `${this.scenePath(id)}/image?${params}`, { signal });
     return {
       blob: await response.blob(),
       version: Number(response.headers.get('X-Penumbra-Version')),
       seconds: Number(response.headers.get('X-Penumbra-Render-Seconds')),
       samples: Number(response.headers.get('X-Penumbra-Samples')),
+      giSensors: response.headers.has('X-Penumbra-Gi-Sensors') ? Number(response.headers.get('X-Penumbra-Gi-Sensors')) : null,
+      giSeconds: Number(response.headers.get('X-Penumbra-Gi-Seconds')),
     };
   }
 

@@ -21,6 +21,7 @@ import { MeshSync } from './mesh_sync.js';
 import { receiverKey } from './mesh_binary.js';
 import { ReceiverLayer } from './receiver_layer.js';
 import { RenderPanel } from './render_panel.js';
+import { BakedIndirect } from './baked_indirect.js';
 import { SceneObjects } from './scene_objects.js';
 import { showImportReport } from './import_report_panel.js';
 import { installSceneFileLoader } from './scene_file_loader.js';
@@ -121,6 +122,7 @@ class App {
       if (!this.toneMap.calibrated) this.toneMap.calibrate(decoded.parts);
       this.glossy.setExposure(this.toneMap.exposure);
       this.receivers.apply(decoded, this.toneMap);
+      if (this.bakedIndirect) this.bakedIndirect.schedule(); // a new version: bake it once edits pause
       $('version').textContent = String(decoded.sceneVersion);
       this.view.requestRender();
     });
@@ -153,6 +155,12 @@ class App {
     this.renderPanel = new RenderPanel(this.api, sceneId, this.view, $('render'), $('render-info'), this.fail,
       () => hasPhysicalMaterials(this.sceneJson));
     this.view.onCameraChange(() => this.renderPanel.schedule());
+    this.bakedIndirect = new BakedIndirect(this.api, sceneId, (indirect) => {
+      this.receivers.setIndirect(indirect, this.toneMap);
+      const { version, seconds } = this.bakedIndirect;
+      $('indirect-info').textContent = indirect ? `v${version} baked in ${(seconds * 1000).toFixed(0)} ms` : '';
+      this.view.requestRender();
+    }, this.fail);
     this.events = new EventSync(this.api.eventsUrl(sceneId), {
       onVersion: (version) => this.versionAnnounced(version),
       onError: this.fail,

@@ -1,4 +1,4 @@
-// Decodes the server's binary mesh (docs/API.md "Binary", magic PNMB, layout 2: parts, each one display
+// Decodes the server's binary mesh (docs/API.md "Binary", magic PNMB, layout 2: parts, with flag 2 their indirect light, each one display
 // chunk of one receiver) into typed arrays viewing the response buffer in place. Throws an Error naming what is malformed.
 
 const MAGIC = 'PNMB';
@@ -6,6 +6,8 @@ const LAYOUT_VERSION = 2;
 const HEADER_BYTES = 40;
 const PART_RECORD_BYTES = 40;
 const REMOVED_RECORD_BYTES = 16;
+const FLAG_DELTA = 1;
+const FLAG_INDIRECT = 2; // each part's irradiance is followed by its indirect irradiance (mesh?indirect=1)
 
 export const CLASS_LIT = 0;
 export const CLASS_PENUMBRA = 1;
@@ -37,7 +39,7 @@ export function decodeMeshBinary(buffer) {
   if (u32(4) !== LAYOUT_VERSION)
     throw new Error(`binary mesh: unsupported layout version ${u32(4)} (this page reads layout ${LAYOUT_VERSION})`);
   const header = {
-    sceneVersion: u32(8), delta: (u32(12) & 1) !== 0, since: u32(16),
+    sceneVersion: u32(8), delta: (u32(12) & FLAG_DELTA) !== 0, indirect: (u32(12) & FLAG_INDIRECT) !== 0, since: u32(16),
     names: u32(20), partCount: u32(24), removedCount: u32(28), totalVertices: u32(32), totalTriangles: u32(36),
   };
 
@@ -79,11 +81,15 @@ export function decodeMeshBinary(buffer) {
   for (const part of parts) {
     const v = part.vertexCount;
     const t = part.triangleCount;
-    need(offset, 24 * v + pad4(v) + 12 * t, `part ${part.key} arrays`);
+    need(offset, (header.indirect ? 36 : 24) * v + pad4(v) + 12 * t, `part ${part.key} arrays`);
     part.positions = new Float32Array(buffer, offset, 3 * v);
     offset += 12 * v;
     part.irradiance = new Float32Array(buffer, offset, 3 * v);
     offset += 12 * v;
+    if (header.indirect) {
+      part.indirect = new Float32Array(buffer, offset, 3 * v);
+      offset += 12 * v;
+    }
     part.classes = new Uint8Array(buffer, offset, v);
     offset += pad4(v);
     part.indices = new Uint32Array(buffer, offset, 3 * t);

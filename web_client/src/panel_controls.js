@@ -33,6 +33,9 @@ export function installPanelControls(app, editor) {
     app.view.requestRender();
     $('edge-legend').hidden = !event.target.checked;
   });
+  // Bounced light: by sensors in the server's image, baked per vertex on the mesh (both off at first).
+  $('toggle-gi').addEventListener('change', (event) => app.renderPanel.setGi(event.target.checked));
+  $('toggle-indirect').addEventListener('change', (event) => app.bakedIndirect.setOn(event.target.checked));
   $('rebuild').addEventListener('click', async () => {
     $('rebuild').disabled = true;
     try {

@@ -111,6 +111,7 @@ export class ReceiverLayer {
     this.stale = new Set(); // batch keys whose mesh no longer matches their parts
     this.byReceiver = new Map(); // receiver key → Set of part keys (never empty)
     this.merged = new Map(); // receiver key → merged view, until one of its parts changes
+    this.indirect = null; // part key → {indirect, vertexCount, version} baked (baked_indirect.js), or null
     this.vertices = 0;
     this.triangles = 0;
   }
@@ -123,7 +124,7 @@ export class ReceiverLayer {
     for (const removed of decoded.removedParts) this.remove(removed.key);
     for (const part of decoded.parts) {
       this.remove(part.key);
-      const entry = { part, colours: toneMap.colours(part.object, part.irradiance), edges: null };
+      const entry = { part, colours: toneMap.colours(part.object, part.irradiance, this.indirectOf(part)), edges: null };
       if (this.edgeGroup.visible) this.addEdges(entry);
       this.entries.set(part.key, entry);
       const batch = batchKey(part);
@@ -138,6 +139,24 @@ export class ReceiverLayer {
     }
     this.rebuildStale();
     if (this.onColours) this.onColours(decoded.delta ? touched : null);
+  }
+
+  // The baked indirect light of a part, when the bake is of this part's data (a part changed since
+  // shows the ambient term until the next bake arrives).
+  indirectOf(part) {
+    const baked = this.indirect && this.indirect.get(part.key);
+    return baked && baked.vertexCount === part.vertexCount && part.sceneVersion <= baked.version ? baked.indirect : null;
+  }
+
+  // New baked indirect light (null: none), every part recoloured with it.
+  setIndirect(indirect, toneMap) {
+    this.indirect = indirect;
+    for (const entry of this.entries.values()) {
+      entry.colours = toneMap.colours(entry.part.object, entry.part.irradiance, this.indirectOf(entry.part));
+      this.stale.add(batchKey(entry.part));
+    }
+    this.rebuildStale();
+    if (this.onColours) this.onColours(null);
   }
 
   // The mean display colour of a receiver's vertices ([r, g, b] linear), or null when none is held:

@@ -2,6 +2,7 @@
 // parameters), refreshed a short while after the camera or the scene version stops changing.
 // Scenes with microfacet materials refine progressively: a fast image with few samples first,
 // then better ones, each replacing the shown one; a new camera or version aborts the passes left.
+// With GI on, the last pass asks for bounced light by sensors and the info shows their count and time.
 
 const DEBOUNCE_MS = 250;
 const WIDTH = 320;
@@ -19,6 +20,12 @@ export class RenderPanel {
     this.lastVersion = null;
     this.passes = []; // {version, samples, seconds} of each image shown, the newest last (bounded)
     this.aborted = 0;
+    this.gi = false; // bounced light by sensors (gi=sensors), off by default: it costs seconds
+  }
+
+  setGi(on) {
+    this.gi = on;
+    this.refresh();
   }
 
   schedule() {
@@ -38,8 +45,10 @@ export class RenderPanel {
     const camera = this.view.cameraQuery();
     const passes = this.progressive() ? PROGRESSIVE_SAMPLES : [null];
     try {
-      for (const samples of passes) {
-        const image = await this.api.image(this.sceneId, width, height, camera, abort.signal, samples);
+      for (const [i, samples] of passes.entries()) {
+        // GI costs the same whatever the samples: only the last pass pays it, the first shows fast.
+        const gi = this.gi && i === passes.length - 1;
+        const image = await this.api.image(this.sceneId, width, height, camera, abort.signal, samples, gi);
         if (abort.signal.aborted) return;
         this.show(image, width, height, passes.length > 1 ? `${image.samples}/${passes.at(-1)} samples, ` : '');
       }
@@ -50,14 +59,15 @@ export class RenderPanel {
     }
   }
 
-  show({ blob, version, seconds, samples }, width, height, pass) {
+  show({ blob, version, seconds, samples, giSensors, giSeconds }, width, height, pass) {
     if (this.url) URL.revokeObjectURL(this.url);
     this.url = URL.createObjectURL(blob);
     this.img.src = this.url;
     this.lastVersion = version;
     ++this.renders;
-    this.passes.push({ version, samples, seconds });
+    this.passes.push({ version, samples, seconds, giSensors });
     if (this.passes.length > 64) this.passes.shift();
-    this.info.textContent = `v${version}, ${width}×${height}, ${pass}${(seconds * 1000).toFixed(0)} ms`;
+    const gi = giSensors === null ? '' : `, GI: ${giSensors} sensors in ${(giSeconds * 1000).toFixed(0)} ms`;
+    this.info.textContent = `v${version}, ${width}×${height}, ${pass}${(seconds * 1000).toFixed(0)} ms${gi}`;
   }
 }

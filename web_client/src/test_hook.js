@@ -154,6 +154,21 @@ export function installTestHook(app) {
       // renders: images shown so far (passes keeps the last 64); inFlight: a pass is being fetched.
       return panel ? { passes: [...panel.passes], aborted: panel.aborted, renders: panel.renders, inFlight: panel.abort !== null } : null;
     },
+    // The baked indirect light's state (baked_indirect.js).
+    bakedIndirect() {
+      const b = app.bakedIndirect;
+      return b ? { on: b.on, version: b.version, fetches: b.fetches, aborted: b.aborted, seconds: b.seconds } : null;
+    },
+    // A receiver's display colours (linear, 3 per vertex) and classes, over its parts.
+    displayColours(object, face) {
+      const colours = [], classes = [];
+      for (const { part, colours: c } of app.receivers.entries.values()) {
+        if (part.object !== object || part.face !== face) continue;
+        colours.push(...c);
+        classes.push(...part.classes);
+      }
+      return { colours, classes };
+    },
     cameraQuery() {
       return app.view.cameraQuery();
     },

@@ -68,13 +68,16 @@ export class ToneMap {
     return this.albedo.get(objectId) || [0.8, 0.8, 0.8];
   }
 
-  // Linear display colours (Float32Array, 3 per vertex, clamped to [0, 1]).
-  colours(objectId, irradiance) {
+  // Linear display colours (Float32Array, 3 per vertex, clamped to [0, 1]). indirect (same
+  // length, the baked bounced light) replaces the flat ambient term, as GI does in the server's image.
+  colours(objectId, irradiance, indirect = null) {
     const albedo = this.albedoOf(objectId);
     const out = new Float32Array(irradiance.length);
     for (let i = 0; i < irradiance.length; i += 3)
-      for (let c = 0; c < 3; ++c)
-        out[i + c] = Math.min(1, this.exposure * albedo[c] / Math.PI * (irradiance[i + c] + this.ambient[c]));
+      for (let c = 0; c < 3; ++c) {
+        const extra = indirect ? indirect[i + c] : this.ambient[c];
+        out[i + c] = Math.min(1, this.exposure * albedo[c] / Math.PI * (irradiance[i + c] + extra));
+      }
     return out;
   }
 
