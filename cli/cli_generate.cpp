@@ -34,6 +34,7 @@ Scene sphereScene(const Args& args) {
 }  // namespace
 
 int runGenerate(const Args& args) {
+  if (args.option("volume")) return runGenerateVolume(args);
   args.allowOnly({"cubes", "seed", "light-scale", "stacked-fraction", "tables", "out", "sphere"});
   CubesSceneOptions options;
   options.cubes = args.intOption("cubes", options.cubes, 0, 100000);

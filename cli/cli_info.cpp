@@ -15,6 +15,10 @@ int runInfo(const Args& args) {
   const Bounds bounds = scene.bounds();
   std::printf("scene      %s\n", path.c_str());
   std::printf("objects    %zu\n", scene.objects().size());
+  for (const VolumeObject& volume : scene.volumes())
+    std::printf("volume     %s: %s, %d x %d x %d %s, isovalue %g (render-time only: not in the DM)\n",
+                volume.id.c_str(), volume.file.c_str(), volume.data->size().x, volume.data->size().y,
+                volume.data->size().z, volume.data->typeName().c_str(), volume.isovalue);
   std::printf("faces      %zu (%zu receive light)\n", scene.faces().size(), receiving);
   std::printf("materials  %zu\n", scene.materials().size());
   std::printf("bounds     [%g, %g, %g] .. [%g, %g, %g] (diagonal %g m)\n", bounds.min.x,

@@ -11,6 +11,7 @@ int runValidate(const Args& args);
 int runInfo(const Args& args);
 int runReference(const Args& args);
 int runGenerate(const Args& args);
+int runGenerateVolume(const Args& args);  // generate --volume
 int runBuild(const Args& args);
 int runImport(const Args& args);
 int runRender(const Args& args);

@@ -37,6 +37,9 @@ commands:
            [--two-lights] [--tables FRACTION]
            [--dense]                   N boxes of random size and turn floating in a 6×3×6 m room
   generate --sphere FACES --out SCENE  one UV sphere of ~FACES faces (radius 0.35 m) in that room
+  generate --volume FIELD --out X.nrrd a test field (marschner-lobb, sphere, smoke, mixing) as
+           [--size N] [--type T]       gzip NRRD: N³ voxels (64), uchar | ushort | float (uchar),
+           [--spacing S] [--seed S]    voxel spacing (1/(N−1): a 1 m cube), noise seed
   replay SCENE EDITS.jsonl             apply an edit script frame by frame; per-frame times and counts
          [--verify] [--verify-every K] [--report OUT.json] [--out MESH] [--threads N]
   serve [SCENE...] [--host H]          the HTTP API and web page (docs/API.md) on the scenes;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <set>
 
 #include "core/geom/polygon.h"
@@ -9,6 +10,7 @@
 #include "protocol/json_reader.h"
 #include "protocol/json_text.h"
 #include "protocol/material_json.h"
+#include "protocol/volume_json.h"
 
 namespace penumbra::protocol {
 
@@ -206,7 +208,7 @@ Json lightToJson(const Light& light) {
   return Json{{"id", light.id}, {"polygon", polygonToJson(light.polygon)}, {"radiance", toJson(light.radiance)}};
 }
 
-Scene sceneFromJson(const Json& root) {
+Scene sceneFromJson(const Json& root, const VolumeFiles* volumeFiles) {
   expectHeader(root, kFormat, kVersion);
 
   const Json& lightsJson = expectArray(requireKey(root, "lights", ""), "lights");
@@ -225,12 +227,16 @@ Scene sceneFromJson(const Json& root) {
 
   const Json& objectsJson = expectArray(requireKey(root, "objects", ""), "objects");
   std::vector<Object> objects;
+  std::vector<VolumeObject> volumes;
   std::set<std::string> objectIds;
   for (size_t i = 0; i < objectsJson.size(); ++i) {
     const std::string path = indexPath("objects", i);
     const std::string id = peekId(objectsJson[i], path);
     if (!objectIds.insert(id).second) fail(keyPath(path, "id"), "duplicate object id '" + id + "'");
-    objects.push_back(objectFromJson(objectsJson[i], path, materials));
+    if (isVolumeObject(objectsJson[i], path))
+      volumes.push_back(volumeFromJson(objectsJson[i], path, materials, volumeFiles));
+    else
+      objects.push_back(objectFromJson(objectsJson[i], path, materials));
   }
 
   std::optional<Camera> camera;
@@ -249,7 +255,8 @@ Scene sceneFromJson(const Json& root) {
   }
 
   try {
-    return Scene(std::move(lights), std::move(materials), std::move(objects), std::move(camera));
+    return Scene(std::move(lights), std::move(materials), std::move(objects), std::move(camera),
+                 std::move(volumes));
   } catch (const ValidationError&) {
     throw;
   } catch (const FaceError& e) {
@@ -302,6 +309,7 @@ Json sceneToJson(const Scene& scene) {
 
   Json objects = Json::array();
   for (const Object& object : scene.objects()) objects.push_back(objectToJson(object));
+  for (const VolumeObject& volume : scene.volumes()) objects.push_back(volumeToJson(volume));
   out["objects"] = std::move(objects);
 
   if (const auto& camera = scene.camera()) {
@@ -319,7 +327,9 @@ Json sceneToJson(const Scene& scene) {
 }
 
 Scene loadSceneFile(const std::string& path) {
-  return sceneFromJson(parseJsonText(readTextFile(path, kMaxJsonFileBytes), kMaxJsonFileBytes, kMaxJsonDepth));
+  const VolumeFiles files{std::filesystem::path(path).parent_path().string(), {}};
+  return sceneFromJson(parseJsonText(readTextFile(path, kMaxJsonFileBytes), kMaxJsonFileBytes, kMaxJsonDepth),
+                       &files);
 }
 
 void saveSceneFile(const Scene& scene, const std::string& path) {

@@ -16,14 +16,18 @@ namespace penumbra::protocol {
 // of a polygon's vertex count, and no sensible scene needs more.
 inline constexpr size_t kMaxPolygonVertices = 1024;
 
+struct VolumeFiles;  // protocol/volume_json.h
+
 // Validates the whole document first and throws ValidationError at the first
 // problem (in document order: format, version, lights, materials, objects,
 // camera); only a valid document becomes a Scene. Materials come out ordered by
-// name (a JSON object has no order).
-Scene sceneFromJson(const nlohmann::json& root);
+// name (a JSON object has no order). Volume objects ("type": "volume") read their NRRD
+// through `volumeFiles`; without it they are refused (a scene sent as JSON names no files).
+Scene sceneFromJson(const nlohmann::json& root, const VolumeFiles* volumeFiles = nullptr);
 
 // Writes v1 with full double precision; sceneFromJson(sceneToJson(s)) == s
-// (materials ordered by name). The camera is written with both fov_y_deg and
+// (materials ordered by name; volume objects after the polygon objects, their files
+// as resolved absolute paths). The camera is written with both fov_y_deg and
 // height so that it round-trips whole.
 nlohmann::json sceneToJson(const Scene& scene);
 
@@ -48,6 +52,7 @@ nlohmann::json lightToJson(const Light& light);
 // Files: limits from protocol/json_text.h (64 MiB, nesting depth 64); size,
 // depth and syntax errors are ValidationErrors with path `(json)`; a file that
 // cannot be read or written is a std::runtime_error.
+// Volume files resolve against the scene file's folder.
 Scene loadSceneFile(const std::string& path);
 void saveSceneFile(const Scene& scene, const std::string& path);
 

@@ -6,6 +6,7 @@
 #include "protocol/edits_json.h"
 #include "protocol/json_text.h"
 #include "protocol/scene_json.h"
+#include "protocol/volume_json.h"
 #include "server/api_errors.h"
 #include "server/http_server.h"
 #include "server/part_changes.h"
@@ -65,10 +66,14 @@ namespace {
 using StoredScene = SceneJournal::StoredScene;
 
 std::shared_ptr<SceneSession> freshSession(const StoredScene& stored, const EngineSettings& settings) {
+  // The journal wrote volume files as absolute paths (sceneToJson), and only scene files
+  // loaded by the operator can hold volumes: reading them again is safe.
+  const protocol::VolumeFiles volumeFiles;
   return std::make_shared<SceneSession>(
       stored.id, stored.name,
       protocol::sceneFromJson(
-          protocol::parseJsonText(stored.source, stored.source.size(), protocol::kMaxJsonDepth)),
+          protocol::parseJsonText(stored.source, stored.source.size(), protocol::kMaxJsonDepth),
+          &volumeFiles),
       settings);
 }
 

@@ -104,6 +104,8 @@ void Engine::checkFrame(const Frame& frame) const {
       switch (edit.op) {
         case Edit::Op::Move: {
           std::optional<Object> object = current(edit.id);
+          if (!object && scene_.findVolume(edit.id))
+            throw EditError(i, "id", "'" + edit.id + "' is a volume: volumes cannot be moved by edits yet");
           if (!object) throw EditError(i, "id", "unknown object '" + edit.id + "'");
           object->transform = edit.transform;
           checkFaces(*object, i, "transform");
@@ -115,7 +117,7 @@ void Engine::checkFrame(const Frame& frame) const {
           edited[edit.id] = std::nullopt;
           break;
         case Edit::Op::Add:
-          if (current(edit.object.id))
+          if (current(edit.object.id) || scene_.findVolume(edit.object.id))
             throw EditError(i, "object.id", "duplicate object id '" + edit.object.id + "'");
           checkFaces(edit.object, i, "object");
           edited[edit.object.id] = edit.object;

@@ -66,7 +66,7 @@ RTCRay segmentRay(const Vec3& p, const Vec3& q) {
   ray.dir_z = float(d.z);
   ray.tnear = 0.0f;
   ray.tfar = kSegmentFar;
-  ray.mask = ~0u;
+  ray.mask = kPolygonRays;
   ray.flags = 0;
   ray.time = 0.0f;
   return ray;
@@ -137,11 +137,17 @@ RayScene::RayScene(const Scene& scene) : faces_(scene.faces()), tolerance_(scene
       std::copy(triangles.begin(), triangles.end(), ib);
     }
     rtcSetGeometryOccludedFilterFunction(geom, segmentFilter);
+    rtcSetGeometryMask(geom, kPolygonRays);
     rtcCommitGeometry(geom);
     // geomID == object index, so a later move can re-commit just that geometry.
     rtcAttachGeometryByID(scene_, geom, o);
     rtcReleaseGeometry(geom);
   }
+  // Volumes after the polygons, in the same scene (and BVH); placements never move again.
+  volumes_.reserve(scene.volumes().size());
+  for (const VolumeObject& volume : scene.volumes()) volumes_.emplace_back(volume);
+  for (size_t v = 0; v < volumes_.size(); ++v)
+    attachVolumeGeometry(device_, scene_, volumes_[v], unsigned(objects.size() + v));
   rtcCommitScene(scene_);
   try {
     check("Embree scene build");
@@ -188,8 +194,20 @@ std::vector<uint32_t> RayScene::blockers(const Vec3& p, const Vec3& q) const {
   return found;
 }
 
+bool RayScene::volumeOccluded(const Vec3& p, const Vec3& q) const {
+  if (volumes_.empty()) return false;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray = segmentRay(p, q);
+  ray.tnear = 1e-6f;  // p itself may lie on the isosurface that was hit
+  ray.tfar = 1.0f - 1e-6f;
+  ray.mask = kVolumeRays;
+  rtcOccluded1(scene_, &context, &ray);
+  return ray.tfar < 0.0f;
+}
+
 std::optional<RayScene::Hit> RayScene::intersect(const Vec3& origin, const Vec3& dir, double tNear,
-                                                 double tFar) const {
+                                                 double tFar, unsigned mask) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rayHit{};
@@ -201,11 +219,20 @@ std::optional<RayScene::Hit> RayScene::intersect(const Vec3& origin, const Vec3&
   rayHit.ray.dir_z = float(dir.z);
   rayHit.ray.tnear = float(tNear);
   rayHit.ray.tfar = float(tFar);
-  rayHit.ray.mask = ~0u;
+  rayHit.ray.mask = mask;
   rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &context, &rayHit);
   if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+  if (rayHit.hit.geomID >= geometries_.size()) {
+    Hit hit;
+    hit.volume = uint32_t(rayHit.hit.geomID - geometries_.size());
+    hit.t = rayHit.ray.tfar;
+    hit.position = origin + hit.t * dir;
+    hit.volumeNormal = glm::normalize(Vec3(rayHit.hit.Ng_x, rayHit.hit.Ng_y, rayHit.hit.Ng_z));
+    hit.frontFacing = true;  // an isosurface is seen from either side
+    return hit;
+  }
 
   const Geometry& geometry = geometries_[rayHit.hit.geomID];
   Hit hit;
@@ -223,13 +250,13 @@ std::optional<RayScene::Hit> RayScene::intersect(const Vec3& origin, const Vec3&
 }
 
 std::optional<RayScene::Hit> RayScene::intersectFront(const Vec3& origin, const Vec3& dir, double tNear,
-                                                      double tFar) const {
+                                                      double tFar, unsigned mask) const {
   // Back faces are skipped by re-tracing just past them (relative to the ray parameter:
   // Embree's t is float); a ray crosses few of them.
   constexpr int kMaxBackFaceSkips = 64;
   constexpr double kSkipRelative = 1e-5;
   for (int pass = 0; pass < kMaxBackFaceSkips; ++pass) {
-    auto hit = intersect(origin, dir, tNear, tFar);
+    auto hit = intersect(origin, dir, tNear, tFar, mask);
     if (!hit || hit->frontFacing) return hit;
     tNear = hit->t + kSkipRelative * std::max(hit->t, 1e-3);
   }

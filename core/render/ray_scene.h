@@ -1,5 +1,7 @@
 // Embree 3 ray scene of a Scene's faces (one triangle geometry per object), with the
-// single-sided blocking rule of SCENE_FORMAT.md. Immutable after construction; queries are thread-safe.
+// single-sided blocking rule of SCENE_FORMAT.md, and its volume objects as user geometries in
+// the same BVH (volume_geometry.h; seen only by queries that ask for them with a ray mask).
+// Immutable after construction; queries are thread-safe.
 #pragma once
 
 #include <cmath>
@@ -10,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/render/volume_geometry.h"
 #include "core/scene/scene.h"
 
 // Embree's handles, declared here so that users need not include rtcore.h.
@@ -40,6 +43,10 @@ class RayScene {
     Vec2 barycentric{0.0};   // Embree's (u, v) in the fan triangle (v0, v_k, v_k+1)
     uint32_t fanTriangle = 0;  // k - 1: which triangle of the face's fan
     bool frontFacing = false;  // dir points against the face's front normal
+    // A volume's isosurface (kVolumeRays queries only): its index in Scene::volumes() and the
+    // world unit normal (towards larger values); face / faceIndex / barycentric are then unset.
+    std::optional<uint32_t> volume;
+    Vec3 volumeNormal{0.0};
   };
 
   // Builds one triangle geometry per object (faces fan-triangulated) and commits.
@@ -56,14 +63,20 @@ class RayScene {
   // Every face that blocks p→q by the same rule (indices into Scene::faces(),
   // sorted, unique). For tests and diagnostics; slower than occluded().
   std::vector<uint32_t> blockers(const Vec3& p, const Vec3& q) const;
+  // Whether a volume's isosurface crosses the segment p→q (t in (0, 1) of q − p); polygons
+  // are not looked at. False when the scene has no volumes.
+  bool volumeOccluded(const Vec3& p, const Vec3& q) const;
+  bool hasVolumes() const { return !volumes_.empty(); }
+  const VolumePlacement& volumePlacement(uint32_t volume) const { return volumes_[volume]; }
 
-  // Closest face hit by origin + t·dir, t in [tNear, tFar], from either side.
+  // Closest face hit by origin + t·dir, t in [tNear, tFar], from either side; with
+  // mask kAllRays volume isosurfaces too (their hits count as front-facing).
   std::optional<Hit> intersect(const Vec3& origin, const Vec3& dir, double tNear = 0,
-                               double tFar = INFINITY) const;
+                               double tFar = INFINITY, unsigned mask = kPolygonRays) const;
   // Closest front-facing hit: faces seen from behind are passed through (faces are
   // single-sided: a face blocks only what lies in front of it), at most 64 of them.
   std::optional<Hit> intersectFront(const Vec3& origin, const Vec3& dir, double tNear = 0,
-                                    double tFar = INFINITY) const;
+                                    double tFar = INFINITY, unsigned mask = kPolygonRays) const;
 
   const Face& face(uint32_t faceIndex) const { return faces_[faceIndex]; }
   size_t triangleCount() const;
@@ -84,6 +97,8 @@ class RayScene {
 
   std::vector<Face> faces_;  // copy of Scene::faces(): planes in double for the filters
   std::vector<Geometry> geometries_;  // one per object; geomID == object index
+  // One per volume object, geomID == objects + volume index; the callbacks point into it.
+  std::vector<VolumePlacement> volumes_;
   Tolerance tolerance_;
   RTCDeviceTy* device_ = nullptr;
   RTCSceneTy* scene_ = nullptr;

@@ -14,6 +14,7 @@
 #include "core/render/mesh_lookup.h"
 #include "core/render/light_hit.h"
 #include "core/render/ray_scene.h"
+#include "core/render/volume_lighting.h"
 
 namespace penumbra {
 
@@ -28,6 +29,21 @@ Vec3 ambientIrradiance(const Scene& scene, double fraction) {
   const double surface = 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
   if (!(surface > 0)) return Vec3(0.0);
   return fraction * power / surface;
+}
+
+Vec3 materialAlbedo(const Scene& scene, const std::string& material) {
+  if (const auto index = scene.findMaterial(material)) return scene.materials()[*index].albedo;
+  return Material{}.albedo;
+}
+
+// An isosurface point: its material's albedo (microfacet keys are not used on volumes) over π
+// times the shadow-ray irradiance plus the ambient term; the normal turned to the viewer.
+Vec3 volumeRadiance(const Scene& scene, const VolumeLighting& lighting, const RayScene::Hit& hit,
+                    const Vec3& dir, const Vec3& ambient, bsdf::Rng& rng) {
+  const VolumeObject& volume = scene.volumes()[*hit.volume];
+  const Vec3 n = glm::dot(hit.volumeNormal, dir) < 0 ? hit.volumeNormal : -hit.volumeNormal;
+  const Vec3 irradiance = lighting.volumeIrradiance(*hit.volume, hit.position, n, rng);
+  return materialAlbedo(scene, volume.material) / M_PI * (irradiance + ambient);
 }
 
 }  // namespace
@@ -87,15 +103,17 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
     pieces = reference.visibility(p, scene.faces()[faceIndex].plane.normal, light).visiblePieces;
   };
   const MicrofacetShading microfacet(scene, rays, visiblePieces, diffuseRadiance, settings.microfacet);
+  const VolumeLighting volumeLighting(scene, rays, settings.volumeShadowStrata);
+  const unsigned cameraMask = rays.hasVolumes() ? kAllRays : kPolygonRays;
 
   const Parallel parallel(settings.threads);
   // The first front-facing surface and the closest light along the ray of pixel (i, j).
   auto primaryHit = [&](int i, int j, std::optional<size_t>& light) {
     const CameraProjection::Ray ray = camera.rayThrough(Vec2(i + 0.5, j + 0.5));
     // The near→far segment is t in [0, 1].
-    const std::optional<RayScene::Hit> surface = settings.cullBackFaces
-                                                     ? rays.intersectFront(ray.origin, ray.dir, 0, 1.0)
-                                                     : rays.intersect(ray.origin, ray.dir, 0, 1.0);
+    const std::optional<RayScene::Hit> surface =
+        settings.cullBackFaces ? rays.intersectFront(ray.origin, ray.dir, 0, 1.0, cameraMask)
+                               : rays.intersect(ray.origin, ray.dir, 0, 1.0, cameraMask);
     const auto lightHit =
         closestLightHit(scene.lights(), lightPlanes, ray.origin, ray.dir, surface ? surface->t : 1.0);
     light.reset();
@@ -115,7 +133,7 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
       for (int i = 0; i < settings.width; ++i) {
         const auto surface = primaryHit(i, int(row), light).second;
         const size_t p = row * size_t(settings.width) + size_t(i);
-        if (surface && surface->frontFacing && !microfacet.isMicrofacet(surface->faceIndex)) {
+        if (surface && !surface->volume && surface->frontFacing && !microfacet.isMicrofacet(surface->faceIndex)) {
           gbuffer.face[p] = int32_t(surface->faceIndex);
           gbuffer.position[p] = surface->position;
         }
@@ -150,6 +168,10 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
       if (light) {
         radiance = scene.lights()[*light].radiance;
         kind[p] = 2;
+      } else if (surface && surface->volume) {
+        bsdf::Rng rng(settings.seed * 0x9E3779B97F4A7C15ull + p);
+        radiance = volumeRadiance(scene, volumeLighting, *surface, ray.dir, ambient, rng);
+        kind[p] = 1;
       } else if (surface && microfacet.isMicrofacet(surface->faceIndex)) {
         bsdf::Rng rng(settings.seed * 0x9E3779B97F4A7C15ull + p);
         radiance = microfacet.radiance(surface->faceIndex, surface->position,
@@ -157,6 +179,14 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
         kind[p] = 1;
       } else if (surface) {
         radiance = diffuseRadiance(surface->faceIndex, surface->position, surface->frontFacing);
+        if (rays.hasVolumes() && surface->frontFacing && receives[surface->faceIndex]) {
+          // The DM has the polygons' shadows exactly; take off what the volumes block.
+          bsdf::Rng rng(settings.seed * 0x9E3779B97F4A7C15ull + p);
+          const Vec3 kd = scene.albedo(surface->face) / M_PI;
+          const Face& face = scene.faces()[surface->faceIndex];
+          const Vec3 blocked = volumeLighting.blockedByVolumes(surface->position, face.plane.normal, rng);
+          radiance = glm::max(radiance - kd * blocked, kd * ambient);
+        }
         if (!indirect.empty()) radiance += scene.albedo(surface->face) / M_PI * indirect[p];
         kind[p] = 1;
       }

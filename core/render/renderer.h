@@ -45,7 +45,11 @@ struct RenderSettings {
   // Bounced light by sensors (README "Global illumination", core/gi/): replaces the ambient
   // term with the indirect irradiance at each visible point. Empty: direct light + ambient.
   std::optional<gi::GiSettings> gi;
-  uint64_t seed = 1;  // microfacet estimates: per-pixel generators seeded from it
+  // Volume objects (README "Volumes"): an n×n jittered grid of shadow rays per light at each
+  // isosurface point (soft shadows, blocked by polygons and volumes) and at each diffuse
+  // polygon point (the light the volumes block, taken off the DM value). n² rays per light.
+  int volumeShadowStrata = 4;
+  uint64_t seed = 1;  // microfacet and volume estimates: per-pixel generators seeded from it
   // Threads drawing rows: 0 = every core, 1 = the calling thread only (EngineSettings::threads;
   // a TSan build always uses 1, core/engine/parallel.h). The image is the same for any count.
   int threads = 0;

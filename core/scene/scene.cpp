@@ -16,14 +16,24 @@ Plane Light::plane() const {
 }
 
 Scene::Scene(std::vector<Light> lights, std::vector<Material> materials,
-             std::vector<Object> objects, std::optional<Camera> camera)
+             std::vector<Object> objects, std::optional<Camera> camera,
+             std::vector<VolumeObject> volumes)
     : lights_(std::move(lights)),
       materials_(std::move(materials)),
       objects_(std::move(objects)),
-      camera_(std::move(camera)) {
+      camera_(std::move(camera)),
+      volumes_(std::move(volumes)) {
   for (const Object& object : objects_) {
     handles_.push_back(nextHandle_++);
     checkReferences(object);
+  }
+  for (const VolumeObject& volume : volumes_) {
+    if (!volume.data) throw std::invalid_argument("volume '" + volume.id + "' has no data");
+    if (!volume.material.empty() && !findMaterial(volume.material))
+      throw std::invalid_argument("volume '" + volume.id + "' names unknown material '" +
+                                  volume.material + "'");
+    if (findObject(volume.id))
+      throw std::invalid_argument("duplicate object id '" + volume.id + "' (a volume's)");
   }
   deriveFaces();
 }
@@ -127,7 +137,8 @@ const Object& Scene::object(uint32_t handle) const {
 }
 
 uint32_t Scene::addObject(Object object) {
-  if (findObject(object.id)) throw std::invalid_argument("duplicate object id '" + object.id + "'");
+  if (findObject(object.id) || findVolume(object.id))
+    throw std::invalid_argument("duplicate object id '" + object.id + "'");
   const uint32_t handle = nextHandle_;
   std::vector<Face> faces = facesOf(object, handle);  // checks before changing anything
   const bool closedConvex = penumbra::isClosedConvex(object, faces, tolerance_);
@@ -174,6 +185,12 @@ bool Scene::isClosedConvex(uint32_t handle) const {
 std::optional<size_t> Scene::findObject(std::string_view id) const {
   for (size_t i = 0; i < objects_.size(); ++i)
     if (objects_[i].id == id) return i;
+  return std::nullopt;
+}
+
+std::optional<size_t> Scene::findVolume(std::string_view id) const {
+  for (size_t i = 0; i < volumes_.size(); ++i)
+    if (volumes_[i].id == id) return i;
   return std::nullopt;
 }
 

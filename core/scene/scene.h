@@ -16,6 +16,7 @@
 #include "core/geom/polygon.h"
 #include "core/geom/tolerance.h"
 #include "core/scene/transform.h"
+#include "core/scene/volume_object.h"
 
 namespace penumbra {
 
@@ -121,7 +122,8 @@ class Scene {
   // scene's tolerance cannot hold (degenerate, or thinner than minFaceWidth()).
   // protocol validates before this with key paths.
   Scene(std::vector<Light> lights, std::vector<Material> materials,
-        std::vector<Object> objects, std::optional<Camera> camera = std::nullopt);
+        std::vector<Object> objects, std::optional<Camera> camera = std::nullopt,
+        std::vector<VolumeObject> volumes = {});
 
   const std::vector<Light>& lights() const { return lights_; }
   const std::vector<Material>& materials() const { return materials_; }
@@ -132,6 +134,10 @@ class Scene {
   std::optional<size_t> indexOfHandle(uint32_t handle) const;
   const Object& object(uint32_t handle) const;
   const std::optional<Camera>& camera() const { return camera_; }
+  // Volume objects: render-time isosurfaces, not DM occluders or receivers (volume_object.h).
+  // They do not enter bounds() or tolerance(): adding one leaves the DM as it was.
+  const std::vector<VolumeObject>& volumes() const { return volumes_; }
+  std::optional<size_t> findVolume(std::string_view id) const;  // index into volumes()
   // All faces of all objects in world space, ordered by (object, face).
   const std::vector<Face>& faces() const { return faces_; }
 
@@ -200,6 +206,7 @@ class Scene {
   std::vector<char> closedConvex_; // parallel to objects_
   uint32_t nextHandle_ = 0;
   std::optional<Camera> camera_;
+  std::vector<VolumeObject> volumes_;
   std::vector<Face> faces_;
   Bounds bounds_;
   Tolerance tolerance_;

@@ -1,0 +1,79 @@
+// Volume objects through `penumbra` as a user runs it: `generate --volume` writes a NRRD that a
+// scene can name, the bundled volume scene validates and renders, and a scene whose volume file
+// is broken exits 2 naming the key path.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "tests/cli/cli_test_support.h"
+
+namespace {
+
+const std::string kBinary = std::string(PENUMBRA_BINARY_DIR) + "/penumbra";
+const std::string kVolumeRoom = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/volume_room.scene.json";
+
+using penumbra::cli_test::tempPath;
+
+// Exit status and what the command wrote to stdout and stderr.
+std::pair<int, std::string> run(const std::string& arguments) {
+  const std::string out = tempPath("output.txt");
+  const int status = std::system((kBinary + " " + arguments + " >" + out + " 2>&1").c_str());
+  std::ifstream in(out);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  std::filesystem::remove(out);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
+}
+
+std::string sceneNaming(const std::string& file) {
+  return R"({"format": "penumbra.scene", "version": 1,
+    "lights": [{"id": "l", "polygon": [[-1, 3, -1], [1, 3, -1], [1, 3, 1], [-1, 3, 1]], "radiance": [5, 5, 5]}],
+    "objects": [{"id": "floor", "vertices": [[-3, 0, -3], [-3, 0, 3], [3, 0, 3], [3, 0, -3]], "faces": [[0, 1, 2, 3]]},
+                {"id": "v", "type": "volume", "file": ")" +
+         file + R"(", "isovalue": 100}]})";
+}
+
+TEST(VolumeCli, GenerateWritesAVolumeASceneCanName) {
+  const std::string nrrd = tempPath("smoke.nrrd"), scene = tempPath("smoke.scene.json");
+  const auto [status, text] = run("generate --volume smoke --size 20 --type ushort --out " + nrrd);
+  ASSERT_EQ(status, 0) << text;
+  EXPECT_NE(text.find("smoke 20³ ushort"), std::string::npos) << text;
+  std::ofstream(scene) << sceneNaming(std::filesystem::path(nrrd).filename().string());
+  const auto [valid, says] = run("validate " + scene);
+  EXPECT_EQ(valid, 0) << says;
+  EXPECT_NE(says.find("1 volumes"), std::string::npos) << says;
+  EXPECT_EQ(run("generate --volume fog --out " + nrrd).first, 2);
+  EXPECT_EQ(run("generate --volume smoke --type int --out " + nrrd).first, 2);
+  std::filesystem::remove(nrrd);
+  std::filesystem::remove(scene);
+}
+
+TEST(VolumeCli, TheBundledVolumeSceneRenders) {
+  const std::string png = tempPath("room.png");
+  const auto [status, text] =
+      run("render " + kVolumeRoom + " --out " + png + " --width 48 --height 48");
+  EXPECT_EQ(status, 0) << text;
+  EXPECT_GT(std::filesystem::file_size(png), 100u);
+  std::filesystem::remove(png);
+}
+
+TEST(VolumeCli, ABrokenVolumeFileExitsTwoWithTheKeyPath) {
+  const std::string nrrd = tempPath("broken.nrrd"), scene = tempPath("broken.scene.json");
+  std::ofstream(nrrd)
+      << "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 8 8 8\nencoding: raw\n\nshort";
+  std::ofstream(scene) << sceneNaming(std::filesystem::path(nrrd).filename().string());
+  for (const std::string& arguments :
+       {"validate " + scene, "render " + scene + " --out " + tempPath("x.png")}) {
+    const auto [status, text] = run(arguments);
+    EXPECT_EQ(status, 2) << text;
+    EXPECT_NE(text.find("objects[1].file: 'cli_test_"), std::string::npos) << text;
+    EXPECT_NE(text.find("data truncated or corrupt"), std::string::npos) << text;
+  }
+  std::filesystem::remove(nrrd);
+  std::filesystem::remove(scene);
+}
+
+}  // namespace
