@@ -18,6 +18,7 @@
 #include "bench/report/svg_charts.h"
 #include "core/engine/engine.h"
 #include "core/gi/sensor_gi.h"
+#include "core/gi/view_gbuffer.h"
 #include "core/render/camera_projection.h"
 #include "protocol/scene_json.h"
 
@@ -41,17 +42,7 @@ struct Setup {
 };
 
 gi::GBuffer viewOf(const Setup& s, int size) {
-  const CameraProjection camera(s.scene.camera().value_or(defaultCamera(s.scene.bounds())), size, size);
-  gi::GBuffer g{size, size, std::vector<int32_t>(size_t(size) * size, -1), std::vector<Vec3>(size_t(size) * size)};
-  for (int j = 0; j < size; ++j)
-    for (int i = 0; i < size; ++i) {
-      const auto ray = camera.rayThrough(Vec2(i + 0.5, j + 0.5));
-      if (const auto hit = s.rays.intersectFront(ray.origin, ray.dir, 0, 1.0)) {
-        g.face[size_t(j) * size + i] = int32_t(hit->faceIndex);
-        g.position[size_t(j) * size + i] = hit->position;
-      }
-    }
-  return g;
+  return gi::viewGBuffer(s.rays, s.scene.camera().value_or(defaultCamera(s.scene.bounds())), size, size, Parallel(0));
 }
 
 // Random surface pixels of a view and the path tracer's indirect irradiance there.
