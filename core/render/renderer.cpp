@@ -46,6 +46,44 @@ Vec3 volumeRadiance(const Scene& scene, const VolumeLighting& lighting, const Ra
   return materialAlbedo(scene, volume.material) / M_PI * (irradiance + ambient);
 }
 
+void checkSettings(const RenderSettings& settings) {
+  for (const auto& [name, value] : {std::pair{"width", settings.width}, std::pair{"height", settings.height}}) {
+    if (value < 1 || value > RenderSettings::kMaxSize)
+      throw std::invalid_argument(std::string("render: ") + name + " " + std::to_string(value) +
+                                  " is outside 1.." + std::to_string(RenderSettings::kMaxSize));
+  }
+  if (!(settings.ambientFraction >= 0) || !(settings.exposure >= 0))
+    throw std::invalid_argument("render: ambient fraction and exposure must be non-negative");
+}
+
+// Counts the surface and light pixels (kind 1, 2), picks the exposure (`exposure`, or 0: one
+// over the 99th percentile of the surface pixels' largest channel) and writes the sRGB bytes.
+void exposeAndEncode(RenderedImage& image, const std::vector<uint8_t>& kind, double exposure) {
+  const size_t pixels = kind.size();
+  std::vector<float> surfaceValues;
+  for (size_t p = 0; p < pixels; ++p) {
+    if (kind[p] == 1) {
+      ++image.surfacePixels;
+      surfaceValues.push_back(
+          std::max({image.linear[3 * p], image.linear[3 * p + 1], image.linear[3 * p + 2]}));
+    } else if (kind[p] == 2) {
+      ++image.lightPixels;
+    }
+  }
+  image.exposure = exposure;
+  if (image.exposure == 0) {
+    image.exposure = 1;
+    if (!surfaceValues.empty()) {
+      const size_t k = std::min(surfaceValues.size() - 1, size_t(kSurfacePercentile * double(surfaceValues.size())));
+      std::nth_element(surfaceValues.begin(), surfaceValues.begin() + long(k), surfaceValues.end());
+      if (surfaceValues[k] > 0) image.exposure = 1.0 / surfaceValues[k];
+    }
+  }
+  image.srgb.resize(3 * pixels);
+  for (size_t k = 0; k < 3 * pixels; ++k)
+    image.srgb[k] = uint8_t(std::lround(255 * srgbEncode(image.exposure * image.linear[k])));
+}
+
 }  // namespace
 
 double srgbEncode(double linear) {
@@ -62,13 +100,7 @@ Camera renderCamera(const Scene& scene, const RenderSettings& settings) {
 RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings& settings,
                      const RenderProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
-  for (const auto& [name, value] : {std::pair{"width", settings.width}, std::pair{"height", settings.height}}) {
-    if (value < 1 || value > RenderSettings::kMaxSize)
-      throw std::invalid_argument(std::string("render: ") + name + " " + std::to_string(value) +
-                                  " is outside 1.." + std::to_string(RenderSettings::kMaxSize));
-  }
-  if (!(settings.ambientFraction >= 0) || !(settings.exposure >= 0))
-    throw std::invalid_argument("render: ambient fraction and exposure must be non-negative");
+  checkSettings(settings);
   const CameraProjection camera(renderCamera(scene, settings), settings.width, settings.height,
                                 settings.convention);
 
@@ -199,28 +231,7 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
     }
   });
 
-  std::vector<float> surfaceValues;
-  for (size_t p = 0; p < pixels; ++p) {
-    if (kind[p] == 1) {
-      ++image.surfacePixels;
-      surfaceValues.push_back(
-          std::max({image.linear[3 * p], image.linear[3 * p + 1], image.linear[3 * p + 2]}));
-    } else if (kind[p] == 2) {
-      ++image.lightPixels;
-    }
-  }
-  image.exposure = settings.exposure;
-  if (image.exposure == 0) {
-    image.exposure = 1;
-    if (!surfaceValues.empty()) {
-      const size_t k = std::min(surfaceValues.size() - 1, size_t(kSurfacePercentile * double(surfaceValues.size())));
-      std::nth_element(surfaceValues.begin(), surfaceValues.begin() + long(k), surfaceValues.end());
-      if (surfaceValues[k] > 0) image.exposure = 1.0 / surfaceValues[k];
-    }
-  }
-  image.srgb.resize(3 * pixels);
-  for (size_t k = 0; k < 3 * pixels; ++k)
-    image.srgb[k] = uint8_t(std::lround(255 * srgbEncode(image.exposure * image.linear[k])));
+  exposeAndEncode(image, kind, settings.exposure);
   image.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return image;
 }

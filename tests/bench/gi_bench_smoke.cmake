@@ -1,6 +1,7 @@
 # Smoke test of build/penumbra-gi-bench --quick (not timed): fails when the driver fails, the
-# report or JSON is missing, or an error figure in the JSON is not a finite number (nlohmann::json
-# writes NaN and infinities as null). cmake -DBENCH=… -DOUT=… -P this file.
+# report or JSON is missing, or an error figure in the JSON is not a finite number.
+# cmake -DBENCH=… -DOUT=… -P this file.
+include("${CMAKE_CURRENT_LIST_DIR}/bench_outputs.cmake")
 file(REMOVE_RECURSE "${OUT}")
 file(MAKE_DIRECTORY "${OUT}")
 execute_process(COMMAND "${BENCH}" --quick --html "${OUT}/gi.html" --json "${OUT}/gi.json"
@@ -8,22 +9,8 @@ execute_process(COMMAND "${BENCH}" --quick --html "${OUT}/gi.html" --json "${OUT
 if(NOT result EQUAL 0)
   message(FATAL_ERROR "penumbra-gi-bench exited with ${result}")
 endif()
-foreach(name gi.html gi.json)
-  file(SIZE "${OUT}/${name}" size)
-  if(size EQUAL 0)
-    message(FATAL_ERROR "empty ${OUT}/${name}")
-  endif()
-endforeach()
+require_outputs("${OUT}" gi.html gi.json)
 file(READ "${OUT}/gi.json" json)
 foreach(ladder by_sensor_size path_tracer)
-  string(JSON rungs LENGTH "${json}" ${ladder})
-  math(EXPR last "${rungs} - 1")
-  foreach(k RANGE ${last})
-    foreach(key seconds rms_error)
-      string(JSON type TYPE "${json}" ${ladder} ${k} ${key})
-      if(NOT type STREQUAL "NUMBER")
-        message(FATAL_ERROR "${ladder}[${k}].${key} is ${type}")
-      endif()
-    endforeach()
-  endforeach()
+  require_finite_ladder("${json}" ${ladder} 1 seconds rms_error)
 endforeach()
