@@ -1,0 +1,120 @@
+#!/usr/bin/env node
+// Volumes in the page (issue 15), in Debian's chromium, on the volume room: the volume shows as a
+// dashed box with a point-cloud preview of its isosurface and the note that the DM mesh has no
+// volume occluders; clicked, it is selected and dragged by the gizmo (move edits), its isovalue
+// slider sends set_volume; after each the server's image differs and the page's render panel shows
+// the new version; undo takes both back (the image is the first one again); no error shown.
+//
+// usage: node tests/web/volume_e2e.mjs --penumbra build/penumbra [--scene scenes/volume_room.scene.json]
+import path from 'node:path';
+
+import { check, repo, runWithServerAndBrowser, sleep, usageOnHelp } from './harness.mjs';
+import { dragXHandle, openPage, serverScene } from './page_actions.mjs';
+
+const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'volume_room.scene.json'), startupSeconds: 120 };
+
+async function until(what, seconds = 60) {
+  const deadline = Date.now() + seconds * 1000;
+  for (;;) {
+    const value = await what();
+    if (value) return value;
+    if (Date.now() > deadline) return null;
+    await sleep(200);
+  }
+}
+
+const volume = async (page) => (await page.evaluate(() => window.penumbra.volumes()))[0];
+const idle = (page) => page.evaluate(() => window.penumbra.idle());
+
+// The server's image of the scene's own camera (the same request whatever the page's view).
+async function serverImage(base, sceneId) {
+  const response = await fetch(`${base}/api/scenes/${sceneId}/image?width=96&height=72`);
+  return Buffer.from(await response.arrayBuffer()).toString('base64');
+}
+
+async function smokeOnServer(base, sceneId) {
+  return (await serverScene(base, sceneId)).scene.objects.find((o) => o.id === 'smoke');
+}
+
+// The render panel has shown an image of `version` (the page asks after each edit).
+const renderedVersion = (page, version) => until(async () => {
+  const passes = await page.evaluate(() => window.penumbra.renderPasses());
+  return passes && passes.passes.some((p) => p.version === version);
+});
+
+async function main() {
+  const args = usageOnHelp(process.argv, defaults, 'node tests/web/volume_e2e.mjs --penumbra build/penumbra [--scene FILE]');
+  await runWithServerAndBrowser(args, async ({ browser, url, base, sceneId }) => {
+    const { page, pageErrors } = await openPage(browser, url);
+    await idle(page);
+    const first = await volume(page);
+    check(first && first.id === 'smoke' && first.box, 'the volume is drawn as its grid box', JSON.stringify(first));
+    check(first && first.previewPoints > 100 && first.previewIsovalue === 40.5, 'with a point cloud of its isosurface at the file\'s isovalue', JSON.stringify(first));
+    const note = await page.locator('#volume-note');
+    check(await note.isVisible() && /no volume occluders/.test(await note.textContent()), 'the panel says the DM mesh has no volume occluders');
+    const image0 = await serverImage(base, sceneId);
+
+    // Select by a click on the box's centre, then drag the gizmo's X handle.
+    const centre = await page.evaluate(() => window.penumbra.objectCentre('smoke'));
+    const screen = await page.evaluate((p) => window.penumbra.screenOf(p), centre);
+    await page.mouse.click(screen.x, screen.y);
+    await sleep(100);
+    check((await page.evaluate(() => window.penumbra.state().selected)) === 'smoke', 'a click selects the volume');
+    check(await page.locator('#volume-isovalue').isVisible() && await page.locator('.inspector .volume-note').isVisible(),
+      'the inspector shows its isovalue slider and the note');
+    const before = await smokeOnServer(base, sceneId);
+    await dragXHandle(page, -0.4, 8, 60);
+    await idle(page);
+    const moved = await smokeOnServer(base, sceneId);
+    const dx = moved.transform.translate[0] - before.transform.translate[0];
+    check(dx < -0.2 && dx > -0.6, 'the gizmo drag moved the volume on the server (move edits)', JSON.stringify({ before: before.transform, moved: moved.transform }));
+    const page1 = await volume(page);
+    check(Math.abs(page1.transform.translate[0] - moved.transform.translate[0]) < 1e-9, 'the page holds the server\'s place');
+    const image1 = await serverImage(base, sceneId);
+    check(image1 !== image0, 'the server image shows the volume at its new place');
+    const v1 = (await serverScene(base, sceneId)).version;
+    check(await renderedVersion(page, v1), 'the render panel shows the moved version', `version ${v1}`);
+
+    // The isovalue slider: set_volume, a new preview, a new image.
+    await page.locator('#volume-isovalue').fill('100');
+    await idle(page);
+    const iso = await smokeOnServer(base, sceneId);
+    check(iso.isovalue === 100, 'the slider sets the isovalue on the server (set_volume)', JSON.stringify(iso));
+    const page2 = await volume(page);
+    check(page2.previewIsovalue === 100 && page2.previewPoints !== first.previewPoints, 'the preview follows the isovalue', JSON.stringify(page2));
+    const image2 = await serverImage(base, sceneId);
+    check(image2 !== image1, 'the server image shows the new isosurface');
+    const v2 = (await serverScene(base, sceneId)).version;
+    check(await renderedVersion(page, v2), 'the render panel shows the new isovalue\'s version', `version ${v2}`);
+    // The DM mesh does not change with a volume: the floor's mesh version stays.
+    const floor = await page.evaluate(() => window.penumbra.receiver('floor', 0).sceneVersion);
+    check(floor === 0, 'the DM mesh is untouched by volume edits', `floor at version ${floor}`);
+
+    // A value outside the data's range is refused in the page (marked, nothing sent).
+    const sent = (await page.evaluate(() => window.penumbra.state())).editsSent;
+    await page.locator('#volume-isovalue-number').fill('1e9');
+    await page.locator('#volume-isovalue-number').press('Enter');
+    await idle(page);
+    check((await page.evaluate(() => window.penumbra.state())).editsSent === sent
+      && await page.locator('#volume-isovalue-number.invalid').count() === 1, 'an isovalue outside the values is marked and not sent');
+
+    // Undo twice: the isovalue, then the move; the image is the first one again.
+    await page.click('#undo');
+    await idle(page);
+    check((await smokeOnServer(base, sceneId)).isovalue === 40.5, 'undo takes the isovalue back');
+    await page.click('#undo');
+    await idle(page);
+    const back = await smokeOnServer(base, sceneId);
+    check(JSON.stringify(back.transform.translate) === JSON.stringify(before.transform.translate), 'a second undo takes the move back',
+      JSON.stringify(back.transform));
+    check(await serverImage(base, sceneId) === image0, 'the server image is the first one again');
+    await page.click('#redo');
+    await idle(page);
+    check(Math.abs((await smokeOnServer(base, sceneId)).transform.translate[0] - moved.transform.translate[0]) < 1e-9, 'redo moves it again');
+
+    const final = await page.evaluate(() => window.penumbra.state());
+    check(!final.errors.length && !final.bannerVisible && !pageErrors.length, 'no error shown or logged', JSON.stringify({ errors: final.errors, pageErrors }));
+  });
+}
+
+main();
