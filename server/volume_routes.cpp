@@ -2,7 +2,6 @@
 // adds it as a volume object through the edit queue (one frame, journaled, a version), and
 // GET .../volumes/{vid}/preview gives a coarse sketch of its isosurface for the page.
 #include <httplib.h>
-
 #include <unistd.h>
 
 #include <cctype>
@@ -66,14 +65,16 @@ std::string idFromFileName(const std::string& fileName) {
 }
 
 // A free id: the query's as given (taken → 400), else from the file name, numbered when taken.
-std::string volumeIdFor(const httplib::Request& req, const VolumeUpload& upload, const Scene& scene) {
+std::string volumeIdFor(const httplib::Request& req, const VolumeUpload& upload,
+                        const Scene& scene) {
   auto taken = [&](const std::string& id) { return scene.findObject(id) || scene.findVolume(id); };
   if (const auto id = queryText(req, "id")) {
     if (id->empty() || id->size() > kMaxIdLength)
       throw ApiError(400, error_code::kBadParameter, "query.id",
                      "a volume id is 1-" + std::to_string(kMaxIdLength) + " characters");
     if (taken(*id))
-      throw ApiError(400, error_code::kBadParameter, "query.id", "duplicate object id '" + *id + "'");
+      throw ApiError(400, error_code::kBadParameter, "query.id",
+                     "duplicate object id '" + *id + "'");
     return *id;
   }
   std::string base = idFromFileName(upload.fileName);
@@ -84,7 +85,8 @@ std::string volumeIdFor(const httplib::Request& req, const VolumeUpload& upload,
 }
 
 // Keeps the upload where a restart finds it (the journal names the file).
-std::string storeUpload(const std::string& dir, const std::string& sceneId, const std::string& bytes) {
+std::string storeUpload(const std::string& dir, const std::string& sceneId,
+                        const std::string& bytes) {
   static std::mt19937_64 random{std::random_device{}()};
   static std::mutex randomMutex;
   uint64_t name = 0;
@@ -103,7 +105,8 @@ std::string storeUpload(const std::string& dir, const std::string& sceneId, cons
 }
 
 // The uploaded file read as a volume: 422 naming the body for what the scene loader refuses.
-std::shared_ptr<const volume::ScalarVolume> readUpload(const std::string& path, const std::string& where) {
+std::shared_ptr<const volume::ScalarVolume> readUpload(const std::string& path,
+                                                       const std::string& where) {
   try {
     return protocol::readNrrdVolume(path);
   } catch (const protocol::NrrdError& error) {
@@ -118,8 +121,10 @@ std::shared_ptr<const volume::ScalarVolume> readUpload(const std::string& path, 
 
 // The add_volume edit the upload asks for; 400 naming the query parameter it breaks.
 Edit addVolumeEdit(const httplib::Request& req, const Scene& scene, VolumeObject volume) {
-  if (const auto isovalue = queryNumber(req, "isovalue")) volume.isovalue = *isovalue;
-  else volume.isovalue = 0.5 * (volume.data->minValue() + volume.data->maxValue());
+  if (const auto isovalue = queryNumber(req, "isovalue"))
+    volume.isovalue = *isovalue;
+  else
+    volume.isovalue = 0.5 * (volume.data->minValue() + volume.data->maxValue());
   if (const auto material = queryText(req, "material")) volume.material = *material;
   if (const auto translate = queryVec3(req, "translate")) volume.transform.translate = *translate;
   Edit edit;
@@ -127,12 +132,15 @@ Edit addVolumeEdit(const httplib::Request& req, const Scene& scene, VolumeObject
   edit.id = volume.id;
   edit.volume = std::move(volume);
   try {
-    VolumeEditCheck(scene).check(edit, 0, [&](const std::string& id) { return scene.findObject(id).has_value(); });
+    VolumeEditCheck(scene).check(
+        edit, 0, [&](const std::string& id) { return scene.findObject(id).has_value(); });
   } catch (const EditError& error) {
     std::string problem = error.what();
-    if (const size_t colon = problem.find(": "); colon != std::string::npos) problem = problem.substr(colon + 2);
+    if (const size_t colon = problem.find(": "); colon != std::string::npos)
+      problem = problem.substr(colon + 2);
     const std::string key = error.path().rfind("volume.", 0) == 0 ? error.path().substr(7) : "id";
-    throw ApiError(400, error_code::kBadParameter, "query." + (key == "transform" ? "translate" : key), problem);
+    throw ApiError(400, error_code::kBadParameter,
+                   "query." + (key == "transform" ? "translate" : key), problem);
   }
   return edit;
 }
@@ -142,10 +150,10 @@ Edit addVolumeEdit(const httplib::Request& req, const Scene& scene, VolumeObject
 std::string HttpServer::volumeUploadDir() {
   std::lock_guard lock(uploadDirMutex_);
   if (uploadDir_.empty()) {
-    std::filesystem::path dir =
-        options_.dataDir.empty()
-            ? std::filesystem::temp_directory_path() / ("penumbra-volumes-" + std::to_string(::getpid()))
-            : std::filesystem::path(options_.dataDir) / "volumes";
+    std::filesystem::path dir = options_.dataDir.empty()
+                                    ? std::filesystem::temp_directory_path() /
+                                          ("penumbra-volumes-" + std::to_string(::getpid()))
+                                    : std::filesystem::path(options_.dataDir) / "volumes";
     std::filesystem::create_directories(dir);
     uploadDir_ = std::filesystem::absolute(dir).lexically_normal().string();
   }
@@ -156,46 +164,49 @@ void HttpServer::registerVolumeRoutes() {
   httplib::Server& http = *http_;
   const std::string scenePath = std::string("/api/scenes/") + kIdPattern;
 
-  http.Post(scenePath + "/volumes", guarded([this](const httplib::Request& req, httplib::Response& res) {
-    const auto session = findScene(req.matches[1]);
-    const VolumeUpload upload = volumeUploadOf(req);
-    const std::shared_ptr<const SceneSnapshot> snapshot = session->snapshot();
-    VolumeObject volume;
-    volume.id = volumeIdFor(req, upload, snapshot->scene);
-    volume.file = storeUpload(volumeUploadDir(), session->id(), upload.bytes);
-    bool kept = false;
-    try {
-      volume.data = readUpload(volume.file, req.is_multipart_form_data() ? "(form).file" : "(body)");
-      Frame frame;
-      frame.edits.push_back(addVolumeEdit(req, snapshot->scene, std::move(volume)));
-      const VolumeObject& added = frame.edits[0].volume;
-      const json info = volumeInfoJson(added);
-      const std::string journaled = protocol::frameToJson(frame).dump();
-      const std::string file = added.file;
-      submitFrame(*session, std::move(frame), journaled, req, res);
-      kept = res.status == 200;
-      if (kept) {
-        json body = json::parse(res.body);
-        body["volume"] = info;
-        sendJson(res, 201, body);
-      }
-    } catch (...) {
-      std::error_code ignored;
-      std::filesystem::remove(volume.file, ignored);
-      throw;
-    }
-    if (!kept) {
-      std::error_code ignored;
-      std::filesystem::remove(volume.file, ignored);
-    }
-  }));
+  http.Post(
+      scenePath + "/volumes", guarded([this](const httplib::Request& req, httplib::Response& res) {
+        const auto session = findScene(req.matches[1]);
+        const VolumeUpload upload = volumeUploadOf(req);
+        const std::shared_ptr<const SceneSnapshot> snapshot = session->snapshot();
+        VolumeObject volume;
+        volume.id = volumeIdFor(req, upload, snapshot->scene);
+        const std::string stored = storeUpload(volumeUploadDir(), session->id(), upload.bytes);
+        volume.file = stored;
+        bool kept = false;
+        try {
+          volume.data =
+              readUpload(volume.file, req.is_multipart_form_data() ? "(form).file" : "(body)");
+          Frame frame;
+          frame.edits.push_back(addVolumeEdit(req, snapshot->scene, std::move(volume)));
+          const VolumeObject& added = frame.edits[0].volume;
+          const json info = volumeInfoJson(added);
+          const std::string journaled = protocol::frameToJson(frame).dump();
+          submitFrame(*session, std::move(frame), journaled, req, res);
+          kept = res.status == 200;
+          if (kept) {
+            json body = json::parse(res.body);
+            body["volume"] = info;
+            sendJson(res, 201, body);
+          }
+        } catch (...) {
+          std::error_code ignored;
+          std::filesystem::remove(stored, ignored);
+          throw;
+        }
+        if (!kept) {
+          std::error_code ignored;
+          std::filesystem::remove(stored, ignored);
+        }
+      }));
 
   http.Get(scenePath + "/volumes/" + kIdPattern + "/preview",
            guarded([this](const httplib::Request& req, httplib::Response& res) {
              const auto snapshot = findScene(req.matches[1])->snapshot();
              const std::string id = req.matches[2];
              const auto index = snapshot->scene.findVolume(id);
-             if (!index) throw ApiError(404, error_code::kNotFound, "id", "no volume with id '" + id + "'");
+             if (!index)
+               throw ApiError(404, error_code::kNotFound, "id", "no volume with id '" + id + "'");
              const VolumeObject& volume = snapshot->scene.volumes()[*index];
              double isovalue = volume.isovalue;
              if (const auto asked = queryNumber(req, "isovalue")) {
@@ -204,7 +215,8 @@ void HttpServer::registerVolumeRoutes() {
                isovalue = *asked;
              }
              const int cells = int(queryUnsigned(req, "cells", 4, 128).value_or(48));
-             const volume::SurfacePoints sketch = volume::surfacePoints(*volume.data, isovalue, cells);
+             const volume::SurfacePoints sketch =
+                 volume::surfacePoints(*volume.data, isovalue, cells);
              json points = json::array(), normals = json::array();
              for (size_t i = 0; i < sketch.points.size(); ++i)
                for (int a = 0; a < 3; ++a) {
@@ -212,8 +224,11 @@ void HttpServer::registerVolumeRoutes() {
                  normals.push_back(float(sketch.normals[i][a]));
                }
              sendJson(res, 200,
-                      {{"id", id}, {"version", snapshot->version}, {"isovalue", isovalue},
-                       {"stride", sketch.stride}, {"points", std::move(points)},
+                      {{"id", id},
+                       {"version", snapshot->version},
+                       {"isovalue", isovalue},
+                       {"stride", sketch.stride},
+                       {"points", std::move(points)},
                        {"normals", std::move(normals)}});
            }));
 }

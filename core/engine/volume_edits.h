@@ -33,7 +33,8 @@ class VolumeEditCheck {
   // EditError: "id" (unknown volume), "isovalue" (isovalueProblem), "transform" (not finite,
   // zero scale), "volume.id" (taken), "volume" (no data), "volume.material" (unknown),
   // "volume.isovalue".
-  void check(const Edit& edit, size_t index, const std::function<bool(const std::string&)>& objectExists);
+  void check(const Edit& edit, size_t index,
+             const std::function<bool(const std::string&)>& objectExists);
 
  private:
   const Scene& scene_;

@@ -12,9 +12,9 @@
 namespace penumbra::volume {
 
 struct SurfacePoints {
-  int stride = 1;                // voxels between samples
-  std::vector<Vec3> points;      // object space (objectFromVoxel applied)
-  std::vector<Vec3> normals;     // object space, towards larger values (unit; 0 if flat)
+  int stride = 1;             // voxels between samples
+  std::vector<Vec3> points;   // object space (objectFromVoxel applied)
+  std::vector<Vec3> normals;  // object space, towards larger values (unit; 0 if flat)
 };
 
 // At most `maxCellsPerSide` coarse cells along the longest side (stride chosen from it).

@@ -28,7 +28,8 @@ json setVolume(const std::string& id, const json& isovalue) {
 }
 
 json moveVolume(double x) {
-  return frame({{"op", "move"}, {"id", "smoke"},
+  return frame({{"op", "move"},
+                {"id", "smoke"},
                 {"transform", {{"translate", {x, 1.0, 3.3}}, {"scale", {2.1, 2.1, 2.1}}}}});
 }
 
@@ -82,12 +83,12 @@ TEST(VolumeEdits, BadVolumeEditsAreRefusedWholeWithTheKeyPath) {
   const json before = bodyJson(client.Get(kBase.c_str()));
   const json goodMove = moveVolume(1.0)["edits"][0];
   const std::vector<std::pair<json, std::string>> cases = {
-      {setVolume("smoke", 1e9), "edits[0].isovalue"},      // outside the data's values
+      {setVolume("smoke", 1e9), "edits[0].isovalue"},  // outside the data's values
       {setVolume("smoke", -1), "edits[0].isovalue"},
-      {setVolume("smoke", "nan"), "edits[0].isovalue"},    // not a number
+      {setVolume("smoke", "nan"), "edits[0].isovalue"},  // not a number
       {setVolume("smoke", nullptr), "edits[0].isovalue"},
-      {setVolume("ghost", 50), "edits[0].id"},             // unknown volume
-      {setVolume("tall_block", 50), "edits[0].id"},        // a polygon object
+      {setVolume("ghost", 50), "edits[0].id"},       // unknown volume
+      {setVolume("tall_block", 50), "edits[0].id"},  // a polygon object
       {frame({{"op", "move"}, {"id", "smoke"}, {"transform", {{"scale", {0, 1, 1}}}}}),
        "edits[0].transform.scale"},
       // The first edit is fine; the second is not: nothing of the frame is applied.
@@ -96,13 +97,18 @@ TEST(VolumeEdits, BadVolumeEditsAreRefusedWholeWithTheKeyPath) {
       {{{"edits", {goodMove, {{"op", "remove"}, {"id", "smoke"}}, goodMove}}}, "edits[2].id"},
       // A client's frame cannot make the server open a file it does not hold.
       {frame({{"op", "add_volume"},
-              {"volume", {{"id", "v"}, {"type", "volume"}, {"file", "/etc/passwd"}, {"isovalue", 1}}}}),
+              {"volume",
+               {{"id", "v"}, {"type", "volume"}, {"file", "/etc/passwd"}, {"isovalue", 1}}}}),
        "edits[0].volume.file"},
       {frame({{"op", "add_volume"},
-              {"volume", {{"id", "v"}, {"type", "volume"}, {"file", "../../etc/passwd"}, {"isovalue", 1}}}}),
+              {"volume",
+               {{"id", "v"}, {"type", "volume"}, {"file", "../../etc/passwd"}, {"isovalue", 1}}}}),
        "edits[0].volume.file"},
-      {frame({{"op", "add"}, {"object", {{"id", "smoke"}, {"vertices", {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}},
-                                         {"faces", {{0, 2, 1}}}}}}),
+      {frame({{"op", "add"},
+              {"object",
+               {{"id", "smoke"},
+                {"vertices", {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}},
+                {"faces", {{0, 2, 1}}}}}}),
        "edits[0].object.id"},  // a volume has that id
   };
   for (const auto& [body, path] : cases) {
@@ -122,11 +128,13 @@ TEST(VolumeEdits, RemoveThenAddBackIsTheUndoOfADelete) {
   auto client = running.client();
   const std::string image0 = image(client);
   const json smoke = volumeJson(client, "smoke");
-  ASSERT_EQ(postJson(client, kBase + "/edits", frame({{"op", "remove"}, {"id", "smoke"}}))->status, 200);
+  ASSERT_EQ(postJson(client, kBase + "/edits", frame({{"op", "remove"}, {"id", "smoke"}}))->status,
+            200);
   EXPECT_TRUE(volumeJson(client, "smoke").is_null());
   EXPECT_NE(image(client), image0);
   // The scene's own file (as GET scene names it) may be added back by a client's frame.
-  const auto back = postJson(client, kBase + "/edits", frame({{"op", "add_volume"}, {"volume", smoke}}));
+  const auto back =
+      postJson(client, kBase + "/edits", frame({{"op", "add_volume"}, {"volume", smoke}}));
   ASSERT_EQ(back->status, 200) << back->body;
   EXPECT_EQ(volumeJson(client, "smoke"), smoke);
   EXPECT_EQ(image(client), image0);
@@ -155,14 +163,17 @@ TEST(VolumeEdits, AnUploadedVolumeIsAddedMovedAndRestoredAfterARestart) {
     EXPECT_EQ(bodyJson(client.Get(kBase.c_str()))["volumes"].size(), 2u);
     EXPECT_NE(image(client), image0);
     ASSERT_EQ(postJson(client, kBase + "/edits", setVolume("puff", 80))->status, 200);
-    const json move = frame({{"op", "move"}, {"id", "puff"}, {"transform", {{"translate", {1.5, 0.2, 1}}}}});
+    const json move =
+        frame({{"op", "move"}, {"id", "puff"}, {"transform", {{"translate", {1.5, 0.2, 1}}}}});
     ASSERT_EQ(postJson(client, kBase + "/edits", move)->status, 200);
     // Undo of the upload, then redo by add_volume naming the file the server kept.
-    ASSERT_EQ(postJson(client, kBase + "/edits", frame({{"op", "remove"}, {"id", "puff"}}))->status, 200);
+    ASSERT_EQ(postJson(client, kBase + "/edits", frame({{"op", "remove"}, {"id", "puff"}}))->status,
+              200);
     json again = puff;
     again["isovalue"] = 80;
     again["transform"] = {{"translate", {1.5, 0.2, 1}}};
-    const auto redo = postJson(client, kBase + "/edits", frame({{"op", "add_volume"}, {"volume", again}}));
+    const auto redo =
+        postJson(client, kBase + "/edits", frame({{"op", "add_volume"}, {"volume", again}}));
     ASSERT_EQ(redo->status, 200) << redo->body;
     image2 = image(client);
     scene2 = bodyJson(client.Get(kBase.c_str())).dump();
@@ -185,9 +196,10 @@ TEST(VolumeEdits, BadUploadsCreateNothing) {
   const std::string type = "application/octet-stream";
   const std::string huge =
       "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 1024 1024 1024\nencoding: raw\n\nabc";
-  const std::string truncated = "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\nabc";
-  const std::string flat = "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 1\nencoding: raw\n\n" +
-                           std::string(16, 'a');
+  const std::string truncated =
+      "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\nabc";
+  const std::string flat =
+      "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 1\nencoding: raw\n\n" + std::string(16, 'a');
   const std::vector<std::tuple<std::string, std::string, int, std::string>> cases = {
       {"", "", 400, "(body)"},
       {"", "not a volume at all", 422, "(body)"},
@@ -196,8 +208,8 @@ TEST(VolumeEdits, BadUploadsCreateNothing) {
       {"", flat, 422, "(body)"},       // a side of one voxel
       {"?isovalue=nan", smokeBytes(), 400, "query.isovalue"},
       {"?isovalue=1e9", smokeBytes(), 400, "query.isovalue"},
-      {"?id=smoke", smokeBytes(), 400, "query.id"},        // taken by a volume
-      {"?id=tall_block", smokeBytes(), 400, "query.id"},   // taken by a polygon object
+      {"?id=smoke", smokeBytes(), 400, "query.id"},       // taken by a volume
+      {"?id=tall_block", smokeBytes(), 400, "query.id"},  // taken by a polygon object
       {"?material=gold", smokeBytes(), 400, "query.material"},
       {"?translate=1,2", smokeBytes(), 400, "query.translate"},
   };
@@ -225,7 +237,8 @@ TEST(VolumeEdits, APreviewFollowsTheIsovalue) {
   EXPECT_EQ(low["points"].size() % 3, 0u);
   EXPECT_NE(low["points"].size(), high["points"].size());
   EXPECT_EQ(client.Get((kBase + "/volumes/ghost/preview").c_str())->status, 404);
-  EXPECT_EQ(bodyJson(client.Get((kBase + "/volumes/smoke/preview?isovalue=1e9").c_str()))["error"]["path"],
+  EXPECT_EQ(bodyJson(client.Get(
+                (kBase + "/volumes/smoke/preview?isovalue=1e9").c_str()))["error"]["path"],
             "query.isovalue");
 }
 

@@ -343,7 +343,7 @@ class App {
     if (id && this.objects.isVolume(id)) {
       const info = this.objects.byId.get(id).userData.info;
       this.volumeRows = appendVolumeRows(this.inspector.root, info, this.objects.json.get(id).isovalue, {
-        onInput: (value) => this.isovalueTo(id, value),
+        onInput: (value) => this.isovalueTo(id, value, true),
         onCommit: (before, after) => {
           this.history.push({ id, isovalue: { before, after } });
           this.updateUndoButtons();
@@ -427,13 +427,14 @@ class App {
   }
 
   // Takes a volume to a new isovalue: its preview at once, the server by a coalesced set_volume.
-  isovalueTo(id, isovalue) {
+  // `typed`: from the inspector's own fields (they already show it, mid-gesture).
+  isovalueTo(id, isovalue, typed = false) {
     const object = this.objects.json.get(id);
     if (!object || !this.objects.isVolume(id)) return;
     this.objects.json.set(id, { ...object, isovalue });
     this.previews.request(id, isovalue);
     this.coalescer.setVolume(id, isovalue);
-    if (this.inspector.id === id && this.volumeRows) this.volumeRows.update(isovalue);
+    if (!typed && this.inspector.id === id && this.volumeRows) this.volumeRows.update(isovalue);
   }
 
   // Volumes' isovalues from the server's scene (another client's edits).
