@@ -3,7 +3,8 @@
 // dashed box with a point-cloud preview of its isosurface and the note that the DM mesh has no
 // volume occluders; clicked, it is selected and dragged by the gizmo (move edits), its isovalue
 // slider sends set_volume; after each the server's image differs and the page's render panel shows
-// the new version; undo takes both back (the image is the first one again); no error shown.
+// the new version; undo takes both back (the image is the first one again); a .nrrd loaded with
+// the panel's control becomes a second volume (undo removes it, redo adds it back); no error shown.
 //
 // usage: node tests/web/volume_e2e.mjs --penumbra build/penumbra [--scene scenes/volume_room.scene.json]
 import path from 'node:path';
@@ -112,6 +113,25 @@ async function main() {
     await page.click('#redo');
     await idle(page);
     check(Math.abs((await smokeOnServer(base, sceneId)).transform.translate[0] - moved.transform.translate[0]) < 1e-9, 'redo moves it again');
+
+    // Load a volume file: uploaded, placed, selected; undo removes it, redo adds it back (add_volume).
+    const imageBeforeLoad = await serverImage(base, sceneId);
+    await page.locator('#volume-file').setInputFiles(path.join(repo, 'scenes', 'volumes', 'smoke64.nrrd'));
+    await until(async () => (await page.evaluate(() => window.penumbra.volumes())).length === 2);
+    await idle(page);
+    const volumesOnServer = async () => (await serverScene(base, sceneId)).scene.objects.filter((o) => o.type === 'volume').map((o) => o.id);
+    const loaded = await page.evaluate(() => window.penumbra.volumes());
+    check(JSON.stringify(await volumesOnServer()) === '["smoke","smoke64"]' && loaded.length === 2 && loaded[1].previewPoints > 100,
+      'a loaded .nrrd becomes a volume on the server, drawn with its preview', JSON.stringify({ server: await volumesOnServer(), loaded }));
+    check((await page.evaluate(() => window.penumbra.state().selected)) === 'smoke64', 'the loaded volume is selected');
+    check(await serverImage(base, sceneId) !== imageBeforeLoad, 'the server image shows the loaded volume');
+    await page.click('#undo');
+    await idle(page);
+    check(JSON.stringify(await volumesOnServer()) === '["smoke"]', 'undo removes the loaded volume');
+    await page.click('#redo');
+    await idle(page);
+    check(JSON.stringify(await volumesOnServer()) === '["smoke","smoke64"]'
+      && (await page.evaluate(() => window.penumbra.volumes())).length === 2, 'redo adds it back');
 
     const final = await page.evaluate(() => window.penumbra.state());
     check(!final.errors.length && !final.bannerVisible && !pageErrors.length, 'no error shown or logged', JSON.stringify({ errors: final.errors, pageErrors }));
