@@ -34,7 +34,8 @@ json moveVolume(double x) {
 }
 
 json volumeJson(httplib::Client& client, const std::string& id) {
-  for (const json& object : bodyJson(client.Get(kBase.c_str()))["scene"]["objects"])
+  const json wrapped = bodyJson(client.Get(kBase.c_str()));
+  for (const json& object : wrapped["scene"]["objects"])
     if (object["id"] == id) return object;
   return nullptr;
 }
@@ -60,20 +61,20 @@ TEST(VolumeEdits, MoveAndIsovalueAreVersionsThatChangeTheImageNotTheMesh) {
   EXPECT_TRUE(result["mesh_changed"].empty());
   EXPECT_EQ(volumeJson(client, "smoke")["transform"]["translate"][0], 1.2);
   const std::string image1 = image(client);
-  EXPECT_NE(image1, image0) << "the image shows the moved volume";
+  EXPECT_TRUE(image1 != image0) << "the image shows the moved volume";
 
   const auto iso = postJson(client, kBase + "/edits", setVolume("smoke", 90.5));
   ASSERT_EQ(iso->status, 200) << iso->body;
   EXPECT_EQ(bodyJson(iso)["version"], 2);
   EXPECT_EQ(volumeJson(client, "smoke")["isovalue"], 90.5);
-  EXPECT_NE(image(client), image1) << "the image shows the new isosurface";
+  EXPECT_TRUE(image(client) != image1) << "the image shows the new isosurface";
   EXPECT_EQ(client.Get((kBase + "/mesh?format=bin").c_str())->body.substr(12), mesh0.substr(12))
       << "the DM mesh is the same but for its version";
 
   // Back: the same image as at the start (nothing else moved).
   ASSERT_EQ(postJson(client, kBase + "/edits", setVolume("smoke", 40.5))->status, 200);
   ASSERT_EQ(postJson(client, kBase + "/edits", moveVolume(0.35))->status, 200);
-  EXPECT_EQ(image(client), image0);
+  EXPECT_TRUE(image(client) == image0);
 }
 
 TEST(VolumeEdits, BadVolumeEditsAreRefusedWholeWithTheKeyPath) {
@@ -131,13 +132,13 @@ TEST(VolumeEdits, RemoveThenAddBackIsTheUndoOfADelete) {
   ASSERT_EQ(postJson(client, kBase + "/edits", frame({{"op", "remove"}, {"id", "smoke"}}))->status,
             200);
   EXPECT_TRUE(volumeJson(client, "smoke").is_null());
-  EXPECT_NE(image(client), image0);
+  EXPECT_TRUE(image(client) != image0);
   // The scene's own file (as GET scene names it) may be added back by a client's frame.
   const auto back =
       postJson(client, kBase + "/edits", frame({{"op", "add_volume"}, {"volume", smoke}}));
   ASSERT_EQ(back->status, 200) << back->body;
   EXPECT_EQ(volumeJson(client, "smoke"), smoke);
-  EXPECT_EQ(image(client), image0);
+  EXPECT_TRUE(image(client) == image0);
 }
 
 TEST(VolumeEdits, AnUploadedVolumeIsAddedMovedAndRestoredAfterARestart) {
@@ -148,7 +149,7 @@ TEST(VolumeEdits, AnUploadedVolumeIsAddedMovedAndRestoredAfterARestart) {
     first.addBundled("volume_room");
     auto client = first.client();
     const std::string image0 = image(client);
-    const auto up = client.Post((kBase + "/volumes?id=puff&isovalue=60&translate=2,0.5,1").c_str(),
+    const auto up = client.Post((kBase + "/volumes?id=puff&isovalue=60&translate=2.2,1.5,2").c_str(),
                                 smokeBytes(), "application/octet-stream");
     ASSERT_EQ(up->status, 201) << up->body;
     const json answer = bodyJson(up);
@@ -161,7 +162,7 @@ TEST(VolumeEdits, AnUploadedVolumeIsAddedMovedAndRestoredAfterARestart) {
     EXPECT_EQ(puff["isovalue"], 60);
     EXPECT_TRUE(std::filesystem::exists(puff["file"].get<std::string>()));
     EXPECT_EQ(bodyJson(client.Get(kBase.c_str()))["volumes"].size(), 2u);
-    EXPECT_NE(image(client), image0);
+    EXPECT_TRUE(image(client) != image0);
     ASSERT_EQ(postJson(client, kBase + "/edits", setVolume("puff", 80))->status, 200);
     const json move =
         frame({{"op", "move"}, {"id", "puff"}, {"transform", {{"translate", {1.5, 0.2, 1}}}}});
@@ -185,7 +186,7 @@ TEST(VolumeEdits, AnUploadedVolumeIsAddedMovedAndRestoredAfterARestart) {
   EXPECT_TRUE(restored[0].served) << restored[0].problem;
   auto client = second.client();
   EXPECT_EQ(bodyJson(client.Get(kBase.c_str())).dump(), scene2);
-  EXPECT_EQ(image(client), image2);
+  EXPECT_TRUE(image(client) == image2);
 }
 
 TEST(VolumeEdits, BadUploadsCreateNothing) {

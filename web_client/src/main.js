@@ -251,8 +251,10 @@ class App {
     }
     try {
       const wrapped = await this.api.getScene(this.sceneId);
+      this.adopt(wrapped);
       this.objects.syncTransforms(wrapped.scene, null);
       this.objects.syncLights(wrapped.scene, null);
+      this.syncIsovalues();
       this.refreshInspector();
     } catch (again) {
       this.fail(again);
