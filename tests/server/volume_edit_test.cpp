@@ -228,6 +228,25 @@ TEST(VolumeEdits, BadUploadsCreateNothing) {
     EXPECT_TRUE(std::filesystem::is_empty(uploads)) << "a refused upload leaves no file";
 }
 
+TEST(VolumeEdits, AFormUploadTakesItsIdFromTheFileName) {
+  RunningServer running;
+  running.addBundled("volume_room");
+  auto client = running.client();
+  const httplib::MultipartFormDataItems form = {{"file", smokeBytes(), "CT head.nrrd", "application/octet-stream"}};
+  const auto up = client.Post((kBase + "/volumes").c_str(), form);
+  ASSERT_EQ(up->status, 201) << up->body;
+  EXPECT_EQ(bodyJson(up)["volume"]["id"], "CT_head");
+  EXPECT_EQ(bodyJson(up)["volume"]["isovalue"], 127.5) << "the middle of the values by default";
+  const auto again = client.Post((kBase + "/volumes").c_str(), form);
+  ASSERT_EQ(again->status, 201) << again->body;
+  EXPECT_EQ(bodyJson(again)["volume"]["id"], "CT_head-2") << "a taken name is numbered";
+  const httplib::MultipartFormDataItems other = {{"data", smokeBytes(), "x.nrrd", "application/octet-stream"}};
+  const auto bad = client.Post((kBase + "/volumes").c_str(), other);
+  EXPECT_EQ(bad->status, 400);
+  EXPECT_EQ(bodyJson(bad)["error"]["path"], "(form).data");
+  EXPECT_EQ(bodyJson(client.Get(kBase.c_str()))["version"], 2);
+}
+
 TEST(VolumeEdits, APreviewFollowsTheIsovalue) {
   RunningServer running;
   running.addBundled("volume_room");
