@@ -9,20 +9,10 @@
 // usage: node tests/web/volume_e2e.mjs --penumbra build/penumbra [--scene scenes/volume_room.scene.json]
 import path from 'node:path';
 
-import { check, repo, runWithServerAndBrowser, sleep, usageOnHelp } from './harness.mjs';
+import { check, repo, runWithServerAndBrowser, sleep, until, usageOnHelp } from './harness.mjs';
 import { dragXHandle, openPage, serverScene } from './page_actions.mjs';
 
 const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'volume_room.scene.json'), startupSeconds: 120 };
-
-async function until(what, seconds = 60) {
-  const deadline = Date.now() + seconds * 1000;
-  for (;;) {
-    const value = await what();
-    if (value) return value;
-    if (Date.now() > deadline) return null;
-    await sleep(200);
-  }
-}
 
 const volume = async (page) => (await page.evaluate(() => window.penumbra.volumes()))[0];
 const idle = (page) => page.evaluate(() => window.penumbra.idle());
