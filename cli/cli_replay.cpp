@@ -15,6 +15,8 @@
 #include <optional>
 #include <string>
 
+#include "cli/commands.h"
+#include "cli/progress_bar.h"
 #include "core/engine/engine.h"
 #include "core/engine/light_edits.h"
 #include "core/engine/volume_edits.h"
@@ -24,8 +26,6 @@
 #include "protocol/json_text.h"
 #include "protocol/mesh_json.h"
 #include "protocol/scene_json.h"
-#include "cli/commands.h"
-#include "cli/progress_bar.h"
 
 namespace penumbra::cli {
 
@@ -49,7 +49,8 @@ void playOnScene(Scene& scene, const Frame& frame) {
     const Edit& edit = frame.edits[i];
     try {
       if (VolumeEditCheck volumes(scene); volumes.concerns(edit)) {  // as Engine::checkFrame
-        volumes.check(edit, i, [&](const std::string& id) { return scene.findObject(id).has_value(); });
+        volumes.check(edit, i,
+                      [&](const std::string& id) { return scene.findObject(id).has_value(); });
         applyVolumeEdit(scene, edit);
         continue;
       }

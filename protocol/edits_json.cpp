@@ -66,7 +66,8 @@ Edit editFromJson(const Json& value, const std::string& path,
     edit.op = Edit::Op::AddVolume;
     const Json& volume = requireKey(value, "volume", path);
     const std::string where = keyPath(path, "volume");
-    if (!isVolumeObject(volume, where)) fail(keyPath(where, "type"), "missing: \"type\": \"volume\"");
+    if (!isVolumeObject(volume, where))
+      fail(keyPath(where, "type"), "missing: \"type\": \"volume\"");
     edit.volume = volumeFromJson(volume, where, materialsFor(volume, materials), files);
     edit.id = edit.volume.id;
   } else {
@@ -154,8 +155,8 @@ std::vector<ScriptFrame> readEditScriptFrames(std::string_view text,
     if (content.find_first_not_of(" \t") == std::string_view::npos) continue;  // blank line
     try {
       frames.push_back(
-          {line,
-           frameFromJson(parseJsonText(content, kMaxJsonFileBytes, kMaxJsonDepth), materials, files)});
+          {line, frameFromJson(parseJsonText(content, kMaxJsonFileBytes, kMaxJsonDepth), materials,
+                               files)});
     } catch (const ValidationError& error) {
       throw EditScriptError(line, error.path(), error.problem());
     }

@@ -16,17 +16,16 @@
 namespace penumbra::protocol {
 
 // One frame: {"edits": [{"op": "move"|"add"|"remove"|"set_light"|"add_light"|
-// "remove_light"|"set_volume"|"add_volume", ...}, ...]}. Throws ValidationError at the first problem with the path
-// inside the frame (e.g. `edits[1].transform.scale`, `edits[0].light.polygon[2]`): unknown
-// op, missing keys, wrong types, non-finite numbers, zero scale, an invalid object or
-// light, a light polygon that is not planar and convex, a negative radiance, a set_light
-// with neither. With `materials`, an added
-// object's material must be one of them; with nullptr, material names are left
-// to Engine::apply. Ids that must (not) exist are the engine's check (EditError).
-// add_volume reads its volume's file through `files` (volume_json.h); without them (a frame
-// sent over HTTP) it is refused at `edits[i].volume.file`: a client cannot make the server
-// open a file (uploads go through POST .../volumes). A set_volume's isovalue range and a
-// move's target (object or volume) are the engine's check.
+// "remove_light"|"set_volume"|"add_volume", ...}, ...]}. Throws ValidationError at the first
+// problem with the path inside the frame (e.g. `edits[1].transform.scale`,
+// `edits[0].light.polygon[2]`): unknown op, missing keys, wrong types, non-finite numbers, zero
+// scale, an invalid object or light, a light polygon that is not planar and convex, a negative
+// radiance, a set_light with neither. With `materials`, an added object's material must be one of
+// them; with nullptr, material names are left to Engine::apply. Ids that must (not) exist are the
+// engine's check (EditError). add_volume reads its volume's file through `files` (volume_json.h);
+// without them it is refused at `edits[i].volume.file`, and the server passes only the files it
+// holds (VolumeFiles::onlyKnown): a client cannot make it open any other. A set_volume's isovalue
+// range and a move's target (object or volume) are the engine's check.
 Frame frameFromJson(const nlohmann::json& value, const std::vector<Material>* materials = nullptr,
                     const VolumeFiles* files = nullptr);
 

@@ -42,7 +42,8 @@ std::shared_ptr<const volume::ScalarVolume> readFile(const std::string& file,
 
 // Inside the server's upload folder (no "..": resolve() normalised it) or one of the listed files.
 bool knownFile(const std::string& resolved, const VolumeFiles& files) {
-  if (std::find(files.knownFiles.begin(), files.knownFiles.end(), resolved) != files.knownFiles.end())
+  if (std::find(files.knownFiles.begin(), files.knownFiles.end(), resolved) !=
+      files.knownFiles.end())
     return true;
   if (files.knownDirectory.empty()) return false;
   const std::filesystem::path dir = std::filesystem::path(files.knownDirectory).lexically_normal();
@@ -89,8 +90,9 @@ VolumeObject volumeFromJson(const Json& value, const std::string& path,
          "SCENE), not from a scene sent as JSON");
   volume.file = resolve(file, *files);
   if (files->onlyKnown && !knownFile(volume.file, *files))
-    fail(keyPath(path, "file"), "'" + file + "' is not a volume file this server holds: upload it "
-                                "with POST /api/scenes/{id}/volumes");
+    fail(keyPath(path, "file"), "'" + file +
+                                    "' is not a volume file this server holds: upload it "
+                                    "with POST /api/scenes/{id}/volumes");
   volume.data = readFile(file, volume.file, path, *files);
   return volume;
 }

@@ -1,19 +1,18 @@
 // POST /api/scenes/{id}/edits: one frame of edits, applied whole or refused.
-#include "server/http_server.h"
-
 #include <httplib.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <new>
-#include <atomic>
 #include <optional>
 #include <regex>
 
 #include "core/geom/resource_limit.h"
 #include "protocol/edits_json.h"
-#include "server/frame_batch.h"
 #include "protocol/frame_result_json.h"
+#include "server/frame_batch.h"
+#include "server/http_server.h"
 #include "server/request_io.h"
 #include "server/response_json.h"
 
@@ -216,9 +215,11 @@ void HttpServer::registerEditRoutes() {
                     edit >= 0 ? json{{"edit", edit}} : json::object());
           return;
         }
-        // A frame adding a volume is journaled with its file resolved (absolute), as a restart reads it.
-        const bool addsVolume = std::any_of(frame.edits.begin(), frame.edits.end(),
-                                            [](const Edit& e) { return e.op == Edit::Op::AddVolume; });
+        // A frame adding a volume is journaled with its file resolved (absolute), as a restart
+        // reads it.
+        const bool addsVolume =
+            std::any_of(frame.edits.begin(), frame.edits.end(),
+                        [](const Edit& e) { return e.op == Edit::Op::AddVolume; });
         const std::string journaled = addsVolume ? protocol::frameToJson(frame).dump() : req.body;
         submitFrame(*session, std::move(frame), journaled, req, res);
       }));

@@ -81,8 +81,9 @@ Frame storedFrame(const SceneSession& session, const std::string& text) {
   const auto materials = session.snapshot()->scene.materials();  // edits change no material
   // add_volume frames name files the server stored itself (POST .../volumes), as absolute paths.
   const protocol::VolumeFiles volumeFiles;
-  return protocol::frameFromJson(protocol::parseJsonText(text, text.size(), protocol::kMaxJsonDepth),
-                                 &materials, &volumeFiles);
+  return protocol::frameFromJson(
+      protocol::parseJsonText(text, text.size(), protocol::kMaxJsonDepth), &materials,
+      &volumeFiles);
 }
 
 // Every frame through the engine, meshed once at the end (SceneSession::replayJournaled):

@@ -165,9 +165,9 @@ namespace {
 // Applies a checked frame's edits to `scene` in order.
 void applyEdits(Scene& scene, const Frame& frame) {
   for (const Edit& edit : frame.edits) {
-    const bool volumeEdit = edit.op == Edit::Op::SetVolume || edit.op == Edit::Op::AddVolume ||
-                            ((edit.op == Edit::Op::Move || edit.op == Edit::Op::Remove) &&
-                             scene.findVolume(edit.id));
+    const bool volumeEdit =
+        edit.op == Edit::Op::SetVolume || edit.op == Edit::Op::AddVolume ||
+        ((edit.op == Edit::Op::Move || edit.op == Edit::Op::Remove) && scene.findVolume(edit.id));
     if (volumeEdit) {
       applyVolumeEdit(scene, edit);
       continue;

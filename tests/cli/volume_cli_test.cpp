@@ -84,13 +84,19 @@ TEST(VolumeCli, ReplayPlaysVolumeEdits) {
                              dir / "puff.nrrd", std::filesystem::copy_options::overwrite_existing);
   const std::string script = (dir / "v.edits.jsonl").string();
   std::ofstream(script)
-      << R"({"edits":[{"op":"move","id":"smoke","transform":{"translate":[1,1,3]}}]})" "\n"
-      << R"({"edits":[{"op":"set_volume","id":"smoke","isovalue":80}]})" "\n"
-      << R"({"edits":[{"op":"add_volume","volume":{"id":"puff","type":"volume","file":"puff.nrrd","isovalue":60}}]})" "\n"
-      << R"({"edits":[{"op":"remove","id":"smoke"}]})" "\n";
+      << R"({"edits":[{"op":"move","id":"smoke","transform":{"translate":[1,1,3]}}]})"
+         "\n"
+      << R"({"edits":[{"op":"set_volume","id":"smoke","isovalue":80}]})"
+         "\n"
+      << R"({"edits":[{"op":"add_volume","volume":{"id":"puff","type":"volume","file":"puff.nrrd","isovalue":60}}]})"
+         "\n"
+      << R"({"edits":[{"op":"remove","id":"smoke"}]})"
+         "\n";
   const auto [status, text] = run("replay " + kVolumeRoom + " " + script + " --verify");
   EXPECT_EQ(status, 0) << text;
-  std::ofstream(script, std::ios::app) << R"({"edits":[{"op":"set_volume","id":"puff","isovalue":1e9}]})" "\n";
+  std::ofstream(script, std::ios::app)
+      << R"({"edits":[{"op":"set_volume","id":"puff","isovalue":1e9}]})"
+         "\n";
   const auto [refused, says] = run("replay " + kVolumeRoom + " " + script);
   EXPECT_EQ(refused, 2) << says;
   EXPECT_NE(says.find("line 5: edits[0].isovalue: "), std::string::npos) << says;
@@ -98,4 +104,3 @@ TEST(VolumeCli, ReplayPlaysVolumeEdits) {
 }
 
 }  // namespace
-

@@ -406,7 +406,8 @@ TEST(FrameResultJson, NamesReceiversByObjectId) {
 }
 
 TEST(EditsJson, VolumeEditsReadTheirKeysAndRoundTrip) {
-  const json text = json::parse(R"({"edits": [{"op": "set_volume", "id": "smoke", "isovalue": 90.5}]})");
+  const json text =
+      json::parse(R"({"edits": [{"op": "set_volume", "id": "smoke", "isovalue": 90.5}]})");
   const Frame frame = frameFromJson(text);
   ASSERT_EQ(frame.edits.size(), 1u);
   EXPECT_EQ(frame.edits[0].op, Edit::Op::SetVolume);
@@ -435,15 +436,19 @@ TEST(EditsJson, VolumeEditsReadTheirKeysAndRoundTrip) {
   VolumeFiles known;
   known.onlyKnown = true;
   known.knownDirectory = known.baseDirectory = "/tmp/penumbra-uploads";
-  for (const char* file : {"/etc/passwd", "../passwd", "/tmp/penumbra-uploads/../x.nrrd", "sub/x.nrrd"}) {
-    const json body = {{"edits", {{{"op", "add_volume"},
-                                   {"volume", {{"id", "v"}, {"type", "volume"}, {"file", file}, {"isovalue", 1}}}}}}};
+  for (const char* file :
+       {"/etc/passwd", "../passwd", "/tmp/penumbra-uploads/../x.nrrd", "sub/x.nrrd"}) {
+    const json body = {
+        {"edits",
+         {{{"op", "add_volume"},
+           {"volume", {{"id", "v"}, {"type", "volume"}, {"file", file}, {"isovalue", 1}}}}}}};
     try {
       frameFromJson(body, nullptr, &known);
       ADD_FAILURE() << file << " was read";
     } catch (const ValidationError& error) {
       EXPECT_EQ(error.path(), "edits[0].volume.file") << file;
-      EXPECT_NE(std::string(error.what()).find("not a volume file this server holds"), std::string::npos)
+      EXPECT_NE(std::string(error.what()).find("not a volume file this server holds"),
+                std::string::npos)
           << file << ": " << error.what();
     }
   }

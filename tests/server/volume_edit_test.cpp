@@ -149,8 +149,9 @@ TEST(VolumeEdits, AnUploadedVolumeIsAddedMovedAndRestoredAfterARestart) {
     first.addBundled("volume_room");
     auto client = first.client();
     const std::string image0 = image(client);
-    const auto up = client.Post((kBase + "/volumes?id=puff&isovalue=60&translate=2.2,1.5,2").c_str(),
-                                smokeBytes(), "application/octet-stream");
+    const auto up =
+        client.Post((kBase + "/volumes?id=puff&isovalue=60&translate=2.2,1.5,2").c_str(),
+                    smokeBytes(), "application/octet-stream");
     ASSERT_EQ(up->status, 201) << up->body;
     const json answer = bodyJson(up);
     EXPECT_EQ(answer["version"], 1);
@@ -232,7 +233,8 @@ TEST(VolumeEdits, AFormUploadTakesItsIdFromTheFileName) {
   RunningServer running;
   running.addBundled("volume_room");
   auto client = running.client();
-  const httplib::MultipartFormDataItems form = {{"file", smokeBytes(), "CT head.nrrd", "application/octet-stream"}};
+  const httplib::MultipartFormDataItems form = {
+      {"file", smokeBytes(), "CT head.nrrd", "application/octet-stream"}};
   const auto up = client.Post((kBase + "/volumes").c_str(), form);
   ASSERT_EQ(up->status, 201) << up->body;
   EXPECT_EQ(bodyJson(up)["volume"]["id"], "CT_head");
@@ -240,7 +242,8 @@ TEST(VolumeEdits, AFormUploadTakesItsIdFromTheFileName) {
   const auto again = client.Post((kBase + "/volumes").c_str(), form);
   ASSERT_EQ(again->status, 201) << again->body;
   EXPECT_EQ(bodyJson(again)["volume"]["id"], "CT_head-2") << "a taken name is numbered";
-  const httplib::MultipartFormDataItems other = {{"data", smokeBytes(), "x.nrrd", "application/octet-stream"}};
+  const httplib::MultipartFormDataItems other = {
+      {"data", smokeBytes(), "x.nrrd", "application/octet-stream"}};
   const auto bad = client.Post((kBase + "/volumes").c_str(), other);
   EXPECT_EQ(bad->status, 400);
   EXPECT_EQ(bodyJson(bad)["error"]["path"], "(form).data");
