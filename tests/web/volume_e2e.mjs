@@ -4,7 +4,8 @@
 // volume occluders; clicked, it is selected and dragged by the gizmo (move edits), its isovalue
 // slider sends set_volume; after each the server's image differs and the page's render panel shows
 // the new version; undo takes both back (the image is the first one again); a .nrrd loaded with
-// the panel's control becomes a second volume (undo removes it, redo adds it back); no error shown.
+// the panel's control becomes a second volume (undo removes it, redo adds it back); Delete and its
+// undo take the scene's own volume away and back; no error shown.
 //
 // usage: node tests/web/volume_e2e.mjs --penumbra build/penumbra [--scene scenes/volume_room.scene.json]
 import path from 'node:path';
@@ -122,6 +123,17 @@ async function main() {
     await idle(page);
     check(JSON.stringify(await volumesOnServer()) === '["smoke","smoke64"]'
       && (await page.evaluate(() => window.penumbra.volumes())).length === 2, 'redo adds it back');
+
+    // Delete the scene's own volume and undo: add_volume names the scene's file, which the server holds.
+    await page.evaluate(() => window.penumbra.select('smoke'));
+    await page.click('#delete');
+    await idle(page);
+    check(JSON.stringify(await volumesOnServer()) === '["smoke64"]', 'Delete removes the selected volume');
+    await page.click('#undo');
+    await idle(page);
+    const restored = await smokeOnServer(base, sceneId);
+    check(restored && Math.abs(restored.transform.translate[0] - moved.transform.translate[0]) < 1e-9 && restored.isovalue === 40.5,
+      'undo adds it back where it was', JSON.stringify(restored));
 
     const final = await page.evaluate(() => window.penumbra.state());
     check(!final.errors.length && !final.bannerVisible && !pageErrors.length, 'no error shown or logged', JSON.stringify({ errors: final.errors, pageErrors }));

@@ -144,6 +144,11 @@ export function installTestHook(app) {
         previewPoints: holder.userData.previewPoints ?? 0, previewFetches: app.previews.fetches,
         box: !!holder.getObjectByName('volume-box') }));
     },
+    // Selects an object, a volume or "light:ID" as a click on it would.
+    select(id) {
+      app.gizmo.select(id);
+      return app.gizmo.selected;
+    },
     lightJson(id) {
       return app.objects.lightJson.get(id) || null;
     },
