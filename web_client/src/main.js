@@ -1,6 +1,6 @@
 // The page's wiring: picks the scene (?scene=ID, else the first served), loads it and its mesh
 // (behind the loading overlay), and connects the view, selection gizmo, edit coalescer, drag
-// limit, undo history, editor commands, inspector (a volume's isovalue too), outliner, server
+// limit, undo history, editor commands, inspector, volumes (volume_controls.js), outliner, server
 // render, timings and plot, events, connection bar and error banner. Each concept lives in its own module beside this one.
 import { ApiClient } from './api_client.js';
 import { ConnectionStatus } from './connection_status.js';
@@ -32,8 +32,7 @@ import { installTestHook } from './test_hook.js';
 import { TimingsPanel } from './timings_panel.js';
 import { ToneMap } from './tone_map.js';
 import { UndoHistory } from './undo_history.js';
-import { appendVolumeRows } from './volume_inspector.js';
-import { VolumePreviews } from './volume_previews.js';
+import { VolumeControls } from './volume_controls.js';
 import { installVolumeLoader } from './volume_loader.js';
 
 const $ = (id) => document.getElementById(id);
@@ -116,10 +115,9 @@ class App {
     this.knownVersion = wrapped.version;
     this.history.restore(`${wrapped.id}.${wrapped.name}`, wrapped.version);
 
-    this.previews = new VolumePreviews(this.api, sceneId, (id) => (this.objects.isVolume(id) ? this.objects.byId.get(id) : null),
-      () => this.view.requestRender(), (error) => this.fail(error));
+    this.volumes = new VolumeControls(this, sceneId, $('volume-note'));
     this.objects.build(wrapped.scene);
-    this.showVolumes();
+    this.volumes.show();
     this.toneMap = new ToneMap(wrapped.scene, this.objects.bounds);
     this.view.setCamera(wrapped.scene.camera, this.objects.bounds, this.objects);
 
@@ -254,7 +252,7 @@ class App {
       this.adopt(wrapped);
       this.objects.syncTransforms(wrapped.scene, null);
       this.objects.syncLights(wrapped.scene, null);
-      this.syncIsovalues();
+      this.volumes.sync(wrapped.scene);
       this.refreshInspector();
     } catch (again) {
       this.fail(again);
@@ -322,7 +320,7 @@ class App {
     if (this.gizmo.dragging) return;
     const entry = this.history.undo();
     if (entry && entry.frame) this.editor.sendStructural(entry.frame.undo, entry.select.undo).catch(this.fail);
-    else if (entry && entry.isovalue) this.isovalueTo(entry.id, entry.isovalue.before);
+    else if (entry && entry.isovalue) this.volumes.isovalueTo(entry.id, entry.isovalue.before);
     else if (entry) this.moveTo(entry.id, entry.before);
     this.updateUndoButtons();
   }
@@ -331,7 +329,7 @@ class App {
     if (this.gizmo.dragging) return;
     const entry = this.history.redo();
     if (entry && entry.frame) this.editor.sendStructural(entry.frame.redo, entry.select.redo).catch(this.fail);
-    else if (entry && entry.isovalue) this.isovalueTo(entry.id, entry.isovalue.after);
+    else if (entry && entry.isovalue) this.volumes.isovalueTo(entry.id, entry.isovalue.after);
     else if (entry) this.moveTo(entry.id, entry.after);
     this.updateUndoButtons();
   }
@@ -341,17 +339,7 @@ class App {
     this.outliner.highlight(id);
     const light = id && isLight(id) ? this.objects.lightJson.get(id.slice(6)) : null;
     this.inspector.show(id, light || (id ? transformOf(this.objects.byId.get(id)) : null));
-    this.volumeRows = null;
-    if (id && this.objects.isVolume(id)) {
-      const info = this.objects.byId.get(id).userData.info;
-      this.volumeRows = appendVolumeRows(this.inspector.root, info, this.objects.json.get(id).isovalue, {
-        onInput: (value) => this.isovalueTo(id, value, true),
-        onCommit: (before, after) => {
-          this.history.push({ id, isovalue: { before, after } });
-          this.updateUndoButtons();
-        },
-      });
-    }
+    this.volumes.inspect(id);
     for (const button of ['duplicate', 'delete', 'focus']) $(button).disabled = !id;
     // A scene keeps at least one light.
     const lastLight = !!light && !this.editor.canDeleteLight();
@@ -394,7 +382,7 @@ class App {
       if (this.objects.sameObjects(wrapped.scene)) {
         const dragged = this.gizmo.dragging ? this.gizmo.selected : null;
         this.objects.syncTransforms(wrapped.scene, dragged);
-        this.syncIsovalues();
+        this.volumes.sync(wrapped.scene);
         this.objects.syncLights(wrapped.scene, dragged && isLight(dragged) ? dragged.slice(6) : null);
         this.refreshInspector();
       } else {
@@ -411,43 +399,13 @@ class App {
     const means = this.receivers.meanColours();
     this.objects.build(scene, (id) => this.toneMap.ambientColour(id), (id, face) => means.get(receiverKey(id, face)) || null);
     this.outliner.render(this.objects, this.gizmo ? this.gizmo.selected : null);
-    this.showVolumes();
+    this.volumes.show();
   }
 
   // The scene as the server sent it ({scene, volumes: the volumes' grid info}).
   adopt(wrapped) {
     this.sceneJson = wrapped.scene;
     this.objects.volumeInfo = new Map((wrapped.volumes || []).map((v) => [v.id, v]));
-  }
-
-  // After the stand-ins were built: each volume's surface preview, and the note that the DM mesh
-  // has no volume occluders whenever the scene has a volume.
-  showVolumes() {
-    const volumes = this.objects.volumes();
-    for (const [id] of volumes) this.previews.request(id, this.objects.json.get(id).isovalue);
-    $('volume-note').hidden = volumes.length === 0;
-  }
-
-  // Takes a volume to a new isovalue: its preview at once, the server by a coalesced set_volume.
-  // `typed`: from the inspector's own fields (they already show it, mid-gesture).
-  isovalueTo(id, isovalue, typed = false) {
-    const object = this.objects.json.get(id);
-    if (!object || !this.objects.isVolume(id)) return;
-    this.objects.json.set(id, { ...object, isovalue });
-    this.previews.request(id, isovalue);
-    this.coalescer.setVolume(id, isovalue);
-    if (!typed && this.inspector.id === id && this.volumeRows) this.volumeRows.update(isovalue);
-  }
-
-  // Volumes' isovalues from the server's scene (another client's edits).
-  syncIsovalues() {
-    for (const object of this.sceneJson.objects) {
-      if (object.type !== 'volume' || !this.objects.isVolume(object.id)) continue;
-      const holder = this.objects.byId.get(object.id);
-      if (holder.userData.previewIsovalue === object.isovalue) continue;
-      this.previews.request(object.id, object.isovalue);
-      if (this.inspector.id === object.id && this.volumeRows) this.volumeRows.update(object.isovalue);
-    }
   }
 
   // After the server came back: the scene and its whole mesh again (it may have restarted, and
@@ -470,7 +428,7 @@ class App {
 
   busy() {
     return !!(this.coalescer && this.coalescer.busy()) || !!(this.meshSync && this.meshSync.running) || this.meshFollows.size > 0
-      || !!this.resyncing || this.editor.running.size > 0 || !!(this.previews && this.previews.busy());
+      || !!this.resyncing || this.editor.running.size > 0 || !!(this.volumes && this.volumes.busy());
   }
 
   // Resolves once no edit is pending or in flight and the page holds (and has timed) every version it made.
@@ -481,7 +439,7 @@ class App {
       await Promise.all([...this.meshFollows]);
       if (this.resyncing) await this.resyncing;
       await Promise.allSettled([...this.editor.running]);
-      if (this.previews) await this.previews.idle();
+      if (this.volumes) await this.volumes.idle();
     }
   }
 }

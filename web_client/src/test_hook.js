@@ -141,7 +141,7 @@ export function installTestHook(app) {
     volumes() {
       return app.objects.volumes().map(([id, holder]) => ({ id, transform: transformOf(holder),
         isovalue: app.objects.json.get(id).isovalue, previewIsovalue: holder.userData.previewIsovalue ?? null,
-        previewPoints: holder.userData.previewPoints ?? 0, previewFetches: app.previews.fetches,
+        previewPoints: holder.userData.previewPoints ?? 0, previewFetches: app.volumes.previews.fetches,
         box: !!holder.getObjectByName('volume-box') }));
     },
     // Selects an object, a volume or "light:ID" as a click on it would.
