@@ -1,9 +1,12 @@
 // POST /api/scenes/{id}/edits: one frame of edits, applied whole or refused.
+#include "server/http_server.h"
+
 #include <httplib.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
+#include <filesystem>
 #include <new>
 #include <optional>
 #include <regex>
@@ -12,7 +15,6 @@
 #include "protocol/edits_json.h"
 #include "protocol/frame_result_json.h"
 #include "server/frame_batch.h"
-#include "server/http_server.h"
 #include "server/request_io.h"
 #include "server/response_json.h"
 
@@ -206,7 +208,11 @@ void HttpServer::registerEditRoutes() {
           // add_volume may name only files the server holds (its uploads, the scene's own).
           protocol::VolumeFiles known;
           known.onlyKnown = true;
-          known.knownDirectory = known.baseDirectory = volumeUploadDir();
+          try {
+            known.knownDirectory = known.baseDirectory = volumeUploadDir();
+          } catch (const std::filesystem::filesystem_error&) {
+            // No upload folder (unwritable): only the scene's own files are known.
+          }
           known.knownFiles = session->initialVolumeFiles();
           frame = protocol::frameFromJson(body, &materials, &known);
         } catch (const protocol::ValidationError& error) {

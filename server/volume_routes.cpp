@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cctype>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -152,7 +153,8 @@ std::string HttpServer::volumeUploadDir() {
   if (uploadDir_.empty()) {
     std::filesystem::path dir = options_.dataDir.empty()
                                     ? std::filesystem::temp_directory_path() /
-                                          ("penumbra-volumes-" + std::to_string(::getpid()))
+                                          ("penumbra-volumes-" + std::to_string(::getpid()) + "-" +
+                                           std::to_string(reinterpret_cast<uintptr_t>(this)))
                                     : std::filesystem::path(options_.dataDir) / "volumes";
     std::filesystem::create_directories(dir);
     uploadDir_ = std::filesystem::absolute(dir).lexically_normal().string();
