@@ -229,6 +229,19 @@ TEST(VolumeEdits, BadUploadsCreateNothing) {
     EXPECT_TRUE(std::filesystem::is_empty(uploads)) << "a refused upload leaves no file";
 }
 
+TEST(VolumeEdits, AnUploadPastTheBodyLimitIs413) {
+  ServerOptions options = RunningServer::loopback();
+  options.maxBodyBytes = 1024;  // smoke64.nrrd is 32 KB
+  RunningServer running(options);
+  running.addBundled("volume_room");
+  auto client = running.client();
+  const auto up =
+      client.Post((kBase + "/volumes").c_str(), smokeBytes(), "application/octet-stream");
+  ASSERT_TRUE(up);
+  EXPECT_EQ(up->status, 413) << up->body;
+  EXPECT_EQ(bodyJson(client.Get(kBase.c_str()))["version"], 0);
+}
+
 TEST(VolumeEdits, AFormUploadTakesItsIdFromTheFileName) {
   RunningServer running;
   running.addBundled("volume_room");
