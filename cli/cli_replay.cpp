@@ -15,16 +15,17 @@
 #include <optional>
 #include <string>
 
+#include "cli/commands.h"
+#include "cli/progress_bar.h"
 #include "core/engine/engine.h"
 #include "core/engine/light_edits.h"
+#include "core/engine/volume_edits.h"
 #include "core/illum/vertex_illumination.h"
 #include "protocol/edits_json.h"
 #include "protocol/frame_result_json.h"
 #include "protocol/json_text.h"
 #include "protocol/mesh_json.h"
 #include "protocol/scene_json.h"
-#include "cli/commands.h"
-#include "cli/progress_bar.h"
 
 namespace penumbra::cli {
 
@@ -47,6 +48,12 @@ void playOnScene(Scene& scene, const Frame& frame) {
   for (size_t i = 0; i < frame.edits.size(); ++i) {
     const Edit& edit = frame.edits[i];
     try {
+      if (VolumeEditCheck volumes(scene); volumes.concerns(edit)) {  // as Engine::checkFrame
+        volumes.check(edit, i,
+                      [&](const std::string& id) { return scene.findObject(id).has_value(); });
+        applyVolumeEdit(scene, edit);
+        continue;
+      }
       if (isLightEdit(edit)) {
         std::vector<Light> lights = scene.lights();
         checkLightEdit(scene, edit, i, lights);  // the edit volume too, as Engine::apply
@@ -54,7 +61,7 @@ void playOnScene(Scene& scene, const Frame& frame) {
         continue;
       }
       if (edit.op == Edit::Op::Add) {
-        if (scene.findObject(edit.object.id))
+        if (scene.findObject(edit.object.id) || scene.findVolume(edit.object.id))
           throw EditError(i, "object.id", "duplicate object id '" + edit.object.id + "'");
         scene.addObject(edit.object);
         continue;
@@ -160,10 +167,12 @@ int runReplay(const Args& args) {
   const int verifyEvery = args.intOption("verify-every", 10, 1, 1 << 30);
   const Scene scene = protocol::loadSceneFile(scenePath);
 
-  // Check the whole script before applying anything.
+  // Check the whole script before applying anything. add_volume files are relative to the script.
+  protocol::VolumeFiles scriptVolumeFiles;
+  scriptVolumeFiles.baseDirectory = std::filesystem::path(scriptPath).parent_path().string();
   const std::string text = protocol::readTextFile(scriptPath, protocol::kMaxJsonFileBytes);
   const std::vector<protocol::ScriptFrame> frames =
-      protocol::readEditScriptFrames(text, &scene.materials());
+      protocol::readEditScriptFrames(text, &scene.materials(), &scriptVolumeFiles);
   {
     Scene model = scene;
     for (const auto& f : frames) {

@@ -3,13 +3,15 @@
 #include "protocol/json_reader.h"
 #include "protocol/json_text.h"
 #include "protocol/scene_json.h"
+#include "protocol/volume_json.h"
 
 namespace penumbra::protocol {
 
 namespace {
 
 constexpr std::string_view kOps =
-    "expected \"move\", \"add\", \"remove\", \"set_light\", \"add_light\" or \"remove_light\"";
+    "expected \"move\", \"add\", \"remove\", \"set_light\", \"add_light\", \"remove_light\", "
+    "\"set_volume\" or \"add_volume\"";
 
 // Without a material list, any named material passes here (Engine::apply checks
 // it against the scene); every other object check still runs.
@@ -23,7 +25,7 @@ std::vector<Material> materialsFor(const Json& object, const std::vector<Materia
 }
 
 Edit editFromJson(const Json& value, const std::string& path,
-                  const std::vector<Material>* materials) {
+                  const std::vector<Material>* materials, const VolumeFiles* files) {
   expectObject(value, path);
   const std::string op = expectString(requireKey(value, "op", path), keyPath(path, "op"));
   Edit edit;
@@ -56,6 +58,18 @@ Edit editFromJson(const Json& value, const std::string& path,
   } else if (op == "remove_light") {
     edit.op = Edit::Op::RemoveLight;
     edit.id = expectName(requireKey(value, "id", path), keyPath(path, "id"));
+  } else if (op == "set_volume") {
+    edit.op = Edit::Op::SetVolume;
+    edit.id = expectName(requireKey(value, "id", path), keyPath(path, "id"));
+    edit.isovalue = expectNumber(requireKey(value, "isovalue", path), keyPath(path, "isovalue"));
+  } else if (op == "add_volume") {
+    edit.op = Edit::Op::AddVolume;
+    const Json& volume = requireKey(value, "volume", path);
+    const std::string where = keyPath(path, "volume");
+    if (!isVolumeObject(volume, where))
+      fail(keyPath(where, "type"), "missing: \"type\": \"volume\"");
+    edit.volume = volumeFromJson(volume, where, materialsFor(volume, materials), files);
+    edit.id = edit.volume.id;
   } else {
     fail(keyPath(path, "op"), "unknown op '" + op + "' (" + std::string(kOps) + ")");
   }
@@ -64,12 +78,13 @@ Edit editFromJson(const Json& value, const std::string& path,
 
 }  // namespace
 
-Frame frameFromJson(const Json& value, const std::vector<Material>* materials) {
+Frame frameFromJson(const Json& value, const std::vector<Material>* materials,
+                    const VolumeFiles* files) {
   expectObject(value, "");
   const Json& edits = expectArray(requireKey(value, "edits", ""), "edits");
   Frame frame;
   for (size_t i = 0; i < edits.size(); ++i)
-    frame.edits.push_back(editFromJson(edits[i], indexPath("edits", i), materials));
+    frame.edits.push_back(editFromJson(edits[i], indexPath("edits", i), materials, files));
   return frame;
 }
 
@@ -100,6 +115,12 @@ Json frameToJson(const Frame& frame) {
       case Edit::Op::RemoveLight:
         edits.push_back({{"op", "remove_light"}, {"id", edit.id}});
         break;
+      case Edit::Op::SetVolume:
+        edits.push_back({{"op", "set_volume"}, {"id", edit.id}, {"isovalue", edit.isovalue}});
+        break;
+      case Edit::Op::AddVolume:
+        edits.push_back({{"op", "add_volume"}, {"volume", volumeToJson(edit.volume)}});
+        break;
     }
   }
   return Json{{"edits", std::move(edits)}};
@@ -120,7 +141,8 @@ EditScriptError atLine(size_t line, const EditError& error) {
 }
 
 std::vector<ScriptFrame> readEditScriptFrames(std::string_view text,
-                                              const std::vector<Material>* materials) {
+                                              const std::vector<Material>* materials,
+                                              const VolumeFiles* files) {
   std::vector<ScriptFrame> frames;
   size_t line = 0;
   for (size_t start = 0; start < text.size();) {
@@ -133,8 +155,8 @@ std::vector<ScriptFrame> readEditScriptFrames(std::string_view text,
     if (content.find_first_not_of(" \t") == std::string_view::npos) continue;  // blank line
     try {
       frames.push_back(
-          {line,
-           frameFromJson(parseJsonText(content, kMaxJsonFileBytes, kMaxJsonDepth), materials)});
+          {line, frameFromJson(parseJsonText(content, kMaxJsonFileBytes, kMaxJsonDepth), materials,
+                               files)});
     } catch (const ValidationError& error) {
       throw EditScriptError(line, error.path(), error.problem());
     }

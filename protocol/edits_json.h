@@ -11,18 +11,23 @@
 #include "core/engine/frame.h"
 #include "core/scene/scene.h"
 #include "protocol/validation_error.h"
+#include "protocol/volume_json.h"
 
 namespace penumbra::protocol {
 
 // One frame: {"edits": [{"op": "move"|"add"|"remove"|"set_light"|"add_light"|
-// "remove_light", ...}, ...]}. Throws ValidationError at the first problem with the path
-// inside the frame (e.g. `edits[1].transform.scale`, `edits[0].light.polygon[2]`): unknown
-// op, missing keys, wrong types, non-finite numbers, zero scale, an invalid object or
-// light, a light polygon that is not planar and convex, a negative radiance, a set_light
-// with neither. With `materials`, an added
-// object's material must be one of them; with nullptr, material names are left
-// to Engine::apply. Ids that must (not) exist are the engine's check (EditError).
-Frame frameFromJson(const nlohmann::json& value, const std::vector<Material>* materials = nullptr);
+// "remove_light"|"set_volume"|"add_volume", ...}, ...]}. Throws ValidationError at the first
+// problem with the path inside the frame (e.g. `edits[1].transform.scale`,
+// `edits[0].light.polygon[2]`): unknown op, missing keys, wrong types, non-finite numbers, zero
+// scale, an invalid object or light, a light polygon that is not planar and convex, a negative
+// radiance, a set_light with neither. With `materials`, an added object's material must be one of
+// them; with nullptr, material names are left to Engine::apply. Ids that must (not) exist are the
+// engine's check (EditError). add_volume reads its volume's file through `files` (volume_json.h);
+// without them it is refused at `edits[i].volume.file`, and the server passes only the files it
+// holds (VolumeFiles::onlyKnown): a client cannot make it open any other. A set_volume's isovalue
+// range and a move's target (object or volume) are the engine's check.
+Frame frameFromJson(const nlohmann::json& value, const std::vector<Material>* materials = nullptr,
+                    const VolumeFiles* files = nullptr);
 
 // Writes a frame so that frameFromJson(frameToJson(f)) == f.
 nlohmann::json frameToJson(const Frame& frame);
@@ -52,7 +57,8 @@ struct ScriptFrame {
 // returning; throws EditScriptError at the first bad one (path `(json)` for text
 // that is not a JSON document). Each line obeys protocol/json_text.h limits.
 std::vector<ScriptFrame> readEditScriptFrames(std::string_view text,
-                                              const std::vector<Material>* materials = nullptr);
+                                              const std::vector<Material>* materials = nullptr,
+                                              const VolumeFiles* files = nullptr);
 std::vector<Frame> readEditScript(std::string_view text,
                                   const std::vector<Material>* materials = nullptr);
 

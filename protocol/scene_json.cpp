@@ -327,7 +327,8 @@ Json sceneToJson(const Scene& scene) {
 }
 
 Scene loadSceneFile(const std::string& path) {
-  const VolumeFiles files{std::filesystem::path(path).parent_path().string(), {}};
+  VolumeFiles files;
+  files.baseDirectory = std::filesystem::path(path).parent_path().string();
   return sceneFromJson(parseJsonText(readTextFile(path, kMaxJsonFileBytes), kMaxJsonFileBytes, kMaxJsonDepth),
                        &files);
 }

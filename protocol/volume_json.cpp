@@ -40,6 +40,18 @@ std::shared_ptr<const volume::ScalarVolume> readFile(const std::string& file,
   }
 }
 
+// Inside the server's upload folder (no "..": resolve() normalised it) or one of the listed files.
+bool knownFile(const std::string& resolved, const VolumeFiles& files) {
+  if (std::find(files.knownFiles.begin(), files.knownFiles.end(), resolved) !=
+      files.knownFiles.end())
+    return true;
+  if (files.knownDirectory.empty()) return false;
+  const std::filesystem::path dir = std::filesystem::path(files.knownDirectory).lexically_normal();
+  const std::filesystem::path relative = std::filesystem::path(resolved).lexically_relative(dir);
+  return !relative.empty() && *relative.begin() != ".." && relative.is_relative() &&
+         relative.has_filename() && std::distance(relative.begin(), relative.end()) == 1;
+}
+
 }  // namespace
 
 bool isVolumeObject(const Json& value, const std::string& path) {
@@ -77,6 +89,10 @@ VolumeObject volumeFromJson(const Json& value, const std::string& path,
          "volume files are read only from scene files (penumbra serve / render "
          "SCENE), not from a scene sent as JSON");
   volume.file = resolve(file, *files);
+  if (files->onlyKnown && !knownFile(volume.file, *files))
+    fail(keyPath(path, "file"), "'" + file +
+                                    "' is not a volume file this server holds: upload it "
+                                    "with POST /api/scenes/{id}/volumes");
   volume.data = readFile(file, volume.file, path, *files);
   return volume;
 }

@@ -17,6 +17,11 @@ namespace penumbra::protocol {
 struct VolumeFiles {
   std::string baseDirectory;  // relative `file` paths resolve against it (the scene's folder)
   NrrdLimits limits;
+  // A client's frame (POST .../edits) may name only files the server already holds: its own
+  // uploads (under knownDirectory) and the files of the scene's volumes as it was loaded.
+  bool onlyKnown = false;
+  std::string knownDirectory;
+  std::vector<std::string> knownFiles;  // resolved paths
 };
 
 // Whether an objects[] entry is a volume ("type": "volume"); throws ValidationError at

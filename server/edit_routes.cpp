@@ -3,16 +3,18 @@
 
 #include <httplib.h>
 
-#include <cstdio>
-#include <new>
+#include <algorithm>
 #include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <new>
 #include <optional>
 #include <regex>
 
 #include "core/geom/resource_limit.h"
 #include "protocol/edits_json.h"
-#include "server/frame_batch.h"
 #include "protocol/frame_result_json.h"
+#include "server/frame_batch.h"
 #include "server/request_io.h"
 #include "server/response_json.h"
 
@@ -170,6 +172,28 @@ void HttpServer::applyFrameBatch(SceneSession& session, const std::vector<EditSc
     sendFrameApplied(*static_cast<QueuedFrame*>(ticket)->res, applied, batch.size());
 }
 
+void HttpServer::submitFrame(SceneSession& session, Frame frame, const std::string& journaled,
+                             const httplib::Request& req, httplib::Response& res) {
+  QueuedFrame queued;
+  queued.frame = std::move(frame);
+  queued.client = clientOf(req);
+  queued.body = journaled;
+  queued.res = &res;
+  // The answer if the batch's thread failed to give one (it never should).
+  sendError(res, ApiError(500, error_code::kFrameNotApplied, "", "no answer from the edit queue"));
+  // Wait for this client's turn (round-robin between clients, bounded, frames that
+  // queued together applied together: docs/API.md "Load").
+  WaitingEdit waiting(waitingEdits_);
+  if (!waiting.admitted()) return sendBusy(res, "too many edits waiting on this server");
+  try {
+    session.editQueue().submit(queued, [&](const std::vector<EditScheduler::Ticket*>& batch) {
+      applyFrameBatch(session, batch);
+    });
+  } catch (const EditQueueFull&) {
+    return sendBusy(res, "too many edits waiting for this scene");
+  }
+}
+
 void HttpServer::registerEditRoutes() {
   httplib::Server& http = *http_;
   const std::string scenePath = std::string("/api/scenes/") + kIdPattern;
@@ -178,32 +202,32 @@ void HttpServer::registerEditRoutes() {
       scenePath + "/edits", guarded([this](const httplib::Request& req, httplib::Response& res) {
         const auto session = findScene(req.matches[1]);
         const json body = parseBody(req);
-        QueuedFrame queued;
+        Frame frame;
         try {
           const auto materials = session->snapshot()->scene.materials();
-          queued.frame = protocol::frameFromJson(body, &materials);
+          // add_volume may name only files the server holds (its uploads, the scene's own).
+          protocol::VolumeFiles known;
+          known.onlyKnown = true;
+          try {
+            known.knownDirectory = known.baseDirectory = volumeUploadDir();
+          } catch (const std::filesystem::filesystem_error&) {
+            // No upload folder (unwritable): only the scene's own files are known.
+          }
+          known.knownFiles = session->initialVolumeFiles();
+          frame = protocol::frameFromJson(body, &materials, &known);
         } catch (const protocol::ValidationError& error) {
           const long edit = editIndexOf(error.path());
           sendError(res, ApiError(422, error_code::kInvalidFrame, error.path(), error.problem()),
                     edit >= 0 ? json{{"edit", edit}} : json::object());
           return;
         }
-        queued.client = clientOf(req);
-        queued.body = req.body;
-        queued.res = &res;
-        // The answer if the batch's thread failed to give one (it never should).
-        sendError(res, ApiError(500, error_code::kFrameNotApplied, "", "no answer from the edit queue"));
-        // Wait for this client's turn (round-robin between clients, bounded, frames that
-        // queued together applied together: docs/API.md "Load").
-        WaitingEdit waiting(waitingEdits_);
-        if (!waiting.admitted()) return sendBusy(res, "too many edits waiting on this server");
-        try {
-          session->editQueue().submit(queued, [&](const std::vector<EditScheduler::Ticket*>& batch) {
-            applyFrameBatch(*session, batch);
-          });
-        } catch (const EditQueueFull&) {
-          return sendBusy(res, "too many edits waiting for this scene");
-        }
+        // A frame adding a volume is journaled with its file resolved (absolute), as a restart
+        // reads it.
+        const bool addsVolume =
+            std::any_of(frame.edits.begin(), frame.edits.end(),
+                        [](const Edit& e) { return e.op == Edit::Op::AddVolume; });
+        const std::string journaled = addsVolume ? protocol::frameToJson(frame).dump() : req.body;
+        submitFrame(*session, std::move(frame), journaled, req, res);
       }));
 }
 

@@ -119,9 +119,16 @@ HttpServer::HttpServer(ServerOptions options)
 
 HttpServer::~HttpServer() {
   stop();
-  std::lock_guard lock(scenesMutex_);
-  for (auto& [id, session] : scenes_)
-    if (session) session->close();
+  {
+    std::lock_guard lock(scenesMutex_);
+    for (auto& [id, session] : scenes_)
+      if (session) session->close();
+  }
+  // An ephemeral server's uploaded volumes die with it (a journal's stay for its restart).
+  if (options_.dataDir.empty() && !uploadDir_.empty()) {
+    std::error_code ignored;
+    std::filesystem::remove_all(uploadDir_, ignored);
+  }
 }
 
 std::shared_ptr<SceneSession> HttpServer::findScene(const std::string& id) const {
@@ -234,6 +241,7 @@ void HttpServer::registerRoutes() {
   registerMeshRoutes();
   registerImageRoutes();
   registerEventRoutes();
+  registerVolumeRoutes();
 }
 
 }  // namespace penumbra::server

@@ -95,6 +95,7 @@ class HttpServer {
   void registerMeshRoutes();
   void registerImageRoutes();
   void registerEventRoutes();
+  void registerVolumeRoutes();
   void registerStaticFiles();
   // Answers (and returns true) when the request may not go on: no token on a mutating
   // request, a static path leading out of its root (access_control.cpp).
@@ -106,6 +107,13 @@ class HttpServer {
   // touch different objects, else (or when that fails) one by one; answers in the tickets.
   void applyFrameBatch(SceneSession& session, const std::vector<EditScheduler::Ticket*>& batch);
   void applyFrameAlone(SceneSession& session, EditScheduler::Ticket& ticket);
+  // Queues a checked frame for its scene (round-robin, bounded) and answers `res` with what
+  // applying it did; `journaled` is the frame's JSON as the journal keeps it.
+  void submitFrame(SceneSession& session, Frame frame, const std::string& journaled,
+                   const httplib::Request& req, httplib::Response& res);
+  // Where uploaded volume files are kept (volume_routes.cpp): the data directory's
+  // `volumes/`, or a temporary folder when ephemeral; created on first use.
+  std::string volumeUploadDir();
   void journalRemove(const SceneSession& session);
   std::shared_ptr<SceneSession> findScene(const std::string& id) const;
   std::string freshId(const std::string& preferred);  // call with scenesMutex_ held
@@ -124,6 +132,8 @@ class HttpServer {
   std::vector<std::pair<std::string, std::string>> staticRoots_;  // URL prefix → canonical dir
   StaticFiles staticFiles_;  // the page, served from those roots
   size_t nextId_ = 1;
+  std::mutex uploadDirMutex_;
+  std::string uploadDir_;  // volumeUploadDir(), once made
 };
 
 }  // namespace penumbra::server

@@ -57,4 +57,25 @@ json changedAtJson(const SceneSnapshot& s, uint64_t after) {
   return {{"version", s.version}, {"changed", std::move(changed)}, {"removed", std::move(removed)}};
 }
 
+nlohmann::json volumeInfoJson(const VolumeObject& volume) {
+  const volume::ScalarVolume& data = *volume.data;
+  nlohmann::json axes = nlohmann::json::array();
+  for (int a = 0; a < 3; ++a) {
+    const Vec3 edge = data.objectFromVoxel()[a] * double(data.size()[a] - 1);
+    axes.push_back({edge.x, edge.y, edge.z});
+  }
+  return {{"id", volume.id},
+          {"voxel_type", data.typeName()},
+          {"size", {data.size().x, data.size().y, data.size().z}},
+          {"value_range", {data.minValue(), data.maxValue()}},
+          {"axes", std::move(axes)},
+          {"isovalue", volume.isovalue}};
+}
+
+nlohmann::json volumesInfoJson(const Scene& scene) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const VolumeObject& volume : scene.volumes()) out.push_back(volumeInfoJson(volume));
+  return out;
+}
+
 }  // namespace penumbra::server

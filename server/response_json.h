@@ -19,5 +19,11 @@ nlohmann::json sceneSummaryJson(const SceneSnapshot& s);
 // Receivers whose mesh changed after version `after`, and those that left the scene since:
 // {"version", "changed", "removed"}.
 nlohmann::json changedAtJson(const SceneSnapshot& s, uint64_t after);
+// What a page needs to draw and edit a volume beside its scene JSON: {"id", "voxel_type",
+// "size": [nx, ny, nz], "value_range": [min, max], "axes": the grid box's three edges in
+// object space (objectFromVoxel's columns × (size − 1)), "isovalue"}.
+nlohmann::json volumeInfoJson(const VolumeObject& volume);
+// volumeInfoJson of every volume of the scene, in order.
+nlohmann::json volumesInfoJson(const Scene& scene);
 
 }  // namespace penumbra::server

@@ -79,8 +79,11 @@ std::shared_ptr<SceneSession> freshSession(const StoredScene& stored, const Engi
 
 Frame storedFrame(const SceneSession& session, const std::string& text) {
   const auto materials = session.snapshot()->scene.materials();  // edits change no material
-  return protocol::frameFromJson(protocol::parseJsonText(text, text.size(), protocol::kMaxJsonDepth),
-                                 &materials);
+  // add_volume frames name files the server stored itself (POST .../volumes), as absolute paths.
+  const protocol::VolumeFiles volumeFiles;
+  return protocol::frameFromJson(
+      protocol::parseJsonText(text, text.size(), protocol::kMaxJsonDepth), &materials,
+      &volumeFiles);
 }
 
 // Every frame through the engine, meshed once at the end (SceneSession::replayJournaled):

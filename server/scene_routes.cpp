@@ -114,7 +114,8 @@ void HttpServer::registerSceneRoutes() {
                       {{"id", snapshot->id},
                        {"name", snapshot->name},
                        {"version", snapshot->version},
-                       {"scene", protocol::sceneToJson(snapshot->scene)}});
+                       {"scene", protocol::sceneToJson(snapshot->scene)},
+                       {"volumes", volumesInfoJson(snapshot->scene)}});
            }));
 
   http.Delete(scenePath, guarded([this](const httplib::Request& req, httplib::Response& res) {

@@ -39,6 +39,7 @@ std::vector<FaceId> receiverFaces(const Engine& engine) {
 SceneSession::SceneSession(std::string id, std::string name, Scene scene, EngineSettings settings)
     : id_(std::move(id)), settings_(settings) {
   baseScene_ = scene;
+  for (const VolumeObject& volume : scene.volumes()) initialVolumeFiles_.push_back(volume.file);
   engine_ = std::make_unique<Engine>(std::move(scene), settings_);
   auto first = std::make_shared<SceneSnapshot>();
   first->id = id_;

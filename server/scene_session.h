@@ -38,6 +38,8 @@ class SceneSession {
   SceneSession(std::string id, std::string name, Scene scene, EngineSettings settings = {});
 
   const std::string& id() const { return id_; }
+  // The files of the scene's volumes as it was built (a client's frame may add them back).
+  const std::vector<std::string>& initialVolumeFiles() const { return initialVolumeFiles_; }
   std::shared_ptr<const SceneSnapshot> snapshot() const;
 
   // Applies one frame, serialised with other frames of this scene, and publishes
@@ -105,6 +107,7 @@ class SceneSession {
 
   const std::string id_;
   const EngineSettings settings_;
+  std::vector<std::string> initialVolumeFiles_;
   EditScheduler editQueue_{kMaxQueuedEdits, kMaxFramesPerBatch};
   std::mutex editMutex_;  // one frame at a time; guards engine_
   std::unique_ptr<Engine> engine_;  // null after a restore that failed: rebuilt on the next frame

@@ -12,6 +12,7 @@
 #include "core/engine/dirty_set.h"
 #include "core/engine/engine.h"
 #include "core/engine/light_edits.h"
+#include "core/engine/volume_edits.h"
 #include "core/illum/face_lookup.h"
 
 namespace penumbra {
@@ -98,14 +99,18 @@ void Engine::checkFrame(const Frame& frame) const {
       if (!insideCubes(scene_, face.polygon, cubes))
         throw EditError(i, path, "object '" + object.id + "' would leave the edit volume");
   };
+  VolumeEditCheck volumes(scene_);  // volumes as the frame's earlier edits leave them
+  auto objectExists = [&](const std::string& id) { return current(id).has_value(); };
   for (size_t i = 0; i < frame.edits.size(); ++i) {
     const Edit& edit = frame.edits[i];
     try {
+      if (volumes.concerns(edit)) {  // render-time only: no faces, no cubes
+        volumes.check(edit, i, objectExists);
+        continue;
+      }
       switch (edit.op) {
         case Edit::Op::Move: {
           std::optional<Object> object = current(edit.id);
-          if (!object && scene_.findVolume(edit.id))
-            throw EditError(i, "id", "'" + edit.id + "' is a volume: volumes cannot be moved by edits yet");
           if (!object) throw EditError(i, "id", "unknown object '" + edit.id + "'");
           object->transform = edit.transform;
           checkFaces(*object, i, "transform");
@@ -117,7 +122,7 @@ void Engine::checkFrame(const Frame& frame) const {
           edited[edit.id] = std::nullopt;
           break;
         case Edit::Op::Add:
-          if (current(edit.object.id) || scene_.findVolume(edit.object.id))
+          if (current(edit.object.id) || volumes.has(edit.object.id))
             throw EditError(i, "object.id", "duplicate object id '" + edit.object.id + "'");
           checkFaces(edit.object, i, "object");
           edited[edit.object.id] = edit.object;
@@ -127,6 +132,9 @@ void Engine::checkFrame(const Frame& frame) const {
         case Edit::Op::RemoveLight:
           checkLightEdit(scene_, edit, i, lights);
           break;
+        case Edit::Op::SetVolume:
+        case Edit::Op::AddVolume:
+          break;  // volumes.concerns() took them
       }
     } catch (const EditError&) {
       throw;
@@ -156,7 +164,15 @@ namespace {
 
 // Applies a checked frame's edits to `scene` in order.
 void applyEdits(Scene& scene, const Frame& frame) {
-  for (const Edit& edit : frame.edits) switch (edit.op) {
+  for (const Edit& edit : frame.edits) {
+    const bool volumeEdit =
+        edit.op == Edit::Op::SetVolume || edit.op == Edit::Op::AddVolume ||
+        ((edit.op == Edit::Op::Move || edit.op == Edit::Op::Remove) && scene.findVolume(edit.id));
+    if (volumeEdit) {
+      applyVolumeEdit(scene, edit);
+      continue;
+    }
+    switch (edit.op) {
       case Edit::Op::Move:
         scene.setTransform(scene.handleOf(*scene.findObject(edit.id)), edit.transform);
         break;
@@ -171,7 +187,11 @@ void applyEdits(Scene& scene, const Frame& frame) {
       case Edit::Op::RemoveLight:
         applyLightEdit(scene, edit);
         break;
+      case Edit::Op::SetVolume:
+      case Edit::Op::AddVolume:
+        break;  // applied above
     }
+  }
 }
 
 // The handles of the objects a frame's edits name, in `scene` (those it holds).
@@ -179,6 +199,7 @@ std::set<uint32_t> namedHandles(const Scene& scene, const Frame& frame) {
   std::set<uint32_t> out;
   for (const Edit& edit : frame.edits) {
     if (isLightEdit(edit)) continue;  // lights are no objects
+    if (edit.op == Edit::Op::SetVolume || edit.op == Edit::Op::AddVolume) continue;  // nor volumes
     if (const auto index = scene.findObject(edit.op == Edit::Op::Add ? edit.object.id : edit.id))
       out.insert(scene.handleOf(*index));
   }

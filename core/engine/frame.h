@@ -13,10 +13,11 @@
 namespace penumbra {
 
 struct Edit {
-  enum class Op { Move, Add, Remove, SetLight, AddLight, RemoveLight };
+  enum class Op { Move, Add, Remove, SetLight, AddLight, RemoveLight, SetVolume, AddVolume };
   Op op = Op::Move;
-  // move, remove: an existing object's id; add: object.id; set_light, remove_light: an
-  // existing light's id; add_light: light.id
+  // move, remove: an existing object's id (a polygon object's or a volume's); add: object.id;
+  // set_light, remove_light: an existing light's id; add_light: light.id; set_volume: an
+  // existing volume's id; add_volume: volume.id
   std::string id;
   Transform transform;  // move: the new absolute transform
   Object object;        // add: the new object (transform included)
@@ -24,6 +25,8 @@ struct Edit {
   std::optional<Polygon3> polygon;
   std::optional<Vec3> radiance;
   Light light;  // add_light: the new light, as in a scene's lights (it comes last)
+  double isovalue = 0;  // set_volume: the volume's new isovalue
+  VolumeObject volume;  // add_volume: the new volume, its data read (it comes last)
 };
 
 struct Frame {

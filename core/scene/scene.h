@@ -138,6 +138,13 @@ class Scene {
   // They do not enter bounds() or tolerance(): adding one leaves the DM as it was.
   const std::vector<VolumeObject>& volumes() const { return volumes_; }
   std::optional<size_t> findVolume(std::string_view id) const;  // index into volumes()
+  // Volume edits (core/engine/volume_edits.h): render-time only, so faces, bounds and
+  // tolerance stay as they are. Throw std::invalid_argument, changing nothing, on a
+  // duplicate id (of any object), no data, an unknown material or a bad index.
+  void addVolume(VolumeObject volume);
+  void removeVolume(size_t index);
+  void setVolumeTransform(size_t index, const Transform& transform);
+  void setVolumeIsovalue(size_t index, double isovalue);
   // All faces of all objects in world space, ordered by (object, face).
   const std::vector<Face>& faces() const { return faces_; }
 

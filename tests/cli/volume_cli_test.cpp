@@ -1,6 +1,7 @@
 // Volume objects through `penumbra` as a user runs it: `generate --volume` writes a NRRD that a
-// scene can name, the bundled volume scene validates and renders, and a scene whose volume file
-// is broken exits 2 naming the key path.
+// scene can name, the bundled volume scene validates and renders, a scene whose volume file
+// is broken exits 2 naming the key path, and `replay` plays volume edits (move, set_volume,
+// remove, add_volume with a file beside the script) and refuses a bad one naming its line.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -74,6 +75,32 @@ TEST(VolumeCli, ABrokenVolumeFileExitsTwoWithTheKeyPath) {
   }
   std::filesystem::remove(nrrd);
   std::filesystem::remove(scene);
+}
+
+TEST(VolumeCli, ReplayPlaysVolumeEdits) {
+  const std::filesystem::path dir = tempPath("volume_replay");
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/volumes/smoke64.nrrd",
+                             dir / "puff.nrrd", std::filesystem::copy_options::overwrite_existing);
+  const std::string script = (dir / "v.edits.jsonl").string();
+  std::ofstream(script)
+      << R"({"edits":[{"op":"move","id":"smoke","transform":{"translate":[1,1,3]}}]})"
+         "\n"
+      << R"({"edits":[{"op":"set_volume","id":"smoke","isovalue":80}]})"
+         "\n"
+      << R"({"edits":[{"op":"add_volume","volume":{"id":"puff","type":"volume","file":"puff.nrrd","isovalue":60}}]})"
+         "\n"
+      << R"({"edits":[{"op":"remove","id":"smoke"}]})"
+         "\n";
+  const auto [status, text] = run("replay " + kVolumeRoom + " " + script + " --verify");
+  EXPECT_EQ(status, 0) << text;
+  std::ofstream(script, std::ios::app)
+      << R"({"edits":[{"op":"set_volume","id":"puff","isovalue":1e9}]})"
+         "\n";
+  const auto [refused, says] = run("replay " + kVolumeRoom + " " + script);
+  EXPECT_EQ(refused, 2) << says;
+  EXPECT_NE(says.find("line 5: edits[0].isovalue: "), std::string::npos) << says;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

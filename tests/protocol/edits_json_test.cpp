@@ -405,5 +405,54 @@ TEST(FrameResultJson, NamesReceiversByObjectId) {
   EXPECT_EQ(out["tree_rebuilds"], 2);
 }
 
+TEST(EditsJson, VolumeEditsReadTheirKeysAndRoundTrip) {
+  const json text =
+      json::parse(R"({"edits": [{"op": "set_volume", "id": "smoke", "isovalue": 90.5}]})");
+  const Frame frame = frameFromJson(text);
+  ASSERT_EQ(frame.edits.size(), 1u);
+  EXPECT_EQ(frame.edits[0].op, Edit::Op::SetVolume);
+  EXPECT_EQ(frame.edits[0].isovalue, 90.5);
+  EXPECT_EQ(frameToJson(frame), text);
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {R"({"edits": [{"op": "set_volume", "id": "smoke"}]})", "edits[0].isovalue"},
+      {R"({"edits": [{"op": "set_volume", "id": "smoke", "isovalue": "1"}]})", "edits[0].isovalue"},
+      {R"({"edits": [{"op": "set_volume", "isovalue": 1}]})", "edits[0].id"},
+      {R"({"edits": [{"op": "add_volume"}]})", "edits[0].volume"},
+      {R"({"edits": [{"op": "add_volume", "volume": {"id": "v", "file": "x.nrrd", "isovalue": 1}}]})",
+       "edits[0].volume.type"},
+      // Without files (a frame sent over HTTP) a volume's file is never opened.
+      {R"({"edits": [{"op": "add_volume", "volume": {"id": "v", "type": "volume", "file": "/etc/passwd", "isovalue": 1}}]})",
+       "edits[0].volume.file"},
+  };
+  for (const auto& [body, path] : refused) {
+    try {
+      frameFromJson(json::parse(body));
+      ADD_FAILURE() << body << " was read";
+    } catch (const ValidationError& error) {
+      EXPECT_EQ(error.path(), path) << body << ": " << error.what();
+    }
+  }
+  // Files the server holds only: a path outside them is refused before it is opened.
+  VolumeFiles known;
+  known.onlyKnown = true;
+  known.knownDirectory = known.baseDirectory = "/tmp/penumbra-uploads";
+  for (const char* file :
+       {"/etc/passwd", "../passwd", "/tmp/penumbra-uploads/../x.nrrd", "sub/x.nrrd"}) {
+    const json body = {
+        {"edits",
+         {{{"op", "add_volume"},
+           {"volume", {{"id", "v"}, {"type", "volume"}, {"file", file}, {"isovalue", 1}}}}}}};
+    try {
+      frameFromJson(body, nullptr, &known);
+      ADD_FAILURE() << file << " was read";
+    } catch (const ValidationError& error) {
+      EXPECT_EQ(error.path(), "edits[0].volume.file") << file;
+      EXPECT_NE(std::string(error.what()).find("not a volume file this server holds"),
+                std::string::npos)
+          << file << ": " << error.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace penumbra::protocol

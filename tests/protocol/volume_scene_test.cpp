@@ -179,25 +179,44 @@ TEST_F(VolumeSceneTest, SceneFileLoadsAVolumeRelativeToItsFolder) {
   EXPECT_EQ(sceneToJson(again), written);
 }
 
-TEST_F(VolumeSceneTest, EditsRefuseAVolumesIdAndChangeNothing) {
+TEST_F(VolumeSceneTest, VolumeEditsChangeTheVolumeOnlyAndBadOnesNothing) {
   writeNrrdVolume(path("blob.nrrd"), quantise8(sphereField(4)), Vec3(1.0));
   Engine engine(loadSceneFile(writeScene(Json::object())));
-  Edit move;
-  move.op = Edit::Op::Move;
-  move.id = "blob";
+  const Mesh before = engine.mesh();
+  // An object may not take a volume's id; a set_volume outside the data's values is refused.
   Edit add;
   add.op = Edit::Op::Add;
   add.object = engine.scene().objects()[0];
   add.object.id = "blob";
-  for (const Edit& edit : {move, add}) {
+  Edit outside;
+  outside.op = Edit::Op::SetVolume;
+  outside.id = "blob";
+  outside.isovalue = 1e6;
+  for (const auto& [edit, where] : {std::pair{add, "object.id"}, std::pair{outside, "isovalue"}}) {
     try {
       engine.checkFrame(Frame{{edit}});
-      ADD_FAILURE() << "a frame naming the volume passed";
+      ADD_FAILURE() << "a bad frame naming the volume passed";
     } catch (const EditError& error) {
-      EXPECT_EQ(error.path(), edit.op == Edit::Op::Move ? "id" : "object.id") << error.what();
+      EXPECT_EQ(error.path(), where) << error.what();
     }
   }
-  EXPECT_EQ(engine.scene().volumes().size(), 1u);
+  // A move and a set_volume change the volume, the version, and nothing of the DM.
+  Edit move;
+  move.op = Edit::Op::Move;
+  move.id = "blob";
+  move.transform.translate = Vec3(0.5, 0, 0);
+  Edit iso = outside;
+  iso.isovalue = 100;
+  const FrameResult result = engine.apply(Frame{{move, iso}});
+  EXPECT_EQ(result.version, 1u);
+  EXPECT_TRUE(result.changedReceivers.empty());
+  ASSERT_EQ(engine.scene().volumes().size(), 1u);
+  EXPECT_EQ(engine.scene().volumes()[0].transform.translate, Vec3(0.5, 0, 0));
+  EXPECT_EQ(engine.scene().volumes()[0].isovalue, 100);
+  const Mesh after = engine.mesh();
+  ASSERT_EQ(after.receivers.size(), before.receivers.size());
+  for (size_t r = 0; r < after.receivers.size(); ++r)
+    EXPECT_EQ(after.receivers[r].irradiance, before.receivers[r].irradiance);
 }
 
 TEST_F(VolumeSceneTest, OldScenesLoadUnchanged) {

@@ -49,6 +49,9 @@ TEST(Access, EveryMutatingRequestNeedsTheToken) {
   expectError(client.Post(("/api/scenes/" + id + "/rebuild").c_str(), "", "application/json"), 401,
               "unauthorized");
   expectError(client.Put("/api/scenes", scene, "application/json"), 401, "unauthorized");
+  expectError(client.Post(("/api/scenes/" + id + "/volumes").c_str(), "NRRD0004\n",
+                          "application/octet-stream"),
+              401, "unauthorized");
   httplib::Headers wrong = {{"Authorization", "Bearer s3cre"}};
   expectError(client.Post(edits.c_str(), wrong, frame, "application/json"), 401, "unauthorized");
   // Nothing changed; reads need no token.

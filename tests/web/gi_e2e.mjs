@@ -7,22 +7,12 @@
 // usage: node tests/web/gi_e2e.mjs --penumbra build/penumbra [--scene scenes/cornell.scene.json]
 import path from 'node:path';
 
-import { check, repo, runWithServerAndBrowser, sleep, usageOnHelp } from './harness.mjs';
+import { check, repo, runWithServerAndBrowser, until, usageOnHelp } from './harness.mjs';
 import { openPage, serverScene } from './page_actions.mjs';
 
 const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'cornell.scene.json'), startupSeconds: 120 };
 const passes = async (page) => (await page.evaluate(() => window.penumbra.renderPasses())).passes;
 const baked = (page) => page.evaluate(() => window.penumbra.bakedIndirect());
-
-async function until(what, seconds = 60) {
-  const deadline = Date.now() + seconds * 1000;
-  for (;;) {
-    const value = await what();
-    if (value) return value;
-    if (Date.now() > deadline) return null;
-    await sleep(200);
-  }
-}
 
 // The mean display colour (sum of channels) of the floor's vertices in umbra: where only the
 // ambient term, or the bounced light, shows.

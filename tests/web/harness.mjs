@@ -39,6 +39,17 @@ export function usageOnHelp(argv, defaults, usage) {
 
 export const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
 
+// Polls `what` (async) every 200 ms until it gives a truthy value (returned), or null after `seconds`.
+export async function until(what, seconds = 60) {
+  const deadline = Date.now() + seconds * 1000;
+  for (;;) {
+    const value = await what();
+    if (value) return value;
+    if (Date.now() > deadline) return null;
+    await sleep(200);
+  }
+}
+
 let failures = 0;
 let passes = 0;
 export function check(condition, what, detail = '') {

@@ -68,3 +68,17 @@ test('reset frames give back the source and its inverse the edited scene (seeded
     assert.equal(sorted(apply(back, resetEdits(source, scene))), sorted(scene), `seed ${seed}: undo of the reset`);
   }
 });
+
+test('a volume is reset by move and set_volume, and added back by add_volume', () => {
+  const smoke = { id: 'smoke', type: 'volume', file: '/data/smoke.nrrd', isovalue: 40.5, transform: { translate: [0, 1, 0] } };
+  const puff = { ...smoke, id: 'puff', file: '/data/volumes/x.nrrd' };
+  const source = { lights: [], objects: [smoke, puff] };
+  const current = { lights: [], objects: [{ ...smoke, isovalue: 90, transform: { translate: [1, 1, 0] } }] };
+  const edits = resetEdits(current, source);
+  assert.deepEqual(edits, [
+    { op: 'move', id: 'smoke', transform: { translate: [0, 1, 0] } },
+    { op: 'set_volume', id: 'smoke', isovalue: 40.5 },
+    { op: 'add_volume', volume: puff },
+  ]);
+  assert.deepEqual(resetEdits(source, current).map((e) => e.op), ['move', 'set_volume', 'remove']);
+});

@@ -20,6 +20,11 @@ export class EditCoalescer {
     this.queue(objectId, { op: 'move', id: objectId, transform });
   }
 
+  // Queues a volume's new isovalue (set_volume; a newer one replaces it).
+  setVolume(volumeId, isovalue) {
+    this.queue(`volume:${volumeId}`, { op: 'set_volume', id: volumeId, isovalue });
+  }
+
   // Queues a light's new polygon and/or radiance (fields of a set_light; a newer one replaces
   // an older one's fields, keeping those it does not name). `pose`: the light holder's transform
   // for DragLimit (not sent).

@@ -54,7 +54,7 @@ export class GlossyLayer {
     const build = ++this.builds;
     this.clear();
     const materials = scene.materials || {};
-    const glossy = scene.objects.map((o) => [o, physicalParameters(materials[o.material])]).filter(([, p]) => p);
+    const glossy = scene.objects.filter((o) => o.type !== 'volume').map((o) => [o, physicalParameters(materials[o.material])]).filter(([, p]) => p);
     this.receivers.setObjectMaterials(new Map());
     if (!glossy.length) return;
     await loadAreaLights();

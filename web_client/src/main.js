@@ -1,7 +1,7 @@
 // The page's wiring: picks the scene (?scene=ID, else the first served), loads it and its mesh
 // (behind the loading overlay), and connects the view, selection gizmo, edit coalescer, drag
-// limit, undo history, editor commands, inspector, outliner, server render, timings and plot,
-// events, connection bar and error banner. Each concept lives in its own module beside this one.
+// limit, undo history, editor commands, inspector, volumes (volume_controls.js), outliner, server
+// render, timings and plot, events, connection bar and error banner. Each concept lives in its own module beside this one.
 import { ApiClient } from './api_client.js';
 import { ConnectionStatus } from './connection_status.js';
 import { DragLimit } from './drag_limit.js';
@@ -32,6 +32,8 @@ import { installTestHook } from './test_hook.js';
 import { TimingsPanel } from './timings_panel.js';
 import { ToneMap } from './tone_map.js';
 import { UndoHistory } from './undo_history.js';
+import { VolumeControls } from './volume_controls.js';
+import { installVolumeLoader } from './volume_loader.js';
 
 const $ = (id) => document.getElementById(id);
 const isLight = (id) => !!id && id.startsWith('light:');
@@ -107,13 +109,15 @@ class App {
     performance.mark('penumbra:scene');
     $('scene-name').textContent = `${wrapped.id} (${wrapped.name})`;
     showImportReport($('import-report'), sceneId, wrapped.name);
-    this.sceneJson = wrapped.scene;
+    this.adopt(wrapped);
     this.sceneName = wrapped.name;
     this.editor.remember(wrapped);
     this.knownVersion = wrapped.version;
     this.history.restore(`${wrapped.id}.${wrapped.name}`, wrapped.version);
 
+    this.volumes = new VolumeControls(this, sceneId, $('volume-note'));
     this.objects.build(wrapped.scene);
+    this.volumes.show();
     this.toneMap = new ToneMap(wrapped.scene, this.objects.bounds);
     this.view.setCamera(wrapped.scene.camera, this.objects.bounds, this.objects);
 
@@ -172,6 +176,7 @@ class App {
       },
     });
     this.installControls();
+    installVolumeLoader($('volume-file'), this, this.editor);
     this.editor.updateReset();
     this.editor.refreshScenes();
     this.selected(null);
@@ -244,8 +249,10 @@ class App {
     }
     try {
       const wrapped = await this.api.getScene(this.sceneId);
+      this.adopt(wrapped);
       this.objects.syncTransforms(wrapped.scene, null);
       this.objects.syncLights(wrapped.scene, null);
+      this.volumes.sync(wrapped.scene);
       this.refreshInspector();
     } catch (again) {
       this.fail(again);
@@ -313,6 +320,7 @@ class App {
     if (this.gizmo.dragging) return;
     const entry = this.history.undo();
     if (entry && entry.frame) this.editor.sendStructural(entry.frame.undo, entry.select.undo).catch(this.fail);
+    else if (entry && entry.isovalue) this.volumes.isovalueTo(entry.id, entry.isovalue.before);
     else if (entry) this.moveTo(entry.id, entry.before);
     this.updateUndoButtons();
   }
@@ -321,6 +329,7 @@ class App {
     if (this.gizmo.dragging) return;
     const entry = this.history.redo();
     if (entry && entry.frame) this.editor.sendStructural(entry.frame.redo, entry.select.redo).catch(this.fail);
+    else if (entry && entry.isovalue) this.volumes.isovalueTo(entry.id, entry.isovalue.after);
     else if (entry) this.moveTo(entry.id, entry.after);
     this.updateUndoButtons();
   }
@@ -330,6 +339,7 @@ class App {
     this.outliner.highlight(id);
     const light = id && isLight(id) ? this.objects.lightJson.get(id.slice(6)) : null;
     this.inspector.show(id, light || (id ? transformOf(this.objects.byId.get(id)) : null));
+    this.volumes.inspect(id);
     for (const button of ['duplicate', 'delete', 'focus']) $(button).disabled = !id;
     // A scene keeps at least one light.
     const lastLight = !!light && !this.editor.canDeleteLight();
@@ -341,7 +351,7 @@ class App {
   // The stand-ins again from the server's scene (its object list changed), selecting `selectId`.
   async reloadObjects(selectId) {
     const wrapped = await this.api.getScene(this.sceneId);
-    this.sceneJson = wrapped.scene;
+    this.adopt(wrapped);
     this.gizmo.select(null);
     this.toneMap.learnObjects(wrapped.scene);
     this.buildStandIns(wrapped.scene);
@@ -367,11 +377,12 @@ class App {
       if (this.ownVersions.has(version) || this.coalescer.busy()) return;
       // Another client's edit: follow its transforms (a changed object list reloads the page's stand-ins).
       const wrapped = await this.api.getScene(this.sceneId);
-      this.sceneJson = wrapped.scene;
+      this.adopt(wrapped);
       this.toneMap.learnObjects(wrapped.scene);
       if (this.objects.sameObjects(wrapped.scene)) {
         const dragged = this.gizmo.dragging ? this.gizmo.selected : null;
         this.objects.syncTransforms(wrapped.scene, dragged);
+        this.volumes.sync(wrapped.scene);
         this.objects.syncLights(wrapped.scene, dragged && isLight(dragged) ? dragged.slice(6) : null);
         this.refreshInspector();
       } else {
@@ -388,6 +399,13 @@ class App {
     const means = this.receivers.meanColours();
     this.objects.build(scene, (id) => this.toneMap.ambientColour(id), (id, face) => means.get(receiverKey(id, face)) || null);
     this.outliner.render(this.objects, this.gizmo ? this.gizmo.selected : null);
+    this.volumes.show();
+  }
+
+  // The scene as the server sent it ({scene, volumes: the volumes' grid info}).
+  adopt(wrapped) {
+    this.sceneJson = wrapped.scene;
+    this.objects.volumeInfo = new Map((wrapped.volumes || []).map((v) => [v.id, v]));
   }
 
   // After the server came back: the scene and its whole mesh again (it may have restarted, and
@@ -396,7 +414,7 @@ class App {
     try {
       const wrapped = await this.api.getScene(this.sceneId);
       this.gizmo.select(null);
-      this.sceneJson = wrapped.scene;
+      this.adopt(wrapped);
       this.buildStandIns(wrapped.scene);
       this.ownVersions.clear();
       await this.meshSync.reload();
@@ -410,7 +428,7 @@ class App {
 
   busy() {
     return !!(this.coalescer && this.coalescer.busy()) || !!(this.meshSync && this.meshSync.running) || this.meshFollows.size > 0
-      || !!this.resyncing || this.editor.running.size > 0;
+      || !!this.resyncing || this.editor.running.size > 0 || !!(this.volumes && this.volumes.busy());
   }
 
   // Resolves once no edit is pending or in flight and the page holds (and has timed) every version it made.
@@ -421,6 +439,7 @@ class App {
       await Promise.all([...this.meshFollows]);
       if (this.resyncing) await this.resyncing;
       await Promise.allSettled([...this.editor.running]);
+      if (this.volumes) await this.volumes.idle();
     }
   }
 }

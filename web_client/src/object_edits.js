@@ -34,8 +34,10 @@ export function duplicateObject(object, id, offset) {
 }
 
 // {redo, undo} edits of one structural change.
-export const addEdits = (object) => ({ redo: [{ op: 'add', object }], undo: [{ op: 'remove', id: object.id }] });
-export const removeEdits = (object) => ({ redo: [{ op: 'remove', id: object.id }], undo: [{ op: 'add', object }] });
+// A volume object ("type": "volume") is added by add_volume (its file one the server holds).
+export const addOp = (object) => (object.type === 'volume' ? { op: 'add_volume', volume: object } : { op: 'add', object });
+export const addEdits = (object) => ({ redo: [addOp(object)], undo: [{ op: 'remove', id: object.id }] });
+export const removeEdits = (object) => ({ redo: [{ op: 'remove', id: object.id }], undo: [addOp(object)] });
 // A light's: the inverse of add_light is remove_light, and remove_light's carries the whole light.
 const lightOf = ({ id, polygon, radiance }) => ({ id, polygon, radiance });
 export const addLightEdits = (light) => ({ redo: [{ op: 'add_light', light: lightOf(light) }], undo: [{ op: 'remove_light', id: light.id }] });
@@ -59,11 +61,16 @@ export function resetEdits(current, source) {
   const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
   for (const [id, object] of now) {
     const original = then.get(id);
+    const volume = object.type === 'volume' && original && original.type === 'volume';
     if (!original) edits.push({ op: 'remove', id });
-    else if (!same({ ...object, transform: null }, { ...original, transform: null })) edits.push({ op: 'remove', id }, { op: 'add', object: original });
-    else if (!same(object.transform || {}, original.transform || {})) edits.push({ op: 'move', id, transform: original.transform || {} });
+    else if (!same({ ...object, transform: null, isovalue: null }, { ...original, transform: null, isovalue: null })
+      || (!volume && object.isovalue !== original.isovalue)) edits.push({ op: 'remove', id }, addOp(original));
+    else {
+      if (!same(object.transform || {}, original.transform || {})) edits.push({ op: 'move', id, transform: original.transform || {} });
+      if (volume && object.isovalue !== original.isovalue) edits.push({ op: 'set_volume', id, isovalue: original.isovalue });
+    }
   }
-  for (const [id, object] of then) if (!now.has(id)) edits.push({ op: 'add', object });
+  for (const [id, object] of then) if (!now.has(id)) edits.push(addOp(object));
   const lightsNow = lightsById(current), lightsThen = lightsById(source);
   for (const [id, light] of lightsThen) if (!lightsNow.has(id)) edits.push({ op: 'add_light', light: lightOf(light) });
   for (const id of lightsNow.keys()) if (!lightsThen.has(id)) edits.push({ op: 'remove_light', id });

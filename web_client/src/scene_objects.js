@@ -9,6 +9,9 @@
 import * as THREE from 'three';
 import { centroid } from './light_shape.js';
 import { applyTransform } from './scene_transform.js';
+import { volumeHolder } from './volume_stand_ins.js';
+
+export const isVolumeJson = (object) => object.type === 'volume';
 
 // Convex polygon faces → a triangle fan geometry (counter-clockwise = front, as in the format),
 // with a colour per vertex and userData.faceRanges[f] = [first vertex, count] of face f.
@@ -59,6 +62,17 @@ export class SceneObjects {
     this.lightHolders = new Map(); // light id → its Group (at the centroid; the gizmo moves it)
     this.bounds = new THREE.Box3();
     this.unlocked = false; // whether the locked shell may be picked
+    this.volumeInfo = new Map(); // volume id → GET scene's volumes[i] (grid box, value range)
+  }
+
+  isVolume(id) {
+    const holder = this.byId.get(id);
+    return !!holder && !!holder.userData.volume;
+  }
+
+  // The volumes' holders by id.
+  volumes() {
+    return [...this.byId].filter(([, holder]) => holder.userData.volume);
   }
 
   // Rebuilds every stand-in from scene JSON v1. toneMapFor(id): the object's ambient colour (its
@@ -78,6 +92,10 @@ export class SceneObjects {
       this.setLight(light.id, light);
     }
     for (const object of scene.objects) {
+      if (isVolumeJson(object)) {
+        this.addVolume(object);
+        continue;
+      }
       const holder = new THREE.Group();
       holder.name = object.id;
       const pivot = pivotOf(object.vertices);
@@ -98,9 +116,21 @@ export class SceneObjects {
     }
     this.bounds = this.worldBounds(scene);
     for (const holder of this.byId.values()) {
+      if (holder.userData.volume) continue;
       holder.userData.locked = holder.userData.static || isShell(new THREE.Box3().setFromObject(holder.children[0]), this.bounds);
     }
     if (this.onBuilt) this.onBuilt(scene); // the glossy layer (glossy_layer.js)
+  }
+
+  // A volume's stand-in (volume_stand_ins.js); skipped when the server gave no info for it.
+  addVolume(object) {
+    const info = this.volumeInfo.get(object.id);
+    if (!info) return;
+    const holder = volumeHolder(object, info);
+    applyTransform(holder, object.transform);
+    this.group.add(holder);
+    this.byId.set(object.id, holder);
+    this.json.set(object.id, object);
   }
 
   // Shows or hides an object's selection outline (made on first use: most objects are never selected).
@@ -122,6 +152,7 @@ export class SceneObjects {
   // New colours for every stand-in (after the tone map's calibration), arguments as build's.
   recolour(toneMapFor, faceColour) {
     for (const [id, holder] of this.byId) {
+      if (holder.userData.volume) continue;
       const mesh = holder.children[0];
       mesh.userData.ambient = toneMapFor(id);
       mesh.geometry.userData.faceRanges.forEach((_, f) => this.paintFace(mesh, f, faceColour(id, f)));
@@ -155,6 +186,7 @@ export class SceneObjects {
     for (const light of scene.lights) for (const p of light.polygon) box.expandByPoint(new THREE.Vector3(...p));
     const v = new THREE.Vector3();
     for (const object of scene.objects) {
+      if (isVolumeJson(object)) continue; // as core's bounds: volumes are not in them
       const mesh = this.byId.get(object.id).children[0];
       mesh.updateMatrixWorld(true);
       for (const p of object.vertices) box.expandByPoint(v.fromArray(p).applyMatrix4(mesh.matrixWorld));
@@ -167,6 +199,7 @@ export class SceneObjects {
     for (const object of scene.objects) {
       const holder = this.byId.get(object.id);
       if (holder && object.id !== skipId) applyTransform(holder, object.transform);
+      if (holder && isVolumeJson(object)) this.json.set(object.id, object);
     }
   }
 

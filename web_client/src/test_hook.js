@@ -137,6 +137,18 @@ export function installTestHook(app) {
       const holder = app.objects.holderOf(id);
       return holder ? transformOf(holder) : null;
     },
+    // The volumes' stand-ins: transform, isovalue held, the preview drawn (its isovalue and points).
+    volumes() {
+      return app.objects.volumes().map(([id, holder]) => ({ id, transform: transformOf(holder),
+        isovalue: app.objects.json.get(id).isovalue, previewIsovalue: holder.userData.previewIsovalue ?? null,
+        previewPoints: holder.userData.previewPoints ?? 0, previewFetches: app.volumes.previews.fetches,
+        box: !!holder.getObjectByName('volume-box') }));
+    },
+    // Selects an object, a volume or "light:ID" as a click on it would.
+    select(id) {
+      app.gizmo.select(id);
+      return app.gizmo.selected;
+    },
     lightJson(id) {
       return app.objects.lightJson.get(id) || null;
     },

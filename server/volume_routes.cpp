@@ -1,0 +1,238 @@
+// Volumes of a served scene (docs/API.md "Volumes"): POST .../volumes uploads a NRRD file and
+// adds it as a volume object through the edit queue (one frame, journaled, a version), and
+// GET .../volumes/{vid}/preview gives a coarse sketch of its isosurface for the page.
+#include <httplib.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <random>
+
+#include "core/engine/volume_edits.h"
+#include "core/geom/resource_limit.h"
+#include "core/volume/surface_points.h"
+#include "protocol/edits_json.h"
+#include "protocol/nrrd_volume.h"
+#include "server/http_server.h"
+#include "server/request_io.h"
+#include "server/response_json.h"
+
+namespace penumbra::server {
+
+using nlohmann::json;
+
+namespace {
+
+// The uploaded bytes and the name the client gave them: a raw body or a form's part "file".
+struct VolumeUpload {
+  std::string bytes;
+  std::string fileName;
+};
+
+VolumeUpload volumeUploadOf(const httplib::Request& req) {
+  VolumeUpload upload;
+  if (req.is_multipart_form_data()) {
+    for (const auto& [part, value] : req.files)
+      if (part != "file")
+        throw ApiError(400, error_code::kBadRequest, "(form)." + part,
+                       "unknown form part '" + part + "': send one part 'file' (the NRRD)");
+    if (req.files.count("file") != 1)
+      throw ApiError(400, error_code::kBadRequest, "(form).file",
+                     "the form needs exactly one part 'file' (the NRRD)");
+    const httplib::MultipartFormData file = req.get_file_value("file");
+    upload.bytes = file.content;
+    upload.fileName = file.filename;
+  } else {
+    upload.bytes = req.body;
+    upload.fileName = queryText(req, "name").value_or("");  // the file's name, for its id
+  }
+  if (upload.bytes.empty())
+    throw ApiError(400, error_code::kBadRequest,
+                   req.is_multipart_form_data() ? "(form).file" : "(body)",
+                   "the uploaded volume file is empty");
+  return upload;
+}
+
+// "CT head.nrrd" → "CT_head"; empty when nothing usable is left.
+std::string idFromFileName(const std::string& fileName) {
+  std::string id;
+  for (char c : std::filesystem::path(fileName).stem().string())
+    id += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.' ? c : '_';
+  return id.substr(0, kMaxIdLength);
+}
+
+// A free id: the query's as given (taken → 400), else from the file name, numbered when taken.
+std::string volumeIdFor(const httplib::Request& req, const VolumeUpload& upload,
+                        const Scene& scene) {
+  auto taken = [&](const std::string& id) { return scene.findObject(id) || scene.findVolume(id); };
+  if (const auto id = queryText(req, "id")) {
+    if (id->empty() || id->size() > kMaxIdLength)
+      throw ApiError(400, error_code::kBadParameter, "query.id",
+                     "a volume id is 1-" + std::to_string(kMaxIdLength) + " characters");
+    if (taken(*id))
+      throw ApiError(400, error_code::kBadParameter, "query.id",
+                     "duplicate object id '" + *id + "'");
+    return *id;
+  }
+  std::string base = idFromFileName(upload.fileName);
+  if (base.empty()) base = "volume";
+  std::string id = base;
+  for (int n = 2; taken(id); ++n) id = base + "-" + std::to_string(n);
+  return id;
+}
+
+// Keeps the upload where a restart finds it (the journal names the file).
+std::string storeUpload(const std::string& dir, const std::string& sceneId,
+                        const std::string& bytes) {
+  static std::mt19937_64 random{std::random_device{}()};
+  static std::mutex randomMutex;
+  uint64_t name = 0;
+  {
+    std::lock_guard lock(randomMutex);
+    name = random();
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)name);
+  const std::string path = (std::filesystem::path(dir) / (sceneId + "-" + hex + ".nrrd")).string();
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), std::streamsize(bytes.size()));
+  out.close();
+  if (!out) throw std::runtime_error("cannot write the uploaded volume to '" + path + "'");
+  return path;
+}
+
+// The uploaded file read as a volume: 422 naming the body for what the scene loader refuses.
+std::shared_ptr<const volume::ScalarVolume> readUpload(const std::string& path,
+                                                       const std::string& where) {
+  try {
+    return protocol::readNrrdVolume(path);
+  } catch (const protocol::NrrdError& error) {
+    throw ApiError(422, error_code::kInvalidScene, where, error.what());
+  } catch (const ResourceLimitError& error) {
+    throw ApiError(422, error_code::kInvalidScene, where,
+                   std::string(error.what()) + " (a volume's header is checked before its data)");
+  } catch (const std::bad_alloc&) {
+    throw ApiError(507, error_code::kOutOfMemory, where, "not enough memory for the volume");
+  }
+}
+
+// The add_volume edit the upload asks for; 400 naming the query parameter it breaks.
+Edit addVolumeEdit(const httplib::Request& req, const Scene& scene, VolumeObject volume) {
+  if (const auto isovalue = queryNumber(req, "isovalue"))
+    volume.isovalue = *isovalue;
+  else
+    volume.isovalue = 0.5 * (volume.data->minValue() + volume.data->maxValue());
+  if (const auto material = queryText(req, "material")) volume.material = *material;
+  if (const auto translate = queryVec3(req, "translate")) volume.transform.translate = *translate;
+  Edit edit;
+  edit.op = Edit::Op::AddVolume;
+  edit.id = volume.id;
+  edit.volume = std::move(volume);
+  try {
+    VolumeEditCheck(scene).check(
+        edit, 0, [&](const std::string& id) { return scene.findObject(id).has_value(); });
+  } catch (const EditError& error) {
+    std::string problem = error.what();
+    if (const size_t colon = problem.find(": "); colon != std::string::npos)
+      problem = problem.substr(colon + 2);
+    const std::string key = error.path().rfind("volume.", 0) == 0 ? error.path().substr(7) : "id";
+    throw ApiError(400, error_code::kBadParameter,
+                   "query." + (key == "transform" ? "translate" : key), problem);
+  }
+  return edit;
+}
+
+}  // namespace
+
+std::string HttpServer::volumeUploadDir() {
+  std::lock_guard lock(uploadDirMutex_);
+  if (uploadDir_.empty()) {
+    std::filesystem::path dir = options_.dataDir.empty()
+                                    ? std::filesystem::temp_directory_path() /
+                                          ("penumbra-volumes-" + std::to_string(::getpid()) + "-" +
+                                           std::to_string(reinterpret_cast<uintptr_t>(this)))
+                                    : std::filesystem::path(options_.dataDir) / "volumes";
+    std::filesystem::create_directories(dir);
+    uploadDir_ = std::filesystem::absolute(dir).lexically_normal().string();
+  }
+  return uploadDir_;
+}
+
+void HttpServer::registerVolumeRoutes() {
+  httplib::Server& http = *http_;
+  const std::string scenePath = std::string("/api/scenes/") + kIdPattern;
+
+  http.Post(
+      scenePath + "/volumes", guarded([this](const httplib::Request& req, httplib::Response& res) {
+        const auto session = findScene(req.matches[1]);
+        const VolumeUpload upload = volumeUploadOf(req);
+        const std::shared_ptr<const SceneSnapshot> snapshot = session->snapshot();
+        VolumeObject volume;
+        volume.id = volumeIdFor(req, upload, snapshot->scene);
+        const std::string stored = storeUpload(volumeUploadDir(), session->id(), upload.bytes);
+        volume.file = stored;
+        bool kept = false;
+        try {
+          volume.data =
+              readUpload(volume.file, req.is_multipart_form_data() ? "(form).file" : "(body)");
+          Frame frame;
+          frame.edits.push_back(addVolumeEdit(req, snapshot->scene, std::move(volume)));
+          const VolumeObject& added = frame.edits[0].volume;
+          const json info = volumeInfoJson(added);
+          const std::string journaled = protocol::frameToJson(frame).dump();
+          submitFrame(*session, std::move(frame), journaled, req, res);
+          kept = res.status == 200;
+          if (kept) {
+            json body = json::parse(res.body);
+            body["volume"] = info;
+            sendJson(res, 201, body);
+          }
+        } catch (...) {
+          std::error_code ignored;
+          std::filesystem::remove(stored, ignored);
+          throw;
+        }
+        if (!kept) {
+          std::error_code ignored;
+          std::filesystem::remove(stored, ignored);
+        }
+      }));
+
+  http.Get(scenePath + "/volumes/" + kIdPattern + "/preview",
+           guarded([this](const httplib::Request& req, httplib::Response& res) {
+             const auto snapshot = findScene(req.matches[1])->snapshot();
+             const std::string id = req.matches[2];
+             const auto index = snapshot->scene.findVolume(id);
+             if (!index)
+               throw ApiError(404, error_code::kNotFound, "id", "no volume with id '" + id + "'");
+             const VolumeObject& volume = snapshot->scene.volumes()[*index];
+             double isovalue = volume.isovalue;
+             if (const auto asked = queryNumber(req, "isovalue")) {
+               if (const auto problem = isovalueProblem(*volume.data, *asked))
+                 throw ApiError(400, error_code::kBadParameter, "query.isovalue", *problem);
+               isovalue = *asked;
+             }
+             const int cells = int(queryUnsigned(req, "cells", 4, 128).value_or(48));
+             const volume::SurfacePoints sketch =
+                 volume::surfacePoints(*volume.data, isovalue, cells);
+             json points = json::array(), normals = json::array();
+             for (size_t i = 0; i < sketch.points.size(); ++i)
+               for (int a = 0; a < 3; ++a) {
+                 points.push_back(float(sketch.points[i][a]));
+                 normals.push_back(float(sketch.normals[i][a]));
+               }
+             sendJson(res, 200,
+                      {{"id", id},
+                       {"version", snapshot->version},
+                       {"isovalue", isovalue},
+                       {"stride", sketch.stride},
+                       {"points", std::move(points)},
+                       {"normals", std::move(normals)}});
+           }));
+}
+
+}  // namespace penumbra::server
