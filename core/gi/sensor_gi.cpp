@@ -89,9 +89,10 @@ IndirectImage indirectImage(const Scene& scene, const RayScene& rays, const Mesh
   const MeshLookup lookup(scene, lit);
   const SensorMap map(settings.sensorSize);
   const Sensor sensor(scene, rays, map, diffuseOutgoing(scene, irradianceOf(lookup)));
+  const size_t faces = scene.faces().size();
   auto sense = [&](size_t p) {
-    const Face& face = scene.faces()[size_t(gbuffer.face[p])];
-    return sensor.irradiance(gbuffer.position[p], face.plane.normal);
+    const size_t id = size_t(gbuffer.face[p]);
+    return sensor.irradiance(gbuffer.position[p], id < faces ? scene.faces()[id].plane.normal : gbuffer.normal.at(p));
   };
   const std::vector<Vec3> sensed =
       placeSensors(gbuffer.width, gbuffer.height, gbuffer.face, sense, settings.placement, parallel, out.placement, progress);

@@ -32,11 +32,14 @@ struct GiSettings {
 };
 
 // The view's visible points: per pixel the Scene::faces() index of the front-facing face seen
-// there (-1: a light, the background or a back face) and the point.
+// there (-1: a light, the background or a back face) and the point. A volume's isosurface is
+// id faces().size() + its Scene::volumes() index, with its normal (turned to the view) in
+// `normal`; `normal` may stay empty when no pixel is on a volume.
 struct GBuffer {
   int width = 0, height = 0;
   std::vector<int32_t> face;
   std::vector<Vec3> position;
+  std::vector<Vec3> normal;
 };
 
 struct IndirectImage {

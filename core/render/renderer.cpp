@@ -160,12 +160,18 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
     const size_t n = size_t(settings.width) * size_t(settings.height);
     gbuffer.face.assign(n, -1);
     gbuffer.position.assign(n, Vec3(0.0));
+    if (rays.hasVolumes()) gbuffer.normal.assign(n, Vec3(0.0));
     parallel.forEach(size_t(settings.height), [&](size_t row) {
       std::optional<size_t> light;
       for (int i = 0; i < settings.width; ++i) {
-        const auto surface = primaryHit(i, int(row), light).second;
+        const auto [ray, surface] = primaryHit(i, int(row), light);
         const size_t p = row * size_t(settings.width) + size_t(i);
-        if (surface && !surface->volume && surface->frontFacing && !microfacet.isMicrofacet(surface->faceIndex)) {
+        if (surface && surface->volume) {  // an isosurface: its own id, its normal towards the view
+          gbuffer.face[p] = int32_t(scene.faces().size() + *surface->volume);
+          gbuffer.position[p] = surface->position;
+          const Vec3 n = surface->volumeNormal;
+          gbuffer.normal[p] = glm::dot(n, ray.dir) < 0 ? n : -n;
+        } else if (surface && surface->frontFacing && !microfacet.isMicrofacet(surface->faceIndex)) {
           gbuffer.face[p] = int32_t(surface->faceIndex);
           gbuffer.position[p] = surface->position;
         }
@@ -203,6 +209,8 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
       } else if (surface && surface->volume) {
         bsdf::Rng rng(settings.seed * 0x9E3779B97F4A7C15ull + p);
         radiance = volumeRadiance(scene, volumeLighting, *surface, ray.dir, ambient, rng);
+        if (!indirect.empty())
+          radiance += materialAlbedo(scene, scene.volumes()[*surface->volume].material) / M_PI * indirect[p];
         kind[p] = 1;
       } else if (surface && microfacet.isMicrofacet(surface->faceIndex)) {
         bsdf::Rng rng(settings.seed * 0x9E3779B97F4A7C15ull + p);
