@@ -1,5 +1,6 @@
-// Gives freed heap memory back to the system while the server runs: a thread that calls
-// malloc_trim after activity (glibc keeps freed pages in its arenas otherwise). Thread-safe.
+// Gives freed heap memory back to the system while the server runs: a thread that, after
+// activity, purges jemalloc's arenas (the programs' allocator) or calls glibc's malloc_trim (tests,
+// sanitizer builds): both keep freed pages otherwise. Thread-safe.
 #pragma once
 
 #include <atomic>
@@ -10,9 +11,12 @@
 
 namespace penumbra::server {
 
+// True when jemalloc serves malloc in this process (found at run time).
+bool jemallocIsTheAllocator();
+
 // Caps glibc's malloc arenas for a process serving many threads (each thread would
 // otherwise get an arena, up to 8 per core, each keeping its own freed pages). Call once,
-// before the server's threads start; a no-op elsewhere than glibc.
+// before the server's threads start; a no-op under jemalloc and elsewhere than glibc.
 void limitMallocArenas(int arenas);
 
 class MemoryTrimmer {

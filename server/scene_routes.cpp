@@ -40,6 +40,7 @@ void HttpServer::registerSceneRoutes() {
                        {"scenes", scenes},
                        {"event_streams", openStreams_.load()},
                        {"durable", journal_ != nullptr},
+                       {"allocator", jemallocIsTheAllocator() ? "jemalloc" : "glibc"},
                        {"limits",
                         {{"max_body_bytes", options_.maxBodyBytes},
                          {"max_scenes", options_.maxScenes},

@@ -12,6 +12,7 @@
 #include <httplib.h>
 
 #include <cerrno>
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -76,8 +77,9 @@ FuzzServer& fuzzServer() {
   return *server;
 }
 
-// Sends the bytes, half-closes, and reads the answer until the server closes (at most ~2 s:
-// an event stream stays open).
+// Sends the bytes, half-closes, and reads the answer until the server closes (at most ~2 s).
+// An event stream stays open: its answer is read for 50 ms after its headers (its first event),
+// not 2 s, which kept this target at ~60 executions a second once the corpus held such requests.
 std::string exchange(int port, const uint8_t* data, size_t size) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
   fuzz::check(fd >= 0, "socket() failed");
@@ -97,7 +99,8 @@ std::string exchange(int port, const uint8_t* data, size_t size) {
   ::shutdown(fd, SHUT_WR);
   std::string answer;
   char buffer[16384];
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  bool stream = false;
   while (std::chrono::steady_clock::now() < deadline) {
     const ssize_t n = ::recv(fd, buffer, sizeof buffer, 0);
     if (n == 0) break;
@@ -106,6 +109,12 @@ std::string exchange(int port, const uint8_t* data, size_t size) {
       break;
     }
     answer.append(buffer, size_t(n));
+    const size_t headersEnd = answer.find("\r\n\r\n");
+    if (!stream && headersEnd != std::string::npos &&
+        answer.substr(0, headersEnd).find("text/event-stream") != std::string::npos) {
+      stream = true;
+      deadline = std::min(deadline, std::chrono::steady_clock::now() + std::chrono::milliseconds(50));
+    }
   }
   ::close(fd);
   return answer;

@@ -21,8 +21,10 @@ import multiprocessing
 import os
 import random
 import re
+import shutil
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 import urllib.parse
@@ -181,14 +183,25 @@ def sample_rss(pid, t0, deadline, out):
         time.sleep(1.0)
 
 
-def start_server(penumbra):
-    proc = subprocess.Popen([penumbra, "serve", "--port", "0", "--static", ""],
+def start_server(penumbra, data_dir):
+    # A journal of its own: the default one (./penumbra-data) holds earlier runs' scenes, which
+    # a start restores first (24 scenes and 44k frames took 3 minutes).
+    proc = subprocess.Popen([penumbra, "serve", "--port", "0", "--static", "", "--data", data_dir],
                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
     for line in proc.stdout:
         match = re.search(r"at http://127\.0\.0\.1:(\d+)/", line)
         if match:
             return proc, int(match.group(1))
     raise SystemExit("penumbra serve did not start")
+
+
+def server_allocator(args):
+    """The allocator the server reports in /api/health (jemalloc in `penumbra serve`)."""
+    conn = http.client.HTTPConnection(args.host, args.port, timeout=30)
+    conn.request("GET", "/api/health")
+    health = json.loads(conn.getresponse().read())
+    conn.close()
+    return health.get("allocator", "unknown")
 
 
 def create_scenes(args):
@@ -230,13 +243,15 @@ def main():
     ap.add_argument("--html", help="write the HTML report here")
     ap.add_argument("--max-errors", type=int, help="fail when errors + timeouts exceed this")
     ap.add_argument("--max-rss-growth", type=float, help="fail when RSS grows more (MB)")
+    ap.add_argument("--expect-allocator", help="fail unless /api/health names this allocator")
     args = ap.parse_args()
     if not (1 <= args.clients <= 256 and 0 < args.seconds <= 3600 and 1 <= args.scenes <= 32):
         raise SystemExit("bounds: 1..256 clients, 1..32 scenes, at most 3600 s")
 
-    proc = None
+    proc, data_dir = None, None
     if args.penumbra:
-        proc, args.port = start_server(args.penumbra)
+        data_dir = tempfile.mkdtemp(prefix="penumbra-load-")
+        proc, args.port = start_server(args.penumbra, data_dir)
         args.host, pid = "127.0.0.1", proc.pid
     else:
         url = urllib.parse.urlparse(args.url)
@@ -246,6 +261,7 @@ def main():
     try:
         if args.mode == "flood":
             args.scenes = 1
+        allocator = server_allocator(args)
         scenes, objects = create_scenes(args)
         clients = [(i, scenes[i % len(scenes)], objects[(i // len(scenes)) % len(objects)])
                    for i in range(args.clients)]
@@ -275,9 +291,12 @@ def main():
         if proc:
             proc.terminate()
             proc.wait(timeout=30)
+        if data_dir:
+            shutil.rmtree(data_dir, ignore_errors=True)
 
     summary = load_report.summarize(samples, rss, streams, args)
     print(load_report.text(summary))
+    print(f"server allocator: {allocator}")
     if args.json:
         with open(args.json, "w") as f:
             json.dump({"summary": summary, "rss": rss}, f)
@@ -290,6 +309,8 @@ def main():
         broken.append(f"{summary['errors']} errors + {summary['timeouts']} timeouts")
     if args.max_rss_growth is not None and summary.get("rss_growth_mb", 0) > args.max_rss_growth:
         broken.append(f"RSS grew {summary['rss_growth_mb']:.1f} MB")
+    if args.expect_allocator and allocator != args.expect_allocator:
+        broken.append(f"the server runs on {allocator}, not {args.expect_allocator}")
     if broken:
         raise SystemExit("FAILED: " + "; ".join(broken))
 
