@@ -187,7 +187,7 @@ void HttpServer::submitFrame(SceneSession& session, Frame frame, const std::stri
   if (!waiting.admitted()) return sendBusy(res, "too many edits waiting on this server");
   try {
     session.editQueue().submit(queued, [&](const std::vector<EditScheduler::Ticket*>& batch) {
-      applyFrameBatch(session, batch);
+      editWorkers_.run([&] { applyFrameBatch(session, batch); });
     });
   } catch (const EditQueueFull&) {
     return sendBusy(res, "too many edits waiting for this scene");

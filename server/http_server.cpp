@@ -4,8 +4,10 @@
 
 #include <strings.h>
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <thread>
 
 #include "protocol/scene_json.h"
 #include "server/api_errors.h"
@@ -58,7 +60,11 @@ void gzipNotBrotli(const httplib::Request& req) {
 }  // namespace
 
 HttpServer::HttpServer(ServerOptions options)
-    : options_(std::move(options)), http_(std::make_unique<httplib::Server>()) {
+    : options_(std::move(options)),
+      editWorkers_(options_.editThreads > 0 ? options_.editThreads
+                                            : int(std::max(1u, std::thread::hardware_concurrency())),
+                   options_.editNiceness),
+      http_(std::make_unique<httplib::Server>()) {
   if (!isLoopbackHost(options_.host) && options_.token.empty())
     throw std::invalid_argument("listening on " + options_.host +
                                 " (not loopback) needs a token: --token T or PENUMBRA_TOKEN");

@@ -12,6 +12,7 @@
 #include "core/engine/engine.h"
 #include "server/limits.h"
 #include "server/scene_journal.h"
+#include "server/edit_workers.h"
 #include "server/memory_trim.h"
 #include "server/scene_session.h"
 #include "server/static_files.h"
@@ -42,6 +43,10 @@ struct ServerOptions {
   std::string token;
   size_t maxScenes = kMaxScenes;        // served at once, else 429
   size_t maxBodyBytes = kMaxBodyBytes;  // request bodies, else 413
+  // Edit batches apply on these threads (0: one per core), this many nice steps below the
+  // request threads, so reads go first when the cores are busy (server/edit_workers.h).
+  int editThreads = 0;
+  int editNiceness = kEditNiceness;
 };
 
 // The id a scene named `name` asks for ("cubes15.scene.json" → "cubes15").
@@ -120,6 +125,7 @@ class HttpServer {
 
   ServerOptions options_;
   MemoryTrimmer trimmer_{kTrimInterval};  // gives freed memory back after requests (outlives http_)
+  EditWorkers editWorkers_;  // apply edit batches below the request threads' priority (outlives http_)
   std::unique_ptr<httplib::Server> http_;
   int port_ = 0;
   std::atomic<bool> stopping_{false};

@@ -41,6 +41,7 @@ void HttpServer::registerSceneRoutes() {
                        {"event_streams", openStreams_.load()},
                        {"durable", journal_ != nullptr},
                        {"allocator", jemallocIsTheAllocator() ? "jemalloc" : "glibc"},
+                       {"edit_threads", {{"count", editWorkers_.threads()}, {"nice", editWorkers_.niceness()}}},
                        {"limits",
                         {{"max_body_bytes", options_.maxBodyBytes},
                          {"max_scenes", options_.maxScenes},

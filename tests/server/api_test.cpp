@@ -32,6 +32,8 @@ TEST(ServerApi, HealthAnswersOk) {
   EXPECT_EQ(body["status"], "ok");
   EXPECT_EQ(body["limits"]["max_body_bytes"], kMaxBodyBytes);
   EXPECT_EQ(body["limits"]["worker_threads"], kWorkerThreads);
+  EXPECT_GE(body["edit_threads"]["count"], 1);
+  EXPECT_EQ(body["edit_threads"]["nice"], kEditNiceness);
 }
 
 TEST(ServerApi, CreateGetEditAdvancesVersion) {

@@ -1,0 +1,52 @@
+// The threads that apply edit batches, at a lower CPU priority than the request threads
+// (docs/API.md "Load"). Reads take no lock (they serve immutable snapshots), but they share
+// the cores with edits; when the cores are scarce, a request thread serving a mesh, an image,
+// an event or the page's files now runs before an edit's relighting, and edits use what is
+// left. Thread-safe.
+#pragma once
+
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace penumbra::server {
+
+class EditWorkers {
+ public:
+  // `threads` workers (at least one), each `niceness` steps (0–19) below the priority of the
+  // thread that makes them. Linux lets any thread lower its own priority (nice values are per
+  // thread); elsewhere the workers keep that priority.
+  EditWorkers(int threads, int niceness);
+  ~EditWorkers();  // lets the queued work finish, then joins
+  EditWorkers(const EditWorkers&) = delete;
+  EditWorkers& operator=(const EditWorkers&) = delete;
+
+  // Runs `work` on a worker (in arrival order when all are busy) and returns once it ran;
+  // rethrows what it threw.
+  void run(const std::function<void()>& work);
+
+  int niceness() const { return niceness_; }
+  size_t threads() const { return threads_.size(); }
+
+ private:
+  struct Job {
+    const std::function<void()>* work;
+    std::exception_ptr error;
+    bool done = false;
+  };
+  void serve();
+
+  const int niceness_;
+  std::mutex mutex_;
+  std::condition_variable queued_;  // a job arrived, or stopping
+  std::condition_variable done_;    // a job finished
+  std::deque<Job*> jobs_;
+  bool stopping_ = false;
+  std::vector<std::thread> threads_;
+};
+
+}  // namespace penumbra::server
