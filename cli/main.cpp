@@ -48,7 +48,7 @@ commands:
         [--data DIR | --ephemeral]     journal of scenes and edits (default ./penumbra-data)
         [--token T] [--max-scenes N]   token for mutating requests (needed off loopback; or
         [--max-body-mib M]             PENUMBRA_TOKEN); limits (default 32 scenes, 16 MiB)
-        [--edit-nice K]                edits apply K nice steps below reads (0-19; default 5)
+        [--edit-nice K]                edits apply K nice steps below reads (0-19; default 0)
   help                                 this text
 )";
 

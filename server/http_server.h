@@ -44,7 +44,7 @@ struct ServerOptions {
   size_t maxScenes = kMaxScenes;        // served at once, else 429
   size_t maxBodyBytes = kMaxBodyBytes;  // request bodies, else 413
   // Edit batches apply on these threads (0: one per core), this many nice steps below the
-  // request threads, so reads go first when the cores are busy (server/edit_workers.h).
+  // request threads (server/edit_workers.h).
   int editThreads = 0;
   int editNiceness = kEditNiceness;
 };
@@ -125,7 +125,7 @@ class HttpServer {
 
   ServerOptions options_;
   MemoryTrimmer trimmer_{kTrimInterval};  // gives freed memory back after requests (outlives http_)
-  EditWorkers editWorkers_;  // apply edit batches below the request threads' priority (outlives http_)
+  EditWorkers editWorkers_;  // apply edit batches, one per core at most (outlives http_)
   std::unique_ptr<httplib::Server> http_;
   int port_ = 0;
   std::atomic<bool> stopping_{false};
