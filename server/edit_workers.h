@@ -1,8 +1,8 @@
-// The threads that apply edit batches, at a lower CPU priority than the request threads
-// (docs/API.md "Load"). Reads take no lock (they serve immutable snapshots), but they share
-// the cores with edits; when the cores are scarce, a request thread serving a mesh, an image,
-// an event or the page's files now runs before an edit's relighting, and edits use what is
-// left. Thread-safe.
+// The threads that apply edit batches, one per core (docs/API.md "Load"). Reads take no lock
+// (they serve immutable snapshots), but they share the cores with edits: with a batch applying
+// on each scene's request thread, ten scenes edited at once meant ten relighting threads on two
+// cores, and a 1 ms read waited behind them. Optionally (`serve --edit-nice K`) the workers
+// also run K nice steps below the request threads, so that reads go first. Thread-safe.
 #pragma once
 
 #include <condition_variable>
