@@ -28,7 +28,8 @@ void lowerOwnPriority(int steps) {
 }  // namespace
 
 EditWorkers::EditWorkers(int threads, int niceness) : niceness_(std::clamp(niceness, 0, 19)) {
-  for (int i = 0; i < std::max(1, threads); ++i) threads_.emplace_back([this] { serve(); });
+  if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { serve(); });
 }
 
 EditWorkers::~EditWorkers() {

@@ -17,7 +17,7 @@ namespace penumbra::server {
 
 class EditWorkers {
  public:
-  // `threads` workers (at least one), each `niceness` steps (0–19) below the priority of the
+  // `threads` workers (0 or less: one per core), each `niceness` steps (0–19) below the priority of the
   // thread that makes them. Linux lets any thread lower its own priority (nice values are per
   // thread); elsewhere the workers keep that priority.
   EditWorkers(int threads, int niceness);

@@ -4,10 +4,8 @@
 
 #include <strings.h>
 
-#include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <thread>
 
 #include "protocol/scene_json.h"
 #include "server/api_errors.h"
@@ -61,9 +59,7 @@ void gzipNotBrotli(const httplib::Request& req) {
 
 HttpServer::HttpServer(ServerOptions options)
     : options_(std::move(options)),
-      editWorkers_(options_.editThreads > 0 ? options_.editThreads
-                                            : int(std::max(1u, std::thread::hardware_concurrency())),
-                   options_.editNiceness),
+      editWorkers_(0, options_.editNiceness),
       http_(std::make_unique<httplib::Server>()) {
   if (!isLoopbackHost(options_.host) && options_.token.empty())
     throw std::invalid_argument("listening on " + options_.host +

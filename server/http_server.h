@@ -43,9 +43,8 @@ struct ServerOptions {
   std::string token;
   size_t maxScenes = kMaxScenes;        // served at once, else 429
   size_t maxBodyBytes = kMaxBodyBytes;  // request bodies, else 413
-  // Edit batches apply on these threads (0: one per core), this many nice steps below the
-  // request threads (server/edit_workers.h).
-  int editThreads = 0;
+  // Edit batches apply on one thread per core, this many nice steps below the request
+  // threads (server/edit_workers.h).
   int editNiceness = kEditNiceness;
 };
 

@@ -21,11 +21,11 @@ inline constexpr size_t kMaxQueuedEdits = 16;
 // Frames of different clients that queued while a frame applied are applied together, as one
 // frame and one version, at most this many (group commit: docs/API.md "Load").
 inline constexpr size_t kMaxFramesPerBatch = 16;
+inline constexpr int kMaxWaitingEdits = kRequestWorkers * 3 / 4;
 // Nice steps between the request threads and the threads applying edits (`serve --edit-nice`).
 // 0: in the 10-minute load of README "Load", one edit thread per core already brought GET p99
 // from 65 to 27 ms; 5 steps gave 22 ms but 18% fewer edits/s and edit p99 806 instead of 621 ms.
 inline constexpr int kEditNiceness = 0;
-inline constexpr int kMaxWaitingEdits = kRequestWorkers * 3 / 4;
 // How often freed heap memory is given back to the system while requests come (malloc_trim),
 // and the malloc arenas `penumbra serve` allows (glibc's default is 8 per core).
 inline constexpr std::chrono::milliseconds kTrimInterval{1000};
