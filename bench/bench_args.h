@@ -25,6 +25,9 @@ struct BenchArgs {
   // (then --cubes only when given). build-row: --no-compare skips Monte Carlo and mesh quality.
   std::vector<int> denseCubes;
   bool compare = true;
+  // build, build-row: --all-lines casts every VE/EV line of closed convex objects
+  // (EngineSettings::silhouetteLinesOnly = false), to compare with the default.
+  bool allLines = false;
   // edits: --cubes given (else 150,1500,5000), --frames (drag frames, 0 = by size),
   // --html OUT, --write-scripts DIR --scene FILE (write that scene's scripts only).
   // --rebuild-every K: time the full rebuild on the first frame, every K-th and

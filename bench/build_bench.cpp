@@ -70,6 +70,7 @@ std::vector<std::string> childArguments(const RowSpec& spec, const BenchArgs& ar
                                std::to_string(args.qualityMaxCubes)};
   if (spec.dense) out.push_back("--dense");
   if (!spec.compare) out.push_back("--no-compare");
+  if (args.allLines) out.push_back("--all-lines");
   return out;
 }
 

@@ -217,6 +217,7 @@ nlohmann::json runBuildRow(const BenchArgs& args) {
   const double cpuStart = cpuSeconds();
   EngineSettings settings;
   settings.threads = threads;
+  settings.silhouetteLinesOnly = !args.allLines;
   Engine engine(scene, settings);
   const Mesh mesh = engine.mesh();
   const double buildSeconds = secondsSince(start);

@@ -261,7 +261,7 @@ Engine::Receiver Engine::makeReceiver(const Face& face) const {
 std::optional<InsertResult> Engine::castInto(size_t light, const Face& occluder, Receiver& receiver) {
   const Face* face = findFace(scene_, receiver.face);
   if (!face) throw std::logic_error("Engine: receiver without a scene face");
-  const auto shadow = castShadow(scene_, light, occluder, *face, receiver.frame);
+  const auto shadow = castShadow(scene_, light, occluder, *face, receiver.frame, settings_.silhouetteLinesOnly);
   if (!shadow) return std::nullopt;
   const TreeUsage before = usageOf(receiver.tree, scene_.lights().size());
   InsertResult inserted = receiver.tree.insert(*shadow);

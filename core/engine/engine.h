@@ -49,6 +49,10 @@ struct EngineSettings {
   // vertex) and for meshing (per receiver): 0 = every core, 1 = the calling thread only. The
   // results are bit for bit the same for any count.
   int threads = 0;
+  // A closed convex occluder's VE/EV lines only where its element may be on a
+  // silhouette from the light (core/shadow/convex_silhouette.h); the others bound no
+  // change in the light seen. false: every line, as cast face by face (comparisons).
+  bool silhouetteLinesOnly = true;
   // Per-scene resource limits, checked while building and applying frames: passing
   // one throws ResourceLimitError naming it (README "Resource limits").
   ResourceLimits limits;

@@ -177,6 +177,14 @@ void Scene::setTransform(uint32_t handle, const Transform& transform) {
   for (size_t f = 0; f < faces.size(); ++f) first[long(f)] = std::move(faces[f]);
 }
 
+std::span<const Face> Scene::facesOfObject(uint32_t handle) const {
+  const auto first = std::lower_bound(faces_.begin(), faces_.end(), handle,
+                                      [](const Face& f, uint32_t h) { return f.id.object < h; });
+  const auto last = std::upper_bound(first, faces_.end(), handle,
+                                     [](uint32_t h, const Face& f) { return h < f.id.object; });
+  return {first, last};
+}
+
 bool Scene::isClosedConvex(uint32_t handle) const {
   const auto index = indexOfHandle(handle);
   return index && closedConvex_[*index];

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -147,6 +148,8 @@ class Scene {
   void setVolumeIsovalue(size_t index, double isovalue);
   // All faces of all objects in world space, ordered by (object, face).
   const std::vector<Face>& faces() const { return faces_; }
+  // The world faces of the object with this handle (empty for an unknown handle).
+  std::span<const Face> facesOfObject(uint32_t handle) const;
 
   // Whether the object is closed and convex (core/scene/closed_convex.h), decided when
   // it enters the scene or moves. Such an object never shadows itself.

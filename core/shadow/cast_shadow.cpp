@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/geom/clip.h"
+#include "core/shadow/convex_silhouette.h"
 #include "core/shadow/plane_trace.h"
 
 namespace penumbra {
@@ -195,7 +196,8 @@ std::optional<CastingPair> castingPair(const Scene& scene, size_t light, const F
 }
 
 std::optional<SingleShadow> castShadow(const Scene& scene, size_t light, const Face& occluder,
-                                       const Face& receiver, const PlaneFrame& frame) {
+                                       const Face& receiver, const PlaneFrame& frame,
+                                       bool silhouetteOnly) {
   const Tolerance tol = scene.tolerance();
   const double eps = tol.length();
   const Plane& occluderPlane = occluder.plane;
@@ -254,7 +256,12 @@ std::optional<SingleShadow> castShadow(const Scene& scene, size_t light, const F
   out.occluder = occluder.id;
   out.receiver = receiver.id;
 
-  // Segments: each wedge cut by R's plane inside base.
+  // Segments: each wedge cut by R's plane inside base. A closed convex occluder's
+  // surfaces off every silhouette bound no change of the light seen (convex_silhouette.h):
+  // their inner pieces are dropped (region edges stay: the face's own regions need them).
+  std::optional<ConvexSilhouette> silhouette;
+  if (silhouetteOnly && scene.isClosedConvex(occluder.id.object))
+    silhouette.emplace(scene.facesOfObject(occluder.id.object), tol);
   std::vector<char> contactDone(pair->occluder.size(), 0);
   std::vector<Piece> pieces;
   std::vector<std::pair<ElementRef, ElementRef>> elements;
@@ -296,7 +303,8 @@ std::optional<SingleShadow> castShadow(const Scene& scene, size_t light, const F
       std::vector<Piece> rest, inner;
       splitAlong(penumbra, whole, SegmentKind::Penumbra, eps, &kept, &rest);
       for (const Piece& piece : rest) splitAlong(umbra, piece, SegmentKind::Umbra, eps, &kept, &inner);
-      kept.insert(kept.end(), inner.begin(), inner.end());
+      if (!inner.empty() && (!silhouette || silhouette->mayBeSilhouette({o0, o1}, {l0, l1})))
+        kept.insert(kept.end(), inner.begin(), inner.end());
     }
     for (const Piece& piece : kept) {
       // R's own boundary is already in its tree.

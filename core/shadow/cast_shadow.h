@@ -48,7 +48,13 @@ std::optional<CastingPair> castingPair(const Scene& scene, size_t light, const F
 // R's own boundary, pieces equal to an earlier one (same end points and kind).
 // Collinear overlapping pieces from different elements are kept (EE coincidences,
 // e.g. parallel light and occluder edges, put four wedges in one plane).
+//
+// With `silhouetteOnly`, an occluder of a closed convex object (Scene::isClosedConvex)
+// keeps the Internal pieces of a surface only if its element may lie on the object's
+// silhouette from the light element (convex_silhouette.h): the rest are no
+// discontinuity of the object's shadow. Region edges and contacts are always kept.
 std::optional<SingleShadow> castShadow(const Scene& scene, size_t light, const Face& occluder,
-                                       const Face& receiver, const PlaneFrame& receiverFrame);
+                                       const Face& receiver, const PlaneFrame& receiverFrame,
+                                       bool silhouetteOnly = true);
 
 }  // namespace penumbra

@@ -55,7 +55,11 @@ TEST(ContactBand, OfficeCellsStayBehindTheirOccluders) {
 }
 
 TEST(ContactBand, Seed110PointNearFootprintCornerTakesItsPointValue) {
-  Engine engine(makeCubesScene(mixedCubesOptions(110)));
+  // The lattice point lies on a line of 8/5 the silhouette filter now leaves out (cube_2
+  // is closed convex); every line, as when it was found, keeps the configuration.
+  EngineSettings everyLine;
+  everyLine.silhouetteLinesOnly = false;
+  Engine engine(makeCubesScene(mixedCubesOptions(110)), everyLine);
   const Scene& scene = engine.scene();
   const ExactReference reference(scene);
   const Mesh mesh = engine.mesh();
