@@ -10,12 +10,17 @@
 
 namespace penumbra {
 
+// 12 bytes, not 16: the umbra flag shares the light index's word. Dense rooms keep ~40
+// entries in each of millions of cells, so this is a good part of a build's memory.
 struct OccluderEntry {
-  uint32_t light = 0;
+  OccluderEntry() = default;
+  OccluderEntry(uint32_t light, FaceId face, bool umbra = false) : light(light), umbra(umbra), face(face) {}
+  uint32_t light : 31 = 0;
+  uint32_t umbra : 1 = 0;  // the face hides the whole light from the cell
   FaceId face;
-  bool umbra = false;  // the face hides the whole light from the cell
   bool operator==(const OccluderEntry&) const = default;
 };
+static_assert(sizeof(OccluderEntry) == 12);
 
 // The occluder of a light's own plane: where that plane cuts a receiver, the part
 // behind it gets no light (lights emit from their front only). Not a scene face.
