@@ -1,13 +1,16 @@
 // The full build on dense rooms (boxes floating at random, dozens of faces covering
 // a vertex) against the independent exact reference: every DM vertex's value equals
-// the brute-force reference at 1e-9 relative, and the triangles tile every receiver.
+// the brute-force reference at 1e-9 relative, and the triangles tile every receiver;
+// boxes dragged through them incrementally equal a rebuild after every frame.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <string>
 
+#include "bench/lib/dense_drag.h"
 #include "bench/lib/dense_scene.h"
 #include "core/engine/engine.h"
+#include "tests/core/engine/incremental_compare.h"
 #include "tests/core/engine/reference_check.h"
 
 namespace penumbra {
@@ -36,6 +39,40 @@ TEST(DenseReference, Dense150) {
   const ReferenceCheck c = checkDenseRoom(150, 1);
   EXPECT_EQ(c.valueErrors, 0u);
   EXPECT_EQ(c.classErrors, 0u);
+}
+
+TEST(DenseReference, Dense300) {
+  const ReferenceCheck c = checkDenseRoom(300, 1);
+  EXPECT_GT(c.vertices, 100000u);
+  EXPECT_EQ(c.valueErrors, 0u);
+  EXPECT_EQ(c.classErrors, 0u);
+}
+
+// The bench's move-one-box script (the box under the light, whose shadow covers the
+// floor and the boxes below) on small dense rooms: after every frame the incremental
+// engine equals a rebuild of its scene (values at each other's vertices, classes and
+// values at random points, segments), and at the end the exact reference.
+TEST(DenseIncremental, DraggedBoxEqualsRebuild) {
+  for (uint64_t seed = 1; seed <= 3; ++seed) {
+    const std::string label = "dense 30 seed " + std::to_string(seed);
+    SCOPED_TRACE(label);
+    Engine engine(makeDenseScene({.boxes = 30, .seed = seed}));
+    const EditScript script = denseDragScript(engine.scene(), 6, seed);
+    size_t frame = 0;
+    for (const Frame& f : script.frames) {
+      const FrameResult result = engine.apply(f);
+      EXPECT_FALSE(result.fullRebuild);
+      EXPECT_GT(result.verticesRelit, 0u);
+      const Engine rebuilt(engine.scene());
+      const double peak = std::max(testing::peakIrradiance(rebuilt), 1e-300);
+      const testing::EngineDiff diff = testing::compareEngines(engine, rebuilt, peak, 40, seed * 100 + ++frame);
+      EXPECT_EQ(diff.errors(), 0u) << "frame " << frame << ": " << diff.firstProblem;
+      EXPECT_GT(diff.matchedVertices, 0u);
+    }
+    const ReferenceCheck c = testing::checkAgainstReference(engine, label);
+    EXPECT_EQ(c.valueErrors, 0u);
+    EXPECT_EQ(c.classErrors, 0u);
+  }
 }
 
 }  // namespace
