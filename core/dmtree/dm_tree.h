@@ -106,6 +106,13 @@ class DmTree {
   // Throws std::logic_error on any broken invariant (mesh, BSP, occluder lists).
   void validate() const;
 
+  // Gives back spare capacity (node slots, mesh arrays, occluder lists) once a batch of
+  // insertions is done: the build's trees keep ~40 entries a cell in dense rooms.
+  void shrinkToFit() {
+    nodes_.shrink_to_fit();
+    mesh_.shrinkToFit();
+  }
+
   // A cap on node slots: adding past it throws ResourceLimitError("tree_nodes"), so
   // one insertion or removal cannot run away (the tree is then unusable: drop it).
   void setNodeLimit(size_t maxNodeSlots) { nodeLimit_ = maxNodeSlots; }

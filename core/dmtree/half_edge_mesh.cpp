@@ -394,4 +394,11 @@ void HalfEdgeMesh::validate(double eps, double receiverArea) const {
     fail("cells do not tile the receiver: " + std::to_string(total) + " vs " + std::to_string(receiverArea));
 }
 
+void HalfEdgeMesh::shrinkToFit() {
+  vertices_.shrink_to_fit();
+  halfEdges_.shrink_to_fit();
+  cells_.shrink_to_fit();
+  for (Cell& cell : cells_) cell.occluders.shrink_to_fit();
+}
+
 }  // namespace penumbra

@@ -115,6 +115,10 @@ class HalfEdgeMesh {
   // Topology and geometry of the mesh alone (see DmTree::validate for the rest).
   void validate(double eps, double receiverArea) const;
 
+  // Gives back the spare capacity of the slot arrays and the occluder lists (grown by
+  // doubling while shadows were inserted). Changes no slot, list or stamp.
+  void shrinkToFit();
+
  private:
   static uint64_t nextStamp();
   VertexId addVertex(const Vec2& p);

@@ -210,6 +210,7 @@ void Engine::castAllPairs(const EngineProgress& progress) {
   parallel_.forEach(receivers_.size(), [&](size_t r) {
     for (const Cast& cast : casts[r])
       if (castInto(cast.light, *cast.occluder, receivers_[r])) shadowedBy[r].push_back(cast.occluder->id);
+    receivers_[r].tree.shrinkToFit();
     report.add(casts[r].size());
     std::vector<Cast>().swap(casts[r]);
   });
