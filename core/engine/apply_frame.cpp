@@ -7,6 +7,7 @@
 #include <new>
 #include <optional>
 #include <set>
+#include <span>
 #include <tuple>
 
 #include "core/engine/dirty_set.h"
@@ -25,14 +26,10 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// One object's faces: a contiguous run of Scene::faces(), which is sorted by id.
+// A copy of one object's faces (the scene changes after it is taken).
 std::vector<Face> facesOfObject(const Scene& scene, uint32_t handle) {
-  const auto& faces = scene.faces();
-  auto it = std::lower_bound(faces.begin(), faces.end(), FaceId{handle, 0},
-                             [](const Face& f, const FaceId& id) { return f.id < id; });
-  std::vector<Face> out;
-  for (; it != faces.end() && it->id.object == handle; ++it) out.push_back(*it);
-  return out;
+  const std::span<const Face> faces = scene.facesOfObject(handle);
+  return {faces.begin(), faces.end()};
 }
 
 // The switch to a full rebuild (FrameResult::fullRebuild): frames editing more than
@@ -410,12 +407,8 @@ FrameResult Engine::apply(const Frame& frame) {
     // receive light, and cast both ways with the faces sharing their tiles.
     start = Clock::now();
     std::vector<const Face*> enteringFaces;
-    for (uint32_t h : entering) {
-      const auto& faces = scene_.faces();
-      auto it = std::lower_bound(faces.begin(), faces.end(), FaceId{h, 0},
-                                 [](const Face& f, const FaceId& id) { return f.id < id; });
-      for (; it != faces.end() && it->id.object == h; ++it) enteringFaces.push_back(&*it);
-    }
+    for (uint32_t h : entering)
+      for (const Face& face : scene_.facesOfObject(h)) enteringFaces.push_back(&face);
     for (size_t l = 0; l < lightCount; ++l)
       for (const Face* face : enteringFaces) {
         orders_[l]->insertFace(*face);

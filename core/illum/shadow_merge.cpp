@@ -7,13 +7,10 @@ namespace penumbra {
 
 bool mergeableShadows(const Scene& scene, uint32_t handle, const Plane& lightPlane, const Vec3& p) {
   if (!scene.isClosedConvex(handle)) return false;
-  const std::vector<Face>& faces = scene.faces();
-  auto it = std::lower_bound(faces.begin(), faces.end(), FaceId{handle, 0},
-                             [](const Face& f, FaceId key) { return f.id < key; });
   const double eps = scene.tolerance().length(), onPlane = scene.tolerance().onPlane();
-  for (; it != faces.end() && it->id.object == handle; ++it) {
-    if (!(std::abs(it->plane.signedDistance(p)) > onPlane)) return false;
-    for (const Vec3& v : it->polygon)
+  for (const Face& face : scene.facesOfObject(handle)) {
+    if (!(std::abs(face.plane.signedDistance(p)) > onPlane)) return false;
+    for (const Vec3& v : face.polygon)
       if (!(lightPlane.signedDistance(v) > eps)) return false;
   }
   return true;
