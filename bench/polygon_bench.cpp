@@ -8,6 +8,8 @@
 // Without this, Boost.Geometry 1.74 rescales overlay input to an integer grid (its default
 // robustness policy), which costs ~1e-8 relative: far from the 1e-9 the engine keeps.
 #define BOOST_GEOMETRY_NO_ROBUSTNESS
+// Boost 1.74's geometry headers include headers it deprecated itself; keep the build log quiet.
+#define BOOST_ALLOW_DEPRECATED_HEADERS
 #include <boost/geometry.hpp>
 #include <boost/geometry/geometries/point_xy.hpp>
 #include <boost/geometry/geometries/polygon.hpp>
