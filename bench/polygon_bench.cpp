@@ -155,11 +155,15 @@ int run(int argc, char** argv) {
     const std::string name = argv[i];
     if (i + 1 >= argc) throw std::invalid_argument(name + " needs a value");
     const std::string value = argv[++i];
-    if (name == "--cubes") boxes = std::stoi(value);
-    else if (name == "--samples") count = std::stoul(value);
-    else if (name == "--seed") seed = std::stoull(value);
-    else if (name == "--json") jsonOut = value;
-    else throw std::invalid_argument("unknown option " + name);
+    try {
+      if (name == "--cubes") boxes = std::stoi(value);
+      else if (name == "--samples") count = std::stoul(value);
+      else if (name == "--seed") seed = std::stoull(value);
+      else if (name == "--json") jsonOut = value;
+      else throw std::invalid_argument("unknown option " + name);
+    } catch (const std::logic_error& error) {
+      throw std::invalid_argument(name + " '" + value + "': " + error.what());
+    }
   }
   EngineSettings settings;
   settings.meshSpacing = -1;  // the DM vertices only; no meshing
