@@ -71,6 +71,7 @@ CellId HalfEdgeMesh::reset(const Polygon2& receiver, double eps) {
 
 std::vector<HalfEdgeId> HalfEdgeMesh::loop(CellId c) const {
   std::vector<HalfEdgeId> out;
+  out.reserve(8);  // most cells have a handful of edges: one allocation, not four
   const HalfEdgeId start = cell(c).edge;
   HalfEdgeId h = start;
   do {
@@ -89,6 +90,7 @@ Polygon2 HalfEdgeMesh::polygon(CellId c) const {
 
 std::vector<CellId> HalfEdgeMesh::cellsAround(VertexId v) const {
   std::vector<CellId> out;
+  out.reserve(8);  // most vertices touch 2 to 6 cells
   const HalfEdgeId start = vertex(v).out;
   HalfEdgeId h = start;
   size_t steps = 0;

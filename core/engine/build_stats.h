@@ -9,6 +9,8 @@ namespace penumbra {
 struct BuildTimings {
   double ordering = 0;          // seconds: front-to-back orders, all lights
   double cube = 0;              // shadow overlap cubes
+  // A receiver is illuminated as soon as its shadows are cast, while others are still casting:
+  // the two steps' wall time is split in proportion to the thread time each took.
   double castingAndMerging = 0; // castShadow + DM-tree merges
   double illumination = 0;      // vertex illumination
   double triangulation = 0;     // cells -> triangles (Engine::mesh)

@@ -128,7 +128,7 @@ void Engine::build(const EngineProgress& progress) {
   buildOrdersAndCubes();
 
   // One DM-tree per receiving face.
-  auto start = Clock::now();
+  const auto start = Clock::now();
   for (const Face& face : scene_.faces()) {
     if (!scene_.receivesLight(face)) continue;
     receiverIndex_[face.id] = receivers_.size();
@@ -136,13 +136,8 @@ void Engine::build(const EngineProgress& progress) {
     budget_.change({}, usageOf(receivers_.back().tree, scene_.lights().size()));
   }
   stats_.receivers = receivers_.size();
-  castAllPairs(progress);
-  stats_.seconds.castingAndMerging = secondsSince(start);
-
-  // Illuminate every vertex (§2.4).
-  start = Clock::now();
-  illuminateAll(progress);
-  stats_.seconds.illumination = secondsSince(start);
+  // Cast every pair, then illuminate every vertex (§2.3, §2.4), receiver by receiver.
+  castAndIlluminateAll(start, progress);
   countBuild();
 }
 
@@ -165,10 +160,13 @@ void Engine::buildOrdersAndCubes() {
   stats_.seconds.cube = secondsSince(start);
 }
 
-void Engine::castAllPairs(const EngineProgress& progress) {
+void Engine::castAndIlluminateAll(Clock::time_point start, const EngineProgress& progress) {
   // Every candidate pair both ways (§2.3), occluders in front-to-back order, light by light.
   // A receiver's tree depends only on the sequence of shadows it receives, so each receiver
-  // takes its own part of that sequence, in order, and receivers cast in parallel.
+  // takes its own part of that sequence, in order, and receivers cast in parallel. A receiver's
+  // vertices depend only on its own tree, so each is illuminated as soon as its casts are in:
+  // the other threads light small receivers while the floor, one long task, is still being cast
+  // (a step boundary left them idle; sparse 150 cubes 5 % faster at 2 threads).
   struct Cast {
     uint32_t light;
     const Face* occluder;
@@ -206,15 +204,32 @@ void Engine::castAllPairs(const EngineProgress& progress) {
   stats_.castAttempts = total;
 
   std::vector<std::vector<FaceId>> shadowedBy(receivers_.size());  // occluders that cast, per receiver
-  SharedProgress report(progress, "casting", total, 4096);
+  // Both steps report at once: one lock keeps the callback on one thread at a time.
+  std::mutex progressMutex;
+  const EngineProgress serialized = [&](const char* step, size_t done, size_t all) {
+    std::lock_guard lock(progressMutex);
+    progress(step, done, all);
+  };
+  const EngineProgress& shared = progress ? serialized : progress;
+  SharedProgress castReport(shared, "casting", total, 4096);
+  SharedProgress lightReport(shared, "illumination", receivers_.size(), 1);
+  std::vector<double> castSeconds(receivers_.size()), lightSeconds(receivers_.size());
   parallel_.forEach(receivers_.size(), [&](size_t r) {
+    const auto castStart = Clock::now();
     for (const Cast& cast : casts[r])
       if (castInto(cast.light, *cast.occluder, receivers_[r])) shadowedBy[r].push_back(cast.occluder->id);
     receivers_[r].tree.shrinkToFit();
-    report.add(casts[r].size());
+    castReport.add(casts[r].size());
     std::vector<Cast>().swap(casts[r]);
+    const auto lightStart = Clock::now();
+    castSeconds[r] = std::chrono::duration<double>(lightStart - castStart).count();
+    illuminate(receivers_[r]);
+    lightSeconds[r] = secondsSince(lightStart);
+    lightReport.add(1);
   });
-  report.finish();
+  castReport.finish();
+  lightReport.finish();
+  splitStepSeconds(secondsSince(start), castSeconds, lightSeconds);
   for (size_t r = 0; r < receivers_.size(); ++r) {
     stats_.pairsWithShadow += shadowedBy[r].size();
     for (FaceId occluder : shadowedBy[r]) {
@@ -224,13 +239,15 @@ void Engine::castAllPairs(const EngineProgress& progress) {
   }
 }
 
-void Engine::illuminateAll(const EngineProgress& progress) {
-  SharedProgress report(progress, "illumination", receivers_.size(), 1);
-  parallel_.forEach(receivers_.size(), [&](size_t r) {
-    illuminate(receivers_[r]);
-    report.add(1);
-  });
-  report.finish();
+void Engine::splitStepSeconds(double wall, const std::vector<double>& castSeconds,
+                              const std::vector<double>& lightSeconds) {
+  // The two steps overlap, so each gets the share of the wall time its tasks took.
+  double cast = 0, light = 0;
+  for (double s : castSeconds) cast += s;
+  for (double s : lightSeconds) light += s;
+  const double castShare = cast + light > 0 ? cast / (cast + light) : 0.5;
+  stats_.seconds.castingAndMerging = wall * castShare;
+  stats_.seconds.illumination = wall - stats_.seconds.castingAndMerging;
 }
 
 void Engine::countBuild() {

@@ -4,6 +4,7 @@
 // that changes it; one writer at a time, const access from several threads is safe.
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
@@ -197,8 +198,8 @@ class Engine {
   std::optional<InsertResult> castInto(size_t light, const Face& occluder, Receiver& receiver);
   // The build's steps (§2.1–2.4); each fills its part of stats_.
   void buildOrdersAndCubes();
-  void castAllPairs(const EngineProgress& progress);
-  void illuminateAll(const EngineProgress& progress);
+  void castAndIlluminateAll(std::chrono::steady_clock::time_point start, const EngineProgress& progress);
+  void splitStepSeconds(double wall, const std::vector<double>& castSeconds, const std::vector<double>& lightSeconds);
   void countBuild();
   // Casts every candidate occluder of the overlap cubes on one (fresh) receiver.
   void castAllOn(Receiver& receiver);
