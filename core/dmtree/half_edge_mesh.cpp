@@ -72,6 +72,12 @@ CellId HalfEdgeMesh::reset(const Polygon2& receiver, double eps) {
 std::vector<HalfEdgeId> HalfEdgeMesh::loop(CellId c) const {
   std::vector<HalfEdgeId> out;
   out.reserve(8);  // most cells have a handful of edges: one allocation, not four
+  loopInto(c, out);
+  return out;
+}
+
+void HalfEdgeMesh::loopInto(CellId c, std::vector<HalfEdgeId>& out) const {
+  out.clear();
   const HalfEdgeId start = cell(c).edge;
   HalfEdgeId h = start;
   do {
@@ -79,7 +85,6 @@ std::vector<HalfEdgeId> HalfEdgeMesh::loop(CellId c) const {
     if (out.size() > halfEdges_.size()) throw std::logic_error("DM-tree: cell loop does not close");
     h = halfEdge(h).next;
   } while (h != start);
-  return out;
 }
 
 Polygon2 HalfEdgeMesh::polygon(CellId c) const {
@@ -105,10 +110,14 @@ std::vector<CellId> HalfEdgeMesh::cellsAround(VertexId v) const {
 HalfEdgeMesh::CutPlan HalfEdgeMesh::planCut(CellId c, const Line2& line, double eps) const {
   CutPlan plan;
   plan.cell = c;
-  const std::vector<HalfEdgeId> edges = loop(c);
+  // Called for every cell a new line meets: the thread's scratch arrays, not three allocations.
+  thread_local std::vector<HalfEdgeId> edges;
+  thread_local std::vector<double> d;
+  thread_local std::vector<int> s;
+  loopInto(c, edges);
   const size_t m = edges.size();
-  std::vector<double> d(m);
-  std::vector<int> s(m);
+  d.resize(m);
+  s.resize(m);
   bool anyFront = false, anyBack = false;
   double sum = 0;
   for (size_t i = 0; i < m; ++i) {

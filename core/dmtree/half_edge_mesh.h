@@ -108,6 +108,7 @@ class HalfEdgeMesh {
   size_t cellCount() const { return liveCells_; }
 
   std::vector<HalfEdgeId> loop(CellId c) const;
+  void loopInto(CellId c, std::vector<HalfEdgeId>& out) const;  // the same, into `out` (cleared)
   Polygon2 polygon(CellId c) const;
   // Every live cell whose closure contains v, by a walk around v.
   std::vector<CellId> cellsAround(VertexId v) const;
