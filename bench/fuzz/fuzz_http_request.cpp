@@ -5,6 +5,7 @@
 // process aborts) or a sanitizer report; with PENUMBRA_FUZZ_STRICT=1 also a 500 answer.
 #include <arpa/inet.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <sys/time.h>
 #include <unistd.h>
@@ -12,10 +13,13 @@
 #include <httplib.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <thread>
@@ -30,6 +34,7 @@ namespace {
 class FuzzServer {
  public:
   FuzzServer() : server_(options()) {
+    ::setenv("PENUMBRA_IMAGE_MODULE", PENUMBRA_IMAGE_MODULE_PATH, 0);  // GET …/image encodes PNGs
     port_ = server_.bind();
     server_.addScene(fuzz::tinyScene(), "tiny", "s");
     listener_ = std::thread([this] { server_.listen(); });
@@ -77,9 +82,47 @@ FuzzServer& fuzzServer() {
   return *server;
 }
 
-// Sends the bytes, half-closes, and reads the answer until the server closes (at most ~2 s).
-// An event stream stays open: its answer is read for 50 ms after its headers (its first event),
-// not 2 s. (The target's ~60 executions a second come mostly from re-meshing the tiny scene.)
+// Where an answer whose bytes so far are `answer` ends (npos: read until the server closes), once
+// its headers are in; `head`: the request was a HEAD. An event stream's end is its first event.
+size_t answerEnd(const std::string& answer, size_t headersEnd, bool head) {
+  std::string headers = answer.substr(0, headersEnd);
+  for (char& c : headers) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const size_t bodyStart = headersEnd + 4;
+  const int status = answer.size() > 12 ? std::atoi(answer.c_str() + 9) : 0;
+  if (head || status == 204 || status == 304 || (status >= 100 && status < 200)) return bodyStart;
+  if (headers.find("text/event-stream") != std::string::npos) {
+    const size_t event = answer.find("\n\n", bodyStart);
+    return event == std::string::npos ? std::string::npos - 1 : event + 2;
+  }
+  if (headers.find("transfer-encoding: chunked") != std::string::npos) {
+    const size_t last = answer.find("\r\n0\r\n\r\n", headersEnd);
+    return last == std::string::npos ? std::string::npos - 1 : last + 7;
+  }
+  const size_t length = headers.find("content-length:");
+  if (length != std::string::npos) return bodyStart + std::strtoull(headers.c_str() + length + 15, nullptr, 10);
+  return std::string::npos;
+}
+
+// Whether the bytes hold a whole request (headers, and as much body as Content-Length says or a
+// last chunk; a POST without either is cut): the server answers it without waiting for more.
+bool wholeRequest(const std::string& request) {
+  const size_t headersEnd = request.find("\r\n\r\n");
+  if (headersEnd == std::string::npos) return false;
+  std::string headers = request.substr(0, headersEnd);
+  for (char& c : headers) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (headers.find("transfer-encoding:") != std::string::npos)
+    return request.size() >= 5 && request.compare(request.size() - 5, 5, "0\r\n\r\n") == 0;
+  const size_t length = headers.find("content-length:");
+  if (length == std::string::npos)  // the body of a POST, PUT or PATCH without one ends at EOF
+    return !(headers.rfind("post ", 0) == 0 || headers.rfind("put ", 0) == 0 || headers.rfind("patch ", 0) == 0);
+  return request.size() - headersEnd - 4 >= std::strtoull(headers.c_str() + length + 15, nullptr, 10);
+}
+
+// Sends the bytes and reads the first answer (at most ~2 s): until its Content-Length, its last
+// chunk, an event stream's first event, or the server closing. A cut request is half-closed (the
+// server would wait for its rest), a whole one is not: the HTTP library writes no answer to a
+// client it has seen half-close, so half-closing every request lost the answers of all but the
+// fastest handlers (the handlers ran, but the writing of their answers went unfuzzed).
 std::string exchange(int port, const uint8_t* data, size_t size) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
   fuzz::check(fd >= 0, "socket() failed");
@@ -89,19 +132,25 @@ std::string exchange(int port, const uint8_t* data, size_t size) {
   addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   fuzz::check(::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0, "server not accepting");
   timeval timeout{0, 200 * 1000};
-  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
   ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &timeout, sizeof timeout);
   for (size_t sent = 0; sent < size;) {
     const ssize_t n = ::send(fd, data + sent, size - sent, MSG_NOSIGNAL);
     if (n <= 0) break;  // the server may answer (413, 400) and close before reading it all
     sent += size_t(n);
   }
-  ::shutdown(fd, SHUT_WR);
-  std::string answer;
-  char buffer[16384];
+  const std::string request(reinterpret_cast<const char*>(data), size);
+  const bool head = request.rfind("HEAD ", 0) == 0;
+  if (!wholeRequest(request)) ::shutdown(fd, SHUT_WR);
   auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
-  bool stream = false;
-  while (std::chrono::steady_clock::now() < deadline) {
+  std::string answer;
+  size_t end = std::string::npos;
+  char buffer[16384];
+  while (answer.size() < end) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline) break;
+    pollfd readable{fd, POLLIN, 0};
+    const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now);
+    if (::poll(&readable, 1, int(std::max<int64_t>(1, wait.count()))) <= 0) continue;
     const ssize_t n = ::recv(fd, buffer, sizeof buffer, 0);
     if (n == 0) break;
     if (n < 0) {
@@ -110,11 +159,11 @@ std::string exchange(int port, const uint8_t* data, size_t size) {
     }
     answer.append(buffer, size_t(n));
     const size_t headersEnd = answer.find("\r\n\r\n");
-    if (!stream && headersEnd != std::string::npos &&
-        answer.substr(0, headersEnd).find("text/event-stream") != std::string::npos) {
-      stream = true;
+    if (headersEnd == std::string::npos) continue;
+    end = answerEnd(answer, headersEnd, head);
+    // A stream whose first event is slow to come is read for 50 ms, not 2 s.
+    if (end == std::string::npos - 1 && answer.find("text/event-stream") < headersEnd)
       deadline = std::min(deadline, std::chrono::steady_clock::now() + std::chrono::milliseconds(50));
-    }
   }
   ::close(fd);
   return answer;
