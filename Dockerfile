@@ -6,10 +6,10 @@ WORKDIR /penumbra
 COPY . .
 RUN bash .ci/install-deps \
  && cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPENUMBRA_TESTS=OFF \
- && cmake --build build -j"$(nproc)" --target penumbra penumbra_image
+ && cmake --build build -j"$(nproc)" --target penumbra penumbra_image web_page
 
 # Runtime: the shared libraries penumbra and its image module load (no compilers, no chromium,
-# no test tools), the page with three.js only, the bundled scenes; run as an unprivileged user
+# no test tools, no node), the page (its bundle holds three.js), the bundled scenes; run as an unprivileged user
 # whose home holds the journal (./penumbra-data).
 FROM debian:12-slim
 RUN apt-get update -qq \
@@ -23,7 +23,7 @@ RUN apt-get update -qq \
 COPY --from=build /penumbra/build/penumbra /penumbra/build/libpenumbra_image.so /opt/penumbra/bin/
 COPY --from=build /penumbra/web_client/index.html /penumbra/web_client/styles.css /opt/penumbra/web_client/
 COPY --from=build /penumbra/web_client/src /opt/penumbra/web_client/src
-COPY --from=build /penumbra/web_client/node_modules/three /opt/penumbra/web_client/node_modules/three
+COPY --from=build /penumbra/web_client/dist /opt/penumbra/web_client/dist
 COPY --from=build /penumbra/scenes /opt/penumbra/scenes
 USER penumbra
 WORKDIR /var/lib/penumbra

@@ -26,10 +26,14 @@ async function staticHeaders(base) {
   check(seconds < 1, 'three.core.js (1.3 MB) is served in under a second', `${seconds.toFixed(3)} s`);
   const again = await fetch(`${base}/node_modules/three/build/three.core.js`, { headers: { 'Accept-Encoding': 'gzip', 'If-None-Match': etag } });
   check(again.status === 304, 'a request naming its ETag is answered 304', String(again.status));
-  const page = await fetch(`${base}/src/main.js`);
+  const html = await (await fetch(`${base}/`)).text();
+  check(/<script type="module" src="dist\/page\.js"/.test(html), 'index.html loads the page as one bundled module (dist/page.js)');
+  const page = await fetch(`${base}/dist/page.js`, { headers: { 'Accept-Encoding': 'gzip' } });
   const text = await page.text();
-  check(page.headers.get('cache-control') === 'no-cache' && !!page.headers.get('etag') && text.includes('class App'),
-    'the page\'s own files are revalidated on every load (no-cache + ETag)', page.headers.get('cache-control'));
+  check(page.headers.get('cache-control') === 'no-cache' && !!page.headers.get('etag') && page.headers.get('content-encoding') === 'gzip'
+    && text.includes('penumbra:ready') && !/^import /m.test(text),
+    'the bundle holds the page and three.js (no imports left), gzip-compressed and revalidated on every load (no-cache + ETag)',
+    `${page.headers.get('cache-control')} ${page.headers.get('content-encoding')}`);
   const escape = await fetch(`${base}/src/..%2f..%2fCMakeLists.txt`);
   check(escape.status === 404, 'a path leading out of the page\'s folder is 404', String(escape.status));
 }
