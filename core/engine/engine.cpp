@@ -28,11 +28,13 @@ double secondsSince(Clock::time_point start) {
 }
 
 // A step's progress counted from several threads: the callback runs on one thread at a time,
-// with `done` rising, about every `every` items (and at the start and the end).
+// with `done` rising, about every `every` items (and at the start and the end). Steps that run
+// at once share one mutex (`shared`), so the callback stays on one thread at a time across them.
 class SharedProgress {
  public:
-  SharedProgress(const EngineProgress& progress, const char* step, size_t total, size_t every)
-      : progress_(progress), step_(step), total_(total), every_(every) {
+  SharedProgress(const EngineProgress& progress, const char* step, size_t total, size_t every,
+                 std::mutex* shared = nullptr)
+      : progress_(progress), step_(step), total_(total), every_(every), mutex_(shared ? *shared : own_) {
     if (progress_) progress_(step_, 0, total_);
   }
   void add(size_t items) {
@@ -43,6 +45,7 @@ class SharedProgress {
     if (done > reported_) progress_(step_, reported_ = done, total_);
   }
   void finish() {
+    std::lock_guard lock(mutex_);
     if (progress_) progress_(step_, total_, total_);
   }
 
@@ -51,9 +54,55 @@ class SharedProgress {
   const char* step_;
   size_t total_, every_;
   std::atomic<size_t> done_{0};
-  std::mutex mutex_;
+  std::mutex own_;
+  std::mutex& mutex_;
   size_t reported_ = 0;
 };
+
+// One shadow a receiver takes during the build: from `light`, of `occluder`.
+struct ReceiverCast {
+  uint32_t light;
+  const Face* occluder;
+};
+
+// The build's casts split by receiver (index into `receiverIndex`'s values), each receiver's in
+// the paper's order: every candidate pair of the overlap cubes both ways (§2.3), occluders
+// front to back, light by light. Counts the pairs and attempts in `stats`.
+std::vector<std::vector<ReceiverCast>> castSequences(
+    const Scene& scene, const std::vector<std::unique_ptr<FaceOrder>>& orders,
+    const std::vector<std::unique_ptr<OverlapCube>>& cubes, const std::map<FaceId, size_t>& receiverIndex,
+    BuildStats& stats) {
+  std::vector<std::vector<ReceiverCast>> casts(receiverIndex.size());
+  for (size_t l = 0; l < scene.lights().size(); ++l) {
+    const auto pairs = cubes[l]->candidatePairs();
+    stats.candidatePairs += pairs.size();
+    struct Attempt {
+      size_t occluderRank, receiverRank;
+      FaceId occluder, receiver;
+    };
+    std::vector<Attempt> attempts;
+    const FaceOrder& order = *orders[l];
+    for (const auto& [a, b] : pairs) {
+      if (!scene.mayShadow(a, b)) {  // faces of one closed convex object
+        ++stats.closedConvexPairs;
+        continue;
+      }
+      if (!order.contains(a) || !order.contains(b)) continue;
+      attempts.push_back({order.rank(a), order.rank(b), a, b});
+      attempts.push_back({order.rank(b), order.rank(a), b, a});
+    }
+    std::sort(attempts.begin(), attempts.end(), [](const Attempt& x, const Attempt& y) {
+      return std::tie(x.occluderRank, x.receiverRank) < std::tie(y.occluderRank, y.receiverRank);
+    });
+    for (const Attempt& attempt : attempts) {
+      const auto found = receiverIndex.find(attempt.receiver);
+      if (found == receiverIndex.end()) continue;
+      casts[found->second].push_back({uint32_t(l), findFace(scene, attempt.occluder)});
+      ++stats.castAttempts;
+    }
+  }
+  return casts;
+}
 
 Polygon2 polygonInFrame(const Polygon3& polygon, const PlaneFrame& frame) {
   Polygon2 out;
@@ -161,66 +210,25 @@ void Engine::buildOrdersAndCubes() {
 }
 
 void Engine::castAndIlluminateAll(Clock::time_point start, const EngineProgress& progress) {
-  // Every candidate pair both ways (§2.3), occluders in front-to-back order, light by light.
-  // A receiver's tree depends only on the sequence of shadows it receives, so each receiver
-  // takes its own part of that sequence, in order, and receivers cast in parallel. A receiver's
-  // vertices depend only on its own tree, so each is illuminated as soon as its casts are in:
-  // the other threads light small receivers while the floor, one long task, is still being cast
-  // (a step boundary left them idle; sparse 150 cubes 5 % faster at 2 threads).
-  struct Cast {
-    uint32_t light;
-    const Face* occluder;
-  };
-  std::vector<std::vector<Cast>> casts(receivers_.size());
-  size_t total = 0;
-  for (size_t l = 0; l < scene_.lights().size(); ++l) {
-    const auto pairs = cubes_[l]->candidatePairs();
-    stats_.candidatePairs += pairs.size();
-    struct Attempt {
-      size_t occluderRank, receiverRank;
-      FaceId occluder, receiver;
-    };
-    std::vector<Attempt> attempts;
-    const FaceOrder& order = *orders_[l];
-    for (const auto& [a, b] : pairs) {
-      if (!scene_.mayShadow(a, b)) {  // faces of one closed convex object
-        ++stats_.closedConvexPairs;
-        continue;
-      }
-      if (!order.contains(a) || !order.contains(b)) continue;
-      attempts.push_back({order.rank(a), order.rank(b), a, b});
-      attempts.push_back({order.rank(b), order.rank(a), b, a});
-    }
-    std::sort(attempts.begin(), attempts.end(), [](const Attempt& x, const Attempt& y) {
-      return std::tie(x.occluderRank, x.receiverRank) < std::tie(y.occluderRank, y.receiverRank);
-    });
-    for (const Attempt& attempt : attempts) {
-      const auto found = receiverIndex_.find(attempt.receiver);
-      if (found == receiverIndex_.end()) continue;
-      casts[found->second].push_back({uint32_t(l), findFace(scene_, attempt.occluder)});
-      ++total;
-    }
-  }
-  stats_.castAttempts = total;
-
+  // A receiver's tree depends only on the sequence of shadows it receives, so receivers cast
+  // their own sequences in parallel. A receiver's vertices depend only on its own tree, so each
+  // is illuminated as soon as its casts are in: the other threads light small receivers while
+  // the floor, one long task, is still being cast (a step boundary left them idle; sparse 150
+  // cubes 5 % faster at 2 threads).
+  stats_.castAttempts = 0;
+  std::vector<std::vector<ReceiverCast>> casts = castSequences(scene_, orders_, cubes_, receiverIndex_, stats_);
   std::vector<std::vector<FaceId>> shadowedBy(receivers_.size());  // occluders that cast, per receiver
-  // Both steps report at once: one lock keeps the callback on one thread at a time.
-  std::mutex progressMutex;
-  const EngineProgress serialized = [&](const char* step, size_t done, size_t all) {
-    std::lock_guard lock(progressMutex);
-    progress(step, done, all);
-  };
-  const EngineProgress& shared = progress ? serialized : progress;
-  SharedProgress castReport(shared, "casting", total, 4096);
-  SharedProgress lightReport(shared, "illumination", receivers_.size(), 1);
+  std::mutex progressMutex;  // both steps report at once
+  SharedProgress castReport(progress, "casting", stats_.castAttempts, 4096, &progressMutex);
+  SharedProgress lightReport(progress, "illumination", receivers_.size(), 1, &progressMutex);
   std::vector<double> castSeconds(receivers_.size()), lightSeconds(receivers_.size());
   parallel_.forEach(receivers_.size(), [&](size_t r) {
     const auto castStart = Clock::now();
-    for (const Cast& cast : casts[r])
+    for (const ReceiverCast& cast : casts[r])
       if (castInto(cast.light, *cast.occluder, receivers_[r])) shadowedBy[r].push_back(cast.occluder->id);
     receivers_[r].tree.shrinkToFit();
     castReport.add(casts[r].size());
-    std::vector<Cast>().swap(casts[r]);
+    std::vector<ReceiverCast>().swap(casts[r]);
     const auto lightStart = Clock::now();
     castSeconds[r] = std::chrono::duration<double>(lightStart - castStart).count();
     illuminate(receivers_[r]);
