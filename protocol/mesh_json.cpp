@@ -1,6 +1,11 @@
 #include "protocol/mesh_json.h"
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <fstream>
+#include <ostream>
+#include <stdexcept>
 
 #include "core/geom/tolerance.h"
 #include "protocol/json_reader.h"
@@ -82,28 +87,83 @@ ReceiverMesh receiverFromJson(const Json& value, const std::string& path, const 
 
 }  // namespace
 
+namespace {
+
+// The receiver's object; throws std::out_of_range if the object has no such face.
+const Object& receiverObject(const Scene& scene, const ReceiverMesh& r) {
+  const Object& object = scene.object(r.face.object);
+  if (r.face.face >= object.faces.size())
+    throw std::out_of_range("mesh receiver names face " + std::to_string(r.face.face) + " of object '" +
+                            object.id + "', which has " + std::to_string(object.faces.size()));
+  return object;
+}
+
+Json receiverToJson(const Scene& scene, const ReceiverMesh& r) {
+  const Object& object = receiverObject(scene, r);
+  Json positions = Json::array(), irradiance = Json::array(), classes = Json::array(),
+       triangles = Json::array();
+  for (const Vec3& p : r.positions) positions.push_back(toJson(p));
+  for (const Vec3& e : r.irradiance) irradiance.push_back(toJson(e));
+  for (LightClass c : r.classes) classes.push_back(toString(c));
+  for (const auto& t : r.triangles) triangles.push_back(Json::array({t[0], t[1], t[2]}));
+  return Json{{"object", object.id},
+              {"face", r.face.face},
+              {"normal", toJson(r.normal)},
+              {"positions", std::move(positions)},
+              {"irradiance", std::move(irradiance)},
+              {"class", std::move(classes)},
+              {"triangles", std::move(triangles)}};
+}
+
+}  // namespace
+
 Json meshToJson(const Scene& scene, const Mesh& mesh, const std::string& sceneName) {
   Json receivers = Json::array();
-  for (const ReceiverMesh& r : mesh.receivers) {
-    const Object& object = scene.object(r.face.object);
-    if (r.face.face >= object.faces.size())
-      throw std::out_of_range("mesh receiver names face " + std::to_string(r.face.face) + " of object '" +
-                              object.id + "', which has " + std::to_string(object.faces.size()));
-    Json positions = Json::array(), irradiance = Json::array(), classes = Json::array(),
-         triangles = Json::array();
-    for (const Vec3& p : r.positions) positions.push_back(toJson(p));
-    for (const Vec3& e : r.irradiance) irradiance.push_back(toJson(e));
-    for (LightClass c : r.classes) classes.push_back(toString(c));
-    for (const auto& t : r.triangles) triangles.push_back(Json::array({t[0], t[1], t[2]}));
-    receivers.push_back(Json{{"object", object.id},
-                             {"face", r.face.face},
-                             {"normal", toJson(r.normal)},
-                             {"positions", std::move(positions)},
-                             {"irradiance", std::move(irradiance)},
-                             {"class", std::move(classes)},
-                             {"triangles", std::move(triangles)}});
-  }
+  for (const ReceiverMesh& r : mesh.receivers) receivers.push_back(receiverToJson(scene, r));
   return Json{{"format", kFormat}, {"version", kVersion}, {"scene", sceneName}, {"receivers", std::move(receivers)}};
+}
+
+namespace {
+
+std::string compactText(const Json& value) { return value.dump(-1, ' ', false, Json::error_handler_t::replace); }
+
+// `[item,item,…]`, each item written by `write`.
+template <typename Items, typename Write>
+void writeArray(std::ostream& out, const Items& items, Write write) {
+  out << '[';
+  bool first = true;
+  for (const auto& item : items) {
+    if (!first) out << ',';
+    first = false;
+    write(item);
+  }
+  out << ']';
+}
+
+// receiverToJson's text without the document: keys in the order a JSON object dumps them
+// (sorted), each number through the JSON library's own formatting.
+void writeReceiver(std::ostream& out, const Scene& scene, const ReceiverMesh& r) {
+  const Object& object = receiverObject(scene, r);
+  const auto vec3 = [&](const Vec3& v) { out << compactText(toJson(v)); };
+  out << "{\"class\":";
+  writeArray(out, r.classes, [&](LightClass c) { out << '"' << toString(c) << '"'; });
+  out << ",\"face\":" << r.face.face << ",\"irradiance\":";
+  writeArray(out, r.irradiance, vec3);
+  out << ",\"normal\":" << compactText(toJson(r.normal)) << ",\"object\":" << compactText(object.id)
+      << ",\"positions\":";
+  writeArray(out, r.positions, vec3);
+  out << ",\"triangles\":";
+  writeArray(out, r.triangles, [&](const std::array<uint32_t, 3>& t) { out << '[' << t[0] << ',' << t[1] << ',' << t[2] << ']'; });
+  out << '}';
+}
+
+}  // namespace
+
+void writeMeshJson(std::ostream& out, const Scene& scene, const Mesh& mesh, const std::string& sceneName) {
+  // The keys in the order a JSON object dumps them (sorted), so the text is meshToJson's.
+  out << "{\"format\":" << compactText(kFormat) << ",\"receivers\":";
+  writeArray(out, mesh.receivers, [&](const ReceiverMesh& r) { writeReceiver(out, scene, r); });
+  out << ",\"scene\":" << compactText(sceneName) << ",\"version\":" << kVersion << "}\n";
 }
 
 Mesh meshFromJson(const Json& root, const Scene& scene) {
@@ -117,7 +177,11 @@ Mesh meshFromJson(const Json& root, const Scene& scene) {
 }
 
 void saveMeshFile(const Scene& scene, const Mesh& mesh, const std::string& sceneName, const std::string& path) {
-  writeTextFile(path, meshToJson(scene, mesh, sceneName).dump(-1, ' ', false, Json::error_handler_t::replace) + "\n");
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw std::runtime_error("cannot open '" + path + "' for writing: " + std::strerror(errno));
+  writeMeshJson(out, scene, mesh, sceneName);
+  out.close();
+  if (!out) throw std::runtime_error("cannot write '" + path + "'");
 }
 
 Mesh loadMeshFile(const std::string& path, const Scene& scene) {

@@ -2,6 +2,7 @@
 // reader's refusals with key paths.
 #include <filesystem>
 #include <random>
+#include <sstream>
 
 #include <unistd.h>
 
@@ -89,6 +90,21 @@ TEST_F(MeshJson, RoundTripsExactly) {
   expectSameMesh(mesh, meshFromJson(meshToJson(scene, mesh, "s.json"), scene));
   const std::string text = meshToJson(scene, mesh, "s.json").dump();
   expectSameMesh(mesh, meshFromJson(parseJsonText(text, kMaxJsonFileBytes, kMaxJsonDepth), scene));
+}
+
+// The streamed writer (one receiver at a time) writes the document's own compact text, for a
+// mesh, an empty one, and a scene name holding invalid UTF-8 (replaced, as dump() does).
+TEST_F(MeshJson, StreamedTextIsTheDocumentsText) {
+  const auto documentText = [&](const Mesh& m, const std::string& name) {
+    return meshToJson(scene, m, name).dump(-1, ' ', false, json::error_handler_t::replace) + "\n";
+  };
+  for (const std::string& name : {std::string("office.scene.json"), std::string("bad\xff\xfe name")}) {
+    for (const Mesh& m : {mesh, Mesh{}}) {
+      std::ostringstream streamed;
+      writeMeshJson(streamed, scene, m, name);
+      EXPECT_EQ(streamed.str(), documentText(m, name)) << name << ", " << m.receivers.size() << " receivers";
+    }
+  }
 }
 
 TEST_F(MeshJson, FilesRoundTrip) {

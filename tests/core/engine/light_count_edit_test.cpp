@@ -57,7 +57,9 @@ Edit moveEdit(const Engine& engine, const std::string& id, const Vec3& by) {
 void expectEqualsRebuild(Engine& engine, uint64_t seed, bool fresh) {
   EXPECT_NO_THROW(engine.validate());
   Engine rebuilt(engine.scene());
-  if (fresh) EXPECT_TRUE(meshText(engine) == meshText(rebuilt)) << "mesh differs from a fresh build's";
+  if (fresh) {
+    EXPECT_TRUE(meshText(engine) == meshText(rebuilt)) << "mesh differs from a fresh build's";
+  }
   const testing::EngineDiff diff =
       testing::compareEngines(engine, rebuilt, testing::peakIrradiance(rebuilt), 100, seed);
   EXPECT_EQ(diff.errors(), 0u) << diff.firstProblem;
