@@ -88,9 +88,13 @@ std::string readTextFile(const std::string& path, size_t maxBytes) {
 }
 
 void writeTextFile(const std::string& path, std::string_view text) {
+  writeTextFileWith(path, [&](std::ostream& out) { out.write(text.data(), std::streamsize(text.size())); });
+}
+
+void writeTextFileWith(const std::string& path, const std::function<void(std::ostream&)>& write) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) throw std::runtime_error("cannot open '" + path + "' for writing: " + std::strerror(errno));
-  out.write(text.data(), std::streamsize(text.size()));
+  write(out);
   out.close();
   if (!out) throw std::runtime_error("cannot write '" + path + "'");
 }

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
+#include <iosfwd>
 #include <string>
 #include <string_view>
 
@@ -27,5 +29,7 @@ nlohmann::json parseJsonText(std::string_view text, size_t maxBytes, int maxDept
 std::string readTextFile(const std::string& path, size_t maxBytes);
 // Writes a whole file (replacing it). Throws std::runtime_error on failure.
 void writeTextFile(const std::string& path, std::string_view text);
+// The same for text written piece by piece by `write` (a mesh file is never one string).
+void writeTextFileWith(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 }  // namespace penumbra::protocol

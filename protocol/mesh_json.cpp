@@ -1,9 +1,6 @@
 #include "protocol/mesh_json.h"
 
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <ostream>
 #include <stdexcept>
 
@@ -84,10 +81,6 @@ ReceiverMesh receiverFromJson(const Json& value, const std::string& path, const 
   }
   return receiver;
 }
-
-}  // namespace
-
-namespace {
 
 // The receiver's object; throws std::out_of_range if the object has no such face.
 const Object& receiverObject(const Scene& scene, const ReceiverMesh& r) {
@@ -177,11 +170,10 @@ Mesh meshFromJson(const Json& root, const Scene& scene) {
 }
 
 void saveMeshFile(const Scene& scene, const Mesh& mesh, const std::string& sceneName, const std::string& path) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw std::runtime_error("cannot open '" + path + "' for writing: " + std::strerror(errno));
-  writeMeshJson(out, scene, mesh, sceneName);
-  out.close();
-  if (!out) throw std::runtime_error("cannot write '" + path + "'");
+  // A receiver naming no face of the scene throws before the file is opened, as it did when the
+  // whole document was made first.
+  for (const ReceiverMesh& r : mesh.receivers) (void)receiverObject(scene, r);
+  writeTextFileWith(path, [&](std::ostream& out) { writeMeshJson(out, scene, mesh, sceneName); });
 }
 
 Mesh loadMeshFile(const std::string& path, const Scene& scene) {
