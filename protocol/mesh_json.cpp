@@ -1,6 +1,8 @@
 #include "protocol/mesh_json.h"
 
 #include <cmath>
+#include <functional>
+#include <map>
 #include <ostream>
 #include <stdexcept>
 
@@ -133,30 +135,65 @@ void writeArray(std::ostream& out, const Items& items, Write write) {
   out << ']';
 }
 
-// receiverToJson's text without the document: keys in the order a JSON object dumps them
-// (sorted), each number through the JSON library's own formatting.
-void writeReceiver(std::ostream& out, const Scene& scene, const ReceiverMesh& r) {
+// An object's members in the order a JSON object dumps them (sorted by key): `own` written by
+// their functions, then `extra`'s members merged in, replacing an own member of the same name.
+using MemberWriters = std::map<std::string, std::function<void()>>;
+void writeObject(std::ostream& out, MemberWriters own, const Json& extra) {
+  if (extra.is_object())
+    for (auto member = extra.begin(); member != extra.end(); ++member)
+      own[member.key()] = [&out, value = &member.value()] { out << compactText(*value); };
+  out << '{';
+  bool first = true;
+  for (const auto& [key, write] : own) {
+    if (!first) out << ',';
+    first = false;
+    out << compactText(key) << ':';
+    write();
+  }
+  out << '}';
+}
+
+// receiverToJson's text without the document, each number through the JSON library's own
+// formatting, with `extra`'s members.
+void writeReceiver(std::ostream& out, const Scene& scene, const ReceiverMesh& r, const Json& extra) {
   const Object& object = receiverObject(scene, r);
   const auto vec3 = [&](const Vec3& v) { out << compactText(toJson(v)); };
-  out << "{\"class\":";
-  writeArray(out, r.classes, [&](LightClass c) { out << '"' << toString(c) << '"'; });
-  out << ",\"face\":" << r.face.face << ",\"irradiance\":";
-  writeArray(out, r.irradiance, vec3);
-  out << ",\"normal\":" << compactText(toJson(r.normal)) << ",\"object\":" << compactText(object.id)
-      << ",\"positions\":";
-  writeArray(out, r.positions, vec3);
-  out << ",\"triangles\":";
-  writeArray(out, r.triangles, [&](const std::array<uint32_t, 3>& t) { out << '[' << t[0] << ',' << t[1] << ',' << t[2] << ']'; });
-  out << '}';
+  MemberWriters own;
+  own["class"] = [&] { writeArray(out, r.classes, [&](LightClass c) { out << '"' << toString(c) << '"'; }); };
+  own["face"] = [&] { out << r.face.face; };
+  own["irradiance"] = [&] { writeArray(out, r.irradiance, vec3); };
+  own["normal"] = [&] { out << compactText(toJson(r.normal)); };
+  own["object"] = [&] { out << compactText(object.id); };
+  own["positions"] = [&] { writeArray(out, r.positions, vec3); };
+  own["triangles"] = [&] {
+    writeArray(out, r.triangles, [&](const std::array<uint32_t, 3>& t) { out << '[' << t[0] << ',' << t[1] << ',' << t[2] << ']'; });
+  };
+  writeObject(out, std::move(own), extra);
 }
 
 }  // namespace
 
 void writeMeshJson(std::ostream& out, const Scene& scene, const Mesh& mesh, const std::string& sceneName) {
-  // The keys in the order a JSON object dumps them (sorted), so the text is meshToJson's.
-  out << "{\"format\":" << compactText(kFormat) << ",\"receivers\":";
-  writeArray(out, mesh.receivers, [&](const ReceiverMesh& r) { writeReceiver(out, scene, r); });
-  out << ",\"scene\":" << compactText(sceneName) << ",\"version\":" << kVersion << "}\n";
+  writeMeshJson(out, scene, mesh, sceneName, MeshJsonExtras{});
+}
+
+void writeMeshJson(std::ostream& out, const Scene& scene, const Mesh& mesh, const std::string& sceneName,
+                   const MeshJsonExtras& extras) {
+  // Members sorted as a JSON object dumps them, so the text is meshToJson's (with the extras).
+  MemberWriters own;
+  own["format"] = [&] { out << compactText(kFormat); };
+  own["receivers"] = [&] {
+    out << '[';
+    for (size_t k = 0; k < mesh.receivers.size(); ++k) {
+      if (k) out << ',';
+      writeReceiver(out, scene, mesh.receivers[k], extras.receiver ? extras.receiver(k) : Json());
+    }
+    out << ']';
+  };
+  own["scene"] = [&] { out << compactText(sceneName); };
+  own["version"] = [&] { out << kVersion; };
+  writeObject(out, std::move(own), extras.root);
+  out << '\n';
 }
 
 Mesh meshFromJson(const Json& root, const Scene& scene) {

@@ -2,6 +2,7 @@
 // writer and a validating reader (for tests and tools). Free functions; thread-safe.
 #pragma once
 
+#include <functional>
 #include <iosfwd>
 #include <string>
 
@@ -27,6 +28,17 @@ Mesh meshFromJson(const nlohmann::json& root, const Scene& scene);
 // streamed: the mesh is never a JSON document in memory (it was ~430 MB of `penumbra build`'s
 // peak on sparse 1,500 cubes).
 void writeMeshJson(std::ostream& out, const Scene& scene, const Mesh& mesh, const std::string& sceneName);
+
+// Members a writer adds to that document: `root`'s members to the top level, receiver(k)'s (an
+// object, or null) to receiver k. Each is merged in key order and replaces a member of the same
+// name, so the text is that of the document with the members set by operator[] (the server's
+// ids, versions, deltas and indirect light; docs/API.md).
+struct MeshJsonExtras {
+  nlohmann::json root = nlohmann::json::object();
+  std::function<nlohmann::json(size_t receiver)> receiver;  // empty: none
+};
+void writeMeshJson(std::ostream& out, const Scene& scene, const Mesh& mesh, const std::string& sceneName,
+                   const MeshJsonExtras& extras);
 
 // Files are written compactly by writeMeshJson; reading uses the limits of protocol/json_text.h.
 void saveMeshFile(const Scene& scene, const Mesh& mesh, const std::string& sceneName,

@@ -8,6 +8,7 @@
 #include "server/gzip_encoding.h"
 #include "server/mesh_binary.h"
 #include "server/request_io.h"
+#include "server/streamed_answer.h"
 
 namespace penumbra::server {
 
@@ -44,18 +45,23 @@ std::optional<IndirectSettings> indirectFromQuery(const httplib::Request& req, c
   return settings;
 }
 
-// Mesh JSON with, per receiver, "indirect": [[r, g, b], ...] and the bake's settings.
-json meshJsonWithIndirect(const SceneSnapshot& snapshot, const MeshSelection& selection, const IndirectBake* bake) {
-  json root = snapshot.meshJson(selection);
-  if (!bake) return root;
-  json& receivers = root["receivers"];
-  for (size_t r = 0; r < receivers.size(); ++r) {
-    json values = json::array();
-    for (const Vec3& e : bake->mesh.receivers.at(r).irradiance) values.push_back({e.x, e.y, e.z});
-    receivers[r]["indirect"] = std::move(values);
-  }
-  root["indirect"] = {{"sensor_size", bake->settings.sensorSize}, {"bounces", bake->settings.bounces}};
-  return root;
+// The mesh JSON answer, streamed, with, per receiver, "indirect": [[r, g, b], ...] and the
+// bake's settings. The writer owns the snapshot and bake it reads: it runs after the handler.
+void sendMeshJson(httplib::Response& res, std::shared_ptr<const SceneSnapshot> snapshot, MeshSelection selection,
+                  std::shared_ptr<const IndirectBake> bake) {
+  res.set_header("Cache-Control", "no-store");
+  sendStreamed(res, "application/json", [snapshot, selection = std::move(selection), bake](std::ostream& out) {
+    protocol::MeshJsonExtras indirect;
+    if (bake) {
+      indirect.root["indirect"] = {{"sensor_size", bake->settings.sensorSize}, {"bounces", bake->settings.bounces}};
+      indirect.receiver = [&bake](size_t r) {
+        json values = json::array();
+        for (const Vec3& e : bake->mesh.receivers.at(r).irradiance) values.push_back({e.x, e.y, e.z});
+        return json{{"indirect", std::move(values)}};
+      };
+    }
+    snapshot->writeMeshJson(out, selection, indirect);
+  });
 }
 
 void sendBinary(const httplib::Request& req, httplib::Response& res, std::string bytes,
@@ -127,7 +133,7 @@ void HttpServer::registerMeshRoutes() {
         }
         const MeshSelection selection = snapshot->select(since);
         if (format == "json")
-          sendJson(res, 200, meshJsonWithIndirect(*snapshot, selection, bake.bake.get()));
+          sendMeshJson(res, snapshot, selection, bake.bake);
         else if (format == "bin")
           sendBinary(req, res, mesh_binary::encode(*snapshot, selection, bake.bake.get()), options_.meshCompression);
         else

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <ostream>
 #include <set>
 
 #include "protocol/mesh_json.h"
@@ -97,7 +98,8 @@ size_t SceneSnapshot::triangleCount() const {
   return n;
 }
 
-nlohmann::json SceneSnapshot::meshJson(const MeshSelection& selection) const {
+void SceneSnapshot::writeMeshJson(std::ostream& out, const MeshSelection& selection,
+                                  const protocol::MeshJsonExtras& more) const {
   const std::set<ReceiverKey> wanted(selection.receivers.begin(), selection.receivers.end());
   const bool whole = !selection.since;  // every receiver: the cached whole mesh
   Mesh chosen;
@@ -112,16 +114,21 @@ nlohmann::json SceneSnapshot::meshJson(const MeshSelection& selection) const {
         if (removedKey.receiver == key) newest = std::max(newest, removedAt);
     versions.push_back(newest);
   });
-  nlohmann::json root = protocol::meshToJson(scene, whole ? mesh() : chosen, name);
-  nlohmann::json& receivers = root["receivers"];
-  for (size_t k = 0; k < versions.size(); ++k) receivers[k]["scene_version"] = versions[k];
-  root["id"] = id;
-  root["scene_version"] = version;
-  root["since"] = selection.since ? nlohmann::json(*selection.since) : nlohmann::json(nullptr);
+  protocol::MeshJsonExtras extras;
+  extras.root = more.root.is_object() ? more.root : nlohmann::json::object();
+  extras.root["id"] = id;
+  extras.root["scene_version"] = version;
+  extras.root["since"] = selection.since ? nlohmann::json(*selection.since) : nlohmann::json(nullptr);
   nlohmann::json removedJson = nlohmann::json::array();
   for (const ReceiverKey& key : selection.removed) removedJson.push_back(toJson(key));
-  root["removed"] = std::move(removedJson);
-  return root;
+  extras.root["removed"] = std::move(removedJson);
+  extras.receiver = [&](size_t k) {
+    nlohmann::json members = more.receiver ? more.receiver(k) : nlohmann::json::object();
+    if (!members.is_object()) members = nlohmann::json::object();
+    members["scene_version"] = versions.at(k);
+    return members;
+  };
+  protocol::writeMeshJson(out, scene, whole ? mesh() : chosen, name, extras);
 }
 
 }  // namespace penumbra::server

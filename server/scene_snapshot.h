@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <iosfwd>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -14,6 +15,7 @@
 #include "core/engine/frame.h"
 #include "core/mesh/mesh.h"
 #include "core/scene/scene.h"
+#include "protocol/mesh_json.h"
 #include "server/scene_occluders.h"
 
 namespace penumbra::server {
@@ -81,9 +83,11 @@ struct SceneSnapshot {
   size_t vertexCount() const;
   size_t triangleCount() const;
 
-  // Mesh JSON v1 (SCENE_FORMAT.md) of the selection's receivers, plus "id",
-  // "scene_version", "since", per receiver "scene_version", and "removed" (docs/API.md).
-  nlohmann::json meshJson(const MeshSelection& selection) const;
+  // Writes mesh JSON v1 (SCENE_FORMAT.md) of the selection's receivers, plus "id",
+  // "scene_version", "since", per receiver "scene_version", "removed" (docs/API.md) and
+  // `more`'s members; streamed, never a JSON document (it was ~10× the text's size).
+  void writeMeshJson(std::ostream& out, const MeshSelection& selection,
+                     const protocol::MeshJsonExtras& more = {}) const;
 
  private:
   mutable std::once_flag meshOnce_;

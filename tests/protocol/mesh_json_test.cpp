@@ -107,6 +107,28 @@ TEST_F(MeshJson, StreamedTextIsTheDocumentsText) {
   }
 }
 
+// The server's answers add members (ids, versions, indirect light): streamed, they are merged
+// in key order, replacing a member of the same name, exactly as operator[] on the document.
+TEST_F(MeshJson, StreamedExtrasAreTheDocumentsMembers) {
+  ASSERT_GE(mesh.receivers.size(), 2u);
+  MeshJsonExtras extras;
+  extras.root = {{"id", "s1"}, {"scene_version", 7}, {"since", nullptr}, {"removed", json::array()},
+                 {"indirect", {{"bounces", 2}}}, {"aaa first", 1}, {"zzz last", "\xff"}, {"scene", "replaced"}};
+  extras.receiver = [](size_t k) {
+    if (k == 1) return json();  // null: nothing added
+    return json{{"scene_version", k}, {"indirect", {{0.5, k, 1e-300}}}, {"face", 99}, {"\x01", true}};
+  };
+  json document = meshToJson(scene, mesh, "name");
+  for (const auto& member : extras.root.items()) document[member.key()] = member.value();
+  for (size_t k = 0; k < mesh.receivers.size(); ++k) {
+    const json members = extras.receiver(k);
+    for (const auto& member : members.items()) document["receivers"][k][member.key()] = member.value();
+  }
+  std::ostringstream streamed;
+  writeMeshJson(streamed, scene, mesh, "name", extras);
+  EXPECT_EQ(streamed.str(), document.dump(-1, ' ', false, json::error_handler_t::replace) + "\n");
+}
+
 TEST_F(MeshJson, FilesRoundTrip) {
   const auto path = std::filesystem::temp_directory_path() /
                     ("penumbra_protocol_" + std::to_string(::getpid()) + "_mesh.json");

@@ -6,6 +6,7 @@
 
 #include <map>
 #include <random>
+#include <sstream>
 #include <tuple>
 
 #include "bench/lib/cubes_scene.h"
@@ -27,6 +28,13 @@ std::map<std::string, std::string> receiversByKey(const json& mesh) {
     out[r["object"].get<std::string>() + "/" + std::to_string(r["face"].get<int>())] = r.dump();
   }
   return out;
+}
+
+// The served mesh JSON of a selection, as a client parses it.
+json meshJson(const SceneSnapshot& snapshot, const MeshSelection& selection) {
+  std::ostringstream text;
+  snapshot.writeMeshJson(text, selection);
+  return json::parse(text.str());
 }
 
 // A frame like a drag (small moves of one cube), sometimes another cube too, an
@@ -77,7 +85,7 @@ TEST(MeshDelta, DeltasAppliedToTheWholeMeshEqualAFreshMeshAfterEachFrame) {
   SceneSession session("t", "cubes8", scene);
   Engine reference(scene);
   const auto first = session.snapshot();
-  std::map<std::string, std::string> held = receiversByKey(first->meshJson(first->select(std::nullopt)));
+  std::map<std::string, std::string> held = receiversByKey(meshJson(*first, first->select(std::nullopt)));
 
   std::mt19937_64 rng(17);
   bool added = false;
@@ -94,7 +102,7 @@ TEST(MeshDelta, DeltasAppliedToTheWholeMeshEqualAFreshMeshAfterEachFrame) {
     lit += applied.meshCells.cellsLit;
 
     const SceneSnapshot& s = *applied.snapshot;
-    const json delta = s.meshJson(s.select(s.version - 1));
+    const json delta = meshJson(s, s.select(s.version - 1));
     for (const auto& [key, text] : receiversByKey(delta)) held[key] = text;
     for (const json& gone : delta["removed"])
       held.erase(gone["object"].get<std::string>() + "/" + std::to_string(gone["face"].get<int>()));
@@ -108,7 +116,7 @@ TEST(MeshDelta, DeltasAppliedToTheWholeMeshEqualAFreshMeshAfterEachFrame) {
       EXPECT_EQ(held.at(key), text) << key;
     }
     // The served whole mesh is that fresh mesh too.
-    EXPECT_EQ(receiversByKey(s.meshJson(s.select(std::nullopt))), want);
+    EXPECT_EQ(receiversByKey(meshJson(s, s.select(std::nullopt))), want);
     if (HasFailure()) return;
   }
   // Dragging one cube re-meshes a few receivers, not the scene, and of their cells
@@ -213,6 +221,48 @@ TEST(MeshDelta, BinaryMeshIsGzippedWhenTheClientAcceptsIt) {
   const auto decoded = decoding.Get(path.c_str(), {{"Accept-Encoding", "gzip"}});
   ASSERT_TRUE(decoded);
   EXPECT_EQ(decoded->body, plain->body);
+}
+
+// Mesh JSON is written to the socket as it is made (chunked, never a document in memory): the
+// same text plain or gzipped, a valid mesh, and a client leaving mid-answer harms nothing.
+TEST(MeshDelta, MeshJsonIsStreamedInChunks) {
+  test::RunningServer running;
+  const std::string id = running.addBundled("cubes15");
+  auto client = running.client();
+  client.set_decompress(false);
+  const std::string path = "/api/scenes/" + id + "/mesh";
+  const auto plain = client.Get(path.c_str(), {{"Accept-Encoding", "identity"}});
+  ASSERT_TRUE(plain);
+  ASSERT_EQ(plain->status, 200);
+  EXPECT_EQ(plain->get_header_value("Transfer-Encoding"), "chunked");
+  EXPECT_FALSE(plain->has_header("Content-Length"));
+  EXPECT_EQ(plain->get_header_value("Cache-Control"), "no-store");
+  EXPECT_EQ(plain->get_header_value("X-Penumbra-Version"), "0");
+  ASSERT_GT(plain->body.size(), size_t(1) << 17);  // more than two of the writer's blocks
+  EXPECT_EQ(plain->body.back(), '\n');
+  const json mesh = json::parse(plain->body);
+  EXPECT_EQ(mesh["format"], "penumbra.mesh");
+  EXPECT_EQ(mesh["id"], id);
+  EXPECT_GT(mesh["receivers"].size(), 0u);
+
+  const auto packed = client.Get(path.c_str(), {{"Accept-Encoding", "gzip"}});
+  ASSERT_TRUE(packed);
+  EXPECT_EQ(packed->get_header_value("Content-Encoding"), "gzip");
+  EXPECT_EQ(test::gunzip(packed->body), plain->body);
+
+  // Clients that read a little and close: the writer stops, the server serves on.
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    httplib::Client leaving("127.0.0.1", running.port());
+    size_t seen = 0;
+    const auto cut = leaving.Get(path.c_str(), [&](const char*, size_t length) {
+      seen += length;
+      return seen < 1000;  // false: close the connection
+    });
+    EXPECT_FALSE(cut);
+  }
+  const auto again = client.Get(path.c_str(), {{"Accept-Encoding", "identity"}});
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->body, plain->body);
 }
 
 }  // namespace
