@@ -39,6 +39,8 @@ class FuzzServer {
     server_.addScene(fuzz::tinyScene(), "tiny", "s");
     listener_ = std::thread([this] { server_.listen(); });
     while (!server_.isRunning()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    control_ = std::make_unique<httplib::Client>("127.0.0.1", port_);
+    control_->set_keep_alive(true);
   }
   // Never destroyed (stopping at exit races libFuzzer's own exit path); the OS reclaims it.
 
@@ -46,7 +48,7 @@ class FuzzServer {
 
   // Deletes every scene but "s", and serves "s" afresh if a request changed it.
   void reset() {
-    httplib::Client client("127.0.0.1", port_);
+    httplib::Client& client = *control_;  // one kept-alive connection, not a new one an input
     auto listed = client.Get("/api/scenes");
     fuzz::check(listed && listed->status == 200, "GET /api/scenes failed after an input");
     const auto scenes = nlohmann::json::parse(listed->body).at("scenes");
@@ -79,6 +81,7 @@ class FuzzServer {
   server::HttpServer server_;
   int port_ = 0;
   std::thread listener_;
+  std::unique_ptr<httplib::Client> control_;
 };
 
 FuzzServer& fuzzServer() {
@@ -136,7 +139,12 @@ std::string exchange(int port, const uint8_t* data, size_t size) {
   addr.sin_family = AF_INET;
   addr.sin_port = htons(uint16_t(port));
   addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  fuzz::check(::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0, "server not accepting");
+  // Closed with a reset, not a FIN: at ~250 inputs a second, sockets left in TIME_WAIT for a
+  // minute used up the ~28,000 ephemeral ports and connect() failed after ~12 minutes.
+  const linger reset{1, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_LINGER, &reset, sizeof reset);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0)
+    fuzz::fail(std::string("server not accepting: ") + std::strerror(errno));
   timeval timeout{0, 200 * 1000};
   ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &timeout, sizeof timeout);
   for (size_t sent = 0; sent < size;) {
