@@ -127,6 +127,22 @@ bool wholeRequest(const std::string& request) {
   return request.size() - headersEnd - 4 >= std::strtoull(headers.c_str() + length + 17, nullptr, 10);
 }
 
+// connect() that outlasts signals: libFuzzer's timeout alarm (SIGALRM, no SA_RESTART) made a
+// connect on a starved machine fail with EINTR, which a long run took for a dead server. The
+// connection goes on after EINTR; wait until it is made, then read its outcome.
+bool connectRetrying(int fd, const sockaddr_in& addr) {
+  if (::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) == 0) return true;
+  if (errno != EINTR) return false;
+  pollfd writable{fd, POLLOUT, 0};
+  while (::poll(&writable, 1, 10000) < 0 && errno == EINTR) {
+  }
+  int error = 0;
+  socklen_t length = sizeof error;
+  if (::getsockopt(fd, SOL_SOCKET, SO_ERROR, &error, &length) != 0) return false;
+  errno = error;
+  return error == 0;
+}
+
 // Sends the bytes and reads the first answer (at most ~2 s): until its Content-Length, its last
 // chunk, an event stream's first event, or the server closing. A cut request is half-closed (the
 // server would wait for its rest), a whole one is not: the HTTP library writes no answer to a
@@ -143,12 +159,12 @@ std::string exchange(int port, const uint8_t* data, size_t size) {
   // minute used up the ~28,000 ephemeral ports and connect() failed after ~12 minutes.
   const linger reset{1, 0};
   ::setsockopt(fd, SOL_SOCKET, SO_LINGER, &reset, sizeof reset);
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0)
-    fuzz::fail(std::string("server not accepting: ") + std::strerror(errno));
+  if (!connectRetrying(fd, addr)) fuzz::fail(std::string("server not accepting: ") + std::strerror(errno));
   timeval timeout{0, 200 * 1000};
   ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &timeout, sizeof timeout);
   for (size_t sent = 0; sent < size;) {
     const ssize_t n = ::send(fd, data + sent, size - sent, MSG_NOSIGNAL);
+    if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;  // the server may answer (413, 400) and close before reading it all
     sent += size_t(n);
   }
