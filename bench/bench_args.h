@@ -26,8 +26,11 @@ struct BenchArgs {
   std::vector<int> denseCubes;
   bool compare = true;
   // build, build-row: --all-lines casts every VE/EV line of closed convex objects
-  // (EngineSettings::silhouetteLinesOnly = false), to compare with the default.
+  // of every face (EngineSettings::silhouetteLinesOnly and closedObjectsAsOne false), to
+  // compare with the default; --face-by-face casts closed convex objects face by face with
+  // silhouette lines only (closedObjectsAsOne false).
   bool allLines = false;
+  bool faceByFace = false;
   // edits: --cubes given (else 150,1500,5000), --frames (drag frames, 0 = by size),
   // --html OUT, --write-scripts DIR --scene FILE (write that scene's scripts only).
   // --rebuild-every K: time the full rebuild on the first frame, every K-th and

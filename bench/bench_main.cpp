@@ -33,10 +33,11 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first) {
   BenchArgs args;
   for (int i = first; i < argc; ++i) {
     const std::string name = argv[i];
-    if (name == "--dense" || name == "--no-compare" || name == "--all-lines") {  // no value
+    if (name == "--dense" || name == "--no-compare" || name == "--all-lines" || name == "--face-by-face") {  // no value
       if (name == "--dense") args.dense = true;
       if (name == "--no-compare") args.compare = false;
       if (name == "--all-lines") args.allLines = true;
+      if (name == "--face-by-face") args.faceByFace = true;
       continue;
     }
     if (i + 1 >= argc) throw std::invalid_argument(name + " needs a value");
@@ -93,7 +94,8 @@ int main(int argc, char** argv) {
       "                      build: [--dense-cubes 150,300] [--dense] [--threads 1,2] [--html "
       "OUT]\n"
       "                             [--points K] [--max-samples N] [--quality-max-cubes N]\n"
-      "                             [--all-lines] (closed convex objects' every VE/EV line)\n"
+      "                             [--all-lines] (closed convex objects face by face, every VE/EV line)\n"
+      "                             [--face-by-face] (closed convex objects face by face, silhouette lines)\n"
       "                      edits: [--dense] [--frames F] [--rebuild-every K] [--html OUT]\n"
       "                             | --write-scripts DIR --scene FILE\n"
       "  reference: exact reference and Monte Carlo cost per point\n"

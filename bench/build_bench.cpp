@@ -71,6 +71,7 @@ std::vector<std::string> childArguments(const RowSpec& spec, const BenchArgs& ar
   if (spec.dense) out.push_back("--dense");
   if (!spec.compare) out.push_back("--no-compare");
   if (args.allLines) out.push_back("--all-lines");
+  if (args.faceByFace) out.push_back("--face-by-face");
   return out;
 }
 

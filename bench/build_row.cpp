@@ -218,6 +218,7 @@ nlohmann::json runBuildRow(const BenchArgs& args) {
   EngineSettings settings;
   settings.threads = threads;
   settings.silhouetteLinesOnly = !args.allLines;
+  settings.closedObjectsAsOne = !args.allLines && !args.faceByFace;
   Engine engine(scene, settings);
   const Mesh mesh = engine.mesh();
   const double buildSeconds = secondsSince(start);

@@ -57,8 +57,14 @@ std::vector<Sample> penumbraSamples(const Engine& engine, size_t count, uint64_t
       if (cells.empty()) continue;
       Sample s{r.frame.to3D(r.tree.position(v)), r.frame.normal, {}};
       for (const OccluderEntry& e : r.tree.occluders(cells.front()))
-        if (e.light == 0)
-          if (const Face* face = findFace(engine.scene(), e.face)) s.faces.push_back(face);
+        if (e.light == 0) {
+          // A whole object's entry stands for its faces (the kernels compared take faces).
+          if (isWholeObject(e.face)) {
+            for (const Face& face : engine.scene().facesOfObject(e.face.object)) s.faces.push_back(&face);
+          } else if (const Face* face = findFace(engine.scene(), e.face)) {
+            s.faces.push_back(face);
+          }
+        }
       if (!s.faces.empty()) all.push_back(std::move(s));
     }
   std::shuffle(all.begin(), all.end(), std::mt19937_64(seed));

@@ -15,6 +15,7 @@
 #include "core/engine/light_edits.h"
 #include "core/engine/volume_edits.h"
 #include "core/illum/face_lookup.h"
+#include "core/shadow/object_shadow.h"
 
 namespace penumbra {
 
@@ -344,7 +345,10 @@ FrameResult Engine::apply(const Frame& frame) {
     std::map<FaceId, size_t> freeSlots;
     std::set<FaceId> rebuild;       // receivers whose node deletion threw: cast afresh
     std::set<FaceId> rebuiltTrees;  // receivers whose tree rebuilt itself in a deletion
-    for (FaceId face : leavingFaces) {
+    // The leaving occluders: their faces and, for those that cast whole, the objects.
+    std::vector<FaceId> leavingOccluders = leavingFaces;
+    for (uint32_t h : leaving) leavingOccluders.push_back(wholeObject(h));
+    for (FaceId face : leavingOccluders) {
       const auto on = castOn_.find(face);
       const std::set<FaceId> shadowed = on == castOn_.end() ? std::set<FaceId>{} : on->second;
       for (FaceId target : shadowed) {
@@ -459,11 +463,15 @@ FrameResult Engine::apply(const Frame& frame) {
         attempts.insert({rank.at(face), rank.at(other), face, other});
         attempts.insert({rank.at(other), rank.at(face), other, face});
       }
+      std::set<std::pair<FaceId, FaceId>> cast;  // a whole object casts once, at its first face's rank
       for (const auto& [occluderRank, receiverRank, occluder, target] : attempts) {
         const auto found = receiverIndex_.find(target);
         if (found == receiverIndex_.end() || rebuild.count(target)) continue;
+        const FaceId caster =
+            castingOccluder(scene_, l, occluder, *findFace(scene_, target), settings_.closedObjectsAsOne);
+        if (!cast.insert({caster, target}).second) continue;
         Receiver& receiver = receivers_[found->second];
-        const auto inserted = castPair(l, *findFace(scene_, occluder), receiver);
+        const auto inserted = castPair(l, caster, receiver);
         if (!inserted) continue;
         dirty.touch(target);
         if (inserted->nodesAdded || !inserted->newVertices.empty()) dirty.markTopology(target);

@@ -16,6 +16,7 @@
 #include "core/illum/face_lookup.h"
 #include "core/illum/light_sum.h"
 #include "core/shadow/cast_shadow.h"
+#include "core/shadow/object_shadow.h"
 
 namespace penumbra {
 
@@ -59,19 +60,22 @@ class SharedProgress {
   size_t reported_ = 0;
 };
 
-// One shadow a receiver takes during the build: from `light`, of `occluder`.
+// One shadow a receiver takes during the build: from `light`, of `occluder` (a face or a
+// whole object).
 struct ReceiverCast {
   uint32_t light;
-  const Face* occluder;
+  FaceId occluder;
 };
 
 // The build's casts split by receiver (index into `receiverIndex`'s values), each receiver's in
 // the paper's order: every candidate pair of the overlap cubes both ways (§2.3), occluders
-// front to back, light by light. Counts the pairs and attempts in `stats`.
+// front to back, light by light; with `wholeObjects`, a closed convex object that casts on a
+// receiver as one occluder does so once, at the rank of its first face there. Counts the
+// pairs and attempts in `stats`.
 std::vector<std::vector<ReceiverCast>> castSequences(
     const Scene& scene, const std::vector<std::unique_ptr<FaceOrder>>& orders,
     const std::vector<std::unique_ptr<OverlapCube>>& cubes, const std::map<FaceId, size_t>& receiverIndex,
-    BuildStats& stats) {
+    bool wholeObjects, BuildStats& stats) {
   std::vector<std::vector<ReceiverCast>> casts(receiverIndex.size());
   for (size_t l = 0; l < scene.lights().size(); ++l) {
     const auto pairs = cubes[l]->candidatePairs();
@@ -91,13 +95,27 @@ std::vector<std::vector<ReceiverCast>> castSequences(
       attempts.push_back({order.rank(a), order.rank(b), a, b});
       attempts.push_back({order.rank(b), order.rank(a), b, a});
     }
+    if (wholeObjects) {
+      for (Attempt& attempt : attempts)
+        if (scene.isClosedConvex(attempt.occluder.object))
+          if (const Face* receiver = findFace(scene, attempt.receiver))
+            attempt.occluder = castingOccluder(scene, l, attempt.occluder, *receiver, true);
+      std::sort(attempts.begin(), attempts.end(), [](const Attempt& x, const Attempt& y) {
+        return std::tie(x.occluder, x.receiver, x.occluderRank, x.receiverRank) <
+               std::tie(y.occluder, y.receiver, y.occluderRank, y.receiverRank);
+      });
+      attempts.erase(std::unique(attempts.begin(), attempts.end(), [](const Attempt& x, const Attempt& y) {
+                       return x.occluder == y.occluder && x.receiver == y.receiver;
+                     }),
+                     attempts.end());
+    }
     std::sort(attempts.begin(), attempts.end(), [](const Attempt& x, const Attempt& y) {
       return std::tie(x.occluderRank, x.receiverRank) < std::tie(y.occluderRank, y.receiverRank);
     });
     for (const Attempt& attempt : attempts) {
       const auto found = receiverIndex.find(attempt.receiver);
       if (found == receiverIndex.end()) continue;
-      casts[found->second].push_back({uint32_t(l), findFace(scene, attempt.occluder)});
+      casts[found->second].push_back({uint32_t(l), attempt.occluder});
       ++stats.castAttempts;
     }
   }
@@ -216,7 +234,7 @@ void Engine::castAndIlluminateAll(Clock::time_point start, const EngineProgress&
   // the floor, one long task, is still being cast (a step boundary left them idle; sparse 150
   // cubes 5 % faster at 2 threads).
   stats_.castAttempts = 0;
-  std::vector<std::vector<ReceiverCast>> casts = castSequences(scene_, orders_, cubes_, receiverIndex_, stats_);
+  std::vector<std::vector<ReceiverCast>> casts = castSequences(scene_, orders_, cubes_, receiverIndex_, settings_.closedObjectsAsOne, stats_);
   std::vector<std::vector<FaceId>> shadowedBy(receivers_.size());  // occluders that cast, per receiver
   std::mutex progressMutex;  // both steps report at once
   SharedProgress castReport(progress, "casting", stats_.castAttempts, 4096, &progressMutex);
@@ -225,7 +243,7 @@ void Engine::castAndIlluminateAll(Clock::time_point start, const EngineProgress&
   parallel_.forEach(receivers_.size(), [&](size_t r) {
     const auto castStart = Clock::now();
     for (const ReceiverCast& cast : casts[r])
-      if (castInto(cast.light, *cast.occluder, receivers_[r])) shadowedBy[r].push_back(cast.occluder->id);
+      if (castInto(cast.light, cast.occluder, receivers_[r])) shadowedBy[r].push_back(cast.occluder);
     receivers_[r].tree.shrinkToFit();
     castReport.add(casts[r].size());
     std::vector<ReceiverCast>().swap(casts[r]);
@@ -284,10 +302,17 @@ Engine::Receiver Engine::makeReceiver(const Face& face) const {
   return receiver;
 }
 
-std::optional<InsertResult> Engine::castInto(size_t light, const Face& occluder, Receiver& receiver) {
+std::optional<InsertResult> Engine::castInto(size_t light, FaceId occluder, Receiver& receiver) {
   const Face* face = findFace(scene_, receiver.face);
   if (!face) throw std::logic_error("Engine: receiver without a scene face");
-  const auto shadow = castShadow(scene_, light, occluder, *face, receiver.frame, settings_.silhouetteLinesOnly);
+  std::optional<SingleShadow> shadow;
+  if (isWholeObject(occluder)) {
+    shadow = castObjectShadow(scene_, light, occluder.object, *face, receiver.frame);
+  } else {
+    const Face* occluderFace = findFace(scene_, occluder);
+    if (!occluderFace) throw std::logic_error("Engine: occluder without a scene face");
+    shadow = castShadow(scene_, light, *occluderFace, *face, receiver.frame, settings_.silhouetteLinesOnly);
+  }
   if (!shadow) return std::nullopt;
   const TreeUsage before = usageOf(receiver.tree, scene_.lights().size());
   InsertResult inserted = receiver.tree.insert(*shadow);
@@ -295,11 +320,11 @@ std::optional<InsertResult> Engine::castInto(size_t light, const Face& occluder,
   return inserted;
 }
 
-std::optional<InsertResult> Engine::castPair(size_t light, const Face& occluder, Receiver& receiver) {
+std::optional<InsertResult> Engine::castPair(size_t light, FaceId occluder, Receiver& receiver) {
   auto inserted = castInto(light, occluder, receiver);
   if (!inserted) return std::nullopt;
-  castOn_[occluder.id].insert(receiver.face);
-  castBy_[receiver.face].insert(occluder.id);
+  castOn_[occluder].insert(receiver.face);
+  castBy_[receiver.face].insert(occluder);
   return inserted;
 }
 
@@ -312,9 +337,12 @@ void Engine::castAllOn(Receiver& receiver) {
     std::vector<std::pair<size_t, FaceId>> occluders;
     for (FaceId candidate : cubes_[l]->candidates(receiver.face))
       if (order.contains(candidate) && scene_.mayShadow(candidate, receiver.face))
-        occluders.push_back({order.rank(candidate), candidate});
+        occluders.push_back(
+            {order.rank(candidate), castingOccluder(scene_, l, candidate, *face, settings_.closedObjectsAsOne)});
     std::sort(occluders.begin(), occluders.end());
-    for (const auto& [rank, occluder] : occluders) castPair(l, *findFace(scene_, occluder), receiver);
+    std::set<FaceId> cast;  // a whole object casts once, at its first face's rank (as in the build)
+    for (const auto& [rank, occluder] : occluders)
+      if (cast.insert(occluder).second) castPair(l, occluder, receiver);
   }
 }
 
@@ -494,7 +522,8 @@ void Engine::validate() const {
   // The cast relations mirror each other and name live faces and receivers.
   auto fail = [](const std::string& what) { throw std::logic_error("Engine: " + what); };
   for (const auto& [occluder, targets] : castOn_) {
-    if (!findFace(scene_, occluder)) fail("castOn names a face not in the scene");
+    if (isWholeObject(occluder) ? !scene_.isClosedConvex(occluder.object) : !findFace(scene_, occluder))
+      fail("castOn names a face or closed convex object not in the scene");
     for (FaceId target : targets) {
       if (!receiver(target)) fail("castOn names a face without a DM-tree");
       const auto by = castBy_.find(target);

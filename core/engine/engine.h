@@ -54,6 +54,11 @@ struct EngineSettings {
   // silhouette from the light (core/shadow/convex_silhouette.h); the others bound no
   // change in the light seen. false: every line, as cast face by face (comparisons).
   bool silhouetteLinesOnly = true;
+  // A closed convex object wholly off a receiver's plane and in front of the light's casts
+  // on it as one occluder, from its silhouette (core/shadow/object_shadow.h): one list
+  // entry (wholeObject(handle)) and only its silhouette lines instead of every face's
+  // regions and lines. false: face by face (comparisons; regression tests pinned to it).
+  bool closedObjectsAsOne = true;
   // Per-scene resource limits, checked while building and applying frames: passing
   // one throws ResourceLimitError naming it (README "Resource limits").
   ResourceLimits limits;
@@ -190,12 +195,13 @@ class Engine {
   void build(const EngineProgress& progress);
   // A receiver with an empty DM-tree but the light-plane horizons of every light.
   Receiver makeReceiver(const Face& face) const;
-  // Casts `occluder` on `receiver` from `light` and merges the shadow; records the
+  // Casts `occluder` (a face, or a whole object: castingOccluder in object_shadow.h) on
+  // `receiver` from `light` and merges the shadow; records the
   // pair in castOn_/castBy_. Returns nullopt when nothing is shadowed.
-  std::optional<InsertResult> castPair(size_t light, const Face& occluder, Receiver& receiver);
+  std::optional<InsertResult> castPair(size_t light, FaceId occluder, Receiver& receiver);
   // The same without recording: touches `receiver` (and the thread-safe budget) only, so
   // receivers may cast in parallel.
-  std::optional<InsertResult> castInto(size_t light, const Face& occluder, Receiver& receiver);
+  std::optional<InsertResult> castInto(size_t light, FaceId occluder, Receiver& receiver);
   // The build's steps (§2.1–2.4); each fills its part of stats_.
   void buildOrdersAndCubes();
   void castAndIlluminateAll(std::chrono::steady_clock::time_point start, const EngineProgress& progress);

@@ -8,6 +8,7 @@
 #include "core/illum/lambert.h"
 #include "core/illum/shadow_merge.h"
 #include "core/illum/visible_contour.h"
+#include "core/scene/convex_solid.h"
 
 namespace penumbra {
 
@@ -147,6 +148,50 @@ bool Backprojection::occludeApproaching(const Face& face, const Vec3& d) {
   return true;
 }
 
+bool Backprojection::occludeObject(uint32_t handle) {
+  if (!applies_) return false;
+  const std::span<const Face> faces = scene_->facesOfObject(handle);
+  // The hull needs the merge's conditions (closed convex, wholly in front of the light, p
+  // off every face's plane) and every corner ahead of p's plane, with a height below p's
+  // that keeps the projection within 1000 times the corner's distance.
+  const ConvexSolid* solid = groupOf(handle) != kNoGroup ? scene_->convexSolid(handle) : nullptr;
+  const Plane receiver = Plane::throughPoint(n_, p_);
+  const bool hull = solid && std::all_of(solid->vertices.begin(), solid->vertices.end(), [&](const Vec3& v) {
+    return receiver.signedDistance(v) > 0 && pHeight_ - lightPlane_.signedDistance(v) > 1e-3 * pHeight_;
+  });
+  if (!hull) {
+    bool any = false;
+    for (const Face& face : faces) any = occlude(face) || any;
+    return any;
+  }
+  // The outline of the projection: corners of a face that blocks p (p behind it) and of
+  // one that does not, i.e. on the silhouette seen from p (every face is one or the other).
+  thread_local std::vector<uint8_t> seenBy;
+  thread_local std::vector<Vec2> corners, outline;
+  seenBy.assign(solid->vertices.size(), 0);
+  const double onPlane = tolerance_.onPlane();
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const uint8_t bit = faces[f].plane.signedDistance(p_) < -onPlane ? 1 : 2;
+    for (uint32_t k = solid->faceStarts[f]; k < solid->faceStarts[f + 1]; ++k) seenBy[solid->corners[k]] |= bit;
+  }
+  corners.clear();
+  for (size_t i = 0; i < solid->vertices.size(); ++i) {
+    if (seenBy[i] != 3) continue;
+    const Vec3& v = solid->vertices[i];
+    corners.push_back(frame_.to2D(p_ + (v - p_) * (pHeight_ / (pHeight_ - lightPlane_.signedDistance(v)))));
+  }
+  convexHullInto(corners, tolerance_.length(), outline);
+  if (outline.size() < 3) return false;
+  subtractShadow2D(outline, kNoGroup);
+  return true;
+}
+
+bool Backprojection::occludeId(FaceId id) {
+  if (isWholeObject(id)) return occludeObject(id.object);
+  const Face* face = findFace(*scene_, id);
+  return face && occlude(*face);
+}
+
 uint32_t Backprojection::groupOf(uint32_t object) {
   for (const auto& [known, group] : groups_)
     if (known == object) return group;
@@ -156,17 +201,18 @@ uint32_t Backprojection::groupOf(uint32_t object) {
 }
 
 void Backprojection::subtractShadow(const Polygon3& onLightPlane, uint32_t group) {
+  thread_local std::vector<Vec2> shadow;
+  shadow.clear();
+  for (const Vec3& q : onLightPlane) shadow.push_back(frame_.to2D(q));
+  if (signedArea(shadow) < 0) std::reverse(shadow.begin(), shadow.end());
+  subtractShadow2D(shadow, group);
+}
+
+void Backprojection::subtractShadow2D(std::span<const Vec2> shadow, uint32_t group) {
   ++comparisons_;
+  if (!(std::abs(signedArea(shadow)) > tolerance_.area())) return;
   // Appended to the gathered shadows in the frame, counter-clockwise.
-  const size_t begin = shadowPoints_.size();
-  for (const Vec3& q : onLightPlane) shadowPoints_.push_back(frame_.to2D(q));
-  const std::span<Vec2> shadow(shadowPoints_.data() + begin, shadowPoints_.size() - begin);
-  const double area = signedArea(shadow);
-  if (area < 0) std::reverse(shadow.begin(), shadow.end());
-  if (!(std::abs(area) > tolerance_.area())) {
-    shadowPoints_.resize(begin);
-    return;
-  }
+  shadowPoints_.insert(shadowPoints_.end(), shadow.begin(), shadow.end());
   shadowStarts_.push_back(uint32_t(shadowPoints_.size()));
   shadowGroups_.push_back(group);
   resolved_ = false;
@@ -290,8 +336,7 @@ LightVisibleFactor backproject(const Scene& scene, size_t light, const Vec3& p, 
   LightVisibleFactor out;
   out.applies = view.applies();
   if (!out.applies) return out;
-  for (const FaceId id : candidates)
-    if (const Face* face = findFace(scene, id)) view.occlude(*face);
+  for (const FaceId id : candidates) view.occludeId(id);
   out.unoccludedFactor = view.unoccludedFactor();
   out.visibleFactor = view.visibleFactor();
   out.lightClass = view.lightClass();

@@ -34,6 +34,16 @@ class Backprojection {
   // depends on the set of faces given and not on their order.
   bool occlude(const Face& face);
 
+  // Removes what a whole closed convex object hides from p (an occluder list's
+  // wholeObject() entry, core/shadow/object_shadow.h): when its shadows merge
+  // (shadow_merge.h) and it lies wholly in front of p's plane and well between p and the
+  // light, the hull of the projected corners of the faces p is behind (they tile the
+  // object's projection); otherwise its faces one by one, as occlude(). One comparison.
+  bool occludeObject(uint32_t handle);
+  // occlude() for a face's id, occludeObject() for a wholeObject() id; ids not in the
+  // scene are ignored.
+  bool occludeId(FaceId id);
+
   // The same for the limit as the point tends to p from direction d (unit, in p's
   // plane): a face whose plane contains p blocks iff p + δd is behind it, and then
   // hides the light points q in front of its plane whose segment from p + δd
@@ -57,6 +67,8 @@ class Backprojection {
 
  private:
   void subtractShadow(const Polygon3& onLightPlane, uint32_t group);
+  // The shadow already in the light's frame (appended as it is: counter-clockwise).
+  void subtractShadow2D(std::span<const Vec2> shadow, uint32_t group);
   // The merge group of an object's shadows (its handle, or kNoGroup; shadow_merge.h).
   uint32_t groupOf(uint32_t object);
   // The gathered shadows with each object's group merged: the given buffers, or the

@@ -6,6 +6,7 @@
 
 #include "core/illum/backprojection.h"
 #include "core/illum/face_lookup.h"
+#include "core/illum/shadow_merge.h"
 
 namespace penumbra {
 
@@ -98,8 +99,16 @@ VertexLight illuminateVertex(const Scene& scene, size_t light, const Vec3& p, co
     for (const OccluderEntry& e : *list) {
       if (!e.umbra) break;  // umbra entries come first
       if (e.light != light) continue;
-      const Face* face = findFace(scene, e.face);
-      if (!face || !(face->plane.signedDistance(p) < -onPlane)) continue;
+      // A whole object lies off the receiver's plane (object_shadow.h): never a contact. But
+      // a face of it whose plane passes within onPlane() of p hides nothing from p (the
+      // single-sided rule), and when it is on the silhouette that leaves a sliver of light
+      // the object's umbra does not know of: then backprojection decides, face by face.
+      if (isWholeObject(e.face)) {
+        if (!mergeableShadows(scene, e.face.object, scene.lights()[light].plane(), p)) continue;
+      } else {
+        const Face* face = findFace(scene, e.face);
+        if (!face || !(face->plane.signedDistance(p) < -onPlane)) continue;
+      }
       const bool everywhere = std::all_of(cellsAround.begin(), cellsAround.end(),
                                           [&](const OccluderList* other) { return holdsFace(*other, e.face); });
       if (everywhere) return umbra(view);
@@ -118,8 +127,7 @@ VertexLight illuminateVertex(const Scene& scene, size_t light, const Vec3& p, co
     if (everywhere) covering.push_back(e.face);
   }
   std::sort(covering.begin(), covering.end());
-  for (FaceId id : covering)
-    if (const Face* face = findFace(scene, id)) view.occlude(*face);
+  for (FaceId id : covering) view.occludeId(id);
   return fromView(view, VertexCase::Covering);
 }
 
@@ -145,8 +153,13 @@ VertexLight illuminateVertexFromCell(const Scene& scene, size_t light, const Vec
   std::vector<FaceId> faces;
   for (const OccluderEntry& e : entries) faces.push_back(e.face);
   std::sort(faces.begin(), faces.end());  // order-independent result, as in case (3)
-  for (FaceId id : faces)
-    if (const Face* face = findFace(scene, id)) view.occludeApproaching(*face, towards);
+  for (FaceId id : faces) {
+    if (isWholeObject(id)) {
+      view.occludeObject(id.object);  // off the receiver's plane: continuous at p
+    } else if (const Face* face = findFace(scene, id)) {
+      view.occludeApproaching(*face, towards);
+    }
+  }
   return fromView(view, VertexCase::Covering);
 }
 

@@ -105,6 +105,17 @@ uint64_t CellLighter::gather(CellId c) {
   for (VertexId v : corners_) inputs_.outline.push_back(tree.position(v));
   inputs_.occluders = list;
   for (const OccluderEntry& entry : list) {
+    if (isWholeObject(entry.face)) {
+      // An object's faces are its authored ones placed by its transform: the transform
+      // stands for all of them (a sphere's thousand faces need not be hashed per cell).
+      const auto index = scene_.indexOfHandle(entry.face.object);
+      inputs_.occluderSizes.push_back(index ? Inputs::kWholeObjectSize : 0);
+      if (index) {
+        const Transform& t = scene_.objects()[*index].transform;
+        inputs_.occluderPoints.insert(inputs_.occluderPoints.end(), {t.translate, t.rotateDeg, t.scale});
+      }
+      continue;
+    }
     const Face* face = findFace(scene_, entry.face);
     inputs_.occluderSizes.push_back(face ? uint32_t(face->polygon.size()) : 0);
     if (face)

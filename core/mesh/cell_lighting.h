@@ -69,8 +69,12 @@ class CellLighter {
   struct Inputs {
     Polygon2 outline;                     // the cell's loop positions
     OccluderList occluders;               // its list
-    std::vector<Vec3> occluderPoints;     // the listed faces' world polygons, concatenated
-    std::vector<uint32_t> occluderSizes;  // their vertex counts (0: not a scene face)
+    // The listed faces' world polygons, concatenated; for a whole object (wholeObject()),
+    // its transform's translation, rotation and scale.
+    std::vector<Vec3> occluderPoints;
+    // Their vertex counts (0: not in the scene, kWholeObjectSize: a whole object's transform).
+    std::vector<uint32_t> occluderSizes;
+    static constexpr uint32_t kWholeObjectSize = 0xffffffffu;
     // Per loop corner: 1 if lit from the cell (a face of its list through it), else 0 and its
     // value.
     std::vector<uint8_t> cornerFromCell;

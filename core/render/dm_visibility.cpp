@@ -24,12 +24,7 @@ VisiblePiecesFn backprojectedPieces(const Scene& scene, OccludersFn occluders) {
     if (!backprojection.applies()) return;
     std::vector<FaceId> candidates;
     occluders(face.id, p, light, candidates);
-    for (const FaceId& id : candidates) {
-      // Scene::faces() is sorted by FaceId.
-      const auto it = std::lower_bound(scene.faces().begin(), scene.faces().end(), id,
-                                       [](const Face& f, const FaceId& x) { return f.id < x; });
-      if (it != scene.faces().end() && it->id == id) backprojection.occlude(*it);
-    }
+    for (const FaceId& id : candidates) backprojection.occludeId(id);
     pieces = backprojection.visiblePieces();
   };
 }

@@ -6,8 +6,20 @@
 #include <stdexcept>
 
 #include "core/scene/closed_convex.h"
+#include "core/scene/convex_solid.h"
 
 namespace penumbra {
+
+namespace {
+
+// The object's solid if it is closed convex, else null.
+std::shared_ptr<const ConvexSolid> solidIfClosedConvex(const Object& object, const std::vector<Face>& faces,
+                                                       const Tolerance& tolerance) {
+  if (!isClosedConvex(object, faces, tolerance)) return nullptr;
+  return std::make_shared<const ConvexSolid>(ConvexSolid::of(faces));
+}
+
+}  // namespace
 
 Plane Light::plane() const {
   const auto p = planeOf(polygon);
@@ -112,11 +124,11 @@ void Scene::deriveFaces() {
       for (int index : indices) grow(object.transform.apply(object.vertices[size_t(index)]));
   tolerance_ = Tolerance::forSize(bounds_.diagonal());
   faces_.clear();
-  closedConvex_.clear();
+  solids_.clear();
   for (size_t o = 0; o < objects_.size(); ++o) {
     try {
       std::vector<Face> faces = facesOf(objects_[o], handles_[o]);
-      closedConvex_.push_back(penumbra::isClosedConvex(objects_[o], faces, tolerance_));
+      solids_.push_back(solidIfClosedConvex(objects_[o], faces, tolerance_));
       for (Face& face : faces) faces_.push_back(std::move(face));
     } catch (const FaceError& error) {
       throw error.atObject(o);
@@ -141,11 +153,11 @@ uint32_t Scene::addObject(Object object) {
     throw std::invalid_argument("duplicate object id '" + object.id + "'");
   const uint32_t handle = nextHandle_;
   std::vector<Face> faces = facesOf(object, handle);  // checks before changing anything
-  const bool closedConvex = penumbra::isClosedConvex(object, faces, tolerance_);
+  std::shared_ptr<const ConvexSolid> solid = solidIfClosedConvex(object, faces, tolerance_);
   ++nextHandle_;
   objects_.push_back(std::move(object));
   handles_.push_back(handle);
-  closedConvex_.push_back(closedConvex);
+  solids_.push_back(std::move(solid));
   // Handles only grow: the new faces sort after every existing one.
   for (Face& face : faces) faces_.push_back(std::move(face));
   return handle;
@@ -156,7 +168,7 @@ void Scene::removeObject(uint32_t handle) {
   if (!index) throw std::invalid_argument("no object with handle " + std::to_string(handle));
   objects_.erase(objects_.begin() + long(*index));
   handles_.erase(handles_.begin() + long(*index));
-  closedConvex_.erase(closedConvex_.begin() + long(*index));
+  solids_.erase(solids_.begin() + long(*index));
   faces_.erase(std::remove_if(faces_.begin(), faces_.end(),
                               [&](const Face& f) { return f.id.object == handle; }),
                faces_.end());
@@ -170,7 +182,7 @@ void Scene::setTransform(uint32_t handle, const Transform& transform) {
   std::vector<Face> faces = facesOf(moved, handle);  // checks before changing anything
   // Closed and convex is affine-invariant, but the test is at the scene's tolerance in
   // world space: decided again, as a rebuild of the moved scene would.
-  closedConvex_[*index] = penumbra::isClosedConvex(moved, faces, tolerance_);
+  solids_[*index] = solidIfClosedConvex(moved, faces, tolerance_);
   objects_[*index] = std::move(moved);
   const auto first = std::lower_bound(faces_.begin(), faces_.end(), FaceId{handle, 0},
                                       [](const Face& f, const FaceId& id) { return f.id < id; });
@@ -185,9 +197,9 @@ std::span<const Face> Scene::facesOfObject(uint32_t handle) const {
   return {first, last};
 }
 
-bool Scene::isClosedConvex(uint32_t handle) const {
+const ConvexSolid* Scene::convexSolid(uint32_t handle) const {
   const auto index = indexOfHandle(handle);
-  return index && closedConvex_[*index];
+  return index ? solids_[*index].get() : nullptr;
 }
 
 std::optional<size_t> Scene::findObject(std::string_view id) const {

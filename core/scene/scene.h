@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <stdexcept>
@@ -20,6 +21,8 @@
 #include "core/scene/volume_object.h"
 
 namespace penumbra {
+
+struct ConvexSolid;
 
 enum class MaterialType { Diffuse, RoughDiffuse, Conductor, Dielectric };
 
@@ -74,6 +77,12 @@ struct FaceId {
   bool operator==(const FaceId&) const = default;
   auto operator<=>(const FaceId&) const = default;
 };
+
+// An occluder that is a whole closed convex object, not one of its faces (core/shadow/
+// object_shadow.h): FaceId{handle, kWholeObject}. It sorts after the object's faces.
+inline constexpr uint32_t kWholeObject = 0xfffffffeu;
+inline FaceId wholeObject(uint32_t handle) { return FaceId{handle, kWholeObject}; }
+inline bool isWholeObject(FaceId id) { return id.face == kWholeObject && id.object != 0xffffffffu; }
 
 // A face the scene refuses (degenerate, thinner than Tolerance::minFaceWidth()):
 // which face of which object (its index in objects(), or kUnknown when checked
@@ -153,7 +162,9 @@ class Scene {
 
   // Whether the object is closed and convex (core/scene/closed_convex.h), decided when
   // it enters the scene or moves. Such an object never shadows itself.
-  bool isClosedConvex(uint32_t handle) const;
+  bool isClosedConvex(uint32_t handle) const { return convexSolid(handle) != nullptr; }
+  // A closed convex object's solid (convex_solid.h), nullptr for any other handle.
+  const ConvexSolid* convexSolid(uint32_t handle) const;
   // False when both faces belong to one closed convex object: neither can shadow the
   // other, so the engine never casts the pair.
   bool mayShadow(FaceId occluder, FaceId receiver) const {
@@ -213,7 +224,8 @@ class Scene {
   std::vector<Material> materials_;
   std::vector<Object> objects_;
   std::vector<uint32_t> handles_;  // parallel to objects_, increasing
-  std::vector<char> closedConvex_; // parallel to objects_
+  // Parallel to objects_: the solid of each closed convex object, null for the others.
+  std::vector<std::shared_ptr<const ConvexSolid>> solids_;
   uint32_t nextHandle_ = 0;
   std::optional<Camera> camera_;
   std::vector<VolumeObject> volumes_;

@@ -59,6 +59,7 @@ TEST(ContactBand, Seed110PointNearFootprintCornerTakesItsPointValue) {
   // is closed convex); every line, as when it was found, keeps the configuration.
   EngineSettings everyLine;
   everyLine.silhouetteLinesOnly = false;
+  everyLine.closedObjectsAsOne = false;
   Engine engine(makeCubesScene(mixedCubesOptions(110)), everyLine);
   const Scene& scene = engine.scene();
   const ExactReference reference(scene);

@@ -48,8 +48,9 @@ Counts checkLists(const Engine& engine) {
           Backprojection one(s, l, p, n);
           if (!one.occlude(f)) continue;
           if (!(full - one.visibleFactor() > 1e-12 * full)) continue;
+          // Listed itself, or its closed convex object cast whole (object_shadow.h).
           const bool listed = std::any_of(all.begin(), all.end(), [&](const OccluderEntry& e) {
-            return e.light == l && e.face == f.id;
+            return e.light == l && (e.face == f.id || e.face == wholeObject(f.id.object));
           });
           if (listed) continue;
           if (counts.missing++ < 5)

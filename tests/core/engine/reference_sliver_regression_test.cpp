@@ -41,6 +41,7 @@ void check(const Case& c) {
   // closed convex); every line, as when they were found, keeps the configuration.
   EngineSettings everyLine;
   everyLine.silhouetteLinesOnly = false;
+  everyLine.closedObjectsAsOne = false;
   const Engine engine(makeCubesScene(mixedCubesOptions(c.seed)), everyLine);
   const Scene& scene = engine.scene();
   const Engine::Receiver* receiver = engine.receiver(c.receiver);

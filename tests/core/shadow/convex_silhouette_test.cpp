@@ -135,9 +135,11 @@ size_t dmVertexCount(const Engine& engine) {
 // are a BSP's, so its vertices are not a subset of the unfiltered DM's: lines extend
 // across cells that no longer split), with fewer vertices than every line gives.
 void expectExactWithFewerVertices(const Scene& scene, const std::string& label) {
-  EngineSettings all;
+  // Face by face both (a closed object cast whole is object_shadow_test's).
+  EngineSettings all, silhouette;
   all.silhouetteLinesOnly = false;
-  Engine filtered(scene);
+  all.closedObjectsAsOne = silhouette.closedObjectsAsOne = false;
+  Engine filtered(scene, silhouette);
   const Engine unfiltered(scene, all);
   const testing::ReferenceCheck c = testing::checkAgainstReference(filtered, label);
   const size_t every = dmVertexCount(unfiltered);

@@ -1,0 +1,52 @@
+// Casting a closed convex object as one occluder (issue 11, item 5): its shadow on a
+// receiver from its silhouette, not face by face. Pure functions; thread-safe.
+//
+// The light a point x sees past a convex solid O is the light minus O's central
+// projection from x, a convex polygon spanned by O's silhouette seen from x. So, for a
+// light S' (the light clipped to the receiver's front) and O wholly in front of both the
+// receiver's and the light's planes:
+//   penumbra: x in front of every plane that separates O from S' (O on its front),
+//             through a light vertex and an edge of O or a light edge and a vertex of O
+//             (a superset of the points O shadows: a segment s→x through O crosses no
+//             separating plane from O's side, so nothing O shadows is left out);
+//   umbra:    x in the cone from every light vertex s over O: behind every plane through
+//             s and an edge of O that supports O (the planes through s's silhouette
+//             edges); all light vertices hidden means the whole convex light is;
+//   segments: VE surfaces (light vertex s, edge e) with e on O's silhouette from s
+//             (the plane through them supports O), and EV surfaces (light edge pq,
+//             vertex v) unless p and q lie strictly on one side (front or back) of every
+//             face through v: then v is on no silhouette from the edge, nor from any
+//             receiver point on the surface (the two lie on opposite sides of v).
+// Every other VE/EV surface of O's faces is no discontinuity of what a receiver point sees.
+// The faces' own penumbra and umbra boundaries, which cast face by face cut a receiver into
+// hundreds of cells under a tessellated object, are not lines of O's shadow at all.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+
+#include "core/geom/plane_frame.h"
+#include "core/scene/scene.h"
+#include "core/shadow/single_shadow.h"
+
+namespace penumbra {
+
+// Whether object `handle` casts on `receiver` from light `light` as one occluder: it is
+// closed convex (Scene::isClosedConvex), each of its vertices lies more than onPlane() in
+// front of the receiver's plane and of the light's plane (no contact line, no light point
+// inside or behind it), and it has at most 65,535 vertices and edges. Otherwise its faces
+// cast one by one (castShadow).
+bool castsAsOneOccluder(const Scene& scene, size_t light, uint32_t handle, const Face& receiver);
+
+// The occluder a candidate face casts as: wholeObject(face.object) if `wholeObjects` and
+// castsAsOneOccluder, else the face itself.
+FaceId castingOccluder(const Scene& scene, size_t light, FaceId face, const Face& receiver, bool wholeObjects);
+
+// What object `handle` casts on `receiver` from light `light` (castsAsOneOccluder must
+// hold), in `frame`, with occluder wholeObject(handle); nullopt when it shadows nothing of
+// the receiver. Element refs: light vertices and edges of the clipped light; the object's
+// unique vertices (Kind::Vertex, sorted by position) and edges (Kind::Edge, by vertex pair).
+std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, uint32_t handle,
+                                             const Face& receiver, const PlaneFrame& frame);
+
+}  // namespace penumbra
