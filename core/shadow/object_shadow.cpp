@@ -73,19 +73,82 @@ FaceId castingOccluder(const Scene& scene, size_t light, FaceId face, const Face
   return face;
 }
 
+namespace {
+
+// A plane through a light vertex and an edge of the solid that supports the solid (the
+// edge is on its silhouette from there), oriented with the solid on its front.
+struct Support {
+  uint32_t edge;
+  Plane plane;
+};
+
+// Per light vertex of `s`, its supporting planes.
+std::vector<std::vector<Support>> supportsOf(const Polygon3& s, const ConvexSolid& solid, double eps) {
+  std::vector<std::vector<Support>> supports(s.size());
+  for (size_t i = 0; i < s.size(); ++i)
+    for (uint32_t e = 0; e < solid.edges.size(); ++e) {
+      const auto plane = planeThrough(s[i], solid.vertices[solid.edges[e].first], solid.vertices[solid.edges[e].second], eps);
+      if (!plane) continue;
+      if (const int side = solid.side(*plane, eps)) supports[i].push_back({e, side > 0 ? *plane : plane->flipped()});
+    }
+  return supports;
+}
+
+// The receiver's region (in `frame`) as it is clipped by planes, each keeping its front.
+class RegionClipper {
+ public:
+  RegionClipper(const PlaneFrame& frame, const Tolerance& tolerance) : frame_(frame), tolerance_(tolerance) {}
+  bool clip(Polygon2& region, const Plane& plane) const {
+    region = clipFrontOf(region, PlaneTrace::of(plane, frame_, tolerance_), tolerance_.length());
+    return region.size() >= 3 && signedArea(region) > tolerance_.area();
+  }
+
+ private:
+  const PlaneFrame& frame_;
+  Tolerance tolerance_;
+};
+
+// In front of every separating plane: the supporting planes with the light behind, and
+// the planes through a light edge and a vertex that separate the two. Empty: no shadow.
+Polygon2 penumbraRegion(const Polygon2& base, const Polygon3& s, const ConvexSolid& solid,
+                        const std::vector<std::vector<Support>>& supports, const RegionClipper& clipper, double eps) {
+  Polygon2 penumbra = base;
+  for (size_t i = 0; i < s.size(); ++i) {
+    for (const Support& support : supports[i])
+      if (allBehind(s, support.plane, eps) && !clipper.clip(penumbra, support.plane)) return {};
+    for (const Vec3& v : solid.vertices) {
+      const auto plane = planeThrough(s[i], s[(i + 1) % s.size()], v, eps);
+      if (const auto cut = plane ? separating(*plane, solid, s, eps) : std::nullopt)
+        if (!clipper.clip(penumbra, *cut)) return {};
+    }
+  }
+  return penumbra;
+}
+
+// Inside the cone from every light vertex over the solid: in front of every supporting
+// plane. Empty: no umbra.
+Polygon2 umbraRegion(const Polygon2& penumbra, const std::vector<std::vector<Support>>& supports,
+                     const RegionClipper& clipper) {
+  Polygon2 umbra = penumbra;
+  for (const std::vector<Support>& ofVertex : supports)
+    for (const Support& support : ofVertex)
+      if (!clipper.clip(umbra, support.plane)) return {};
+  return umbra;
+}
+
+}  // namespace
+
 std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, uint32_t handle,
                                              const Face& receiver, const PlaneFrame& frame) {
   const Tolerance tol = scene.tolerance();
   const double eps = tol.length();
-  const Polygon3& lightPolygon = scene.lights().at(light).polygon;
-  const Plane lightPlane = scene.lights()[light].plane();
+  const Plane lightPlane = scene.lights().at(light).plane();
   // Light points behind the receiver's plane light none of it.
-  const Polygon3 s = withoutFlatCorners(clipFront(lightPolygon, receiver.plane, eps), eps);
+  const Polygon3 s = withoutFlatCorners(clipFront(scene.lights()[light].polygon, receiver.plane, eps), eps);
   if (s.size() < 3 || area(s) <= tol.area()) return std::nullopt;
   const ConvexSolid* solidOf = scene.convexSolid(handle);
   if (!solidOf || solidOf->vertices.size() < 4) return std::nullopt;
   const ConvexSolid& solid = *solidOf;
-  const std::span<const Face> faces = scene.facesOfObject(handle);
 
   // R ∩ front of the light's plane (it emits forward only).
   Polygon2 outline;
@@ -95,78 +158,38 @@ std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, u
   const Polygon2 base = clipFrontOf(receiver2, PlaneTrace::of(lightPlane, frame, tol), eps);
   if (base.size() < 3 || signedArea(base) <= tol.area()) return std::nullopt;
 
-  auto clipBy = [&](Polygon2& region, const Plane& plane) {
-    region = clipFrontOf(region, PlaneTrace::of(plane, frame, tol), eps);
-    return region.size() >= 3;
-  };
-  const size_t n = s.size();
-  // Per light vertex, the planes through it and an edge of the solid that support the
-  // solid (its silhouette edges from there), oriented with the solid on their front.
-  struct Support {
-    uint32_t edge;
-    Plane plane;
-  };
-  std::vector<std::vector<Support>> supports(n);
-  for (size_t i = 0; i < n; ++i)
-    for (uint32_t e = 0; e < solid.edges.size(); ++e) {
-      const auto plane = planeThrough(s[i], solid.vertices[solid.edges[e].first], solid.vertices[solid.edges[e].second], eps);
-      if (!plane) continue;
-      if (const int side = solid.side(*plane, eps)) supports[i].push_back({e, side > 0 ? *plane : plane->flipped()});
-    }
-
-  // Penumbra: in front of every separating plane (a supporting plane with the light behind).
-  Polygon2 penumbra = base;
-  bool open = true;
-  for (size_t i = 0; i < n && open; ++i) {
-    for (const Support& support : supports[i])
-      if (allBehind(s, support.plane, eps) && !(open = clipBy(penumbra, support.plane))) break;
-    for (const Vec3& v : solid.vertices) {
-      if (!open) break;
-      const auto plane = planeThrough(s[i], s[(i + 1) % n], v, eps);
-      if (const auto cut = plane ? separating(*plane, solid, s, eps) : std::nullopt) open = clipBy(penumbra, *cut);
-    }
-  }
-  if (!open || penumbra.size() < 3 || signedArea(penumbra) <= tol.area()) return std::nullopt;
-
-  // Umbra: inside the cone from every light vertex over the solid, i.e. in front of every
-  // supporting plane through it (none if a light vertex lies on the receiver's plane: its
-  // cone meets the plane there only).
+  const RegionClipper clipper(frame, tol);
+  const std::vector<std::vector<Support>> supports = supportsOf(s, solid, eps);
+  Polygon2 penumbra = penumbraRegion(base, s, solid, supports, clipper, eps);
+  if (penumbra.empty()) return std::nullopt;
+  // A light vertex on the receiver's plane: its cone meets the plane there only.
   auto onReceiver = [&](const Vec3& p) { return std::abs(receiver.plane.signedDistance(p)) <= eps; };
-  Polygon2 umbra;
-  if (std::none_of(s.begin(), s.end(), onReceiver)) {
-    umbra = penumbra;
-    bool left = true;
-    for (size_t i = 0; i < n && left; ++i)
-      for (const Support& support : supports[i])
-        if (!(left = clipBy(umbra, support.plane))) break;
-    if (!left || umbra.size() < 3 || signedArea(umbra) <= tol.area()) umbra.clear();
-  }
+  Polygon2 umbra = std::none_of(s.begin(), s.end(), onReceiver) ? umbraRegion(penumbra, supports, clipper) : Polygon2{};
 
   // Segments: the silhouette surfaces cut by the receiver's plane inside base.
   SegmentCollector segments(receiver2, penumbra, umbra, eps);
-  auto keepAll = [] { return true; };
+  auto add = [&](const std::optional<Wedge>& w) {
+    if (!w) return;
+    if (const auto chord = wedgeChord(*w, base, frame, tol))
+      segments.add(chord->first, chord->second, w->lightElement, w->occluderElement, [] { return true; });
+  };
+  const size_t n = s.size();
   for (size_t i = 0; i < n; ++i) {
     if (onReceiver(s[i])) continue;  // its rays never come back to the receiver
     for (const Support& support : supports[i]) {
-      const uint32_t e = support.edge;
-      const auto w = vertexEdgeWedge({ElementRef::Kind::Vertex, uint16_t(i)}, {ElementRef::Kind::Edge, uint16_t(e)}, s[i],
-                                     solid.vertices[solid.edges[e].first], solid.vertices[solid.edges[e].second], eps);
-      if (!w) continue;
-      if (const auto chord = wedgeChord(*w, base, frame, tol))
-        segments.add(chord->first, chord->second, w->lightElement, w->occluderElement, keepAll);
+      const auto& [a, b] = solid.edges[support.edge];
+      add(vertexEdgeWedge({ElementRef::Kind::Vertex, uint16_t(i)}, {ElementRef::Kind::Edge, uint16_t(support.edge)},
+                          s[i], solid.vertices[a], solid.vertices[b], eps));
     }
   }
+  const std::span<const Face> faces = scene.facesOfObject(handle);
   for (size_t i = 0; i < n; ++i) {
     const Vec3 &p = s[i], &q = s[(i + 1) % n];
     if (onReceiver(p) && onReceiver(q)) continue;
-    for (uint32_t v = 0; v < solid.vertices.size(); ++v) {
-      if (!mayBeSilhouetteVertex(faces, solid.vertices[v], p, q, tol)) continue;
-      const auto w = edgeVertexWedge({ElementRef::Kind::Edge, uint16_t(i)}, {ElementRef::Kind::Vertex, uint16_t(v)}, p, q,
-                                     solid.vertices[v], eps);
-      if (!w) continue;
-      if (const auto chord = wedgeChord(*w, base, frame, tol))
-        segments.add(chord->first, chord->second, w->lightElement, w->occluderElement, keepAll);
-    }
+    for (uint32_t v = 0; v < solid.vertices.size(); ++v)
+      if (mayBeSilhouetteVertex(faces, solid.vertices[v], p, q, tol))
+        add(edgeVertexWedge({ElementRef::Kind::Edge, uint16_t(i)}, {ElementRef::Kind::Vertex, uint16_t(v)}, p, q,
+                            solid.vertices[v], eps));
   }
 
   SingleShadow out;
