@@ -31,6 +31,8 @@ struct BenchArgs {
   // silhouette lines only (closedObjectsAsOne false).
   bool allLines = false;
   bool faceByFace = false;
+  // build, build-row, edits: --no-umbra-culling turns EngineSettings::umbraCulling off.
+  bool umbraCulling = true;
   // edits: --cubes given (else 150,1500,5000), --frames (drag frames, 0 = by size),
   // --html OUT, --write-scripts DIR --scene FILE (write that scene's scripts only).
   // --rebuild-every K: time the full rebuild on the first frame, every K-th and

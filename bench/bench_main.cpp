@@ -33,11 +33,13 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first) {
   BenchArgs args;
   for (int i = first; i < argc; ++i) {
     const std::string name = argv[i];
-    if (name == "--dense" || name == "--no-compare" || name == "--all-lines" || name == "--face-by-face") {  // no value
+    if (name == "--dense" || name == "--no-compare" || name == "--all-lines" || name == "--face-by-face" ||
+        name == "--no-umbra-culling") {  // no value
       if (name == "--dense") args.dense = true;
       if (name == "--no-compare") args.compare = false;
       if (name == "--all-lines") args.allLines = true;
       if (name == "--face-by-face") args.faceByFace = true;
+      if (name == "--no-umbra-culling") args.umbraCulling = false;
       continue;
     }
     if (i + 1 >= argc) throw std::invalid_argument(name + " needs a value");
@@ -96,6 +98,7 @@ int main(int argc, char** argv) {
       "                             [--points K] [--max-samples N] [--quality-max-cubes N]\n"
       "                             [--all-lines] (closed convex objects face by face, every VE/EV line)\n"
       "                             [--face-by-face] (closed convex objects face by face, silhouette lines)\n"
+      "                             [--no-umbra-culling] (later shadows split cells in an umbra too)\n"
       "                      edits: [--dense] [--frames F] [--rebuild-every K] [--html OUT]\n"
       "                             | --write-scripts DIR --scene FILE\n"
       "  reference: exact reference and Monte Carlo cost per point\n"

@@ -72,6 +72,7 @@ std::vector<std::string> childArguments(const RowSpec& spec, const BenchArgs& ar
   if (!spec.compare) out.push_back("--no-compare");
   if (args.allLines) out.push_back("--all-lines");
   if (args.faceByFace) out.push_back("--face-by-face");
+  if (!args.umbraCulling) out.push_back("--no-umbra-culling");
   return out;
 }
 

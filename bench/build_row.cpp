@@ -219,6 +219,7 @@ nlohmann::json runBuildRow(const BenchArgs& args) {
   settings.threads = threads;
   settings.silhouetteLinesOnly = !args.allLines;
   settings.closedObjectsAsOne = !args.allLines && !args.faceByFace;
+  settings.umbraCulling = args.umbraCulling;
   Engine engine(scene, settings);
   const Mesh mesh = engine.mesh();
   const double buildSeconds = secondsSince(start);

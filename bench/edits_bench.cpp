@@ -111,7 +111,7 @@ json runScript(Engine& engine, const EditScript& script, int rebuildEvery) {
     json rebuildSeconds = nullptr, editOverRebuild = nullptr;
     if (i % size_t(rebuildEvery) == 0 || i + 1 == script.frames.size()) {
       const auto rebuildStart = Clock::now();
-      { const Engine rebuilt(engine.scene()); }
+      { const Engine rebuilt(engine.scene(), engine.settings()); }
       const double seconds = secondsSince(rebuildStart);
       rebuildSeconds = seconds;
       editOverRebuild = result.seconds.total() / seconds;
@@ -245,7 +245,9 @@ json runEditsBench(const BenchArgs& args) {
     const Scene scene =
         args.dense ? makeDenseScene({.boxes = cubes, .seed = args.seed}) : makeCubesScene(options);
     const auto buildStart = Clock::now();
-    Engine engine(scene);
+    EngineSettings settings;
+    settings.umbraCulling = args.umbraCulling;
+    Engine engine(scene, settings);
     const double buildSeconds = secondsSince(buildStart);
     std::printf("N = %d %s: %zu faces, %zu receivers, build %.3f s\n", cubes,
                 args.dense ? "dense boxes" : "cubes", scene.faces().size(),

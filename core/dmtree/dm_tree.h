@@ -63,7 +63,13 @@ class DmTree {
 
   // Builds the single tree of `shadow` and merges it in (paper §2.3). Throws
   // std::invalid_argument, before changing anything, if (light, occluder) is already in.
+  // With umbra culling (on by default), a cell already in the umbra of the shadow's light
+  // is neither split by its lines nor given its entry: the light is gone there whatever
+  // else covers it (paper §2.4, why occluders come front to back). Only umbras that hide
+  // the light at every point of their closure cull (Inserted::culls). The shadow is still
+  // recorded, so removing the umbra can give the culled region back.
   InsertResult insert(const SingleShadow& shadow);
+  void setUmbraCulling(bool on) { umbraCulling_ = on; }
 
   // Removes every trace of one occluder: its occluder-list entries (visiting only the
   // cells under its penumbra) and its nodes, top-down, then the copies splitting made
@@ -77,7 +83,15 @@ class DmTree {
   // which a still-inserted occluder's segment lies is relabeled to it, not deleted. If
   // a geometric step fails (std::logic_error) the tree is rebuilt from the stored
   // shadows and `rebuilt` is set (a counted fallback, never the normal path).
+  // Umbra culling: occluders of the same light inserted later and culled somewhere, whose
+  // penumbra may reach into the removed umbra (and, transitively, into theirs), are
+  // removed first, latest first, and inserted again afterwards in their order: the
+  // freed region gets their lines and entries, and no deleted edge ever separates a
+  // cell that lists one from a cell that culled it. Their cells and vertices are in
+  // the result; values change only inside `penumbra`.
   RemoveResult removeOccluder(uint32_t light, FaceId occluder);
+  // Occluders recorded but culled somewhere (umbra culling).
+  size_t culledOccluders() const;
 
   std::vector<CellId> cells() const;
   Polygon2 cellPolygon(CellId c) const { return mesh_.polygon(c); }
@@ -135,6 +149,11 @@ class DmTree {
   void partition(CellId c, const SingleTree& tree, int s, const Generator& gen, std::vector<CellId>& pieces,
                  InsertResult& result);
   void record(const OccluderKey& key, const SingleShadow& shadow, const SingleTree& tree);
+  bool inUmbraOf(CellId c, uint32_t light) const;
+  // The later culled occluders removing `key` must cast again, in insertion order.
+  std::vector<OccluderKey> culledBehind(const OccluderKey& key) const;
+  // removeOccluder without umbra culling's re-cast; adds to `result` (no final tidying).
+  void removeOne(const OccluderKey& key, RemoveResult& result);
 
   // Node deletion (node_removal.cpp).
   Polygon2 regionOf(NodeId n) const;
@@ -164,10 +183,13 @@ class DmTree {
     Polygon2 penumbra;                      // as merged (short edges dropped)
     SingleShadow shadow;                    // for the counted rebuild fallback
     uint64_t sequence = 0;                  // insertion order
+    bool culled = false;                    // some cell it reaches was in its light's umbra
+    bool culls = false;  // its umbra culls later shadows (SingleShadow::cullsBehind)
   };
 
   Tolerance tolerance_;
   size_t nodeLimit_ = size_t(-1);
+  bool umbraCulling_ = true;
   double receiverArea_ = 0;
   Polygon2 receiver_;
   HalfEdgeMesh mesh_;

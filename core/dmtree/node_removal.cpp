@@ -481,57 +481,96 @@ void DmTree::rebuild() {
   for (const auto& [sequence, shadow] : ordered) insert(shadow);
 }
 
+namespace {
+
+struct Box2 {
+  Vec2 lo{INFINITY}, hi{-INFINITY};
+  explicit Box2(const Polygon2& polygon, double margin) {
+    for (const Vec2& p : polygon) {
+      lo = glm::min(lo, p - Vec2(margin));
+      hi = glm::max(hi, p + Vec2(margin));
+    }
+  }
+  bool overlaps(const Box2& o) const {
+    return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y;
+  }
+};
+
+}  // namespace
+
+size_t DmTree::culledOccluders() const {
+  size_t n = 0;
+  for (const auto& [key, entry] : inserted_) n += entry.culled;
+  return n;
+}
+
+// A key culled behind `key` was inserted after it and culled somewhere its penumbra
+// meets the umbra of `key` or of another key taken before it (their removal frees that
+// umbra too). Boxes make this a superset: re-casting an occluder that did not need it
+// costs time, never correctness.
+std::vector<DmTree::OccluderKey> DmTree::culledBehind(const OccluderKey& key) const {
+  const Inserted& removed = inserted_.at(key);
+  if (!removed.culls) return {};
+  std::vector<std::pair<uint64_t, OccluderKey>> later;
+  for (auto it = inserted_.lower_bound({key.first, FaceId{0, 0}}); it != inserted_.end() && it->first.first == key.first;
+       ++it)
+    if (it->second.culled && it->second.sequence > removed.sequence) later.push_back({it->second.sequence, it->first});
+  if (later.empty()) return {};
+  std::sort(later.begin(), later.end());
+  const double eps = tolerance_.length();
+  std::vector<Box2> freed{Box2(removed.shadow.umbra, eps)};
+  std::vector<OccluderKey> out;
+  for (const auto& [sequence, k] : later) {
+    const Inserted& entry = inserted_.at(k);
+    const Box2 reach(entry.penumbra, eps);
+    if (std::none_of(freed.begin(), freed.end(), [&](const Box2& b) { return b.overlaps(reach); })) continue;
+    out.push_back(k);
+    if (!entry.shadow.umbra.empty()) freed.push_back(Box2(entry.shadow.umbra, eps));
+  }
+  return out;
+}
+
 RemoveResult DmTree::removeOccluder(uint32_t light, FaceId occluder) {
   RemoveResult result;
   const OccluderKey key{light, occluder};
   const auto it = inserted_.find(key);
   if (it == inserted_.end()) return result;
   result.found = true;
-  const Polygon2 penumbra = it->second.penumbra;
-  result.penumbra = penumbra;
-  inserted_.erase(it);
+  result.penumbra = it->second.penumbra;
+  const std::vector<OccluderKey> recast = umbraCulling_ ? culledBehind(key) : std::vector<OccluderKey>{};
+  std::vector<SingleShadow> shadows;
+  for (const OccluderKey& k : recast) shadows.push_back(inserted_.at(k).shadow);
   const size_t firstVertex = mesh_.vertexSlots();
-  removing_ = key;
+  const uint32_t firstCell = mesh_.cellSlots();
   try {
-    // Its list entries: only cells under its penumbra can hold one.
-    std::vector<CellId> covered;
-    std::vector<NodeId> doomed;
-    if (!penumbra.empty()) collectCells(root_, penumbra, covered, &key, &doomed);
-    for (CellId c : covered) {
-      const auto listed = [&](const OccluderEntry& e) { return e.light == light && e.face == occluder; };
-      const OccluderList& held = mesh_.cell(c).occluders;
-      if (std::none_of(held.begin(), held.end(), listed)) continue;
-      OccluderList& list = mesh_.occludersForWrite(c);
-      list.erase(std::remove_if(list.begin(), list.end(), listed), list.end());
-      result.changedCells.push_back(c);
-    }
-    // Its nodes, top-down, then those split by an extended edge (before or during this
-    // removal; they may lie outside the penumbra), copies among them.
-    std::reverse(doomed.begin(), doomed.end());
-    for (size_t i = 0;; ++i) {
-      if (i == doomed.size()) {
-        const auto split = splitNodes_.find(key);
-        if (split == splitNodes_.end()) break;
-        for (NodeId n : split->second)  // a node split twice is listed twice
-          if (std::find(doomed.begin(), doomed.end(), n) == doomed.end()) doomed.push_back(n);
-        splitNodes_.erase(split);
-        if (i == doomed.size()) break;
-      }
-      const NodeId e = doomed[i];
-      const DmNode& d = node(e);
-      if (!d.alive || d.isLeaf() || d.light != light || d.occluder != occluder) continue;
-      deleteNode(e, key, result);
+    for (auto k = recast.rbegin(); k != recast.rend(); ++k) removeOne(*k, result);
+    removeOne(key, result);
+    for (const SingleShadow& shadow : shadows) {
+      const InsertResult added = insert(shadow);
+      result.changedCells.insert(result.changedCells.end(), added.changedCells.begin(), added.changedCells.end());
+      result.newVertices.insert(result.newVertices.end(), added.newVertices.begin(), added.newVertices.end());
     }
   } catch (const std::logic_error&) {
-    // Counted fallback: the tree is rebuilt from the shadows still inserted.
+    // Counted fallback: the tree is rebuilt from the shadows still inserted, and the
+    // culled ones this removal had taken out go back in.
+    inserted_.erase(key);
     rebuild();
+    for (const SingleShadow& shadow : shadows)
+      if (!inserted_.count({shadow.light, shadow.occluder})) insert(shadow);
     RemoveResult rebuilt;
     rebuilt.found = true;
     rebuilt.rebuilt = true;
+    rebuilt.penumbra = result.penumbra;
     rebuilt.changedCells = cells();
     rebuilt.newVertices = vertices();
     return rebuilt;
   }
+  // A re-cast splits cells this removal reported: the pieces that did not gain its entry
+  // changed too (a piece keeps the old handle, the other is new), so report every cell
+  // made here.
+  if (!recast.empty())
+    for (uint32_t i = firstCell; i < mesh_.cellSlots(); ++i)
+      if (mesh_.cell(CellId(i)).alive) result.changedCells.push_back(CellId(i));
   // Handles made and unmade within this removal are neither new nor removed.
   auto& created = result.newVertices;
   auto& removed = result.removedVertices;
@@ -545,6 +584,44 @@ RemoveResult DmTree::removeOccluder(uint32_t light, FaceId occluder) {
   result.changedCells.erase(std::unique(result.changedCells.begin(), result.changedCells.end()),
                             result.changedCells.end());
   return result;
+}
+
+// Throws std::logic_error if a geometric step fails (the caller rebuilds).
+void DmTree::removeOne(const OccluderKey& key, RemoveResult& result) {
+  const auto it = inserted_.find(key);
+  const Polygon2 penumbra = it->second.penumbra;
+  inserted_.erase(it);
+  const auto [light, occluder] = key;
+  removing_ = key;
+  // Its list entries: only cells under its penumbra can hold one.
+  std::vector<CellId> covered;
+  std::vector<NodeId> doomed;
+  if (!penumbra.empty()) collectCells(root_, penumbra, covered, &key, &doomed);
+  for (CellId c : covered) {
+    const auto listed = [&](const OccluderEntry& e) { return e.light == light && e.face == occluder; };
+    const OccluderList& held = mesh_.cell(c).occluders;
+    if (std::none_of(held.begin(), held.end(), listed)) continue;
+    OccluderList& list = mesh_.occludersForWrite(c);
+    list.erase(std::remove_if(list.begin(), list.end(), listed), list.end());
+    result.changedCells.push_back(c);
+  }
+  // Its nodes, top-down, then those split by an extended edge (before or during this
+  // removal; they may lie outside the penumbra), copies among them.
+  std::reverse(doomed.begin(), doomed.end());
+  for (size_t i = 0;; ++i) {
+    if (i == doomed.size()) {
+      const auto split = splitNodes_.find(key);
+      if (split == splitNodes_.end()) break;
+      for (NodeId n : split->second)  // a node split twice is listed twice
+        if (std::find(doomed.begin(), doomed.end(), n) == doomed.end()) doomed.push_back(n);
+      splitNodes_.erase(split);
+      if (i == doomed.size()) break;
+    }
+    const NodeId e = doomed[i];
+    const DmNode& d = node(e);
+    if (!d.alive || d.isLeaf() || d.light != light || d.occluder != occluder) continue;
+    deleteNode(e, key, result);
+  }
 }
 
 }  // namespace penumbra

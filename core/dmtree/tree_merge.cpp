@@ -97,6 +97,14 @@ void DmTree::partition(CellId c, const SingleTree& tree, int s, const Generator&
   partition(cut.back, tree, sn.back, gen, pieces, result);
 }
 
+bool DmTree::inUmbraOf(CellId c, uint32_t light) const {
+  for (const OccluderEntry& e : mesh_.cell(c).occluders) {
+    if (!e.umbra) return false;  // umbra entries come first
+    if (e.light == light && inserted_.at({light, e.face}).culls) return true;
+  }
+  return false;
+}
+
 InsertResult DmTree::insert(const SingleShadow& shadow) {
   // Check first, then change.
   const OccluderKey key{shadow.light, shadow.occluder};
@@ -119,6 +127,10 @@ InsertResult DmTree::insert(const SingleShadow& shadow) {
 
   const Generator gen{shadow.light, shadow.occluder};
   for (CellId target : targets) {
+    if (umbraCulling_ && inUmbraOf(target, shadow.light)) {
+      inserted_[key].culled = true;
+      continue;
+    }
     std::vector<CellId> pieces;
     partition(target, tree, tree.root, gen, pieces, result);
     // No region boundary crosses a piece: one interior point classifies it.

@@ -144,6 +144,7 @@ std::optional<SingleShadow> lightPlaneShadow(const Scene& scene, size_t light, c
   shadow.receiver = receiver.id;
   shadow.penumbra = polygonInFrame(split.back, frame);
   shadow.umbra = shadow.penumbra;
+  shadow.cullsBehind = true;  // behind the light's plane no point gets its light
   // The chord along the light's plane: the back part's vertices on the plane.
   std::vector<Vec2> chord;
   for (const Vec3& p : split.back)
@@ -297,6 +298,7 @@ Engine::Receiver Engine::makeReceiver(const Face& face) const {
   const PlaneFrame frame = PlaneFrame::onPlane(face.plane, face.polygon[0]);
   Receiver receiver{face.id, frame, DmTree(polygonInFrame(face.polygon, frame), scene_.tolerance()), {}, {}, {}};
   receiver.tree.setNodeLimit(settings_.limits.treeNodes);
+  receiver.tree.setUmbraCulling(settings_.umbraCulling);
   for (size_t l = 0; l < scene_.lights().size(); ++l)
     if (const auto horizon = lightPlaneShadow(scene_, l, face, frame)) receiver.tree.insert(*horizon);
   return receiver;

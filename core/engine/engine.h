@@ -59,6 +59,10 @@ struct EngineSettings {
   // entry (wholeObject(handle)) and only its silhouette lines instead of every face's
   // regions and lines. false: face by face (comparisons; regression tests pinned to it).
   bool closedObjectsAsOne = true;
+  // A cell in a light's umbra is not split by later occluders' lines nor listed with them
+  // (DmTree::insert); removing the umbra casts them again there. false: every shadow
+  // splits every cell it reaches (comparisons).
+  bool umbraCulling = true;
   // Per-scene resource limits, checked while building and applying frames: passing
   // one throws ResourceLimitError naming it (README "Resource limits").
   ResourceLimits limits;
@@ -73,6 +77,7 @@ class Engine {
   explicit Engine(Scene scene, EngineSettings settings = {}, const EngineProgress& progress = {});
 
   const Scene& scene() const { return scene_; }
+  const EngineSettings& settings() const { return settings_; }
   // Counters and timings of the full build (the constructor, or apply()'s whole-engine
   // fallback); apply() reports its own work in FrameResult and leaves these alone,
   // except mesh(), which records its triangulation time here.

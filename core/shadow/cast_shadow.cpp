@@ -166,6 +166,9 @@ std::optional<SingleShadow> castShadow(const Scene& scene, size_t light, const F
   }
 
   out.segments = segments.take();
+  out.cullsBehind = !umbra.empty() && std::all_of(occluder.polygon.begin(), occluder.polygon.end(), [&](const Vec3& p) {
+    return receiverPlane.signedDistance(p) > tol.onPlane();
+  });
   out.penumbra = std::move(penumbra);
   out.umbra = std::move(umbra);
   return out;

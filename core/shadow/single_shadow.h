@@ -47,6 +47,12 @@ struct SingleShadow {
   Polygon2 penumbra;  // penumbra region ∩ receiver, convex CCW; never empty in a result
   Polygon2 umbra;     // umbra region ∩ receiver, convex CCW; may be empty
   std::vector<CriticalSegment> segments;
+  // The umbra hides the whole light at every point of its closure, so the DM-tree may
+  // cull later shadows of the light there (DmTree::insert): the occluder lies wholly
+  // farther than onPlane() in front of the receiver's plane. Not so where it touches the
+  // receiver (on its own plane a face hides nothing), nor for a whole object (a sliver of
+  // light near its faces' planes, vertex_illumination.cpp case 2). false: never culls.
+  bool cullsBehind = false;
 };
 
 }  // namespace penumbra

@@ -190,10 +190,12 @@ Snapshot snapshot(const DmTree& tree) {
 TEST(DmTree, RandomInsertsKeepEveryInvariant) {
   double insertSeconds = 0;
   size_t inserts = 0;
+  for (bool culling : {false, true})
   for (uint64_t seed = 1; seed <= 40; ++seed) {
     Rng rng(seed);
     const Polygon2 receiver = randomConvex(rng, {0, 0}, uniform(rng, 0.8, 1.2), 3 + int(rng() % 8));
     DmTree tree(receiver, kTol);
+    tree.setUmbraCulling(culling);
     const int count = 1 + int(rng() % 30);
     std::vector<SingleShadow> shadows;
     for (int k = 0; k < count; ++k) {
@@ -204,13 +206,13 @@ TEST(DmTree, RandomInsertsKeepEveryInvariant) {
       ++inserts;
       ASSERT_NO_THROW(tree.validate()) << "seed " << seed << " insert " << k;
       for (CellId c : r.changedCells) ASSERT_TRUE(tree.mesh().cell(c).alive);
-      expectLists(tree, shadows);
-      expectCovered(tree, shadows.back());
-      if (HasFatalFailure()) FAIL() << "seed " << seed << " insert " << k;
+      expectLists(tree, shadows, culling);
+      expectCovered(tree, shadows.back(), culling);
+      if (HasFatalFailure()) FAIL() << "culling " << culling << " seed " << seed << " insert " << k;
     }
-    for (const SingleShadow& s : shadows) expectCovered(tree, s);
+    for (const SingleShadow& s : shadows) expectCovered(tree, s, culling);
     expectQueries(tree);
-    if (HasFatalFailure()) FAIL() << "seed " << seed;
+    if (HasFatalFailure()) FAIL() << "culling " << culling << " seed " << seed;
     if (count == 30 || seed == 40)
       std::printf("seed %llu: %d shadows -> %zu nodes (%zu internal), %zu cells, %zu vertices, %zu half-edges\n",
                   (unsigned long long)seed, count, tree.nodeCount(), tree.internalNodeCount(), tree.cellCount(),
@@ -243,10 +245,12 @@ TEST(DmTree, RemoveLastInsertedRestoresTheTree) {
 }
 
 TEST(DmTree, RemoveAnyOccluderKeepsListsAndEdges) {
+  for (bool culling : {false, true})
   for (uint64_t seed = 200; seed < 225; ++seed) {
     Rng rng(seed);
     const Polygon2 receiver = randomConvex(rng, {0, 0}, 1.0, 3 + int(rng() % 8));
     DmTree tree(receiver, kTol);
+    tree.setUmbraCulling(culling);
     std::vector<SingleShadow> shadows;
     const int count = 2 + int(rng() % 15);
     for (int k = 0; k < count; ++k) {
@@ -260,11 +264,12 @@ TEST(DmTree, RemoveAnyOccluderKeepsListsAndEdges) {
       shadows.pop_back();
       ASSERT_TRUE(tree.removeOccluder(gone.light, gone.occluder).found);
       ASSERT_NO_THROW(tree.validate()) << "seed " << seed;
-      expectLists(tree, shadows);
-      for (const SingleShadow& s : shadows) expectCovered(tree, s);
-      if (HasFatalFailure()) FAIL() << "seed " << seed;
+      expectLists(tree, shadows, culling);
+      for (const SingleShadow& s : shadows) expectCovered(tree, s, culling);
+      if (HasFatalFailure()) FAIL() << "culling " << culling << " seed " << seed;
     }
     for (CellId c : tree.cells()) EXPECT_TRUE(tree.occluders(c).empty());
+    EXPECT_EQ(tree.culledOccluders(), 0u);
   }
 }
 

@@ -33,7 +33,7 @@ struct EngineDiff {
 // the point, lit at exactly that point), within 1e-9 relative + 1e-12 of `peak`, or
 // else `a` has the exact reference's value there and `b` not (counted apart); (b) `randomPoints` seeded points lit from
 // each engine's cell get the same class and value; (c) every non-orphan node segment
-// of each lies on edges of the other (sampled).
+// of each lies on edges of the other, or in the other's umbra of its light (sampled).
 EngineDiff compareEngines(const Engine& a, const Engine& b, double peak, size_t randomPoints, uint64_t seed);
 
 // The largest vertex irradiance (red channel) of an engine.
