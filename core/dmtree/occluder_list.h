@@ -30,4 +30,13 @@ inline constexpr FaceId kLightPlaneOccluder{0xffffffffu, 0xffffffffu};
 // (light, face).
 using OccluderList = std::vector<OccluderEntry>;
 
+// Whether the list holds an umbra entry for `light` (the cell lies in one of its umbras).
+inline bool hasUmbraEntry(const OccluderList& list, uint32_t light) {
+  for (const OccluderEntry& e : list) {
+    if (!e.umbra) return false;  // umbra entries come first
+    if (e.light == light) return true;
+  }
+  return false;
+}
+
 }  // namespace penumbra

@@ -100,7 +100,9 @@ void DmTree::partition(CellId c, const SingleTree& tree, int s, const Generator&
 bool DmTree::inUmbraOf(CellId c, uint32_t light) const {
   for (const OccluderEntry& e : mesh_.cell(c).occluders) {
     if (!e.umbra) return false;  // umbra entries come first
-    if (e.light == light && inserted_.at({light, e.face}).culls) return true;
+    if (e.light != light) continue;
+    const auto it = inserted_.find({light, e.face});
+    if (it != inserted_.end() && it->second.culls) return true;
   }
   return false;
 }

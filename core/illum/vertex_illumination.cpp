@@ -96,13 +96,6 @@ VertexLight illuminateVertex(const Scene& scene, size_t light, const Vec3& p, co
   // cells on its front side, and the rule check below makes it exact. A cell around p
   // may lack it for another reason: umbra culling (DmTree::insert) leaves a cell already
   // in an umbra of this light without the later faces, so such a cell does not count.
-  auto inUmbra = [&](const OccluderList& list) {
-    for (const OccluderEntry& e : list) {
-      if (!e.umbra) return false;
-      if (e.light == light) return true;
-    }
-    return false;
-  };
   const double onPlane = scene.tolerance().onPlane();
   for (const OccluderList* list : cellsAround)
     for (const OccluderEntry& e : *list) {
@@ -119,7 +112,7 @@ VertexLight illuminateVertex(const Scene& scene, size_t light, const Vec3& p, co
         if (!face || !(face->plane.signedDistance(p) < -onPlane)) continue;
       }
       const bool everywhere = std::all_of(cellsAround.begin(), cellsAround.end(), [&](const OccluderList* other) {
-        return holdsFace(*other, e.face) || inUmbra(*other);
+        return holdsFace(*other, e.face) || hasUmbraEntry(*other, uint32_t(light));
       });
       if (everywhere) return umbra(view);
     }

@@ -120,10 +120,7 @@ inline double pointSegmentDistance(Vec2 p, Vec2 a, Vec2 b) {
 }
 
 // Whether the cell holding p lists an umbra entry (light 0, the fixtures' light).
-inline bool inUmbraAt(const DmTree& tree, const Vec2& p) {
-  const OccluderList& list = tree.occluders(tree.locate(p));
-  return std::any_of(list.begin(), list.end(), [](const OccluderEntry& e) { return e.umbra && e.light == 0; });
-}
+inline bool inUmbraAt(const DmTree& tree, const Vec2& p) { return hasUmbraEntry(tree.occluders(tree.locate(p)), 0); }
 
 // Every shadow's discontinuities lie on mesh edges (sampled), or, with umbra culling
 // (DmTree's default), inside a cell in the light's umbra, where they were culled.

@@ -79,10 +79,6 @@ double distanceToBoundary(const Polygon2& polygon, const Vec2& q) {
   return best;
 }
 
-bool inUmbraOf(const OccluderList& list, uint32_t light) {
-  return std::any_of(list.begin(), list.end(), [&](const OccluderEntry& e) { return e.umbra && e.light == light; });
-}
-
 // Every live internal node's segment of `from` that is a discontinuity (not an orphan
 // left by deletion), sampled, must lie on an edge of `to` or inside an umbra of its light
 // there (culled: DmTree::insert).
@@ -104,7 +100,7 @@ void compareSegments(const Engine::Receiver& from, const Engine::Receiver& to, d
       const double d = distanceToBoundary(to.tree.cellPolygon(there), q);
       // Umbra culling: where `to` holds the segment's light wholly hidden, the light adds
       // nothing on either side of the segment, so it bounds no change there.
-      if (d > 4 * eps && !inUmbraOf(to.tree.occluders(there), node.light)) {
+      if (d > 4 * eps && !hasUmbraEntry(to.tree.occluders(there), node.light)) {
         if (diff.segmentErrors++ == 0 && diff.firstProblem.empty()) {
           std::ostringstream out;
           out << direction << ": receiver " << describe(from.face) << " segment of occluder "
