@@ -66,8 +66,8 @@ class DmTree {
   // With umbra culling (on by default), a cell already in the umbra of the shadow's light
   // is neither split by its lines nor given its entry: the light is gone there whatever
   // else covers it (paper §2.4, why occluders come front to back). Only umbras that hide
-  // the light at every point of their closure cull (Inserted::culls). The shadow is still
-  // recorded, so removing the umbra can give the culled region back.
+  // the light at every point of their closure cull (SingleShadow::cullsBehind). The
+  // shadow is still recorded, so removing the umbra can give the culled region back.
   InsertResult insert(const SingleShadow& shadow);
   void setUmbraCulling(bool on) { umbraCulling_ = on; }
 
