@@ -591,7 +591,8 @@ void DmTree::removeOne(const OccluderKey& key, RemoveResult& result) {
   const auto it = inserted_.find(key);
   const Polygon2 penumbra = it->second.penumbra;
   inserted_.erase(it);
-  const auto [light, occluder] = key;
+  const uint32_t light = key.first;  // copies, not a structured binding: clang cannot capture one
+  const FaceId occluder = key.second;
   removing_ = key;
   // Its list entries: only cells under its penumbra can hold one.
   std::vector<CellId> covered;
