@@ -22,7 +22,6 @@ void DmTree::record(const OccluderKey& key, const SingleShadow& shadow, const Si
   entry.penumbra = tree.penumbra;
   entry.shadow = shadow;
   entry.sequence = nextSequence_++;
-  entry.culls = shadow.cullsBehind && !shadow.umbra.empty();
 }
 
 NodeId DmTree::addNode(NodeId parent, CellId cell) {

@@ -184,7 +184,8 @@ class DmTree {
     SingleShadow shadow;                    // for the counted rebuild fallback
     uint64_t sequence = 0;                  // insertion order
     bool culled = false;                    // some cell it reaches was in its light's umbra
-    bool culls = false;  // its umbra culls later shadows (SingleShadow::cullsBehind)
+    // Its umbra culls later shadows (SingleShadow::cullsBehind).
+    bool culls() const { return shadow.cullsBehind && !shadow.umbra.empty(); }
   };
 
   Tolerance tolerance_;

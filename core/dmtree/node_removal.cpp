@@ -510,7 +510,7 @@ size_t DmTree::culledOccluders() const {
 // costs time, never correctness.
 std::vector<DmTree::OccluderKey> DmTree::culledBehind(const OccluderKey& key) const {
   const Inserted& removed = inserted_.at(key);
-  if (!removed.culls) return {};
+  if (!removed.culls()) return {};
   std::vector<std::pair<uint64_t, OccluderKey>> later;
   for (auto it = inserted_.lower_bound({key.first, FaceId{0, 0}}); it != inserted_.end() && it->first.first == key.first;
        ++it)

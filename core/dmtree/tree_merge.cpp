@@ -102,7 +102,7 @@ bool DmTree::inUmbraOf(CellId c, uint32_t light) const {
     if (!e.umbra) return false;  // umbra entries come first
     if (e.light != light) continue;
     const auto it = inserted_.find({light, e.face});
-    if (it != inserted_.end() && it->second.culls) return true;
+    if (it != inserted_.end() && it->second.culls()) return true;
   }
   return false;
 }

@@ -83,6 +83,10 @@ void expectNoTraceOf(const DmTree& tree, const std::vector<SingleShadow>& live) 
     for (const OccluderEntry& e : tree.occluders(c)) ASSERT_TRUE(ids.count(e.face.object)) << "cell " << c.index;
 }
 
+bool entryBefore(const OccluderEntry& a, const OccluderEntry& b) {
+  return std::tie(a.face, a.umbra) < std::tie(b.face, b.umbra);
+}
+
 // The lists around each live vertex, sorted: what its value is computed from.
 std::map<uint32_t, std::vector<OccluderList>> listsAroundVertices(const DmTree& tree) {
   std::map<uint32_t, std::vector<OccluderList>> out;
@@ -90,15 +94,11 @@ std::map<uint32_t, std::vector<OccluderList>> listsAroundVertices(const DmTree& 
     std::vector<OccluderList>& lists = out[v.index];
     for (CellId c : tree.cellsAround(v)) {
       OccluderList list = tree.occluders(c);
-      std::sort(list.begin(), list.end(), [](const OccluderEntry& a, const OccluderEntry& b) {
-        return std::tie(a.face, a.umbra) < std::tie(b.face, b.umbra);
-      });
+      std::sort(list.begin(), list.end(), entryBefore);
       lists.push_back(list);
     }
     std::sort(lists.begin(), lists.end(), [](const OccluderList& a, const OccluderList& b) {
-      return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(), [](const auto& x, const auto& y) {
-        return std::tie(x.face, x.umbra) < std::tie(y.face, y.umbra);
-      });
+      return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(), entryBefore);
     });
   }
   return out;
