@@ -39,7 +39,7 @@ VertexLight fromView(const Backprojection& view, VertexCase decidedBy) {
   out.unoccludedFactor = view.unoccludedFactor();
   out.factor = view.visibleFactor();
   out.lightClass = view.lightClass();
-  out.comparisons = view.comparisons();
+  out.comparisons = uint32_t(view.comparisons());
   return out;
 }
 

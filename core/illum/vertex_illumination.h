@@ -22,22 +22,26 @@ enum class VertexCase : uint8_t {
 };
 
 // One light at a vertex.
+// 24 bytes: one is kept per vertex and light.
 struct VertexLight {
   double factor = 0;            // ∫ cosθp·cosθL / r² dA over the visible part
   double unoccludedFactor = 0;  // the same over the light's front part (case 3 and 1)
+  uint32_t comparisons = 0;     // source/occluder comparisons (faces projected)
   LightClass lightClass = LightClass::Lit;  // meaningless when !applies
-  size_t comparisons = 0;       // source/occluder comparisons (faces projected)
   bool applies = false;         // the light reaches p's front side at all
   VertexCase decidedBy = VertexCase::NoLight;
 };
+static_assert(sizeof(VertexLight) == 24);
 
 // All lights at a vertex: radiance-weighted sum and combined class (Umbra when no
 // light applies, as for the reference).
+// 32 bytes: one is kept per vertex.
 struct VertexIrradiance {
   Vec3 irradiance{0.0};
+  uint32_t comparisons = 0;
   LightClass lightClass = LightClass::Umbra;
-  size_t comparisons = 0;
 };
+static_assert(sizeof(VertexIrradiance) == 32);
 
 // Bit for bit the same irradiance and class (the mesh memo's test).
 bool identicalValue(const VertexIrradiance& a, const VertexIrradiance& b);

@@ -22,12 +22,24 @@ Vec2 centroid(const Polygon2& polygon) {
 
 }  // namespace
 
+bool darkLights(const OccluderList& list, std::vector<bool>& dark) {
+  std::fill(dark.begin(), dark.end(), false);
+  bool any = false;
+  for (const OccluderEntry& entry : list)
+    if (entry.umbra && entry.light < dark.size()) dark[entry.light] = any = true;
+  return any;
+}
+
+VertexIrradiance cornerValue(const Scene& scene, const MeshSource& source, VertexId v,
+                             const std::vector<bool>& dark, bool anyDark) {
+  return anyDark ? sumLights(scene, source.perLight[v.index], &dark) : source.values[v.index];
+}
+
 void CellMemo::clearOutput() {
-  emitted.clear();
+  points.clear();
+  ownValues.clear();
   triangles.clear();
-  pieceChunks.clear();
-  pieceEmitted.clear();
-  pieceTriangles.clear();
+  pieces.clear();
 }
 
 void CellLighter::Inputs::clear() {
@@ -37,11 +49,13 @@ void CellLighter::Inputs::clear() {
   occluderSizes.clear();
   cornerFromCell.clear();
   cornerValues.clear();
+  corners.clear();
 }
 
 uint64_t CellLighter::Inputs::fingerprint() const {
   Fingerprint f;
   f.addBytes(std::span<const Vec2>(outline));
+  f.addBytes(std::span<const VertexId>(corners));
   f.add(uint64_t(occluders.size()));
   for (const OccluderEntry& e : occluders) {
     f.add(uint64_t(e.light) << 1 | uint64_t(e.umbra));
@@ -95,14 +109,10 @@ uint64_t CellLighter::gather(CellId c) {
   const DmTree& tree = source_.tree;
   const HalfEdgeMesh& halfEdges = tree.mesh();
   const OccluderList& list = halfEdges.cell(c).occluders;
-  std::fill(dark_.begin(), dark_.end(), false);
-  for (const OccluderEntry& entry : list)
-    if (entry.umbra) dark_[entry.light] = true;
-  const bool anyDark = std::find(dark_.begin(), dark_.end(), true) != dark_.end();
+  anyDark_ = darkLights(list, dark_);
   inputs_.clear();
-  corners_.clear();
-  for (HalfEdgeId h : halfEdges.loop(c)) corners_.push_back(halfEdges.halfEdge(h).origin);
-  for (VertexId v : corners_) inputs_.outline.push_back(tree.position(v));
+  for (HalfEdgeId h : halfEdges.loop(c)) inputs_.corners.push_back(halfEdges.halfEdge(h).origin);
+  for (VertexId v : inputs_.corners) inputs_.outline.push_back(tree.position(v));
   inputs_.occluders = list;
   for (const OccluderEntry& entry : list) {
     if (isWholeObject(entry.face)) {
@@ -122,15 +132,13 @@ uint64_t CellLighter::gather(CellId c) {
       inputs_.occluderPoints.insert(inputs_.occluderPoints.end(), face->polygon.begin(),
                                     face->polygon.end());
   }
-  for (size_t i = 0; i < corners_.size(); ++i) {
-    const VertexId v = corners_[i];
+  for (size_t i = 0; i < inputs_.corners.size(); ++i) {
+    const VertexId v = inputs_.corners[i];
     // Only a face of this cell's list can hide light from the cell and not from the
     // corner (it passes through the corner); with none, the corner's value is the limit.
     const bool fromCell = onContact(source_.frame.to3D(inputs_.outline[i]), list);
     inputs_.cornerFromCell.push_back(fromCell ? 1 : 0);
-    inputs_.cornerValues.push_back(fromCell  ? VertexIrradiance{}
-                                   : anyDark ? sumLights(scene_, source_.perLight[v.index], &dark_)
-                                             : source_.values[v.index]);
+    inputs_.cornerValues.push_back(fromCell ? VertexIrradiance{} : cornerValue(scene_, source_, v, dark_, anyDark_));
   }
   fingerprint_ = inputs_.fingerprint();
   return fingerprint_;
@@ -167,28 +175,34 @@ void CellLighter::emit(CellId c, CellMemo& out) {
   for (const Vec2& q : polygon) centre += source_.frame.to3D(q);
   centre /= double(polygon.size());
   litInCell_.clear();
+  const auto addOwn = [&](const Vec2& q, const VertexIrradiance& value) {
+    out.points.push_back(CellMemo::kOwnValue | uint32_t(out.ownValues.size()));
+    out.ownValues.push_back({q, value});
+  };
   std::vector<uint32_t> pieceCorners;
   for (const Polygon2& piece : splitByLattice(polygon, spacing_, eps_)) {
-    out.pieceChunks.push_back(chunkOf(piece));
-    out.pieceEmitted.push_back(uint32_t(out.emitted.size()));
-    out.pieceTriangles.push_back(uint32_t(out.triangles.size()));
     pieceCorners.clear();
     for (const Vec2& q : piece) {
-      pieceCorners.push_back(uint32_t(out.emitted.size()));
-      out.emitted.push_back({q, valueAt(q, list, centre)});
+      pieceCorners.push_back(uint32_t(out.points.size()));
+      // A corner whose value is its vertex's own is kept as the vertex (see CellMemo).
+      const size_t corner = size_t(std::find(polygon.begin(), polygon.end(), q) - polygon.begin());
+      const bool byVertex = corner < polygon.size() && !inputs_.cornerFromCell[corner] &&
+                            inputs_.corners[corner].index <= CellMemo::kIndexMask;
+      if (byVertex)
+        out.points.push_back(inputs_.corners[corner].index | (anyDark_ ? CellMemo::kDarkCorner : 0));
+      else
+        addOwn(q, valueAt(q, list, centre));
     }
     const CellTriangulation triangulation = triangulateConvexCell(piece, eps_);
     if (triangulation.usesCentre) {
       const Vec2 middle = centroid(piece);
-      pieceCorners.push_back(uint32_t(out.emitted.size()));
-      out.emitted.push_back({middle, illuminatePoint(scene_, source_.frame.to3D(middle),
-                                                     source_.frame.normal, {&list})});
+      pieceCorners.push_back(uint32_t(out.points.size()));
+      addOwn(middle, illuminatePoint(scene_, source_.frame.to3D(middle), source_.frame.normal, {&list}));
     }
     for (const auto& t : triangulation.triangles)
       out.triangles.push_back({pieceCorners[t[0]], pieceCorners[t[1]], pieceCorners[t[2]]});
+    out.pieces.push_back({chunkOf(piece), uint32_t(out.points.size()), uint32_t(out.triangles.size())});
   }
-  out.pieceEmitted.push_back(uint32_t(out.emitted.size()));
-  out.pieceTriangles.push_back(uint32_t(out.triangles.size()));
 }
 
 }  // namespace penumbra

@@ -30,23 +30,43 @@ struct MeshSource {
   const std::vector<std::vector<VertexLight>>& perLight;  // [vertex][light]
 };
 
-// What one cell emitted, and a fingerprint of what that depends on (its outline,
-// occluder list, the listed faces' polygons, its corners' values): an equal
+// What one cell emitted, and a fingerprint of what that depends on (its outline and
+// corner ids, occluder list, the listed faces' polygons, its corners' values): an equal
 // fingerprint means the cell would emit the same again (a 64-bit collision, ~2⁻⁶⁴ a
 // compare, would keep a stale cell). Keeping the inputs themselves cost ~1.5 kB a
 // cell, most of a dense room's memory.
+//
+// The output refers to the tree where it can: a corner whose value is its vertex's own, or
+// its vertex's lights summed without those the cell is in umbra of, is kept as the VertexId;
+// its position and value are read back from the MeshSource when a chunk is assembled (an
+// unchanged fingerprint means both are the same bits). Only points with a value of their own
+// (lattice points, contact corners, centres) keep a copy: 4 bytes instead of 56 for most.
 struct CellMemo {
+  // A point word with kOwnValue set indexes ownValues; otherwise it is a VertexId's index,
+  // with kDarkCorner set when the value leaves out the cell's dark lights (darkLights).
+  static constexpr uint32_t kOwnValue = 0x80000000u, kDarkCorner = 0x40000000u;
+  static constexpr uint32_t kIndexMask = 0x3fffffffu;
+  // A lattice square's part of the cell: its chunk, and where its points and triangles end.
+  struct Piece {
+    MeshChunkKey chunk;
+    uint32_t pointsEnd = 0, trianglesEnd = 0;
+  };
   bool valid = false;
   uint64_t inputs = 0;
-  // The output: builder calls (point, value) in order, and triangles into them,
-  // per piece (a lattice square's part of the cell): its chunk and where its
-  // points and triangles start (one more entry closes the last piece).
-  std::vector<std::pair<Vec2, VertexIrradiance>> emitted;
+  // The output: builder calls in order, one word per point, and triangles into them.
+  std::vector<uint32_t> points;
+  std::vector<std::pair<Vec2, VertexIrradiance>> ownValues;
   std::vector<std::array<uint32_t, 3>> triangles;
-  std::vector<MeshChunkKey> pieceChunks;
-  std::vector<uint32_t> pieceEmitted, pieceTriangles;
+  std::vector<Piece> pieces;
   void clearOutput();
 };
+
+// dark[l]: the list holds an umbra entry of light l (its lights' values leave l out). Returns
+// whether any light is dark.
+bool darkLights(const OccluderList& list, std::vector<bool>& dark);
+// A corner's value as the cell sees it when no face of its list passes through the corner.
+VertexIrradiance cornerValue(const Scene& scene, const MeshSource& source, VertexId v,
+                             const std::vector<bool>& dark, bool anyDark);
 
 class CellLighter {
  public:
@@ -79,6 +99,7 @@ class CellLighter {
     // value.
     std::vector<uint8_t> cornerFromCell;
     std::vector<VertexIrradiance> cornerValues;
+    std::vector<VertexId> corners;  // the loop's vertices (the output refers to them)
     void clear();
     uint64_t fingerprint() const;
   };
@@ -89,7 +110,7 @@ class CellLighter {
   Inputs inputs_;
   uint64_t fingerprint_ = 0;
   std::vector<bool> dark_;
-  std::vector<VertexId> corners_;
+  bool anyDark_ = false;
   std::vector<std::pair<Vec2, VertexIrradiance>> litInCell_;  // points lit for the current cell
 };
 

@@ -41,7 +41,10 @@ class MeshMemoUpdate {
   // A cell's pieces leave or enter the chunks' cell lists (kept in cell order).
   std::set<MeshChunkKey> chunksOf(uint32_t index) const {
     const CellMemo& m = memo_.cells_[index];
-    return m.valid ? std::set<MeshChunkKey>(m.pieceChunks.begin(), m.pieceChunks.end()) : std::set<MeshChunkKey>{};
+    std::set<MeshChunkKey> keys;
+    if (m.valid)
+      for (const CellMemo::Piece& piece : m.pieces) keys.insert(piece.chunk);
+    return keys;
   }
   void leaveChunks(uint32_t index) {
     for (const MeshChunkKey& key : chunksOf(index)) {
@@ -125,17 +128,34 @@ class MeshMemoUpdate {
     const auto listed = memo_.chunkCells_.find(key);
     if (listed == memo_.chunkCells_.end()) return;
     std::vector<uint32_t> ids;
+    std::vector<bool> dark(scene_.lights().size());
     for (uint32_t index : listed->second) {
       const CellMemo& m = memo_.cells_[index];
-      for (size_t j = 0; j < m.pieceChunks.size(); ++j) {
-        if (m.pieceChunks[j] != key) continue;
-        ids.resize(m.emitted.size());
-        for (uint32_t e = m.pieceEmitted[j]; e < m.pieceEmitted[j + 1]; ++e)
-          ids[e] = builder.vertex(m.emitted[e].first, m.emitted[e].second);
-        for (uint32_t t = m.pieceTriangles[j]; t < m.pieceTriangles[j + 1]; ++t)
-          mesh.triangles.push_back({ids[m.triangles[t][0]], ids[m.triangles[t][1]], ids[m.triangles[t][2]]});
+      ids.resize(m.points.size());
+      const bool anyDark = darkLights(halfEdges_.cell(CellId(index)).occluders, dark);
+      uint32_t pointsBegin = 0, trianglesBegin = 0;
+      for (const CellMemo::Piece& piece : m.pieces) {
+        if (piece.chunk == key) {
+          for (uint32_t e = pointsBegin; e < piece.pointsEnd; ++e) ids[e] = vertexOf(m, m.points[e], dark, anyDark, builder);
+          for (uint32_t t = trianglesBegin; t < piece.trianglesEnd; ++t)
+            mesh.triangles.push_back({ids[m.triangles[t][0]], ids[m.triangles[t][1]], ids[m.triangles[t][2]]});
+        }
+        pointsBegin = piece.pointsEnd;
+        trianglesBegin = piece.trianglesEnd;
       }
     }
+  }
+  // One emitted point handed to the builder: a corner's vertex, as the cell sees it (dark: its
+  // lights in umbra), or the copy kept.
+  uint32_t vertexOf(const CellMemo& m, uint32_t point, const std::vector<bool>& dark, bool anyDark,
+                    ReceiverMeshBuilder& builder) const {
+    if (point & CellMemo::kOwnValue) {
+      const auto& [at, value] = m.ownValues[point & CellMemo::kIndexMask];
+      return builder.vertex(at, value);
+    }
+    const VertexId v(point & CellMemo::kIndexMask);
+    return builder.vertex(source_.tree.position(v),
+                          cornerValue(scene_, source_, v, dark, (point & CellMemo::kDarkCorner) != 0 && anyDark));
   }
 
   ReceiverMeshMemo& memo_;
