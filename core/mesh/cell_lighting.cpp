@@ -35,13 +35,6 @@ VertexIrradiance cornerValue(const Scene& scene, const MeshSource& source, Verte
   return anyDark ? sumLights(scene, source.perLight[v.index], &dark) : source.values[v.index];
 }
 
-void CellMemo::clearOutput() {
-  points.clear();
-  ownValues.clear();
-  triangles.clear();
-  pieces.clear();
-}
-
 void CellLighter::Inputs::clear() {
   outline.clear();
   occluders.clear();
@@ -168,41 +161,40 @@ VertexIrradiance CellLighter::valueAt(const Vec2& q, const OccluderList& list, c
 void CellLighter::emit(CellId c, CellMemo& out) {
   const OccluderList& list = source_.tree.mesh().cell(c).occluders;
   const Polygon2& polygon = inputs_.outline;
-  out.clearOutput();
-  out.valid = true;
-  out.inputs = fingerprint_;
+  output_.clear();
   Vec3 centre{0.0};
   for (const Vec2& q : polygon) centre += source_.frame.to3D(q);
   centre /= double(polygon.size());
   litInCell_.clear();
   const auto addOwn = [&](const Vec2& q, const VertexIrradiance& value) {
-    out.points.push_back(CellMemo::kOwnValue | uint32_t(out.ownValues.size()));
-    out.ownValues.push_back({q, value});
+    output_.points.push_back(CellMemo::kOwnValue | uint32_t(output_.ownValues.size()));
+    output_.ownValues.push_back({q, value});
   };
   std::vector<uint32_t> pieceCorners;
   for (const Polygon2& piece : splitByLattice(polygon, spacing_, eps_)) {
     pieceCorners.clear();
     for (const Vec2& q : piece) {
-      pieceCorners.push_back(uint32_t(out.points.size()));
+      pieceCorners.push_back(uint32_t(output_.points.size()));
       // A corner whose value is its vertex's own is kept as the vertex (see CellMemo).
       const size_t corner = size_t(std::find(polygon.begin(), polygon.end(), q) - polygon.begin());
       const bool byVertex = corner < polygon.size() && !inputs_.cornerFromCell[corner] &&
                             inputs_.corners[corner].index <= CellMemo::kIndexMask;
       if (byVertex)
-        out.points.push_back(inputs_.corners[corner].index | (anyDark_ ? CellMemo::kDarkCorner : 0));
+        output_.points.push_back(inputs_.corners[corner].index | (anyDark_ ? CellMemo::kDarkCorner : 0));
       else
         addOwn(q, valueAt(q, list, centre));
     }
     const CellTriangulation triangulation = triangulateConvexCell(piece, eps_);
     if (triangulation.usesCentre) {
       const Vec2 middle = centroid(piece);
-      pieceCorners.push_back(uint32_t(out.points.size()));
+      pieceCorners.push_back(uint32_t(output_.points.size()));
       addOwn(middle, illuminatePoint(scene_, source_.frame.to3D(middle), source_.frame.normal, {&list}));
     }
     for (const auto& t : triangulation.triangles)
-      out.triangles.push_back({pieceCorners[t[0]], pieceCorners[t[1]], pieceCorners[t[2]]});
-    out.pieces.push_back({chunkOf(piece), uint32_t(out.points.size()), uint32_t(out.triangles.size())});
+      output_.triangles.push_back({pieceCorners[t[0]], pieceCorners[t[1]], pieceCorners[t[2]]});
+    output_.pieces.push_back({chunkOf(piece), uint32_t(output_.points.size()), uint32_t(output_.triangles.size())});
   }
+  out = CellMemo(fingerprint_, output_);
 }
 
 }  // namespace penumbra

@@ -12,14 +12,9 @@
 #include "core/dmtree/dm_tree.h"
 #include "core/geom/plane_frame.h"
 #include "core/illum/vertex_illumination.h"
+#include "core/mesh/cell_memo.h"
 
 namespace penumbra {
-
-// A display chunk: the lattice-aligned block (x, y) of a receiver's 2D frame.
-struct MeshChunkKey {
-  int64_t x = 0, y = 0;
-  auto operator<=>(const MeshChunkKey&) const = default;
-};
 
 // What meshing a receiver reads: its tree and its vertices' values (the engine's Receiver).
 struct MeshSource {
@@ -28,37 +23,6 @@ struct MeshSource {
   const DmTree& tree;
   const std::vector<VertexIrradiance>& values;            // by VertexId
   const std::vector<std::vector<VertexLight>>& perLight;  // [vertex][light]
-};
-
-// What one cell emitted, and a fingerprint of what that depends on (its outline and
-// corner ids, occluder list, the listed faces' polygons, its corners' values): an equal
-// fingerprint means the cell would emit the same again (a 64-bit collision, ~2⁻⁶⁴ a
-// compare, would keep a stale cell). Keeping the inputs themselves cost ~1.5 kB a
-// cell, most of a dense room's memory.
-//
-// The output refers to the tree where it can: a corner whose value is its vertex's own, or
-// its vertex's lights summed without those the cell is in umbra of, is kept as the VertexId;
-// its position and value are read back from the MeshSource when a chunk is assembled (an
-// unchanged fingerprint means both are the same bits). Only points with a value of their own
-// (lattice points, contact corners, centres) keep a copy: 4 bytes instead of 56 for most.
-struct CellMemo {
-  // A point word with kOwnValue set indexes ownValues; otherwise it is a VertexId's index,
-  // with kDarkCorner set when the value leaves out the cell's dark lights (darkLights).
-  static constexpr uint32_t kOwnValue = 0x80000000u, kDarkCorner = 0x40000000u;
-  static constexpr uint32_t kIndexMask = 0x3fffffffu;
-  // A lattice square's part of the cell: its chunk, and where its points and triangles end.
-  struct Piece {
-    MeshChunkKey chunk;
-    uint32_t pointsEnd = 0, trianglesEnd = 0;
-  };
-  bool valid = false;
-  uint64_t inputs = 0;
-  // The output: builder calls in order, one word per point, and triangles into them.
-  std::vector<uint32_t> points;
-  std::vector<std::pair<Vec2, VertexIrradiance>> ownValues;
-  std::vector<std::array<uint32_t, 3>> triangles;
-  std::vector<Piece> pieces;
-  void clearOutput();
 };
 
 // dark[l]: the list holds an umbra entry of light l (its lights' values leave l out). Returns
@@ -76,7 +40,7 @@ class CellLighter {
   // Gathers cell c's inputs and returns their fingerprint.
   uint64_t gather(CellId c);
   // Triangulates the gathered cell (cut by the lattice) into `out`: valid, with the
-  // fingerprint. Vertices repeat once per side where the value jumps (contact edges,
+  // fingerprint (see CellMemo for what it keeps). Vertices repeat once per side where the value jumps (contact edges,
   // cells in a light's umbra) through the values handed in.
   void emit(CellId c, CellMemo& out);
 
@@ -112,6 +76,7 @@ class CellLighter {
   std::vector<bool> dark_;
   bool anyDark_ = false;
   std::vector<std::pair<Vec2, VertexIrradiance>> litInCell_;  // points lit for the current cell
+  CellMemo::Output output_;  // the current cell's output before packing
 };
 
 }  // namespace penumbra

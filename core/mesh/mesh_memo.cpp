@@ -42,8 +42,8 @@ class MeshMemoUpdate {
   std::set<MeshChunkKey> chunksOf(uint32_t index) const {
     const CellMemo& m = memo_.cells_[index];
     std::set<MeshChunkKey> keys;
-    if (m.valid)
-      for (const CellMemo::Piece& piece : m.pieces) keys.insert(piece.chunk);
+    if (m.valid())
+      for (size_t i = 0; i < m.pieceCount(); ++i) keys.insert(m.piece(i).chunk);
     return keys;
   }
   void leaveChunks(uint32_t index) {
@@ -66,7 +66,7 @@ class MeshMemoUpdate {
   bool needsLight(uint32_t index) {
     const HalfEdgeMesh::Cell& cell = halfEdges_.cell(CellId(index));
     CellMemo& slot = memo_.cells_[index];
-    if (cell.touched <= memo_.stamp_ && (slot.valid || !cell.alive)) {
+    if (cell.touched <= memo_.stamp_ && (slot.valid() || !cell.alive)) {
       if (cell.alive) ++counters_.cellsReused;
       return false;
     }
@@ -89,12 +89,12 @@ class MeshMemoUpdate {
         const CellId c(touched[k]);
         const uint64_t fingerprint = lighter.gather(c);
         const CellMemo& slot = memo_.cells_[touched[k]];
-        if (slot.valid && slot.inputs == fingerprint) continue;  // results[k] stays invalid: kept
+        if (slot.valid() && slot.inputs() == fingerprint) continue;  // results[k] stays invalid: kept
         lighter.emit(c, results[k]);
       }
     });
     for (size_t k = 0; k < touched.size(); ++k) {
-      if (!results[k].valid) {
+      if (!results[k].valid()) {
         ++counters_.cellsReused;
         continue;
       }
@@ -131,14 +131,17 @@ class MeshMemoUpdate {
     std::vector<bool> dark(scene_.lights().size());
     for (uint32_t index : listed->second) {
       const CellMemo& m = memo_.cells_[index];
-      ids.resize(m.points.size());
+      ids.resize(m.pointCount());
       const bool anyDark = darkLights(halfEdges_.cell(CellId(index)).occluders, dark);
       uint32_t pointsBegin = 0, trianglesBegin = 0;
-      for (const CellMemo::Piece& piece : m.pieces) {
+      for (size_t i = 0; i < m.pieceCount(); ++i) {
+        const CellMemo::Piece piece = m.piece(i);
         if (piece.chunk == key) {
-          for (uint32_t e = pointsBegin; e < piece.pointsEnd; ++e) ids[e] = vertexOf(m, m.points[e], dark, anyDark, builder);
-          for (uint32_t t = trianglesBegin; t < piece.trianglesEnd; ++t)
-            mesh.triangles.push_back({ids[m.triangles[t][0]], ids[m.triangles[t][1]], ids[m.triangles[t][2]]});
+          for (uint32_t e = pointsBegin; e < piece.pointsEnd; ++e) ids[e] = vertexOf(m, m.point(e), dark, anyDark, builder);
+          for (uint32_t t = trianglesBegin; t < piece.trianglesEnd; ++t) {
+            const std::array<uint32_t, 3> corners = m.triangle(t);
+            mesh.triangles.push_back({ids[corners[0]], ids[corners[1]], ids[corners[2]]});
+          }
         }
         pointsBegin = piece.pointsEnd;
         trianglesBegin = piece.trianglesEnd;
@@ -150,7 +153,7 @@ class MeshMemoUpdate {
   uint32_t vertexOf(const CellMemo& m, uint32_t point, const std::vector<bool>& dark, bool anyDark,
                     ReceiverMeshBuilder& builder) const {
     if (point & CellMemo::kOwnValue) {
-      const auto& [at, value] = m.ownValues[point & CellMemo::kIndexMask];
+      const auto& [at, value] = m.ownValue(point & CellMemo::kIndexMask);
       return builder.vertex(at, value);
     }
     const VertexId v(point & CellMemo::kIndexMask);
