@@ -255,7 +255,7 @@ void Engine::relightAfterRemoval(FaceId target, Receiver& receiver, const Remove
     const std::optional<uint32_t> was = deletedAt(p);
     if (!was) return dirty.addVertex(target, v);
     receiver.values[v.index] = receiver.values[*was];
-    receiver.perLight[v.index] = receiver.perLight[*was];
+    std::ranges::copy(receiver.perLight[*was], receiver.perLight[v.index].begin());
     receiver.litAt[v.index] = p;
     for (CellId c : tree.cellsAround(v)) receiver.tree.touch(c);  // corner values for meshing
   };

@@ -360,11 +360,11 @@ void Engine::forgetReceived(FaceId face) {
   castBy_.erase(it);
 }
 
-void Engine::growSlots(Receiver& receiver) {
+void Engine::growSlots(Receiver& receiver) const {
   const size_t slots = receiver.tree.mesh().vertexSlots();
   if (receiver.values.size() >= slots) return;
   receiver.values.resize(slots);
-  receiver.perLight.resize(slots);
+  receiver.perLight.resize(slots, scene_.lights().size());
   receiver.litAt.resize(slots, Vec2(std::numeric_limits<double>::quiet_NaN()));
 }
 
@@ -374,10 +374,10 @@ void Engine::illuminate(Receiver& receiver) const {
   // moving every value (untouched capacity costs no memory until used).
   const size_t capacity = slots + slots / 4 + 64;
   receiver.values.reserve(capacity);
-  receiver.perLight.reserve(capacity);
+  receiver.perLight.reserve(capacity, scene_.lights().size());
   receiver.litAt.reserve(capacity);
   receiver.values.assign(slots, VertexIrradiance{});
-  receiver.perLight.assign(slots, {});
+  receiver.perLight.assign(slots, scene_.lights().size());
   receiver.litAt.assign(slots, Vec2(std::numeric_limits<double>::quiet_NaN()));
   // Vertices in parallel (a dense scene's floor holds most of them); each writes its own slots.
   const std::vector<VertexId> vertices = receiver.tree.vertices();
@@ -397,10 +397,9 @@ void Engine::computeVertex(Receiver& receiver, VertexId v) const {
   std::vector<const OccluderList*> lists;
   for (CellId c : tree.cellsAround(v)) lists.push_back(&tree.occluders(c));
   const Vec3 p = receiver.frame.to3D(tree.position(v));
-  auto& perLight = receiver.perLight[v.index];
-  perLight.clear();
-  for (size_t l = 0; l < scene_.lights().size(); ++l)
-    perLight.push_back(illuminateVertex(scene_, l, p, receiver.frame.normal, lists));
+  const std::span<VertexLight> perLight = receiver.perLight[v.index];
+  for (size_t l = 0; l < perLight.size(); ++l)
+    perLight[l] = illuminateVertex(scene_, l, p, receiver.frame.normal, lists);
   receiver.values[v.index] = sumLights(scene_, perLight);
   receiver.litAt[v.index] = tree.position(v);
 }

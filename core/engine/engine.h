@@ -19,6 +19,7 @@
 #include "core/engine/parallel.h"
 #include "core/engine/resource_budget.h"
 #include "core/geom/plane_frame.h"
+#include "core/illum/per_light_values.h"
 #include "core/illum/vertex_illumination.h"
 #include "core/mesh/mesh.h"
 #include "core/mesh/mesh_memo.h"
@@ -130,7 +131,7 @@ class Engine {
     DmTree tree;
     // Per live tree vertex (indexed by VertexId): the value at the vertex.
     std::vector<VertexIrradiance> values;
-    std::vector<std::vector<VertexLight>> perLight;  // [vertex][light]
+    PerLightValues perLight;  // [vertex][light]
     // Per vertex slot: where its value was computed (NaN: never), so a slot that
     // holds a vertex the tree did not report as new is still found and lit.
     std::vector<Vec2> litAt;
@@ -217,7 +218,7 @@ class Engine {
   // Forgets every cast relation with `face` as receiver.
   void forgetReceived(FaceId face);
   // Sizes the per-slot arrays to the tree's vertex slots.
-  static void growSlots(Receiver& receiver);
+  void growSlots(Receiver& receiver) const;
   // Lights every vertex of a fresh tree (in parallel over vertices).
   void illuminate(Receiver& receiver) const;
   void relightVertex(Receiver& receiver, VertexId v) const;

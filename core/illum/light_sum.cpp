@@ -2,7 +2,7 @@
 
 namespace penumbra {
 
-VertexIrradiance sumLights(const Scene& scene, const std::vector<VertexLight>& lights,
+VertexIrradiance sumLights(const Scene& scene, std::span<const VertexLight> lights,
                            const std::vector<bool>* dark) {
   VertexIrradiance out;
   bool any = false;

@@ -2,6 +2,7 @@
 // Free function on a const Scene; thread-safe.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "core/illum/vertex_illumination.h"
@@ -10,7 +11,7 @@ namespace penumbra {
 
 // Radiance-weighted factors, classes combined over the lights that reach the point (Umbra if
 // none does). dark[l]: light l counts as in umbra (a cell in its umbra), adding nothing.
-VertexIrradiance sumLights(const Scene& scene, const std::vector<VertexLight>& lights,
+VertexIrradiance sumLights(const Scene& scene, std::span<const VertexLight> lights,
                            const std::vector<bool>* dark = nullptr);
 
 }  // namespace penumbra

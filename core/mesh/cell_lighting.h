@@ -11,6 +11,7 @@
 
 #include "core/dmtree/dm_tree.h"
 #include "core/geom/plane_frame.h"
+#include "core/illum/per_light_values.h"
 #include "core/illum/vertex_illumination.h"
 #include "core/mesh/cell_memo.h"
 
@@ -22,7 +23,7 @@ struct MeshSource {
   const PlaneFrame& frame;
   const DmTree& tree;
   const std::vector<VertexIrradiance>& values;            // by VertexId
-  const std::vector<std::vector<VertexLight>>& perLight;  // [vertex][light]
+  const PerLightValues& perLight;  // [vertex][light]
 };
 
 // dark[l]: the list holds an umbra entry of light l (its lights' values leave l out). Returns
