@@ -14,19 +14,25 @@
 
 namespace penumbra {
 
-struct DmNode {
-  Line2 line;  // internal nodes: front child is line.distance > 0
-  NodeId front, back, parent;
-  CellId cell;  // valid iff the node is a leaf
-  // The generator of an internal node's line.
+// What an internal node's line came from: its generator and segment (DmTree::segment).
+// Kept apart from the node, since half the nodes are leaves: 48 bytes, and 48 a node.
+struct NodeSegment {
+  Vec2 a{0.0}, b{0.0};  // the generating segment, clipped to the cell it split
   uint32_t light = 0;
   FaceId occluder;
   SegmentKind kind = SegmentKind::Internal;
-  ElementRef lightElement, occluderElement;
-  Vec2 a{0.0}, b{0.0};   // the generating segment, clipped to the cell it split
   bool partial = false;  // the segment did not span that cell: construction edges extend it
   bool orphan = false;   // its occluder was removed but the node could not be condensed yet
   bool copy = false;     // made by splitting a node in two where an extended edge crossed it
+};
+
+struct DmNode {
+  static constexpr uint32_t kNoSegment = 0xffffffffu;
+  Line2 line;  // internal nodes: front child is line.distance > 0
+  NodeId front, back, parent;
+  CellId cell;  // valid iff the node is a leaf
+  // An internal node's NodeSegment; a leaf that was internal once keeps its slot for reuse.
+  uint32_t segment = kNoSegment;
   bool alive = true;
   bool isLeaf() const { return cell.is_valid(); }
 };
@@ -108,9 +114,12 @@ class DmTree {
 
   NodeId root() const { return root_; }
   const DmNode& node(NodeId n) const { return nodes_[n.index]; }
+  // An internal node's generator and segment.
+  const NodeSegment& segment(NodeId n) const { return segments_[nodes_[n.index].segment]; }
   const HalfEdgeMesh& mesh() const { return mesh_; }
   size_t nodeCount() const { return liveNodes_; }  // leaves included
   size_t nodeSlots() const { return nodes_.size(); }  // dead nodes included
+  size_t segmentSlots() const { return segments_.size(); }  // unused ones included
   size_t internalNodeCount() const { return liveNodes_ - mesh_.cellCount(); }
   size_t cellCount() const { return mesh_.cellCount(); }
   size_t vertexCount() const { return mesh_.vertexCount(); }
@@ -124,6 +133,7 @@ class DmTree {
   // insertions is done: the build's trees keep ~40 entries a cell in dense rooms.
   void shrinkToFit() {
     nodes_.shrink_to_fit();
+    segments_.shrink_to_fit();
     mesh_.shrinkToFit();
   }
 
@@ -139,6 +149,7 @@ class DmTree {
   };
 
   NodeId addNode(NodeId parent, CellId cell);
+  NodeSegment& segmentForWrite(NodeId n) { return segments_[nodes_[n.index].segment]; }
   // Splits leaf n's cell along `seg` (a straddling plan) and makes n the internal
   // node carrying seg's piece [lo, hi] (positions along a→b) for `owner`.
   HalfEdgeMesh::CutResult splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan& plan, const SingleTreeNode& seg,
@@ -195,6 +206,7 @@ class DmTree {
   Polygon2 receiver_;
   HalfEdgeMesh mesh_;
   std::vector<DmNode> nodes_;
+  std::vector<NodeSegment> segments_;  // by DmNode::segment
   size_t liveNodes_ = 0;
   NodeId root_;
   // What each inserted occluder carries (kept so removal can tell which edges other

@@ -35,7 +35,7 @@ void DmTree::collectCells(NodeId n, const Polygon2& region, std::vector<CellId>&
     collectCells(d.front, split.right, out, key, nodes);
   if (split.left.size() >= 3 && signedArea(split.left) > tolerance_.area())
     collectCells(d.back, split.left, out, key, nodes);
-  if (nodes && d.light == key->first && d.occluder == key->second) nodes->push_back(n);
+  if (nodes && segment(n).light == key->first && segment(n).occluder == key->second) nodes->push_back(n);
 }
 
 HalfEdgeMesh::CutResult DmTree::splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan& plan, const SingleTreeNode& seg,
@@ -49,15 +49,18 @@ HalfEdgeMesh::CutResult DmTree::splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan&
   d.front = front;
   d.back = back;
   d.line = seg.line;
-  d.light = owner.first;
-  d.occluder = owner.second;
-  d.kind = seg.kind;
-  d.lightElement = seg.lightElement;
-  d.occluderElement = seg.occluderElement;
-  d.a = seg.a + lo * dir;
-  d.b = seg.a + hi * dir;
-  d.partial = partial;
-  d.orphan = false;
+  if (d.segment == DmNode::kNoSegment) {
+    d.segment = uint32_t(segments_.size());
+    segments_.emplace_back();
+  }
+  NodeSegment& s = segments_[d.segment];
+  s.light = owner.first;
+  s.occluder = owner.second;
+  s.kind = seg.kind;
+  s.a = seg.a + lo * dir;
+  s.b = seg.a + hi * dir;
+  s.partial = partial;
+  s.orphan = false;
   return cut;
 }
 

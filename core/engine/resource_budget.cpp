@@ -10,13 +10,13 @@ TreeUsage usageOf(const DmTree& tree, size_t lights) {
   const HalfEdgeMesh& mesh = tree.mesh();
   // Per vertex slot the engine keeps a value, where it was lit, and one entry per light.
   const size_t perVertex = sizeof(HalfEdgeMesh::Vertex) + sizeof(VertexIrradiance) + sizeof(Vec2) +
-                           sizeof(std::vector<VertexLight>) + lights * sizeof(VertexLight);
+                           lights * sizeof(VertexLight);
   // A cell's occluder list: a few entries on average.
   const size_t perCell = sizeof(HalfEdgeMesh::Cell) + 2 * sizeof(OccluderEntry);
   TreeUsage usage;
   usage.nodes = tree.nodeCount();
   usage.vertices = tree.vertexCount();
-  usage.bytes = tree.nodeSlots() * sizeof(DmNode) + mesh.halfEdgeSlots() * sizeof(HalfEdgeMesh::HalfEdge) +
+  usage.bytes = tree.nodeSlots() * sizeof(DmNode) + tree.segmentSlots() * sizeof(NodeSegment) + mesh.halfEdgeSlots() * sizeof(HalfEdgeMesh::HalfEdge) +
                 mesh.vertexSlots() * perVertex + mesh.cellSlots() * perCell;
   return usage;
 }

@@ -44,7 +44,7 @@ TEST(DmTree, SquareShadowWithUmbra) {
   EXPECT_FALSE(tree.occluders(tree.locate({1.2, 2}))[0].umbra);
   EXPECT_TRUE(tree.occluders(tree.locate({0.5, 0.5})).empty());
   // Umbra cell keeps the generator of its last node.
-  EXPECT_EQ(tree.node(tree.node(tree.mesh().cell(mid).leaf).parent).kind, SegmentKind::Umbra);
+  EXPECT_EQ(tree.segment(tree.node(tree.mesh().cell(mid).leaf).parent).kind, SegmentKind::Umbra);
   expectLists(tree, {s});
   expectCovered(tree, s);
   expectQueries(tree);

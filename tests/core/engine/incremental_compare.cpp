@@ -92,19 +92,20 @@ void compareSegments(const Engine::Receiver& from, const Engine::Receiver& to, d
     if (node.isLeaf()) continue;
     stack.push_back(node.front);
     stack.push_back(node.back);
-    if (node.orphan || glm::length(node.b - node.a) <= 4 * eps) continue;
+    const NodeSegment& seg = from.tree.segment(n);
+    if (seg.orphan || glm::length(seg.b - seg.a) <= 4 * eps) continue;
     for (double t : {0.15, 0.5, 0.85}) {
-      const Vec2 q = node.a + t * (node.b - node.a);
+      const Vec2 q = seg.a + t * (seg.b - seg.a);
       ++diff.segmentSamples;
       const CellId there = to.tree.locate(q);
       const double d = distanceToBoundary(to.tree.cellPolygon(there), q);
       // Umbra culling: where `to` holds the segment's light wholly hidden, the light adds
       // nothing on either side of the segment, so it bounds no change there.
-      if (d > 4 * eps && !hasUmbraEntry(to.tree.occluders(there), node.light)) {
+      if (d > 4 * eps && !hasUmbraEntry(to.tree.occluders(there), seg.light)) {
         if (diff.segmentErrors++ == 0 && diff.firstProblem.empty()) {
           std::ostringstream out;
           out << direction << ": receiver " << describe(from.face) << " segment of occluder "
-              << describe(node.occluder) << " light " << node.light << " kind " << int(node.kind)
+              << describe(seg.occluder) << " light " << seg.light << " kind " << int(seg.kind)
               << " not on an edge (distance " << d << ")";
           diff.firstProblem = out.str();
         }
