@@ -370,9 +370,11 @@ void Engine::growSlots(Receiver& receiver) const {
 
 void Engine::illuminate(Receiver& receiver) const {
   const size_t slots = receiver.tree.mesh().vertexSlots();
-  // Headroom: a big receiver's first edits then grow its arrays in place instead of
-  // moving every value (untouched capacity costs no memory until used).
-  const size_t capacity = slots + slots / 4 + 64;
+  // Headroom for a big receiver only: its first edits then grow its arrays in place instead of
+  // moving every value, and the untouched tail of a large array costs no memory until used. A
+  // small receiver's arrays share pages with other data, so headroom there would be resident
+  // (thousands of small receivers), and moving them is cheap.
+  const size_t capacity = slots >= kHeadroomMinSlots ? slots + slots / 4 : slots;
   receiver.values.reserve(capacity);
   receiver.perLight.reserve(capacity, scene_.lights().size());
   receiver.litAt.reserve(capacity);

@@ -192,6 +192,8 @@ class Engine {
   // Its light values are the same; its cells (so its triangulation) may differ. Returns the
   // faces cast afresh (their mesh memo is dropped: the next mesh call re-meshes them).
   static constexpr size_t kCompactSlotRatio = 3;
+  // Receivers with at least this many vertex slots get 25 % spare value slots (illuminate).
+  static constexpr size_t kHeadroomMinSlots = 4096;
   std::vector<FaceId> compactTrees(const std::vector<FaceId>& faces);
 
   // Checks every structure the engine holds; throws std::logic_error.
