@@ -5,14 +5,22 @@
 namespace penumbra {
 
 uint32_t ReceiverMeshBuilder::vertex(const Vec2& at, const VertexIrradiance& value) {
-  const Key key{location(at), value.irradiance.x, value.irradiance.y, value.irradiance.z, value.lightClass};
-  const auto [it, added] = index_.emplace(key, uint32_t(mesh_.positions.size()));
-  if (added) {
-    mesh_.positions.push_back(frame_.to3D(locations_[key.location]));
-    mesh_.irradiance.push_back(value.irradiance);
-    mesh_.classes.push_back(value.lightClass);
-  }
-  return it->second;
+  const uint32_t where = location(at);
+  // The same value bit for bit (== on each channel: +0 and -0 alike, NaN never) and class.
+  for (uint32_t id = firstVertexAt_[where]; id != kNone; id = nextVertexAt_[id - base_])
+    if (mesh_.irradiance[id].x == value.irradiance.x && mesh_.irradiance[id].y == value.irradiance.y &&
+        mesh_.irradiance[id].z == value.irradiance.z && mesh_.classes[id] == value.lightClass)
+      return id;
+  const uint32_t id = uint32_t(mesh_.positions.size());
+  mesh_.positions.push_back(frame_.to3D(locations_[where]));
+  mesh_.irradiance.push_back(value.irradiance);
+  mesh_.classes.push_back(value.lightClass);
+  // Appended at the chain's end, so earlier vertices are found first (any match is unique anyway).
+  nextVertexAt_.push_back(kNone);
+  uint32_t* link = &firstVertexAt_[where];
+  while (*link != kNone) link = &nextVertexAt_[*link - base_];
+  *link = id;
+  return id;
 }
 
 // Buckets of side 2·eps: a point merges with the first earlier one within eps.
@@ -28,12 +36,18 @@ uint32_t ReceiverMeshBuilder::location(const Vec2& at) {
     for (long dy = yFrom; dy <= yTo; ++dy) {
       const auto bucket = buckets_.find({x + dx, y + dy});
       if (bucket == buckets_.end()) continue;
-      for (uint32_t id : bucket->second)
+      for (uint32_t id = bucket->second.first; id != kNone; id = nextInBucket_[id])
         if (glm::length(locations_[id] - at) <= eps_) return id;
     }
   const uint32_t id = uint32_t(locations_.size());
   locations_.push_back(at);
-  buckets_[{x, y}].push_back(id);
+  nextInBucket_.push_back(kNone);
+  firstVertexAt_.push_back(kNone);
+  const auto [bucket, added] = buckets_.try_emplace({x, y}, Chain{id, id});
+  if (!added) {
+    nextInBucket_[bucket->second.last] = id;
+    bucket->second.last = id;
+  }
   return id;
 }
 

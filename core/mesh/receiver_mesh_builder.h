@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -20,31 +21,23 @@ class ReceiverMeshBuilder {
  public:
   // Appends to `mesh`; `mesh` and `frame` must outlive the builder.
   ReceiverMeshBuilder(ReceiverMesh& mesh, const PlaneFrame& frame, double eps)
-      : mesh_(mesh), frame_(frame), eps_(eps) {}
+      : mesh_(mesh), frame_(frame), eps_(eps), base_(uint32_t(mesh.positions.size())) {}
 
   // The id of the output vertex at `at` with `value`, added to the mesh on first sight.
   uint32_t vertex(const Vec2& at, const VertexIrradiance& value);
 
  private:
-  struct Key {
-    uint32_t location;
-    double r, g, b;
-    LightClass lightClass;
-    bool operator==(const Key& o) const {
-      return location == o.location && r == o.r && g == o.g && b == o.b && lightClass == o.lightClass;
-    }
-  };
-  // Hashes agree with ==: +0 and -0 hash alike.
-  static size_t mix(size_t seed, size_t value) { return seed ^ (value + 0x9e3779b97f4a7c15ull + (seed << 6) + (seed >> 2)); }
-  static size_t bits(double x) { return std::hash<double>{}(x == 0 ? 0.0 : x); }
-  struct KeyHash {
-    size_t operator()(const Key& k) const {
-      return mix(mix(mix(mix(k.location, bits(k.r)), bits(k.g)), bits(k.b)), size_t(k.lightClass));
-    }
-  };
   struct BucketHash {
-    size_t operator()(const std::pair<long, long>& b) const { return mix(std::hash<long>{}(b.first), std::hash<long>{}(b.second)); }
+    size_t operator()(const std::pair<long, long>& b) const {
+      const size_t h = std::hash<long>{}(b.first);
+      return h ^ (std::hash<long>{}(b.second) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2));
+    }
   };
+  // The locations of a bucket, in order of appearance: a chain through nextInBucket_.
+  struct Chain {
+    uint32_t first, last;
+  };
+  static constexpr uint32_t kNone = 0xffffffffu;
 
   // Buckets of side 2·eps: a point merges with the first earlier one within eps.
   uint32_t location(const Vec2& at);
@@ -52,10 +45,13 @@ class ReceiverMeshBuilder {
   ReceiverMesh& mesh_;
   const PlaneFrame& frame_;
   double eps_;
+  uint32_t base_;  // the mesh's vertex count before this builder
   std::vector<Vec2> locations_;
-  std::unordered_map<std::pair<long, long>, std::vector<uint32_t>, BucketHash> buckets_;
-  std::unordered_map<Key, uint32_t, KeyHash> index_;
+  std::vector<uint32_t> nextInBucket_;  // per location
+  std::unordered_map<std::pair<long, long>, Chain, BucketHash> buckets_;
+  // Per location, its first output vertex; per output vertex (from base_), the next one at its
+  // location.
+  std::vector<uint32_t> firstVertexAt_, nextVertexAt_;
 };
-
 
 }  // namespace penumbra
