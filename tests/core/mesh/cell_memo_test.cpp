@@ -20,7 +20,9 @@ CellMemo::Output randomOutput(std::mt19937_64& rng) {
                               int64_t(1) << 40, -(int64_t(1) << 33)};
   const int pieces = 1 + small(rng);
   for (int p = 0; p < pieces; ++p) {
-    const MeshChunkKey chunk{extremes[small(rng)] + small(rng), extremes[small(rng)] - small(rng)};
+    // Offsets wrap around (in unsigned arithmetic, defined) past the extremes.
+    const MeshChunkKey chunk{int64_t(uint64_t(extremes[small(rng)]) + uint64_t(small(rng))),
+                             int64_t(uint64_t(extremes[small(rng)]) - uint64_t(small(rng)))};
     const int points = 3 + small(rng);
     const uint32_t first = uint32_t(out.points.size());
     for (int k = 0; k < points; ++k) {
