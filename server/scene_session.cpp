@@ -28,12 +28,6 @@ std::vector<MeshPart> partsOf(const Scene& scene, const Engine::ReceiverChunks& 
   return out;
 }
 
-std::vector<FaceId> receiverFaces(const Engine& engine) {
-  std::vector<FaceId> faces;
-  for (const Engine::Receiver& r : engine.receivers()) faces.push_back(r.face);
-  return faces;
-}
-
 }  // namespace
 
 SceneSession::SceneSession(std::string id, std::string name, Scene scene, EngineSettings settings)
@@ -47,7 +41,7 @@ SceneSession::SceneSession(std::string id, std::string name, Scene scene, Engine
   first->version = engine_->version();
   first->buildStats = engine_->stats();
   first->scene = engine_->scene();
-  for (const Engine::ReceiverChunks& r : engine_->meshChunks(receiverFaces(*engine_))) {
+  for (const Engine::ReceiverChunks& r : engine_->meshChunks(engine_->receiverFaces())) {
     std::vector<MeshPart> parts = partsOf(first->scene, r, first->version);
     first->parts.insert(first->parts.end(), parts.begin(), parts.end());
   }
@@ -203,7 +197,7 @@ void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames) {
   next->version = last.version;
   next->buildStats = start->buildStats;
   next->scene = engine_->scene();
-  for (const Engine::ReceiverChunks& r : engine_->meshChunks(receiverFaces(*engine_)))
+  for (const Engine::ReceiverChunks& r : engine_->meshChunks(engine_->receiverFaces()))
     for (MeshPart& part : partsOf(next->scene, r, 0)) {
       const auto it = versions.find(part.key);
       if (it == versions.end())

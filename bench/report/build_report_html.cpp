@@ -135,6 +135,7 @@ std::string memoryTable(const json& result, const std::vector<SceneRows>& scenes
   std::vector<std::string> columns{"N (sparse/dense)", "faces"};
   for (const json& t : result["threads"]) columns.push_back("peak MiB, " + threadsName(t));
   columns.push_back("kB per face");
+  columns.push_back("peak MiB with a flat mesh copy, " + threadsName(result["threads"].front()));
   columns.push_back("vertices");
   columns.push_back("mesh vertices");
   std::string out = "<table class='memory'>\n" + headerRow(columns);
@@ -145,6 +146,7 @@ std::string memoryTable(const json& result, const std::vector<SceneRows>& scenes
     for (const json* row : s.byThreads)
       out += cell(row ? fixed(row->at("peak_memory_mib").get<double>(), 0) : "failed");
     out += cell(base ? fixed(base->at("kb_per_face").get<double>(), 1) : "–") +
+           cell(base ? fixed(base->value("peak_with_flat_mesh_mib", NAN), 0) : "–") +
            cell(std::to_string(s.first->at("vertices").get<size_t>())) +
            cell(std::to_string(s.first->at("mesh_vertices").get<size_t>())) + "</tr>\n";
   }

@@ -440,6 +440,12 @@ Mesh Engine::mesh(const EngineProgress& progress) {
   return out;
 }
 
+std::vector<FaceId> Engine::receiverFaces() const {
+  std::vector<FaceId> faces;
+  for (const Receiver& r : receivers_) faces.push_back(r.face);
+  return faces;
+}
+
 std::vector<size_t> Engine::receiverIndices(const std::vector<FaceId>& only) const {
   std::vector<size_t> indices;
   for (FaceId face : only)
@@ -501,6 +507,15 @@ ReceiverMesh Engine::memoMesh(const Receiver& receiver) const {
   ReceiverMesh result;
   result.face = receiver.face;
   result.normal = receiver.frame.normal;
+  size_t vertices = 0, triangles = 0;  // reserved at once: growth would leave up to half spare
+  for (const auto& [key, chunk] : memo.chunks()) {
+    vertices += chunk->positions.size();
+    triangles += chunk->triangles.size();
+  }
+  result.positions.reserve(vertices);
+  result.irradiance.reserve(vertices);
+  result.classes.reserve(vertices);
+  result.triangles.reserve(triangles);
   for (const auto& [key, chunk] : memo.chunks()) appendMesh(result, *chunk);
   return result;
 }

@@ -137,6 +137,7 @@ class Engine {
     std::vector<Vec2> litAt;
   };
   const std::vector<Receiver>& receivers() const { return receivers_; }
+  std::vector<FaceId> receiverFaces() const;  // the receivers' faces, in receivers() order
   const Receiver* receiver(FaceId face) const;
   // The receivers a face has cast a shadow on (paper §3.1: removal starts there).
   const std::set<FaceId>& castOn(FaceId occluder) const;

@@ -170,11 +170,8 @@ void CellLighter::emit(CellId c, CellMemo& out) {
     output_.points.push_back(CellMemo::kOwnValue | uint32_t(output_.ownValues.size()));
     output_.ownValues.push_back({q, value});
   };
-  std::vector<uint32_t> pieceCorners;
   for (const Polygon2& piece : splitByLattice(polygon, spacing_, eps_)) {
-    pieceCorners.clear();
     for (const Vec2& q : piece) {
-      pieceCorners.push_back(uint32_t(output_.points.size()));
       // A corner whose value is its vertex's own is kept as the vertex (see CellMemo).
       const size_t corner = size_t(std::find(polygon.begin(), polygon.end(), q) - polygon.begin());
       const bool byVertex = corner < polygon.size() && !inputs_.cornerFromCell[corner] &&
@@ -184,15 +181,13 @@ void CellLighter::emit(CellId c, CellMemo& out) {
       else
         addOwn(q, valueAt(q, list, centre));
     }
-    const CellTriangulation triangulation = triangulateConvexCell(piece, eps_);
-    if (triangulation.usesCentre) {
+    // The fan's indices are the piece's points in order: its loop, then the centre if used.
+    const CellFan fan = fanOfConvexCell(piece, eps_);
+    if (fan.usesCentre()) {
       const Vec2 middle = centroid(piece);
-      pieceCorners.push_back(uint32_t(output_.points.size()));
       addOwn(middle, illuminatePoint(scene_, source_.frame.to3D(middle), source_.frame.normal, {&list}));
     }
-    for (const auto& t : triangulation.triangles)
-      output_.triangles.push_back({pieceCorners[t[0]], pieceCorners[t[1]], pieceCorners[t[2]]});
-    output_.pieces.push_back({chunkOf(piece), uint32_t(output_.points.size()), uint32_t(output_.triangles.size())});
+    output_.pieces.push_back({chunkOf(piece), uint32_t(output_.points.size()), fan});
   }
   out = CellMemo(fingerprint_, output_);
 }

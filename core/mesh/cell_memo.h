@@ -1,15 +1,16 @@
 // What one DM-tree cell handed the display mesh, kept between mesh calls: its pieces (lattice
-// squares' parts of the cell) with their chunks, points and triangles, packed into one array of
+// squares' parts of the cell) with their chunks, points and fans, packed into one array of
 // exact size, and a fingerprint of the inputs they came from. Plain value.
 #pragma once
 
 #include <array>
 #include <cstdint>
-#include <utility>
+#include <memory>
 #include <vector>
 
 #include "core/geom/vec.h"
 #include "core/illum/vertex_illumination.h"
+#include "core/mesh/cell_triangulation.h"
 
 namespace penumbra {
 
@@ -28,46 +29,58 @@ struct MeshChunkKey {
 // vertex's lights summed without those the cell is in umbra of, is kept as the VertexId; its
 // position and value are read back from the MeshSource when a chunk is assembled (an unchanged
 // fingerprint means both are the same bits). Only points with a value of their own (lattice
-// points, contact corners, centres) keep a copy: 4 bytes a point instead of 56 for most.
+// points, contact corners, centres) keep a copy: 4 bytes a point instead of 56 for most. A
+// piece's triangles are one fan (CellFan), kept as one word. The object is two words: millions
+// of cells each hold one.
 class CellMemo {
  public:
   // A point word with kOwnValue set indexes the own values; otherwise it is a VertexId's index,
   // with kDarkCorner set when the value leaves out the cell's dark lights (darkLights).
   static constexpr uint32_t kOwnValue = 0x80000000u, kDarkCorner = 0x40000000u;
   static constexpr uint32_t kIndexMask = 0x3fffffffu;
-  // A lattice square's part of the cell: its chunk, and where its points and triangles end.
+  // A point's own copy: where it is and its value.
+  struct OwnValue {
+    Vec2 at{0.0};
+    VertexIrradiance value;
+  };
+  // A lattice square's part of the cell: its chunk, where its points end, and its fan over
+  // them (the loop, then the centre point if the fan uses one).
   struct Piece {
     MeshChunkKey chunk;
-    uint32_t pointsEnd = 0, trianglesEnd = 0;
+    uint32_t pointsEnd = 0;
+    CellFan fan;
   };
   // A cell's output as it is emitted, before packing.
   struct Output {
     std::vector<Piece> pieces;
-    std::vector<uint32_t> points;                    // builder calls in order, one word each
-    std::vector<std::array<uint32_t, 3>> triangles;  // into points
-    std::vector<std::pair<Vec2, VertexIrradiance>> ownValues;
+    std::vector<uint32_t> points;  // builder calls in order, one word each
+    std::vector<OwnValue> ownValues;
     void clear();
   };
 
   CellMemo() = default;  // not valid: nothing emitted yet
   CellMemo(uint64_t inputs, const Output& output);
+  CellMemo(const CellMemo& other);
+  CellMemo& operator=(const CellMemo& other);
+  CellMemo(CellMemo&&) noexcept = default;
+  CellMemo& operator=(CellMemo&&) noexcept = default;
 
-  bool valid() const { return valid_; }
+  bool valid() const { return words_ != nullptr; }
   uint64_t inputs() const { return inputs_; }
-  size_t pieceCount() const { return words_.empty() ? 0 : words_[0]; }
+  size_t pieceCount() const { return valid() ? words_[0] : 0; }
   Piece piece(size_t i) const;
   size_t pointCount() const;
-  uint32_t point(size_t e) const { return words_[1 + kPieceWords * pieceCount() + e]; }
-  std::array<uint32_t, 3> triangle(size_t t) const;
-  const std::pair<Vec2, VertexIrradiance>& ownValue(uint32_t i) const { return ownValues_[i]; }
+  uint32_t point(size_t e) const { return words_[kHeaderWords + kPieceWords * pieceCount() + e]; }
+  OwnValue ownValue(uint32_t i) const;
 
  private:
-  static constexpr size_t kPieceWords = 6;  // chunk x and y (two words each), the two ends
+  static constexpr size_t kHeaderWords = 2;  // piece count, own value count
+  static constexpr size_t kPieceWords = 6;   // chunk x and y (two words each), points end, fan
+  static constexpr size_t kOwnValueWords = sizeof(OwnValue) / sizeof(uint32_t);
+  size_t wordCount() const;
   uint64_t inputs_ = 0;
-  bool valid_ = false;
-  // [piece count] [pieces] [points] [triangles, three words each]
-  std::vector<uint32_t> words_;
-  std::vector<std::pair<Vec2, VertexIrradiance>> ownValues_;
+  // [piece count] [own value count] [pieces] [points] [own values, copied bytes]; null: not valid
+  std::unique_ptr<uint32_t[]> words_;
 };
 
 }  // namespace penumbra

@@ -1,25 +1,31 @@
 // Triangulating one convex DM-tree cell whose boundary may hold collinear
 // vertices (T-junction-free meshes put neighbours' vertices on straight sides).
-// Pure function; thread-safe.
+// Pure functions; thread-safe.
 #pragma once
 
 #include <array>
 #include <cstdint>
-#include <vector>
 
 #include "core/geom/convex2d.h"
 
 namespace penumbra {
 
-struct CellTriangulation {
-  // Indices into the loop; index loop.size() means the added centre point.
-  std::vector<std::array<uint32_t, 3>> triangles;
-  bool usesCentre = false;  // a centre vertex (the loop's vertex average) was needed
+// A cell's triangles as one fan, so a word describes them all (the mesh memo keeps it
+// instead of the triangles): from a loop corner, or from an added centre point.
+struct CellFan {
+  static constexpr uint32_t kCentre = 0xffffffffu;
+  uint32_t apex = 0;  // the loop index of the fan's corner, or kCentre
+  bool usesCentre() const { return apex == kCentre; }
+  // The triangle count for a loop of n vertices (none below three).
+  uint32_t triangleCount(uint32_t n) const;
+  // Triangle k (< triangleCount(n)) as loop indices, counter-clockwise like the loop;
+  // index n is the centre point.
+  std::array<uint32_t, 3> triangle(uint32_t n, uint32_t k) const;
 };
 
 // A fan from a strictly convex corner whose two sides hold no other loop vertex
-// (no zero-area triangles); if every corner has such a side, a fan from the centre.
-// Triangles are counter-clockwise like the loop.
-CellTriangulation triangulateConvexCell(const Polygon2& loop, double eps);
+// (no zero-area triangles); if every corner has such a side, a fan from the centre
+// (the loop's vertex average).
+CellFan fanOfConvexCell(const Polygon2& loop, double eps);
 
 }  // namespace penumbra

@@ -159,10 +159,8 @@ TEST(MeshDelta, PartDeltasAppliedToTheWholeMeshEqualAFreshEnginesChunks) {
     for (const MeshPart& part : s.parts) floorHeld += part.key.receiver.object == "floor";
 
     reference.forgetMeshMemo();
-    std::vector<FaceId> faces;
-    for (const Engine::Receiver& r : reference.receivers()) faces.push_back(r.face);
     std::map<PartKey, Content> want;
-    for (const Engine::ReceiverChunks& r : reference.meshChunks(faces))
+    for (const Engine::ReceiverChunks& r : reference.meshChunks(reference.receiverFaces()))
       for (const Engine::MeshChunk& chunk : r.chunks)
         want[{{reference.scene().object(r.face.object).id, r.face.face}, chunk.key.x, chunk.key.y}] =
             contentOf(*chunk.mesh);

@@ -1,4 +1,4 @@
-// CellMemo packs a cell's pieces, points and triangles into one array: seeded random outputs
+// CellMemo packs a cell's pieces, points, fans and own values into one array: seeded random outputs
 // (chunk keys of any sign and size, own values, several pieces) read back exactly. And
 // PerLightValues keeps its rows through resizes.
 #include <gtest/gtest.h>
@@ -9,6 +9,7 @@
 
 #include "core/illum/per_light_values.h"
 #include "core/mesh/cell_memo.h"
+#include "core/mesh/cell_triangulation.h"
 
 namespace penumbra {
 namespace {
@@ -24,7 +25,6 @@ CellMemo::Output randomOutput(std::mt19937_64& rng) {
     const MeshChunkKey chunk{int64_t(uint64_t(extremes[small(rng)]) + uint64_t(small(rng))),
                              int64_t(uint64_t(extremes[small(rng)]) - uint64_t(small(rng)))};
     const int points = 3 + small(rng);
-    const uint32_t first = uint32_t(out.points.size());
     for (int k = 0; k < points; ++k) {
       if (rng() % 3 == 0) {
         out.points.push_back(CellMemo::kOwnValue | uint32_t(out.ownValues.size()));
@@ -36,8 +36,8 @@ CellMemo::Output randomOutput(std::mt19937_64& rng) {
         out.points.push_back(uint32_t(rng() & CellMemo::kIndexMask) | (rng() % 2 ? CellMemo::kDarkCorner : 0));
       }
     }
-    for (int t = 0; t + 2 < points; ++t) out.triangles.push_back({first, first + uint32_t(t) + 1, first + uint32_t(t) + 2});
-    out.pieces.push_back({chunk, uint32_t(out.points.size()), uint32_t(out.triangles.size())});
+    const CellFan fan{rng() % 2 ? CellFan::kCentre : uint32_t(rng() % uint32_t(points))};
+    out.pieces.push_back({chunk, uint32_t(out.points.size()), fan});
   }
   return out;
 }
@@ -55,15 +55,18 @@ TEST(CellMemo, PackedOutputReadsBackExactly) {
     for (size_t i = 0; i < out.pieces.size(); ++i) {
       EXPECT_EQ(memo.piece(i).chunk, out.pieces[i].chunk);
       EXPECT_EQ(memo.piece(i).pointsEnd, out.pieces[i].pointsEnd);
-      EXPECT_EQ(memo.piece(i).trianglesEnd, out.pieces[i].trianglesEnd);
+      EXPECT_EQ(memo.piece(i).fan.apex, out.pieces[i].fan.apex);
     }
     ASSERT_EQ(memo.pointCount(), out.points.size());
     for (size_t e = 0; e < out.points.size(); ++e) EXPECT_EQ(memo.point(e), out.points[e]);
-    for (size_t t = 0; t < out.triangles.size(); ++t) EXPECT_EQ(memo.triangle(t), out.triangles[t]);
     for (uint32_t k = 0; k < out.ownValues.size(); ++k) {
-      EXPECT_EQ(memo.ownValue(k).first, out.ownValues[k].first);
-      EXPECT_TRUE(identicalValue(memo.ownValue(k).second, out.ownValues[k].second));
+      EXPECT_EQ(memo.ownValue(k).at, out.ownValues[k].at);
+      EXPECT_TRUE(identicalValue(memo.ownValue(k).value, out.ownValues[k].value));
     }
+    const CellMemo copy = memo;  // a copy holds the same words
+    ASSERT_EQ(copy.pointCount(), memo.pointCount());
+    for (size_t e = 0; e < out.points.size(); ++e) EXPECT_EQ(copy.point(e), memo.point(e));
+    for (uint32_t k = 0; k < out.ownValues.size(); ++k) EXPECT_EQ(copy.ownValue(k).at, memo.ownValue(k).at);
     if (HasFailure()) return;
   }
 }
@@ -73,6 +76,33 @@ TEST(CellMemo, DefaultIsInvalidAndEmpty) {
   EXPECT_FALSE(memo.valid());
   EXPECT_EQ(memo.pieceCount(), 0u);
   EXPECT_EQ(memo.pointCount(), 0u);
+}
+
+// A fan's triangles cover the loop once, counter-clockwise, with no repeated vertex.
+TEST(CellFan, TrianglesCoverTheLoop) {
+  const Polygon2 square = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const CellFan corner = fanOfConvexCell(square, 1e-9);
+  ASSERT_FALSE(corner.usesCentre());
+  ASSERT_EQ(corner.triangleCount(4), 2u);
+  // A side's midpoint makes its ends unusable as apexes; with every side split, only the centre.
+  const Polygon2 split = {{0, 0}, {0.5, 0}, {1, 0}, {1, 0.5}, {1, 1}, {0.5, 1}, {0, 1}, {0, 0.5}};
+  const CellFan centre = fanOfConvexCell(split, 1e-9);
+  ASSERT_TRUE(centre.usesCentre());
+  ASSERT_EQ(centre.triangleCount(8), 8u);
+  for (const auto& [loop, fan] : {std::pair{square, corner}, std::pair{split, centre}}) {
+    const uint32_t n = uint32_t(loop.size());
+    double area = 0;
+    for (uint32_t t = 0; t < fan.triangleCount(n); ++t) {
+      const auto tri = fan.triangle(n, t);
+      const auto at = [&](uint32_t i) { return i == n ? areaCentroid(loop) : loop[i]; };
+      const Vec2 a = at(tri[0]), b = at(tri[1]), c = at(tri[2]);
+      const double twice = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+      EXPECT_GT(twice, 0) << "triangle " << t << " is not counter-clockwise";
+      area += twice / 2;
+    }
+    EXPECT_NEAR(area, 1.0, 1e-12);
+  }
+  EXPECT_EQ(CellFan{}.triangleCount(2), 0u);  // no triangles below three vertices
 }
 
 TEST(PerLightValues, RowsSurviveResizes) {
