@@ -89,7 +89,8 @@ TEST(CellFan, TrianglesCoverTheLoop) {
   const CellFan centre = fanOfConvexCell(split, 1e-9);
   ASSERT_TRUE(centre.usesCentre());
   ASSERT_EQ(centre.triangleCount(8), 8u);
-  for (const auto& [loop, fan] : {std::pair{square, corner}, std::pair{split, centre}}) {
+  for (const auto& [polygon, fan] : {std::pair{square, corner}, std::pair{split, centre}}) {
+    const Polygon2& loop = polygon;  // a lambda below reads it (clang does not capture bindings)
     const uint32_t n = uint32_t(loop.size());
     double area = 0;
     for (uint32_t t = 0; t < fan.triangleCount(n); ++t) {
