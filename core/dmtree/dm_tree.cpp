@@ -119,7 +119,7 @@ void DmTree::validate() const {
   // Every mesh edge is the receiver's boundary or made by a live internal node.
   for (uint32_t i = 0; i < mesh_.halfEdgeSlots(); ++i) {
     const HalfEdgeMesh::HalfEdge& h = mesh_.halfEdge(HalfEdgeId(i));
-    if (!h.alive || !h.node.is_valid()) continue;
+    if (!h.alive() || !h.node.is_valid()) continue;
     if (!node(h.node).alive || node(h.node).isLeaf()) fail("edge made by a dead or leaf node");
     const DmNode& n = node(h.node);
     for (VertexId v : {h.origin, mesh_.destination(HalfEdgeId(i))})

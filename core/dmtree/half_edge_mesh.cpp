@@ -1,5 +1,6 @@
 #include "core/dmtree/half_edge_mesh.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <stdexcept>
@@ -56,12 +57,10 @@ CellId HalfEdgeMesh::reset(const Polygon2& receiver, double eps) {
     HalfEdge& in = halfEdges_[2 * i];
     in.origin = VertexId(static_cast<uint32_t>(i));
     in.next = HalfEdgeId(static_cast<uint32_t>(2 * next));
-    in.prev = HalfEdgeId(static_cast<uint32_t>(2 * prev));
     in.cell = c;
     HalfEdge& out = halfEdges_[2 * i + 1];
     out.origin = VertexId(static_cast<uint32_t>(next));
     out.next = HalfEdgeId(static_cast<uint32_t>(2 * prev + 1));
-    out.prev = HalfEdgeId(static_cast<uint32_t>(2 * next + 1));
     vertices_[i].out = HalfEdgeId(static_cast<uint32_t>(2 * i));
   }
   cells_[0].edge = HalfEdgeId(0);
@@ -93,6 +92,15 @@ Polygon2 HalfEdgeMesh::polygon(CellId c) const {
   return out;
 }
 
+HalfEdgeId HalfEdgeMesh::prev(HalfEdgeId h) const {
+  HalfEdgeId in = twin(h);  // ends at h's origin
+  for (size_t steps = 0; halfEdge(in).next != h; ++steps) {
+    in = twin(halfEdge(in).next);  // the next one ending there, counter-clockwise
+    if (steps > halfEdges_.size()) throw std::logic_error("DM-tree: vertex star does not close");
+  }
+  return in;
+}
+
 std::vector<CellId> HalfEdgeMesh::cellsAround(VertexId v) const {
   std::vector<CellId> out;
   out.reserve(8);  // most vertices touch 2 to 6 cells
@@ -101,9 +109,11 @@ std::vector<CellId> HalfEdgeMesh::cellsAround(VertexId v) const {
   size_t steps = 0;
   do {
     if (halfEdge(h).cell.is_valid()) out.push_back(halfEdge(h).cell);
-    h = twin(halfEdge(h).prev);  // next half-edge leaving v, clockwise
+    h = halfEdge(twin(h)).next;  // next half-edge leaving v, counter-clockwise
     if (++steps > halfEdges_.size()) throw std::logic_error("DM-tree: vertex star does not close");
   } while (h != start);
+  // Clockwise from start's cell, as callers always had them (illumination reads front()).
+  std::reverse(out.begin() + (halfEdge(start).cell.is_valid() ? 1 : 0), out.end());
   return out;
 }
 
@@ -176,27 +186,22 @@ HalfEdgeMesh::CutPlan HalfEdgeMesh::planCut(CellId c, const Line2& line, double 
 VertexId HalfEdgeMesh::splitEdge(HalfEdgeId h, const Vec2& p) {
   const HalfEdgeId t = twin(h);
   const VertexId b = halfEdge(t).origin;
+  const HalfEdgeId hn = halfEdge(h).next, tp = prev(t);
   const VertexId v = addVertex(p);
   const HalfEdgeId n = addEdgePair();
   const HalfEdgeId nt = twin(n);
-  const HalfEdgeId hn = halfEdges_[h.index].next;
-  const HalfEdgeId tp = halfEdges_[t.index].prev;
   HalfEdge& hN = halfEdges_[n.index];
   hN.origin = v;
   hN.cell = halfEdges_[h.index].cell;
   hN.node = halfEdges_[h.index].node;
-  hN.prev = h;
   hN.next = hn;
   HalfEdge& hNT = halfEdges_[nt.index];
   hNT.origin = b;
   hNT.cell = halfEdges_[t.index].cell;
   hNT.node = halfEdges_[t.index].node;
-  hNT.prev = tp;
   hNT.next = t;
   halfEdges_[h.index].next = n;
-  halfEdges_[hn.index].prev = n;
   halfEdges_[tp.index].next = nt;
-  halfEdges_[t.index].prev = nt;
   halfEdges_[t.index].origin = v;
   vertices_[v.index].out = n;
   if (vertices_[b.index].out == t) vertices_[b.index].out = nt;
@@ -216,7 +221,7 @@ HalfEdgeMesh::CutResult HalfEdgeMesh::applyCut(const CutPlan& plan, NodeId node)
   const HalfEdgeId hu = end(plan.entry);
   const HalfEdgeId hw = end(plan.exit);
   const VertexId u = halfEdge(hu).origin, w = halfEdge(hw).origin;
-  const HalfEdgeId pu = halfEdge(hu).prev, pw = halfEdge(hw).prev;
+  const HalfEdgeId pu = prev(hu), pw = prev(hw);
   const HalfEdgeId e = addEdgePair(), et = twin(e);
   halfEdges_[e.index].origin = u;
   halfEdges_[e.index].node = node;
@@ -224,13 +229,9 @@ HalfEdgeMesh::CutResult HalfEdgeMesh::applyCut(const CutPlan& plan, NodeId node)
   halfEdges_[et.index].node = node;
   // Front loop: u … w then w→u; back loop: w … u then u→w.
   halfEdges_[pw.index].next = et;
-  halfEdges_[et.index].prev = pw;
   halfEdges_[et.index].next = hu;
-  halfEdges_[hu.index].prev = et;
   halfEdges_[pu.index].next = e;
-  halfEdges_[e.index].prev = pu;
   halfEdges_[e.index].next = hw;
-  halfEdges_[hw.index].prev = e;
 
   const CellId front = plan.cell;
   cells_.push_back(Cell{e, NodeId(), cells_[front.index].occluders, true});
@@ -249,7 +250,7 @@ HalfEdgeMesh::CutResult HalfEdgeMesh::applyCut(const CutPlan& plan, NodeId node)
 
 bool HalfEdgeMesh::dissolvable(VertexId v, double eps) const {
   const HalfEdgeId e2 = vertex(v).out;
-  const HalfEdgeId e1 = halfEdge(e2).prev;
+  const HalfEdgeId e1 = prev(e2);
   const HalfEdgeId t1 = twin(e1), t2 = twin(e2);
   if (halfEdge(t2).next != t1) return false;  // more than two edges at v
   if (halfEdge(e1).node != halfEdge(e2).node) return false;
@@ -271,21 +272,19 @@ bool HalfEdgeMesh::dissolvable(VertexId v, double eps) const {
 
 void HalfEdgeMesh::dissolveVertex(VertexId v) {
   const HalfEdgeId e2 = vertex(v).out;
-  const HalfEdgeId e1 = halfEdge(e2).prev;
+  const HalfEdgeId e1 = prev(e2);
   const HalfEdgeId t1 = twin(e1), t2 = twin(e2);
   const VertexId b = destination(e2);
-  const HalfEdgeId e2n = halfEdge(e2).next, t2p = halfEdge(t2).prev;
+  const HalfEdgeId e2n = halfEdge(e2).next, t2p = prev(t2);
   halfEdges_[e1.index].next = e2n;
-  halfEdges_[e2n.index].prev = e1;
   halfEdges_[t1.index].origin = b;
-  halfEdges_[t1.index].prev = t2p;
   halfEdges_[t2p.index].next = t1;
   if (vertices_[b.index].out == t2) vertices_[b.index].out = t1;
   for (auto [dead, keep] : {std::pair{e2, e1}, std::pair{t2, t1}}) {
     const CellId c = halfEdge(dead).cell;
     if (c.is_valid()) touch(c);
     if (c.is_valid() && cells_[c.index].edge == dead) cells_[c.index].edge = keep;
-    halfEdges_[dead.index].alive = false;
+    kill(dead);
   }
   liveHalfEdges_ -= 2;
   vertices_[v.index].alive = false;
@@ -308,15 +307,13 @@ std::vector<VertexId> HalfEdgeMesh::mergeCells(CellId keep, CellId drop, double 
 
   const HalfEdgeId h1 = chain.front(), hk = chain.back();
   const HalfEdgeId t1 = twin(h1), tk = twin(hk);
-  const HalfEdgeId p = halfEdge(h1).prev, q = halfEdge(hk).next;
-  const HalfEdgeId pp = halfEdge(tk).prev, qq = halfEdge(t1).next;
+  const HalfEdgeId p = prev(h1), q = halfEdge(hk).next;
+  const HalfEdgeId pp = prev(tk), qq = halfEdge(t1).next;
   const VertexId u = halfEdge(h1).origin, w = halfEdge(q).origin;
   for (HalfEdgeId h : loop(drop))
     if (halfEdge(twin(h)).cell != keep) halfEdges_[h.index].cell = keep;
   halfEdges_[p.index].next = qq;
-  halfEdges_[qq.index].prev = p;
   halfEdges_[pp.index].next = q;
-  halfEdges_[q.index].prev = pp;
   std::vector<VertexId> removed;
   for (size_t i = 0; i < chain.size(); ++i) {
     if (i > 0) {
@@ -325,12 +322,12 @@ std::vector<VertexId> HalfEdgeMesh::mergeCells(CellId keep, CellId drop, double 
       --liveVertices_;
       removed.push_back(inner);
     }
-    halfEdges_[chain[i].index].alive = false;
-    halfEdges_[twin(chain[i]).index].alive = false;
+    kill(chain[i]);
+    kill(twin(chain[i]));
     liveHalfEdges_ -= 2;
   }
-  if (!halfEdge(vertex(u).out).alive) vertices_[u.index].out = qq;
-  if (!halfEdge(vertex(w).out).alive) vertices_[w.index].out = q;
+  if (!halfEdge(vertex(u).out).alive()) vertices_[u.index].out = qq;
+  if (!halfEdge(vertex(w).out).alive()) vertices_[w.index].out = q;
   cells_[keep.index].edge = p;
   cells_[drop.index].alive = false;
   touch(keep);
@@ -347,17 +344,18 @@ std::vector<VertexId> HalfEdgeMesh::mergeCells(CellId keep, CellId drop, double 
 void HalfEdgeMesh::validate(double eps, double receiverArea) const {
   auto fail = [](const std::string& what) { throw std::logic_error("DM-tree mesh: " + what); };
   size_t liveH = 0, liveV = 0, liveC = 0;
+  // Each live half-edge must be the next of at most one (so, counting, of exactly one):
+  // then prev() is well defined and every turn around a vertex closes.
+  std::vector<char> isNext(halfEdges_.size(), 0);
   for (uint32_t i = 0; i < halfEdges_.size(); ++i) {
     const HalfEdge& h = halfEdges_[i];
-    if (!h.alive) continue;
+    if (!h.alive()) continue;
     ++liveH;
     const HalfEdgeId id(i);
     const HalfEdge& t = halfEdge(twin(id));
-    if (!t.alive) fail("half-edge " + std::to_string(i) + " has a dead twin");
-    if (!h.next.is_valid() || !h.prev.is_valid() || !halfEdge(h.next).alive || !halfEdge(h.prev).alive)
-      fail("half-edge " + std::to_string(i) + " has a dead neighbour");
-    if (halfEdge(h.next).prev != id || halfEdge(h.prev).next != id)
-      fail("next/prev mismatch at half-edge " + std::to_string(i));
+    if (!t.alive()) fail("half-edge " + std::to_string(i) + " has a dead twin");
+    if (!halfEdge(h.next).alive()) fail("half-edge " + std::to_string(i) + " has a dead next");
+    if (isNext[h.next.index]++) fail("half-edge " + std::to_string(h.next.index) + " is the next of two");
     if (halfEdge(h.next).origin != t.origin) fail("next does not start where half-edge ends");
     if (halfEdge(h.next).cell != h.cell) fail("loop changes cell");
     if (!h.origin.is_valid() || !vertex(h.origin).alive) fail("half-edge from a dead vertex");
@@ -372,7 +370,7 @@ void HalfEdgeMesh::validate(double eps, double receiverArea) const {
     if (!vertices_[i].alive) continue;
     ++liveV;
     const HalfEdgeId out = vertices_[i].out;
-    if (!out.is_valid() || !halfEdge(out).alive || halfEdge(out).origin != VertexId(i))
+    if (!out.is_valid() || !halfEdge(out).alive() || halfEdge(out).origin != VertexId(i))
       fail("vertex " + std::to_string(i) + " has a bad out half-edge");
   }
   size_t inLoops = 0;
@@ -381,7 +379,7 @@ void HalfEdgeMesh::validate(double eps, double receiverArea) const {
     if (!cells_[i].alive) continue;
     ++liveC;
     const CellId c(i);
-    if (!halfEdge(cells_[i].edge).alive) fail("cell with a dead half-edge");
+    if (!halfEdge(cells_[i].edge).alive()) fail("cell with a dead half-edge");
     const std::vector<HalfEdgeId> edges = loop(c);
     inLoops += edges.size();
     for (HalfEdgeId h : edges)
@@ -398,7 +396,7 @@ void HalfEdgeMesh::validate(double eps, double receiverArea) const {
   }
   size_t outer = 0;
   for (const HalfEdge& h : halfEdges_)
-    if (h.alive && !h.cell.is_valid()) ++outer;
+    if (h.alive() && !h.cell.is_valid()) ++outer;
   if (inLoops + outer != liveH) fail("half-edges outside every loop");
   if (liveH != liveHalfEdges_ || liveV != liveVertices_ || liveC != liveCells_) fail("live counters drift");
   if (std::abs(total - receiverArea) > 1e-12 * receiverArea)

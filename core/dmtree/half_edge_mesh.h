@@ -29,13 +29,16 @@ class HalfEdgeMesh {
     HalfEdgeId out;  // one half-edge leaving the vertex
     bool alive = true;
   };
+  // 16 bytes: no prev (prev() finds it around the origin) and no alive flag (a dead
+  // half-edge is in no loop: its next is invalid). Meshes hold millions of them.
   struct HalfEdge {
     VertexId origin;
-    HalfEdgeId next, prev;
+    HalfEdgeId next;
     CellId cell;  // invalid: outside the receiver
     NodeId node;  // the tree node whose split created the edge; invalid: receiver boundary
-    bool alive = true;
+    bool alive() const { return next.is_valid(); }
   };
+  static_assert(sizeof(HalfEdge) == 16);
   struct Cell {
     HalfEdgeId edge;  // one half-edge of the loop
     NodeId leaf;      // the BSP leaf holding this cell
@@ -122,8 +125,12 @@ class HalfEdgeMesh {
 
  private:
   static uint64_t nextStamp();
+  // The half-edge before h in its loop, by a turn around h's origin: O(degree), not
+  // O(loop) (the receiver's outside loop can have thousands of edges).
+  HalfEdgeId prev(HalfEdgeId h) const;
+  void kill(HalfEdgeId h) { halfEdges_[h.index].next = HalfEdgeId(); }
   VertexId addVertex(const Vec2& p);
-  HalfEdgeId addEdgePair();
+  HalfEdgeId addEdgePair();  // counted live; alive() once the caller links its nexts
   VertexId splitEdge(HalfEdgeId h, const Vec2& p);
   void dissolveVertex(VertexId v);
   bool dissolvable(VertexId v, double eps) const;

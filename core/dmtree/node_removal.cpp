@@ -389,15 +389,17 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
   // Step 1 (counting): dangling edges are the other edges ending on e's edge.
   size_t dangling[2] = {0, 0};
   for (int side = 0; side < 2; ++side)
-    for (NodeId leaf : along[side])
-      for (HalfEdgeId h : mesh_.loop(node(leaf).cell)) {
-        if (mesh_.halfEdge(h).node != e) continue;
-        const VertexId v = mesh_.halfEdge(h).origin;
+    for (NodeId leaf : along[side]) {
+      const std::vector<HalfEdgeId> edges = mesh_.loop(node(leaf).cell);
+      for (size_t i = 0; i < edges.size(); ++i) {
+        if (mesh_.halfEdge(edges[i]).node != e) continue;
+        const VertexId v = mesh_.halfEdge(edges[i]).origin;
         const Vec2 x = mesh_.vertex(v).position;
         const double t = glm::dot(x, dir);
-        const NodeId other = mesh_.halfEdge(mesh_.halfEdge(h).prev).node;
+        const NodeId other = mesh_.halfEdge(edges[(i + edges.size() - 1) % edges.size()]).node;  // the edge before
         if (other != e && t > lo + eps && t < hi - eps) ++dangling[side];  // not at the edge's ends
       }
+    }
   // Live internal nodes per side (the removed occluder's own go anyway), counted on both
   // sides in turn and only until the choice is certain: the side to insert is usually
   // small, the other may be most of the tree.

@@ -132,7 +132,7 @@ inline void expectCovered(const DmTree& tree, const SingleShadow& s, bool cullin
       bool covered = false;
       for (uint32_t i = 0; i < mesh.halfEdgeSlots() && !covered; i += 2) {
         const HalfEdgeId h(i);
-        if (!mesh.halfEdge(h).alive) continue;
+        if (!mesh.halfEdge(h).alive()) continue;
         covered = pointSegmentDistance(p, mesh.vertex(mesh.halfEdge(h).origin).position,
                                        mesh.vertex(mesh.destination(h)).position) <= kTol.length();
       }
