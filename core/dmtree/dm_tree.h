@@ -171,8 +171,8 @@ class DmTree {
   // Where n's line crosses n's region, as positions along the line: from the cells
   // below n when they are few (they tile the region), else from regionOf(n).
   bool chordOf(NodeId n, double& lo, double& hi) const;
-  const SingleTreeNode* liveSegmentOn(NodeId n, double lo, double hi, const std::vector<OccluderKey>& keys,
-                                      OccluderKey* owner) const;
+  const KeptSegment* liveSegmentOn(NodeId n, double lo, double hi, const std::vector<OccluderKey>& keys,
+                                   OccluderKey* owner) const;
   void leavesAlong(NodeId n, const Vec2& p, const Vec2& q, std::vector<NodeId>& out) const;
   void deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result);
   struct SplitTree {
@@ -190,11 +190,11 @@ class DmTree {
   void rebuild();
 
   struct Inserted {
-    std::vector<SingleTreeNode> segments;  // every discontinuity it carries
-    Polygon2 penumbra;                      // as merged (short edges dropped)
-    SingleShadow shadow;                    // for the counted rebuild fallback
-    uint64_t sequence = 0;                  // insertion order
-    bool culled = false;                    // some cell it reaches was in its light's umbra
+    std::vector<KeptSegment> segments;  // every discontinuity it carries
+    Polygon2 penumbra;                  // as merged (short edges dropped)
+    SingleShadow shadow;                // for the counted rebuild fallback
+    uint64_t sequence = 0;              // insertion order
+    bool culled = false;                // some cell it reaches was in its light's umbra
     // Its umbra culls later shadows (SingleShadow::cullsBehind).
     bool culls() const { return shadow.cullsBehind && !shadow.umbra.empty(); }
   };

@@ -81,13 +81,13 @@ void filterDown(SingleTree& tree, int at, const Vec2& a, const Vec2& b, const Cr
 
 }  // namespace
 
-std::vector<SingleTreeNode> SingleTree::segments() const {
+std::vector<KeptSegment> SingleTree::segments() const {
   // Exact size: every inserted shadow keeps its segments as long as it stays in the tree.
-  std::vector<SingleTreeNode> out;
+  std::vector<KeptSegment> out;
   out.reserve(size_t(std::count_if(nodes.begin(), nodes.end(),
                                    [](const SingleTreeNode& n) { return n.region == Region::None; })));
   for (const SingleTreeNode& n : nodes)
-    if (n.region == Region::None) out.push_back(n);
+    if (n.region == Region::None) out.push_back({n.a, n.b, n.kind});
   return out;
 }
 

@@ -24,12 +24,21 @@ struct SingleTreeNode {
   int front = -1, back = -1;
 };
 
+// One discontinuity of a single tree as an inserted shadow keeps it: its ends and kind (node
+// removal asks whether another occluder's segment still lies on an edge). 40 bytes, not the
+// whole node's ~90: every inserted shadow keeps them as long as it stays in the tree.
+struct KeptSegment {
+  Vec2 a{0.0}, b{0.0};
+  SegmentKind kind = SegmentKind::Internal;
+};
+static_assert(sizeof(KeptSegment) == 40);
+
 struct SingleTree {
   std::vector<SingleTreeNode> nodes;
   int root = -1;  // -1: the shadow misses the receiver
   Polygon2 penumbra, umbra;  // the regions, short edges dropped
   // Every discontinuity the tree carries (region edges and internal segments).
-  std::vector<SingleTreeNode> segments() const;
+  std::vector<KeptSegment> segments() const;
 };
 
 SingleTree buildSingleTree(const SingleShadow& shadow, const Tolerance& tolerance);
