@@ -39,14 +39,17 @@ class HalfEdgeMesh {
     bool alive() const { return next.is_valid(); }
   };
   static_assert(sizeof(HalfEdge) == 16);
+  // 40 bytes: the alive flag shares the stamp's word.
   struct Cell {
     HalfEdgeId edge;  // one half-edge of the loop
     NodeId leaf;      // the BSP leaf holding this cell
     OccluderList occluders;
-    bool alive = true;
-    // When the cell last changed (loop, list, or death), on stampNow()'s clock.
-    uint64_t touched = 0;
+    bool alive : 1 = true;
+    // When the cell last changed (loop, list, or death), on stampNow()'s clock. 63 bits
+    // never wrap; 32 would within a few hundred large builds (5·10⁶ stamps each).
+    uint64_t touched : 63 = 0;
   };
+  static_assert(sizeof(Cell) == 40);
 
   // Where a line cuts a cell, planned before anything changes. side: +1/-1 if the
   // cell lies wholly in front/behind (within eps), 0 if it straddles: then the cut
