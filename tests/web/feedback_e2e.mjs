@@ -74,6 +74,11 @@ async function disconnect(args, page, server, url) {
   await page.waitForFunction((s) => eval(s), shown('connection'), { timeout: 15000 }).catch(() => {});
   const lost = await page.evaluate(() => ({ text: document.getElementById('connection').textContent, state: window.penumbra.state().connection }));
   check(/Server disconnected — reconnecting/.test(lost.text) && lost.state === 'reconnecting', 'a stopped server shows "disconnected — reconnecting"', JSON.stringify(lost));
+  // A request the server cannot answer still reaches the banner (only leaving the page drops one).
+  await page.click('#rebuild');
+  const failed = await page.waitForFunction(() => window.penumbra.state().errors.some((e) => /network_error/.test(e)), null, { timeout: 5000 })
+    .then(() => true, () => false);
+  check(failed, 'a request to a stopped server shows a network error in the banner', JSON.stringify(await page.evaluate(() => window.penumbra.state().errors)));
   const port = Number(new URL(url).port);
   const again = await startServer(args.penumbra, args.scene, args.startupSeconds, port);
   await page.waitForFunction((s) => !eval(s) && window.penumbra.state().connection === 'connected' && !window.penumbra.state().busy,

@@ -1,7 +1,10 @@
 // The visible error banner: every failure the page meets is shown here (and kept in `errors`
 // for the test hook); it stays until dismissed, except a transient one (a refused edit), which the
 // next successful edit clears. The same transient message is shown (and kept) once, not once per
-// refused frame.
+// refused frame. A network failure is shown after a short hold and dropped if the page is being
+// left meanwhile: leaving cuts off the requests still in flight, which is not an error to report.
+
+const NETWORK_HOLD_MS = 300;
 
 export class ErrorBanner {
   constructor(root, text, closeButton) {
@@ -9,12 +12,26 @@ export class ErrorBanner {
     this.text = text;
     this.errors = [];
     this.transient = false;
+    this.leaving = false;
+    // Not beforeunload: a navigation it starts may still be cancelled. A page restored from the
+    // back-forward cache reports again.
+    window.addEventListener('pagehide', () => { this.leaving = true; });
+    window.addEventListener('pageshow', () => { this.leaving = false; });
     closeButton.addEventListener('click', () => { this.root.hidden = true; });
   }
 
   // transient: cleared by clearTransient() (the next edit the server accepts); key: a transient
   // error with the key of the one shown is not shown again (one banner for a drag's refusals).
-  show(error, { transient = false, key = null } = {}) {
+  show(error, options = {}) {
+    if (this.leaving) return;
+    if (error && error.code === 'network_error') {
+      setTimeout(() => { if (!this.leaving) this.display(error, options); }, NETWORK_HOLD_MS);
+      return;
+    }
+    this.display(error, options);
+  }
+
+  display(error, { transient = false, key = null } = {}) {
     const message = error && error.message ? error.message : String(error);
     if (transient && this.transient && this.visible() && (key ? this.key === key : this.text.textContent === message)) return;
     this.errors.push(message);
