@@ -36,6 +36,13 @@ NodeId DmTree::addNode(NodeId parent, CellId cell) {
   return id;
 }
 
+uint32_t DmTree::addSegment(const NodeSegment& s) {
+  if (segments_.size() >= DmNode::kNoSegment)
+    throw ResourceLimitError("tree_nodes", segments_.size() + 1, DmNode::kNoSegment);
+  segments_.push_back(s);
+  return uint32_t(segments_.size() - 1);
+}
+
 std::vector<CellId> DmTree::cells() const {
   std::vector<CellId> out;
   for (uint32_t i = 0; i < mesh_.cellSlots(); ++i)
@@ -52,7 +59,7 @@ std::vector<VertexId> DmTree::vertices() const {
 
 CellId DmTree::locate(const Vec2& p) const {
   NodeId n = root_;
-  while (!node(n).isLeaf()) n = node(n).line.distance(p) >= 0 ? node(n).front : node(n).back;
+  while (!node(n).isLeaf()) n = segment(n).line.distance(p) >= 0 ? node(n).front : node(n).back;
   return node(n).cell;
 }
 
@@ -95,7 +102,7 @@ void DmTree::validate() const {
       const double side = node(n).front == child ? 1.0 : -1.0;
       double reach = 0;  // how far the cell reaches onto its side
       for (const Vec2& p : poly) {
-        const double d = side * node(n).line.distance(p);
+        const double d = side * segment(n).line.distance(p);
         if (d < -eps) fail("cell vertex on the wrong side of an ancestor");
         reach = std::max(reach, d);
       }
@@ -103,7 +110,7 @@ void DmTree::validate() const {
       // against: vertices within eps of a line count as on it, so between this line and one
       // within eps of it (crossing it at a shallow angle) lies a sliver that straddles both
       // (fuzz finding crashes/edit_frame/near-coplanar-light-edge.json: 9e-9 m wide, eps 9e-9).
-      if (reach > 2 * eps && !(side * node(n).line.distance(centroid) > 0))
+      if (reach > 2 * eps && !(side * segment(n).line.distance(centroid) > 0))
         fail("cell centroid on the wrong side of an ancestor");
     }
     // Occluder lists: umbra entries first, one entry per (light, face).
@@ -121,9 +128,9 @@ void DmTree::validate() const {
     const HalfEdgeMesh::HalfEdge& h = mesh_.halfEdge(HalfEdgeId(i));
     if (!h.alive() || !h.node.is_valid()) continue;
     if (!node(h.node).alive || node(h.node).isLeaf()) fail("edge made by a dead or leaf node");
-    const DmNode& n = node(h.node);
+    const Line2& line = segment(h.node).line;
     for (VertexId v : {h.origin, mesh_.destination(HalfEdgeId(i))})
-      if (std::abs(n.line.distance(mesh_.vertex(v).position)) > eps) fail("edge off its node's line");
+      if (std::abs(line.distance(mesh_.vertex(v).position)) > eps) fail("edge off its node's line");
   }
 }
 

@@ -14,9 +14,11 @@
 
 namespace penumbra {
 
-// What an internal node's line came from: its generator and segment (DmTree::segment).
-// Kept apart from the node, since half the nodes are leaves: 48 bytes, and 48 a node.
+// An internal node's line and what it came from: its generator and segment
+// (DmTree::segment). Kept apart from the node, since half the nodes are leaves:
+// 72 bytes, and 20 a node.
 struct NodeSegment {
+  Line2 line;           // front child is line.distance > 0
   Vec2 a{0.0}, b{0.0};  // the generating segment, clipped to the cell it split
   uint32_t light = 0;
   FaceId occluder;
@@ -25,17 +27,19 @@ struct NodeSegment {
   bool orphan = false;   // its occluder was removed but the node could not be condensed yet
   bool copy = false;     // made by splitting a node in two where an extended edge crossed it
 };
+static_assert(sizeof(NodeSegment) == 72);
 
 struct DmNode {
-  static constexpr uint32_t kNoSegment = 0xffffffffu;
-  Line2 line;  // internal nodes: front child is line.distance > 0
+  static constexpr uint32_t kNoSegment = 0x7fffffffu;
   NodeId front, back, parent;
   CellId cell;  // valid iff the node is a leaf
-  // An internal node's NodeSegment; a leaf that was internal once keeps its slot for reuse.
-  uint32_t segment = kNoSegment;
-  bool alive = true;
+  // An internal node's NodeSegment (its line too); a leaf that was internal once keeps
+  // its slot for reuse. 31 bits: the alive flag shares the word.
+  uint32_t segment : 31 = kNoSegment;
+  bool alive : 1 = true;
   bool isLeaf() const { return cell.is_valid(); }
 };
+static_assert(sizeof(DmNode) == 20);
 
 struct InsertResult {
   std::vector<CellId> changedCells;   // cells whose occluder list gained the occluder
@@ -114,7 +118,7 @@ class DmTree {
 
   NodeId root() const { return root_; }
   const DmNode& node(NodeId n) const { return nodes_[n.index]; }
-  // An internal node's generator and segment.
+  // An internal node's line, generator and segment.
   const NodeSegment& segment(NodeId n) const { return segments_[nodes_[n.index].segment]; }
   const HalfEdgeMesh& mesh() const { return mesh_; }
   size_t nodeCount() const { return liveNodes_; }  // leaves included
@@ -149,6 +153,7 @@ class DmTree {
   };
 
   NodeId addNode(NodeId parent, CellId cell);
+  uint32_t addSegment(const NodeSegment& s);  // its slot
   NodeSegment& segmentForWrite(NodeId n) { return segments_[nodes_[n.index].segment]; }
   // Splits leaf n's cell along `seg` (a straddling plan) and makes n the internal
   // node carrying seg's piece [lo, hi] (positions along a→b) for `owner`.

@@ -73,7 +73,8 @@ void DmTree::leavesAlong(NodeId n, const Vec2& p, const Vec2& q, std::vector<Nod
     out.push_back(n);
     return;
   }
-  const double dp = d.line.distance(p), dq = d.line.distance(q);
+  const Line2& line = segment(n).line;
+  const double dp = line.distance(p), dq = line.distance(q);
   if (std::abs(dp) <= eps && std::abs(dq) <= eps) {  // along n's edge: both sides touch it
     leavesAlong(d.front, p, q, out);
     leavesAlong(d.back, p, q, out);
@@ -91,9 +92,8 @@ void DmTree::leavesAlong(NodeId n, const Vec2& p, const Vec2& q, std::vector<Nod
 Polygon2 DmTree::regionOf(NodeId n) const {
   Polygon2 region = receiver_;
   for (NodeId child = n, p = node(n).parent; p.is_valid() && !region.empty(); child = p, p = node(p).parent) {
-    const DmNode& d = node(p);
-    const Split2 split = splitRegion(region, d.line, tolerance_.length());
-    region = d.front == child ? split.right : split.left;  // front = right of a→b
+    const Split2 split = splitRegion(region, segment(p).line, tolerance_.length());
+    region = node(p).front == child ? split.right : split.left;  // front = right of a→b
   }
   return region;
 }
@@ -103,7 +103,7 @@ bool DmTree::chordOf(NodeId n, double& lo, double& hi) const {
   // walking a few cells beats splitting the receiver by every ancestor's line.
   constexpr size_t kMaxCells = 64;
   const double eps = tolerance_.length();
-  const Line2& line = node(n).line;
+  const Line2& line = segment(n).line;
   std::vector<NodeId> leaves, stack{n};
   while (!stack.empty() && leaves.size() <= kMaxCells) {
     const NodeId k = stack.back();
@@ -131,7 +131,7 @@ bool DmTree::chordOf(NodeId n, double& lo, double& hi) const {
 const KeptSegment* DmTree::liveSegmentOn(NodeId n, double lo, double hi, const std::vector<OccluderKey>& keys,
                                          OccluderKey* owner) const {
   const double eps = tolerance_.length();
-  const Line2& line = node(n).line;
+  const Line2& line = segment(n).line;
   const Vec2 dir = along(line);
   for (const OccluderKey& key : keys) {
     const auto it = inserted_.find(key);
@@ -167,7 +167,7 @@ void DmTree::extendInto(NodeId n, CellId piece, const Line2& deleted, std::vecto
       mesh_.occludersForWrite(keep) = pieceList;
     return;
   }
-  const HalfEdgeMesh::CutPlan plan = mesh_.planCut(piece, node(n).line, eps);
+  const HalfEdgeMesh::CutPlan plan = mesh_.planCut(piece, segment(n).line, eps);
   if (plan.side > 0) return extendInto(node(n).front, piece, deleted, extended, result);
   if (plan.side < 0) return extendInto(node(n).back, piece, deleted, extended, result);
   const HalfEdgeMesh::CutResult cut = mesh_.applyCut(plan, n);
@@ -187,8 +187,7 @@ NodeId DmTree::copyOf(NodeId n) {
   copy.front = copy.back = copy.parent = NodeId();
   NodeSegment seg = segment(n);
   seg.partial = seg.copy = true;
-  copy.segment = uint32_t(segments_.size());
-  segments_.push_back(seg);
+  copy.segment = addSegment(seg);
   nodes_.push_back(copy);
   ++liveNodes_;
   const NodeId id(static_cast<uint32_t>(nodes_.size() - 1));
@@ -201,7 +200,7 @@ NodeId DmTree::copyOf(NodeId n) {
 // The mesh edges of `from` along its line among the cells below `under` now belong to `to`.
 void DmTree::relabelEdges(NodeId from, NodeId to, NodeId under, const Polygon2& region) {
   double lo, hi;
-  const Line2& line = node(from).line;
+  const Line2& line = segment(from).line;
   if (!chordExtent(line, region, tolerance_.length(), lo, hi)) return;
   const Vec2 origin = -line.offset * line.normal, dir = along(line);
   std::vector<NodeId> leaves;
@@ -217,7 +216,7 @@ void DmTree::relabelEdges(NodeId from, NodeId to, NodeId under, const Polygon2& 
 DmTree::SplitTree DmTree::partition(NodeId t, NodeId cutter, const Polygon2& region,
                                     RemoveResult& result) {
   const double eps = tolerance_.length();
-  const Line2 line = node(cutter).line;
+  const Line2 line = segment(cutter).line;
   const int side = sideOf(region, line, eps);
   if (side > 0) return {t, NodeId()};
   if (side < 0) return {NodeId(), t};
@@ -233,7 +232,7 @@ DmTree::SplitTree DmTree::partition(NodeId t, NodeId cutter, const Polygon2& reg
     result.changedCells.push_back(cut.back);
     return {t, addNode(NodeId(), cut.back)};
   }
-  const Line2 own = node(t).line;
+  const Line2 own = segment(t).line;
   const NodeId tFront = node(t).front, tBack = node(t).back;
   const Split2 halves = splitRegion(region, own, eps);
   const SplitTree f = partition(tFront, cutter, halves.right, result);
@@ -288,7 +287,7 @@ void DmTree::mergeInto(NodeId n, NodeId t, const Polygon2& region, const Line2& 
     extendInto(t, piece, deleted, extended, result);
     return;
   }
-  const Line2 line = node(n).line;
+  const Line2 line = segment(n).line;
   const NodeId front = node(n).front, back = node(n).back;
   const int side = sideOf(region, line, eps);
   if (side > 0) return mergeInto(front, t, region, deleted, extended, result);
@@ -333,7 +332,7 @@ void DmTree::condenseLeafPair(NodeId n, RemoveResult& result) {
 void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) {
   const double eps = tolerance_.length();
   const NodeId front = node(e).front, back = node(e).back;
-  const Line2 deletedLine = node(e).line;
+  const Line2 deletedLine = segment(e).line;
   // e's region: its chord, and later b's side of it.
   const Polygon2 region = regionOf(e);
   double lo, hi;

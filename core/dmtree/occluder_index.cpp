@@ -31,7 +31,7 @@ OccluderIndex::OccluderIndex(const DmTree& tree, const PlaneFrame& frame) : fram
       code = addLeaf(p.node);
     } else {
       code = int32_t(nodes_.size());
-      nodes_.push_back({d.line, -1, -1});
+      nodes_.push_back({tree.segment(p.node).line, -1, -1});
       stack.push_back({d.back, code, false});
       stack.push_back({d.front, code, true});
     }

@@ -28,8 +28,9 @@ void DmTree::collectCells(NodeId n, const Polygon2& region, std::vector<CellId>&
     return;
   }
   // front = right of a→b for the two points a, b on the line.
-  const Vec2 a = -d.line.offset * d.line.normal;
-  const Vec2 b = a + Vec2{-d.line.normal.y, d.line.normal.x};
+  const Line2& line = segment(n).line;
+  const Vec2 a = -line.offset * line.normal;
+  const Vec2 b = a + Vec2{-line.normal.y, line.normal.x};
   const Split2 split = splitByLine(region, a, b, tolerance_.length());
   if (split.right.size() >= 3 && signedArea(split.right) > tolerance_.area())
     collectCells(d.front, split.right, out, key, nodes);
@@ -48,12 +49,9 @@ HalfEdgeMesh::CutResult DmTree::splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan&
   d.cell = CellId();
   d.front = front;
   d.back = back;
-  d.line = seg.line;
-  if (d.segment == DmNode::kNoSegment) {
-    d.segment = uint32_t(segments_.size());
-    segments_.emplace_back();
-  }
+  if (d.segment == DmNode::kNoSegment) d.segment = addSegment({});
   NodeSegment& s = segments_[d.segment];
+  s.line = seg.line;
   s.light = owner.first;
   s.occluder = owner.second;
   s.kind = seg.kind;
