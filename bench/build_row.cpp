@@ -123,11 +123,11 @@ PenumbraVertices penumbraVertices(const Engine& engine) {
   PenumbraVertices out;
   for (const Engine::Receiver& r : engine.receivers())
     for (VertexId v : r.tree.vertices())
-      if (r.values[v.index].lightClass == LightClass::Penumbra &&
-          r.values[v.index].irradiance.x > 0) {
+      if (const VertexIrradiance value = engine.value(r, v);
+          value.lightClass == LightClass::Penumbra && value.irradiance.x > 0) {
         out.positions.push_back(r.frame.to3D(r.tree.position(v)));
         out.normals.push_back(r.frame.normal);
-        out.values.push_back(r.values[v.index].irradiance.x);
+        out.values.push_back(value.irradiance.x);
       }
   return out;
 }

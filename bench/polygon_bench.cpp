@@ -52,7 +52,7 @@ std::vector<Sample> penumbraSamples(const Engine& engine, size_t count, uint64_t
   std::vector<Sample> all;
   for (const Engine::Receiver& r : engine.receivers())
     for (VertexId v : r.tree.vertices()) {
-      if (r.values[v.index].lightClass != LightClass::Penumbra) continue;
+      if (engine.value(r, v).lightClass != LightClass::Penumbra) continue;
       const auto cells = r.tree.cellsAround(v);
       if (cells.empty()) continue;
       Sample s{r.frame.to3D(r.tree.position(v)), r.frame.normal, {}};

@@ -97,7 +97,7 @@ Vec3 rebuiltValueAt(const Engine& rebuilt, const Engine::Receiver& receiver, con
   const auto loop = tree.mesh().loop(cell);
   for (HalfEdgeId h : loop) {
     const VertexId v = tree.mesh().halfEdge(h).origin;
-    if (glm::length(tree.position(v) - q) <= eps) return receiver.values[v.index].irradiance;
+    if (glm::length(tree.position(v) - q) <= eps) return rebuilt.value(receiver, v).irradiance;
   }
   std::vector<const OccluderList*> lists{&tree.occluders(cell)};
   for (HalfEdgeId h : loop) {
@@ -126,14 +126,14 @@ std::optional<std::string> firstDifference(const Engine& incremental, const Engi
   double peak = 0;
   for (const auto& r : rebuilt.receivers())
     for (VertexId v : r.tree.vertices())
-      for (int c = 0; c < 3; ++c) peak = std::max(peak, std::abs(r.values[v.index].irradiance[c]));
+      for (int c = 0; c < 3; ++c) peak = std::max(peak, std::abs(rebuilt.value(r, v).irradiance[c]));
   const double eps = scene.tolerance().length();
   for (const auto& r : incremental.receivers()) {
     const Engine::Receiver* other = rebuilt.receiver(r.face);
     if (!other) return "receiver " + faceName(scene, r.face) + " is not one in the rebuild";
     for (VertexId v : r.tree.vertices()) {
       const Vec3 p = r.frame.to3D(r.tree.position(v));
-      const Vec3 a = r.values[v.index].irradiance;
+      const Vec3 a = incremental.value(r, v).irradiance;
       const Vec3 b = rebuiltValueAt(rebuilt, *other, p, eps);
       for (int c = 0; c < 3; ++c) {
         if (std::abs(a[c] - b[c]) <=

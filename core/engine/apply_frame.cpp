@@ -217,7 +217,7 @@ void Engine::relightAfterRemoval(FaceId target, Receiver& receiver, const Remove
   const DmTree& tree = receiver.tree;
   const HalfEdgeMesh& mesh = tree.mesh();
   const double eps = scene_.tolerance().length();
-  dirty.noteValueSlots(target, receiver.values.size());
+  dirty.noteValueSlots(target, receiver.perLight.size());
   growSlots(receiver);
   dirty.touch(target);
   // Deleted vertices that held a current value for their position (not waiting to be
@@ -225,7 +225,7 @@ void Engine::relightAfterRemoval(FaceId target, Receiver& receiver, const Remove
   std::vector<std::tuple<double, double, uint32_t>> deleted;  // (x, y, slot), sorted
   for (VertexId v : removed.removedVertices) {
     const Vec2 p = tree.position(v);
-    if (v.index < receiver.litAt.size() && receiver.litAt[v.index] == p && !dirty.pending(target, v))
+    if (v.index < receiver.lit.size() && receiver.lit[v.index] && !dirty.pending(target, v))
       deleted.emplace_back(p.x, p.y, v.index);
   }
   std::sort(deleted.begin(), deleted.end());
@@ -251,12 +251,11 @@ void Engine::relightAfterRemoval(FaceId target, Receiver& receiver, const Remove
     seen[v.index] = true;
     const Vec2 p = tree.position(v);
     if (inPenumbra(p)) return dirty.addVertex(target, v);
-    if (receiver.litAt[v.index] == p) return;  // a survivor: its value stands
+    if (receiver.lit[v.index]) return;  // a survivor: its value stands
     const std::optional<uint32_t> was = deletedAt(p);
     if (!was) return dirty.addVertex(target, v);
-    receiver.values[v.index] = receiver.values[*was];
     std::ranges::copy(receiver.perLight[*was], receiver.perLight[v.index].begin());
-    receiver.litAt[v.index] = p;
+    receiver.lit[v.index] = 1;
     for (CellId c : tree.cellsAround(v)) receiver.tree.touch(c);  // corner values for meshing
   };
   std::vector<CellId> cells = removed.changedCells;
@@ -294,6 +293,8 @@ FrameResult Engine::apply(const Frame& frame) {
   std::vector<FaceId> leavingReceivers;  // leaving faces that had a DM-tree
   for (FaceId face : leavingFaces)
     if (receiverIndex_.count(face)) leavingReceivers.push_back(face);
+  std::vector<Vec3> radianceBefore;  // values are summed with the radiances on each read
+  for (const Light& light : scene_.lights()) radianceBefore.push_back(light.radiance);
   applyEdits(scene_, frame);
   const std::set<uint32_t> entering = namedHandles(scene_, frame);
   // Builds the whole engine for the new scene and reports every receiver as rebuilt.
@@ -374,7 +375,7 @@ FrameResult Engine::apply(const Frame& frame) {
               dirty.forget(target);
               dirty.touch(target);
               dirty.markTopology(target);
-              receiver.litAt.assign(receiver.litAt.size(), Vec2(std::numeric_limits<double>::quiet_NaN()));
+              receiver.lit.assign(receiver.lit.size(), 0);
               continue;
             }
             relightAfterRemoval(target, receiver, removed, dirty);
@@ -502,7 +503,7 @@ FrameResult Engine::apply(const Frame& frame) {
       reach(settings_, "relight");
       Receiver& receiver = receivers_[receiverIndex_.at(face)];
       const HalfEdgeMesh& mesh = receiver.tree.mesh();
-      const size_t known = dirty.valueSlots(face, receiver.values.size());
+      const size_t known = dirty.valueSlots(face, receiver.perLight.size());
       growSlots(receiver);
       std::set<VertexId> relight;
       for (VertexId v : vertices)
@@ -512,15 +513,15 @@ FrameResult Engine::apply(const Frame& frame) {
       const bool rebuiltTree = rebuiltTrees.count(face) || rebuild.count(face);
       for (uint32_t i = rebuiltTree ? 0 : uint32_t(std::min(known, mesh.vertexSlots())); i < mesh.vertexSlots(); ++i) {
         const VertexId v(i);
-        if (mesh.vertex(v).alive && receiver.litAt[i] != receiver.tree.position(v)) relight.insert(v);
+        if (mesh.vertex(v).alive && !receiver.lit[i]) relight.insert(v);
       }
       for (VertexId v : relight) {
-        const bool fresh = v.index >= known || receiver.litAt[v.index] != receiver.tree.position(v);
-        const VertexIrradiance old = receiver.values[v.index];
+        const bool fresh = v.index >= known || !receiver.lit[v.index];
+        const VertexIrradiance old = fresh ? VertexIrradiance{} : value(receiver, v);
         relightVertex(receiver, v);
         ++result.verticesRelit;
         if (fresh) ++result.verticesCreated;
-        if (fresh || !sameValue(old, receiver.values[v.index])) ++result.verticesChanged;
+        if (fresh || !sameValue(old, value(receiver, v))) ++result.verticesChanged;
       }
       if (!relight.empty() || dirty.topologyChanged(face)) result.changedReceivers.push_back(face);
       if (!relight.empty()) lastRelit_[face] = std::vector<VertexId>(relight.begin(), relight.end());
@@ -530,8 +531,8 @@ FrameResult Engine::apply(const Frame& frame) {
     const bool anyDropped = std::find(dropped.begin(), dropped.end(), true) != dropped.end();
     if (anyDropped || appendedOutOfOrder) compactReceivers(dropped);
     recountBudget();
-    // A new radiance changes no shadow: every vertex's value is summed again (exact).
-    if (changesRadiance(frame)) resumRadiance(result);
+    // A new radiance changes no shadow: values are summed on each read; what changed is reported.
+    if (changesRadiance(frame)) resumRadiance(radianceBefore, result);
   } catch (const ResourceLimitError&) {
     throw;  // usable_ stays false: the caller rebuilds from the previous scene
   } catch (const std::bad_alloc&) {

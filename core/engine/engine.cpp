@@ -282,7 +282,7 @@ void Engine::countBuild() {
     stats_.treeNodes += receiver.tree.internalNodeCount();
     stats_.cells += receiver.tree.cellCount();
     for (VertexId v : receiver.tree.vertices()) {
-      const VertexIrradiance& value = receiver.values[v.index];
+      const VertexIrradiance value = this->value(receiver, v);
       ++stats_.vertices;
       stats_.comparisons += value.comparisons;
       switch (value.lightClass) {
@@ -296,7 +296,7 @@ void Engine::countBuild() {
 
 Engine::Receiver Engine::makeReceiver(const Face& face) const {
   const PlaneFrame frame = PlaneFrame::onPlane(face.plane, face.polygon[0]);
-  Receiver receiver{face.id, frame, DmTree(polygonInFrame(face.polygon, frame), scene_.tolerance()), {}, {}, {}};
+  Receiver receiver{face.id, frame, DmTree(polygonInFrame(face.polygon, frame), scene_.tolerance()), {}, {}};
   receiver.tree.setNodeLimit(settings_.limits.treeNodes);
   receiver.tree.setUmbraCulling(settings_.umbraCulling);
   for (size_t l = 0; l < scene_.lights().size(); ++l)
@@ -362,10 +362,9 @@ void Engine::forgetReceived(FaceId face) {
 
 void Engine::growSlots(Receiver& receiver) const {
   const size_t slots = receiver.tree.mesh().vertexSlots();
-  if (receiver.values.size() >= slots) return;
-  receiver.values.resize(slots);
+  if (receiver.perLight.size() >= slots) return;
   receiver.perLight.resize(slots, scene_.lights().size());
-  receiver.litAt.resize(slots, Vec2(std::numeric_limits<double>::quiet_NaN()));
+  receiver.lit.resize(slots, 0);
 }
 
 void Engine::illuminate(Receiver& receiver) const {
@@ -375,12 +374,10 @@ void Engine::illuminate(Receiver& receiver) const {
   // small receiver's arrays share pages with other data, so headroom there would be resident
   // (thousands of small receivers), and moving them is cheap.
   const size_t capacity = slots >= kHeadroomMinSlots ? slots + slots / 4 : slots;
-  receiver.values.reserve(capacity);
   receiver.perLight.reserve(capacity, scene_.lights().size());
-  receiver.litAt.reserve(capacity);
-  receiver.values.assign(slots, VertexIrradiance{});
+  receiver.lit.reserve(capacity);
   receiver.perLight.assign(slots, scene_.lights().size());
-  receiver.litAt.assign(slots, Vec2(std::numeric_limits<double>::quiet_NaN()));
+  receiver.lit.assign(slots, 0);
   // Vertices in parallel (a dense scene's floor holds most of them); each writes its own slots.
   const std::vector<VertexId> vertices = receiver.tree.vertices();
   parallel_.forEach(vertices.size(), [&](size_t i) { computeVertex(receiver, vertices[i]); }, 16);
@@ -402,8 +399,7 @@ void Engine::computeVertex(Receiver& receiver, VertexId v) const {
   const std::span<VertexLight> perLight = receiver.perLight[v.index];
   for (size_t l = 0; l < perLight.size(); ++l)
     perLight[l] = illuminateVertex(scene_, l, p, receiver.frame.normal, lists);
-  receiver.values[v.index] = sumLights(scene_, perLight);
-  receiver.litAt[v.index] = tree.position(v);
+  receiver.lit[v.index] = 1;
 }
 
 void Engine::compactReceivers(const std::vector<bool>& dropped) {
@@ -446,6 +442,10 @@ std::vector<FaceId> Engine::receiverFaces() const {
   return faces;
 }
 
+VertexIrradiance Engine::value(const Receiver& receiver, VertexId v) const {
+  return sumLights(scene_, receiver.perLight[v.index]);
+}
+
 std::vector<size_t> Engine::receiverIndices(const std::vector<FaceId>& only) const {
   std::vector<size_t> indices;
   for (FaceId face : only)
@@ -463,7 +463,7 @@ void Engine::updateMeshMemos(const std::vector<size_t>& indices, const EnginePro
   std::vector<MeshMemoCounters> counters(indices.size());
   parallel_.forEach(indices.size(), [&](size_t k) {
     const Receiver& receiver = receivers_[indices[k]];
-    const MeshSource source{receiver.face, receiver.frame, receiver.tree, receiver.values, receiver.perLight};
+    const MeshSource source{receiver.face, receiver.frame, receiver.tree, receiver.perLight};
     memos[k]->update(scene_, source, MeshGrid{meshSpacing(), meshChunkSquares_}, counters[k], parallel_);
     report.add(1);
   });
@@ -522,7 +522,7 @@ ReceiverMesh Engine::memoMesh(const Receiver& receiver) const {
 
 const ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver, MeshMemoCounters& counters) {
   ReceiverMeshMemo& memo = meshMemo_[receiver.face];
-  const MeshSource source{receiver.face, receiver.frame, receiver.tree, receiver.values, receiver.perLight};
+  const MeshSource source{receiver.face, receiver.frame, receiver.tree, receiver.perLight};
   memo.update(scene_, source, MeshGrid{meshSpacing(), meshChunkSquares_}, counters, parallel_);
   return memo;
 }

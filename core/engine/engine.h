@@ -129,15 +129,20 @@ class Engine {
     FaceId face;
     PlaneFrame frame;  // the 2D frame of its DM-tree
     DmTree tree;
-    // Per live tree vertex (indexed by VertexId): the value at the vertex.
-    std::vector<VertexIrradiance> values;
+    // Per vertex slot (indexed by VertexId), each light's value at the vertex; the value
+    // summed over the lights is Engine::value(), derived from these on each read.
     PerLightValues perLight;  // [vertex][light]
-    // Per vertex slot: where its value was computed (NaN: never), so a slot that
-    // holds a vertex the tree did not report as new is still found and lit.
-    std::vector<Vec2> litAt;
+    // Per vertex slot: 1 once its values were computed for the vertex in it, so a slot that
+    // holds a vertex the tree did not report as new is still found and lit. A slot never
+    // holds another vertex (slots are append-only, positions fixed) unless the tree is
+    // rebuilt afresh, which clears every flag.
+    std::vector<uint8_t> lit;
   };
   const std::vector<Receiver>& receivers() const { return receivers_; }
   std::vector<FaceId> receiverFaces() const;  // the receivers' faces, in receivers() order
+  // The value at a vertex of a receiver (of this engine): its lights' values summed with the
+  // scene's radiances.
+  VertexIrradiance value(const Receiver& receiver, VertexId v) const;
   const Receiver* receiver(FaceId face) const;
   // The receivers a face has cast a shadow on (paper §3.1: removal starts there).
   const std::set<FaceId>& castOn(FaceId occluder) const;
@@ -235,10 +240,11 @@ class Engine {
   void relightAfterRemoval(FaceId target, Receiver& receiver, const RemoveResult& removed, DirtySet& dirty);
   // Sorts receivers_ by face (Scene::faces() order), drops `dropped`, reindexes.
   void compactReceivers(const std::vector<bool>& dropped);
-  // After a radiance-only light edit: every live vertex's value summed again from its
-  // stored per-light factors (light_edits.cpp); the mesh memo is dropped (lattice values
-  // inside cells depend on radiance too) and every receiver reported changed.
-  void resumRadiance(FrameResult& result);
+  // After a radiance-only light edit: every live vertex whose value (summed on read from its
+  // stored per-light factors) differs from the one under radianceBefore is counted changed and
+  // its cells touched (light_edits.cpp); the mesh memo is dropped (lattice values inside cells
+  // depend on radiance too) and every receiver reported changed.
+  void resumRadiance(const std::vector<Vec3>& radianceBefore, FrameResult& result);
   // Counts every receiver's tree against the limits afresh (drops drift).
   void recountBudget();
 

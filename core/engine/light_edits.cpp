@@ -157,19 +157,20 @@ bool insideCubes(const Scene& scene, const Polygon3& polygon,
 
 namespace penumbra {
 
-void Engine::resumRadiance(FrameResult& result) {
+void Engine::resumRadiance(const std::vector<Vec3>& radianceBefore, FrameResult& result) {
   const auto start = std::chrono::steady_clock::now();
   std::set<FaceId> changed(result.changedReceivers.begin(), result.changedReceivers.end());
   for (Receiver& receiver : receivers_) {
     std::vector<VertexId>& relit = lastRelit_[receiver.face];
     relit.clear();
     for (VertexId v : receiver.tree.vertices()) {
-      const VertexIrradiance old = receiver.values[v.index];
-      receiver.values[v.index] = sumLights(scene_, receiver.perLight[v.index]);
+      const bool sameLights = radianceBefore.size() == receiver.perLight.lightCount();
+      const VertexIrradiance now = value(receiver, v);
+      const VertexIrradiance old = sameLights ? sumLights(radianceBefore, receiver.perLight[v.index]) : VertexIrradiance{};
       relit.push_back(v);
       ++result.verticesRelit;
-      if (!sameValue(old, receiver.values[v.index])) ++result.verticesChanged;
-      if (!identicalValue(old, receiver.values[v.index]))
+      if (!sameLights || !sameValue(old, now)) ++result.verticesChanged;
+      if (!sameLights || !identicalValue(old, now))
         for (CellId c : receiver.tree.cellsAround(v)) receiver.tree.touch(c);
     }
     changed.insert(receiver.face);

@@ -13,5 +13,7 @@ namespace penumbra {
 // none does). dark[l]: light l counts as in umbra (a cell in its umbra), adding nothing.
 VertexIrradiance sumLights(const Scene& scene, std::span<const VertexLight> lights,
                            const std::vector<bool>* dark = nullptr);
+// The same with each light's radiance given (radiance[l]), e.g. as it was before an edit.
+VertexIrradiance sumLights(std::span<const Vec3> radiance, std::span<const VertexLight> lights);
 
 }  // namespace penumbra

@@ -32,7 +32,7 @@ bool darkLights(const OccluderList& list, std::vector<bool>& dark) {
 
 VertexIrradiance cornerValue(const Scene& scene, const MeshSource& source, VertexId v,
                              const std::vector<bool>& dark, bool anyDark) {
-  return anyDark ? sumLights(scene, source.perLight[v.index], &dark) : source.values[v.index];
+  return sumLights(scene, source.perLight[v.index], anyDark ? &dark : nullptr);
 }
 
 void CellLighter::Inputs::clear() {

@@ -22,7 +22,6 @@ struct MeshSource {
   FaceId face;
   const PlaneFrame& frame;
   const DmTree& tree;
-  const std::vector<VertexIrradiance>& values;            // by VertexId
   const PerLightValues& perLight;  // [vertex][light]
 };
 

@@ -94,8 +94,8 @@ void expectMatchesExactReference(const Scene& scene, const Mesh& mesh, const cha
       const PointIrradiance truth = reference.evaluate(p, receiver.frame.normal);
       ++vertices;
       penumbra += truth.lightClass == LightClass::Penumbra;
-      if (!closeRgb(receiver.values[v.index].irradiance, truth.irradiance, peak) && errors++ < 5)
-        ADD_FAILURE() << "DM vertex " << v.index << ": " << receiver.values[v.index].irradiance.x << " vs "
+      if (!closeRgb(engine.value(receiver, v).irradiance, truth.irradiance, peak) && errors++ < 5)
+        ADD_FAILURE() << "DM vertex " << v.index << ": " << engine.value(receiver, v).irradiance.x << " vs "
                       << truth.irradiance.x;
     }
   EXPECT_EQ(errors, 0u);

@@ -47,11 +47,11 @@ inline size_t referenceMismatches(const Engine& engine, size_t samples, uint64_t
       const Vec3 p = r.frame.to3D(r.tree.position(v));
       const PointIrradiance truth = reference.evaluate(p, r.frame.normal);
       for (int c = 0; c < 3; ++c)
-        if (std::abs(r.values[v.index].irradiance[c] - truth.irradiance[c]) >
+        if (std::abs(engine.value(r, v).irradiance[c] - truth.irradiance[c]) >
             1e-9 * std::abs(truth.irradiance[c]) + 1e-12 * peak) {
           if (errors++ < 3)
             ADD_FAILURE() << "face " << r.face.object << "/" << r.face.face << " at (" << p.x << ", " << p.y
-                          << ", " << p.z << "): engine " << r.values[v.index].irradiance[c] << ", reference "
+                          << ", " << p.z << "): engine " << engine.value(r, v).irradiance[c] << ", reference "
                           << truth.irradiance[c];
           break;
         }

@@ -27,7 +27,7 @@ Mismatches compareVertices(const Engine& engine, const ExactReference& reference
     for (VertexId v : receiver.tree.vertices()) {
       const Vec3 p = receiver.frame.to3D(receiver.tree.position(v));
       const PointIrradiance truth = reference.evaluate(p, receiver.frame.normal);
-      const VertexIrradiance& value = receiver.values[v.index];
+      const VertexIrradiance& value = engine.value(receiver, v);
       ++m.vertices;
       for (int c = 0; c < 3; ++c) {
         if (std::abs(value.irradiance[c] - truth.irradiance[c]) >
@@ -124,7 +124,7 @@ void expectCover(const Scene& scene, const Mesh& mesh) {
 double peakIrradiance(const Engine& engine) {
   double peak = 0;
   for (const auto& r : engine.receivers())
-    for (VertexId v : r.tree.vertices()) peak = std::max(peak, r.values[v.index].irradiance.x);
+    for (VertexId v : r.tree.vertices()) peak = std::max(peak, engine.value(r, v).irradiance.x);
   return peak;
 }
 

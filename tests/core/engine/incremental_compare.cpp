@@ -59,7 +59,7 @@ VertexIrradiance valueAt(const Engine& engine, const Engine::Receiver& r, const 
   if (const auto v = index.at(q)) {
     *matched = true;
     *offset = glm::length(r.tree.position(*v) - q);
-    if (r.tree.position(*v) == q) return r.values[v->index];  // lit at this very point
+    if (r.tree.position(*v) == q) return engine.value(r, *v);  // lit at this very point
     for (CellId c : r.tree.cellsAround(*v)) lists.push_back(&r.tree.occluders(c));
   } else {
     *matched = false;
@@ -120,7 +120,7 @@ void compareSegments(const Engine::Receiver& from, const Engine::Receiver& to, d
 double peakIrradiance(const Engine& engine) {
   double peak = 0;
   for (const auto& r : engine.receivers())
-    for (VertexId v : r.tree.vertices()) peak = std::max(peak, r.values[v.index].irradiance.x);
+    for (VertexId v : r.tree.vertices()) peak = std::max(peak, engine.value(r, v).irradiance.x);
   return peak;
 }
 
@@ -150,7 +150,7 @@ EngineDiff compareEngines(const Engine& a, const Engine& b, double peak, size_t 
         double offset = 0;
         const VertexIrradiance theirs = valueAt(other, *o, index, r.tree.position(v), &matched, &offset);
         diff.matchedVertices += matched;
-        const VertexIrradiance& ours = r.values[v.index];
+        const VertexIrradiance ours = one.value(r, v);
         if (!close(ours.irradiance, theirs.irradiance, peak)) {
           // The exact reference decides which side is off: only `a` being off (or
           // both) is an error of the engine under test.

@@ -44,7 +44,7 @@ using Snapshots = std::map<FaceId, std::map<uint32_t, Snapshot>>;
 Snapshots snapshot(const Engine& engine) {
   Snapshots out;
   for (const auto& r : engine.receivers())
-    for (VertexId v : r.tree.vertices()) out[r.face][v.index] = {r.tree.position(v), r.values[v.index]};
+    for (VertexId v : r.tree.vertices()) out[r.face][v.index] = {r.tree.position(v), engine.value(r, v)};
   return out;
 }
 
@@ -109,8 +109,8 @@ struct Tally {
         const bool isRelit = relitHere != relitSets.end() &&
                              std::binary_search(relitHere->second.begin(), relitHere->second.end(), v);
         // A full rebuild reports every vertex created (changed − created = 0): not counted.
-        if (!result.fullRebuild && !sameValue(was->second.value, r.values[v.index])) ++observedChanged;
-        if (!isRelit && !identicalValue(was->second.value, r.values[v.index])) ++unsound;
+        if (!result.fullRebuild && !sameValue(was->second.value, engine.value(r, v))) ++observedChanged;
+        if (!isRelit && !identicalValue(was->second.value, engine.value(r, v))) ++unsound;
       }
     }
   }
@@ -126,11 +126,11 @@ struct Tally {
         const PointIrradiance truth = reference.evaluate(r->frame.to3D(r->tree.position(v)), r->frame.normal);
         ++referenceChecks;
         for (int c = 0; c < 3; ++c)
-          if (std::abs(r->values[v.index].irradiance[c] - truth.irradiance[c]) >
+          if (std::abs(engine.value(*r, v).irradiance[c] - truth.irradiance[c]) >
               1e-9 * std::abs(truth.irradiance[c]) + 1e-12 * peak) {
             if (referenceErrors++ < 5)
               ADD_FAILURE() << "relit vertex of " << face.object << "/" << face.face << ": "
-                            << r->values[v.index].irradiance[c] << " vs reference " << truth.irradiance[c];
+                            << engine.value(*r, v).irradiance[c] << " vs reference " << truth.irradiance[c];
             break;
           }
       }

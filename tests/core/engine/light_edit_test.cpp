@@ -96,6 +96,9 @@ TEST(LightEdit, MovedAndResizedLightEqualsAFreshBuild) {
 TEST(LightEdit, RadianceAloneRescalesExactly) {
   Engine engine(makeCubesScene(CubesSceneOptions{5, 4}));
   const std::vector<Engine::Receiver> before = engine.receivers();
+  std::vector<std::vector<VertexIrradiance>> valuesBefore(before.size());
+  for (size_t r = 0; r < before.size(); ++r)
+    for (VertexId v : before[r].tree.vertices()) valuesBefore[r].push_back(engine.value(before[r], v));
   const Vec3 radiance = engine.scene().lights()[0].radiance;
   const FrameResult result = engine.apply(Frame{{setLight("light", std::nullopt, 2.0 * radiance)}});
   EXPECT_FALSE(result.fullRebuild);
@@ -108,11 +111,11 @@ TEST(LightEdit, RadianceAloneRescalesExactly) {
   ASSERT_EQ(engine.receivers().size(), before.size());
   for (size_t r = 0; r < before.size(); ++r) {
     ASSERT_EQ(engine.receivers()[r].tree.vertexCount(), before[r].tree.vertexCount());
-    for (VertexId v : before[r].tree.vertices()) {
-      EXPECT_EQ(engine.receivers()[r].values[v.index].irradiance,
-                2.0 * before[r].values[v.index].irradiance);
-      EXPECT_EQ(engine.receivers()[r].values[v.index].lightClass,
-                before[r].values[v.index].lightClass);
+    const std::vector<VertexId> vertices = before[r].tree.vertices();
+    for (size_t i = 0; i < vertices.size(); ++i) {
+      const VertexIrradiance now = engine.value(engine.receivers()[r], vertices[i]);
+      EXPECT_EQ(now.irradiance, 2.0 * valuesBefore[r][i].irradiance);
+      EXPECT_EQ(now.lightClass, valuesBefore[r][i].lightClass);
     }
   }
   Engine rebuilt(freshScene(engine.scene()));

@@ -37,7 +37,7 @@ Counts checkLists(const Engine& engine) {
   Counts counts;
   double peak = 0;  // the scale of invariant 1's absolute term
   for (const Engine::Receiver& r : engine.receivers())
-    for (VertexId v : r.tree.vertices()) peak = std::max(peak, r.values[v.index].irradiance.x);
+    for (VertexId v : r.tree.vertices()) peak = std::max(peak, engine.value(r, v).irradiance.x);
   for (const Engine::Receiver& receiver : engine.receivers()) {
     for (VertexId v : receiver.tree.vertices()) {
       ++counts.vertices;

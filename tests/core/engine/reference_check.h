@@ -25,13 +25,13 @@ inline ReferenceCheck checkAgainstReference(Engine& engine, const std::string& l
   const ExactReference reference(engine.scene());
   double peak = 0;
   for (const Engine::Receiver& r : engine.receivers())
-    for (VertexId v : r.tree.vertices()) peak = std::max(peak, r.values[v.index].irradiance.x);
+    for (VertexId v : r.tree.vertices()) peak = std::max(peak, engine.value(r, v).irradiance.x);
   ReferenceCheck out;
   for (const Engine::Receiver& r : engine.receivers())
     for (VertexId v : r.tree.vertices()) {
       const Vec3 p = r.frame.to3D(r.tree.position(v));
       const PointIrradiance truth = reference.evaluate(p, r.frame.normal);
-      const VertexIrradiance& value = r.values[v.index];
+      const VertexIrradiance& value = engine.value(r, v);
       ++out.vertices;
       const double error = std::abs(value.irradiance.x - truth.irradiance.x);
       if (error > 1e-9 * std::abs(truth.irradiance.x) + 1e-12 * peak && out.valueErrors++ < 5)

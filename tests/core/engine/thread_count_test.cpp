@@ -56,7 +56,7 @@ std::string engineDifference(const Engine& a, const Engine& b) {
     for (VertexId v : x.tree.vertices()) {
       const Vec2 p = x.tree.position(v), q = y.tree.position(v);
       if (std::memcmp(&p, &q, sizeof(Vec2))) return "vertex position" + at;
-      const VertexIrradiance &s = x.values[v.index], &t = y.values[v.index];
+      const VertexIrradiance s = a.value(x, v), t = b.value(y, v);
       if (!sameBytes(s.irradiance, t.irradiance) || s.lightClass != t.lightClass || s.comparisons != t.comparisons)
         return "vertex value" + at;
       const auto &ls = x.perLight[v.index], &lt = y.perLight[v.index];
