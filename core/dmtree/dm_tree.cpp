@@ -114,7 +114,7 @@ void DmTree::validate() const {
         fail("cell centroid on the wrong side of an ancestor");
     }
     // Occluder lists: umbra entries first, one entry per (light, face).
-    const OccluderList& list = mesh_.cell(c).occluders;
+    const OccluderList& list = mesh_.occluders(c);
     std::set<OccluderKey> seen;
     bool partialSeen = false;
     for (const OccluderEntry& e : list) {
@@ -126,9 +126,10 @@ void DmTree::validate() const {
   // Every mesh edge is the receiver's boundary or made by a live internal node.
   for (uint32_t i = 0; i < mesh_.halfEdgeSlots(); ++i) {
     const HalfEdgeMesh::HalfEdge& h = mesh_.halfEdge(HalfEdgeId(i));
-    if (!h.alive() || !h.node.is_valid()) continue;
-    if (!node(h.node).alive || node(h.node).isLeaf()) fail("edge made by a dead or leaf node");
-    const Line2& line = segment(h.node).line;
+    const NodeId made = mesh_.node(HalfEdgeId(i));
+    if (!h.alive() || !made.is_valid()) continue;
+    if (!node(made).alive || node(made).isLeaf()) fail("edge made by a dead or leaf node");
+    const Line2& line = segment(made).line;
     for (VertexId v : {h.origin, mesh_.destination(HalfEdgeId(i))})
       if (std::abs(line.distance(mesh_.vertex(v).position)) > eps) fail("edge off its node's line");
   }

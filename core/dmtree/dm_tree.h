@@ -105,7 +105,7 @@ class DmTree {
 
   std::vector<CellId> cells() const;
   Polygon2 cellPolygon(CellId c) const { return mesh_.polygon(c); }
-  const OccluderList& occluders(CellId c) const { return mesh_.cell(c).occluders; }
+  const OccluderList& occluders(CellId c) const { return mesh_.occluders(c); }
   std::vector<VertexId> vertices() const;
   Vec2 position(VertexId v) const { return mesh_.vertex(v).position; }
   // All cells whose closure contains v, by a half-edge walk around v.
@@ -223,6 +223,7 @@ class DmTree {
   // regions may miss the generator's penumbra. Dead or relabeled ones are skipped
   // when read (node slots are not reused).
   std::map<OccluderKey, std::vector<NodeId>> splitNodes_;
+  OccluderList scratchList_;  // a list being changed before it is interned (its capacity reused)
 };
 
 }  // namespace penumbra

@@ -18,6 +18,13 @@ namespace {
 std::atomic<uint64_t> meshClock{0};
 }  // namespace
 
+void HalfEdgeMesh::setOccluders(CellId c, const OccluderList& list) {
+  touch(c);
+  const OccluderListPool::Handle held = lists_.intern(list);  // before the release: `list` may be c's
+  lists_.release(cells_[c.index].occluders);
+  cells_[c.index].occluders = held;
+}
+
 uint64_t HalfEdgeMesh::stampNow() { return meshClock.load(std::memory_order_relaxed); }
 uint64_t HalfEdgeMesh::nextStamp() { return meshClock.fetch_add(1, std::memory_order_relaxed) + 1; }
 
@@ -30,6 +37,7 @@ VertexId HalfEdgeMesh::addVertex(const Vec2& p) {
 HalfEdgeId HalfEdgeMesh::addEdgePair() {
   halfEdges_.emplace_back();
   halfEdges_.emplace_back();
+  edgeNodes_.emplace_back();
   liveHalfEdges_ += 2;
   return HalfEdgeId(static_cast<uint32_t>(halfEdges_.size() - 2));
 }
@@ -37,7 +45,9 @@ HalfEdgeId HalfEdgeMesh::addEdgePair() {
 CellId HalfEdgeMesh::reset(const Polygon2& receiver, double eps) {
   vertices_.clear();
   halfEdges_.clear();
+  edgeNodes_.clear();
   cells_.clear();
+  lists_.clear();
   liveVertices_ = liveHalfEdges_ = liveCells_ = 0;
   Polygon2 ring;
   for (const Vec2& p : receiver)
@@ -191,14 +201,13 @@ VertexId HalfEdgeMesh::splitEdge(HalfEdgeId h, const Vec2& p) {
   const HalfEdgeId n = addEdgePair();
   const HalfEdgeId nt = twin(n);
   HalfEdge& hN = halfEdges_[n.index];
+  edgeNodes_[n.index >> 1] = this->node(h);  // the new pair continues h's edge
   hN.origin = v;
   hN.cell = halfEdges_[h.index].cell;
-  hN.node = halfEdges_[h.index].node;
   hN.next = hn;
   HalfEdge& hNT = halfEdges_[nt.index];
   hNT.origin = b;
   hNT.cell = halfEdges_[t.index].cell;
-  hNT.node = halfEdges_[t.index].node;
   hNT.next = t;
   halfEdges_[h.index].next = n;
   halfEdges_[tp.index].next = nt;
@@ -224,9 +233,8 @@ HalfEdgeMesh::CutResult HalfEdgeMesh::applyCut(const CutPlan& plan, NodeId node)
   const HalfEdgeId pu = prev(hu), pw = prev(hw);
   const HalfEdgeId e = addEdgePair(), et = twin(e);
   halfEdges_[e.index].origin = u;
-  halfEdges_[e.index].node = node;
+  edgeNodes_[e.index >> 1] = node;
   halfEdges_[et.index].origin = w;
-  halfEdges_[et.index].node = node;
   // Front loop: u … w then w→u; back loop: w … u then u→w.
   halfEdges_[pw.index].next = et;
   halfEdges_[et.index].next = hu;
@@ -235,6 +243,7 @@ HalfEdgeMesh::CutResult HalfEdgeMesh::applyCut(const CutPlan& plan, NodeId node)
 
   const CellId front = plan.cell;
   cells_.push_back(Cell{e, NodeId(), cells_[front.index].occluders, true});
+  lists_.retain(cells_[front.index].occluders);
   ++liveCells_;
   const CellId back(static_cast<uint32_t>(cells_.size() - 1));
   cells_[front.index].edge = et;
@@ -253,7 +262,7 @@ bool HalfEdgeMesh::dissolvable(VertexId v, double eps) const {
   const HalfEdgeId e1 = prev(e2);
   const HalfEdgeId t1 = twin(e1), t2 = twin(e2);
   if (halfEdge(t2).next != t1) return false;  // more than two edges at v
-  if (halfEdge(e1).node != halfEdge(e2).node) return false;
+  if (node(e1) != node(e2)) return false;
   const Vec2 a = vertex(halfEdge(e1).origin).position, b = vertex(destination(e2)).position;
   if (halfEdge(e1).origin == destination(e2)) return false;
   if (std::abs(lineDistance(a, b, vertex(v).position)) > eps) return false;
@@ -330,6 +339,8 @@ std::vector<VertexId> HalfEdgeMesh::mergeCells(CellId keep, CellId drop, double 
   if (!halfEdge(vertex(w).out).alive()) vertices_[w.index].out = q;
   cells_[keep.index].edge = p;
   cells_[drop.index].alive = false;
+  lists_.release(cells_[drop.index].occluders);
+  cells_[drop.index].occluders = OccluderListPool::kEmpty;
   touch(keep);
   touch(drop);
   --liveCells_;
@@ -361,8 +372,7 @@ void HalfEdgeMesh::validate(double eps, double receiverArea) const {
     if (!h.origin.is_valid() || !vertex(h.origin).alive) fail("half-edge from a dead vertex");
     if (h.cell == t.cell) fail("both sides of an edge in one cell");
     if (h.cell.is_valid() && !cell(h.cell).alive) fail("half-edge in a dead cell");
-    if (!h.cell.is_valid() && h.node.is_valid()) fail("outer half-edge made by a tree node");
-    if (h.node != t.node) fail("twins disagree on their node");
+    if (!h.cell.is_valid() && node(HalfEdgeId(i)).is_valid()) fail("outer half-edge made by a tree node");
     if (!(glm::length(vertex(h.origin).position - vertex(t.origin).position) > eps))
       fail("edge shorter than the tolerance");
   }
@@ -394,6 +404,16 @@ void HalfEdgeMesh::validate(double eps, double receiverArea) const {
     if (!(area > 0)) fail("cell " + std::to_string(i) + " has no positive area");
     total += area;
   }
+  std::vector<size_t> holders;
+  for (const Cell& cell : cells_) {
+    if (!cell.alive) {
+      if (cell.occluders != OccluderListPool::kEmpty) fail("a dead cell holds an occluder list");
+      continue;
+    }
+    if (cell.occluders >= holders.size()) holders.resize(cell.occluders + 1);
+    ++holders[cell.occluders];
+  }
+  lists_.validate(holders);
   size_t outer = 0;
   for (const HalfEdge& h : halfEdges_)
     if (h.alive() && !h.cell.is_valid()) ++outer;
@@ -406,8 +426,9 @@ void HalfEdgeMesh::validate(double eps, double receiverArea) const {
 void HalfEdgeMesh::shrinkToFit() {
   vertices_.shrink_to_fit();
   halfEdges_.shrink_to_fit();
+  edgeNodes_.shrink_to_fit();
   cells_.shrink_to_fit();
-  for (Cell& cell : cells_) cell.occluders.shrink_to_fit();
+  lists_.shrinkToFit();
 }
 
 }  // namespace penumbra

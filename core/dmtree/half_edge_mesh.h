@@ -8,6 +8,7 @@
 
 #include "core/dmtree/handles.h"
 #include "core/dmtree/occluder_list.h"
+#include "core/dmtree/occluder_list_pool.h"
 #include "core/geom/convex2d.h"
 #include "core/geom/vec.h"
 
@@ -29,27 +30,28 @@ class HalfEdgeMesh {
     HalfEdgeId out;  // one half-edge leaving the vertex
     bool alive = true;
   };
-  // 16 bytes: no prev (prev() finds it around the origin) and no alive flag (a dead
-  // half-edge is in no loop: its next is invalid). Meshes hold millions of them.
+  // 12 bytes: no prev (prev() finds it around the origin), no alive flag (a dead
+  // half-edge is in no loop: its next is invalid) and no node (one per edge pair, see
+  // node()). Meshes hold millions of them.
   struct HalfEdge {
     VertexId origin;
     HalfEdgeId next;
     CellId cell;  // invalid: outside the receiver
-    NodeId node;  // the tree node whose split created the edge; invalid: receiver boundary
     bool alive() const { return next.is_valid(); }
   };
-  static_assert(sizeof(HalfEdge) == 16);
-  // 40 bytes: the alive flag shares the stamp's word.
+  static_assert(sizeof(HalfEdge) == 12);
+  // 24 bytes: the list is a handle into the mesh's pool, the alive flag shares the
+  // stamp's word.
   struct Cell {
     HalfEdgeId edge;  // one half-edge of the loop
     NodeId leaf;      // the BSP leaf holding this cell
-    OccluderList occluders;
+    OccluderListPool::Handle occluders = OccluderListPool::kEmpty;
     bool alive : 1 = true;
     // When the cell last changed (loop, list, or death), on stampNow()'s clock. 63 bits
     // never wrap; 32 would within a few hundred large builds (5·10⁶ stamps each).
     uint64_t touched : 63 = 0;
   };
-  static_assert(sizeof(Cell) == 40);
+  static_assert(sizeof(Cell) == 24);
 
   // Where a line cuts a cell, planned before anything changes. side: +1/-1 if the
   // cell lies wholly in front/behind (within eps), 0 if it straddles: then the cut
@@ -75,7 +77,7 @@ class HalfEdgeMesh {
 
   CutPlan planCut(CellId cell, const Line2& line, double eps) const;
   // Applies a straddling plan: the front part keeps `plan.cell`, the back part is a
-  // new cell; both copy the occluder list. New chord edges carry `node`.
+  // new cell; both hold the occluder list. New chord edges carry `node`.
   CutResult applyCut(const CutPlan& plan, NodeId node);
 
   // Removes the straight chain of edges shared by two adjacent cells (the inverse of
@@ -85,18 +87,16 @@ class HalfEdgeMesh {
 
   const Vertex& vertex(VertexId v) const { return vertices_[v.index]; }
   const HalfEdge& halfEdge(HalfEdgeId h) const { return halfEdges_[h.index]; }
+  // The tree node whose split created h's edge (both twins); invalid: receiver boundary.
+  NodeId node(HalfEdgeId h) const { return edgeNodes_[h.index >> 1]; }
   const Cell& cell(CellId c) const { return cells_[c.index]; }
+  // A cell's occluder list; valid until that cell's list changes or the cell dies.
+  const OccluderList& occluders(CellId c) const { return lists_.list(cells_[c.index].occluders); }
   // Writers: a list write marks the cell touched; the leaf is bookkeeping only.
-  OccluderList& occludersForWrite(CellId c) {
-    touch(c);
-    return cells_[c.index].occluders;
-  }
+  void setOccluders(CellId c, const OccluderList& list);
   void setLeaf(CellId c, NodeId leaf) { cells_[c.index].leaf = leaf; }
   // The edge pair of h now belongs to `node` (a copy of its node, same line).
-  void relabel(HalfEdgeId h, NodeId node) {
-    halfEdges_[h.index].node = node;
-    halfEdges_[twin(h).index].node = node;
-  }
+  void relabel(HalfEdgeId h, NodeId node) { edgeNodes_[h.index >> 1] = node; }
   // Marks a cell changed, so meshing looks at it again (see Cell::touched).
   void touch(CellId c) { cells_[c.index].touched = nextStamp(); }
   // One clock shared by every mesh in the process, so a stamp read before meshing
@@ -112,6 +112,7 @@ class HalfEdgeMesh {
   size_t vertexCount() const { return liveVertices_; }
   size_t halfEdgeCount() const { return liveHalfEdges_; }
   size_t cellCount() const { return liveCells_; }
+  size_t distinctOccluderLists() const { return lists_.distinctLists(); }
 
   std::vector<HalfEdgeId> loop(CellId c) const;
   void loopInto(CellId c, std::vector<HalfEdgeId>& out) const;  // the same, into `out` (cleared)
@@ -122,8 +123,8 @@ class HalfEdgeMesh {
   // Topology and geometry of the mesh alone (see DmTree::validate for the rest).
   void validate(double eps, double receiverArea) const;
 
-  // Gives back the spare capacity of the slot arrays and the occluder lists (grown by
-  // doubling while shadows were inserted). Changes no slot, list or stamp.
+  // Gives back the spare capacity of the slot arrays (grown by doubling while shadows
+  // were inserted). Changes no slot, list or stamp.
   void shrinkToFit();
 
  private:
@@ -140,7 +141,9 @@ class HalfEdgeMesh {
 
   std::vector<Vertex> vertices_;
   std::vector<HalfEdge> halfEdges_;
+  std::vector<NodeId> edgeNodes_;  // by edge pair (half-edge index / 2)
   std::vector<Cell> cells_;
+  OccluderListPool lists_;  // the live cells' lists
   size_t liveVertices_ = 0, liveHalfEdges_ = 0, liveCells_ = 0;
 };
 

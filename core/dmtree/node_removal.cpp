@@ -157,14 +157,14 @@ void DmTree::extendInto(NodeId n, CellId piece, const Line2& deleted, std::vecto
   const double eps = tolerance_.length();
   if (node(n).isLeaf()) {
     const CellId keep = node(n).cell;
-    const OccluderList pieceList = mesh_.cell(piece).occluders;
+    const OccluderList pieceList = mesh_.occluders(piece);  // a copy: the merge frees piece's
     const double pieceSide = deleted.distance(areaCentroid(mesh_.polygon(piece)));
     const std::vector<VertexId> removed = mesh_.mergeCells(keep, piece, eps);
     result.removedVertices.insert(result.removedVertices.end(), removed.begin(), removed.end());
     result.changedCells.push_back(keep);
     if (pieceSide * deleted.distance(areaCentroid(mesh_.polygon(keep))) > 0 &&
-        mesh_.cell(keep).occluders != pieceList)
-      mesh_.occludersForWrite(keep) = pieceList;
+        mesh_.occluders(keep) != pieceList)
+      mesh_.setOccluders(keep, pieceList);
     return;
   }
   const HalfEdgeMesh::CutPlan plan = mesh_.planCut(piece, segment(n).line, eps);
@@ -207,7 +207,7 @@ void DmTree::relabelEdges(NodeId from, NodeId to, NodeId under, const Polygon2& 
   leavesAlong(under, origin + lo * dir, origin + hi * dir, leaves);
   for (NodeId leaf : leaves)
     for (HalfEdgeId h : mesh_.loop(node(leaf).cell))
-      if (mesh_.halfEdge(h).node == from) mesh_.relabel(h, to);
+      if (mesh_.node(h) == from) mesh_.relabel(h, to);
 }
 
 // Step 3: splits subtree t (covering `region`) by the line of basis node `cutter`. Only
@@ -308,9 +308,9 @@ void DmTree::condenseLeafPair(NodeId n, RemoveResult& result) {
   const DmNode& d = node(n);
   if (!d.alive || d.isLeaf() || !node(d.front).isLeaf() || !node(d.back).isLeaf()) return;
   const CellId keep = node(d.front).cell, drop = node(d.back).cell;
-  if (mesh_.cell(keep).occluders != mesh_.cell(drop).occluders) return;
+  if (mesh_.cell(keep).occluders != mesh_.cell(drop).occluders) return;  // interned: equal lists, equal handles
   std::vector<OccluderKey> keys;
-  for (const OccluderEntry& entry : mesh_.cell(keep).occluders)
+  for (const OccluderEntry& entry : mesh_.occluders(keep))
     keys.push_back({entry.light, entry.face});
   double lo, hi;
   if (chordOf(n, lo, hi) && liveSegmentOn(n, lo, hi, keys, nullptr)) return;
@@ -348,7 +348,7 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
   // (a segment always borders a cell its occluder covers).
   std::set<OccluderKey> keySet;
   auto addListed = [&](NodeId leaf) {
-    for (const OccluderEntry& entry : mesh_.cell(node(leaf).cell).occluders) keySet.insert({entry.light, entry.face});
+    for (const OccluderEntry& entry : mesh_.occluders(node(leaf).cell)) keySet.insert({entry.light, entry.face});
   };
   for (const auto& side : along)
     for (NodeId leaf : side) addListed(leaf);
@@ -391,11 +391,11 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
     for (NodeId leaf : along[side]) {
       const std::vector<HalfEdgeId> edges = mesh_.loop(node(leaf).cell);
       for (size_t i = 0; i < edges.size(); ++i) {
-        if (mesh_.halfEdge(edges[i]).node != e) continue;
+        if (mesh_.node(edges[i]) != e) continue;
         const VertexId v = mesh_.halfEdge(edges[i]).origin;
         const Vec2 x = mesh_.vertex(v).position;
         const double t = glm::dot(x, dir);
-        const NodeId other = mesh_.halfEdge(edges[(i + edges.size() - 1) % edges.size()]).node;  // the edge before
+        const NodeId other = mesh_.node(edges[(i + edges.size() - 1) % edges.size()]);  // the edge before
         if (other != e && t > lo + eps && t < hi - eps) ++dangling[side];  // not at the edge's ends
       }
     }
@@ -464,7 +464,7 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
   for (CellId c : check) {
     if (!c.is_valid() || !mesh_.cell(c).alive) continue;
     for (HalfEdgeId h : mesh_.loop(c))
-      if (mesh_.halfEdge(h).node == e)
+      if (mesh_.node(h) == e)
         throw std::logic_error("DM-tree: an edge of a deleted node is left");
   }
   // Extended splits, deepest first (they were found top-down).
@@ -604,10 +604,12 @@ void DmTree::removeOne(const OccluderKey& key, RemoveResult& result) {
   if (!penumbra.empty()) collectCells(root_, penumbra, covered, &key, &doomed);
   for (CellId c : covered) {
     const auto listed = [&](const OccluderEntry& e) { return e.light == light && e.face == occluder; };
-    const OccluderList& held = mesh_.cell(c).occluders;
+    const OccluderList& held = mesh_.occluders(c);
     if (std::none_of(held.begin(), held.end(), listed)) continue;
-    OccluderList& list = mesh_.occludersForWrite(c);
+    OccluderList& list = scratchList_;
+    list = held;
     list.erase(std::remove_if(list.begin(), list.end(), listed), list.end());
+    mesh_.setOccluders(c, list);
     result.changedCells.push_back(c);
   }
   // Its nodes, top-down, then those split by an extended edge (before or during this

@@ -99,7 +99,7 @@ void DmTree::partition(CellId c, const SingleTree& tree, int s, const Generator&
 }
 
 bool DmTree::inUmbraOf(CellId c, uint32_t light) const {
-  for (const OccluderEntry& e : mesh_.cell(c).occluders) {
+  for (const OccluderEntry& e : mesh_.occluders(c)) {
     if (!e.umbra) return false;  // umbra entries come first
     if (e.light != light) continue;
     const auto it = inserted_.find({light, e.face});
@@ -141,12 +141,14 @@ InsertResult DmTree::insert(const SingleShadow& shadow) {
       const Vec2 p = areaCentroid(mesh_.polygon(piece));
       if (!strictlyInside(tree.penumbra, p)) continue;
       const bool umbra = strictlyInside(tree.umbra, p);
-      OccluderList& list = mesh_.occludersForWrite(piece);
+      OccluderList& list = scratchList_;
+      list = mesh_.occluders(piece);
       const OccluderEntry entry{shadow.light, shadow.occluder, umbra};
       if (umbra)
         list.insert(std::find_if(list.begin(), list.end(), [](const OccluderEntry& e) { return !e.umbra; }), entry);
       else
         list.push_back(entry);
+      mesh_.setOccluders(piece, list);
       result.changedCells.push_back(piece);
     }
   }

@@ -294,7 +294,8 @@ FrameResult Engine::apply(const Frame& frame) {
   for (FaceId face : leavingFaces)
     if (receiverIndex_.count(face)) leavingReceivers.push_back(face);
   std::vector<Vec3> radianceBefore;  // values are summed with the radiances on each read
-  for (const Light& light : scene_.lights()) radianceBefore.push_back(light.radiance);
+  if (changesRadiance(frame))
+    for (const Light& light : scene_.lights()) radianceBefore.push_back(light.radiance);
   applyEdits(scene_, frame);
   const std::set<uint32_t> entering = namedHandles(scene_, frame);
   // Builds the whole engine for the new scene and reports every receiver as rebuilt.

@@ -163,8 +163,8 @@ void Engine::resumRadiance(const std::vector<Vec3>& radianceBefore, FrameResult&
   for (Receiver& receiver : receivers_) {
     std::vector<VertexId>& relit = lastRelit_[receiver.face];
     relit.clear();
+    const bool sameLights = radianceBefore.size() == receiver.perLight.lightCount();
     for (VertexId v : receiver.tree.vertices()) {
-      const bool sameLights = radianceBefore.size() == receiver.perLight.lightCount();
       const VertexIrradiance now = value(receiver, v);
       const VertexIrradiance old = sameLights ? sumLights(radianceBefore, receiver.perLight[v.index]) : VertexIrradiance{};
       relit.push_back(v);

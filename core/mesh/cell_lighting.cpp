@@ -101,7 +101,7 @@ MeshChunkKey CellLighter::chunkOf(const Polygon2& piece) const {
 uint64_t CellLighter::gather(CellId c) {
   const DmTree& tree = source_.tree;
   const HalfEdgeMesh& halfEdges = tree.mesh();
-  const OccluderList& list = halfEdges.cell(c).occluders;
+  const OccluderList& list = halfEdges.occluders(c);
   anyDark_ = darkLights(list, dark_);
   inputs_.clear();
   for (HalfEdgeId h : halfEdges.loop(c)) inputs_.corners.push_back(halfEdges.halfEdge(h).origin);
@@ -159,7 +159,7 @@ VertexIrradiance CellLighter::valueAt(const Vec2& q, const OccluderList& list, c
 }
 
 void CellLighter::emit(CellId c, CellMemo& out) {
-  const OccluderList& list = source_.tree.mesh().cell(c).occluders;
+  const OccluderList& list = source_.tree.mesh().occluders(c);
   const Polygon2& polygon = inputs_.outline;
   output_.clear();
   Vec3 centre{0.0};

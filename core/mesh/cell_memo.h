@@ -3,7 +3,6 @@
 // exact size, and a fingerprint of the inputs they came from. Plain value.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>

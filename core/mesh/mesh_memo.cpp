@@ -142,7 +142,7 @@ class MeshMemoUpdate {
     for (uint32_t index : listed->second) {
       const CellMemo& m = memo_.cells_[index];
       ids.resize(m.pointCount());
-      const bool anyDark = darkLights(halfEdges_.cell(CellId(index)).occluders, dark);
+      const bool anyDark = darkLights(halfEdges_.occluders(CellId(index)), dark);
       uint32_t pointsBegin = 0;
       for (size_t i = 0; i < m.pieceCount(); ++i) {
         const CellMemo::Piece piece = m.piece(i);
