@@ -18,7 +18,6 @@ DmTree::DmTree(const Polygon2& receiver, const Tolerance& tolerance) : tolerance
 
 void DmTree::record(const OccluderKey& key, const SingleShadow& shadow, const SingleTree& tree) {
   Inserted& entry = inserted_[key];
-  entry.segments = tree.segments();
   entry.penumbra = tree.penumbra;
   entry.shadow = shadow;
   entry.sequence = nextSequence_++;

@@ -14,12 +14,12 @@
 
 namespace penumbra {
 
-// An internal node's line and what it came from: its generator and segment
+// An internal node's line and what it came from: its generator and segment kind
 // (DmTree::segment). Kept apart from the node, since half the nodes are leaves:
-// 72 bytes, and 20 a node.
+// 40 bytes, and 20 a node. Where the generator's segment lies on the line is in its
+// kept segments (DmTree::forEachKeptSegment), not here: nothing in the tree reads it.
 struct NodeSegment {
   Line2 line;           // front child is line.distance > 0
-  Vec2 a{0.0}, b{0.0};  // the generating segment, clipped to the cell it split
   uint32_t light = 0;
   FaceId occluder;
   SegmentKind kind = SegmentKind::Internal;
@@ -27,7 +27,7 @@ struct NodeSegment {
   bool orphan = false;   // its occluder was removed but the node could not be condensed yet
   bool copy = false;     // made by splitting a node in two where an extended edge crossed it
 };
-static_assert(sizeof(NodeSegment) == 72);
+static_assert(sizeof(NodeSegment) == 40);
 
 struct DmNode {
   static constexpr uint32_t kNoSegment = 0x7fffffffu;
@@ -102,6 +102,14 @@ class DmTree {
   RemoveResult removeOccluder(uint32_t light, FaceId occluder);
   // Occluders recorded but culled somewhere (umbra culling).
   size_t culledOccluders() const;
+  // Calls f(light, occluder, segment) for every discontinuity segment of every inserted
+  // occluder, as kept for removal (where umbra culling kept it out of the cells too).
+  // They are derived from the stored shadows on each call.
+  template <class F>
+  void forEachKeptSegment(F&& f) const {
+    for (const auto& [key, inserted] : inserted_)
+      for (const KeptSegment& s : buildSingleTree(inserted.shadow, tolerance_).segments()) f(key.first, key.second, s);
+  }
 
   std::vector<CellId> cells() const;
   Polygon2 cellPolygon(CellId c) const { return mesh_.polygon(c); }
@@ -156,9 +164,9 @@ class DmTree {
   uint32_t addSegment(const NodeSegment& s);  // its slot
   NodeSegment& segmentForWrite(NodeId n) { return segments_[nodes_[n.index].segment]; }
   // Splits leaf n's cell along `seg` (a straddling plan) and makes n the internal
-  // node carrying seg's piece [lo, hi] (positions along a→b) for `owner`.
+  // node carrying seg's line for `owner`; partial: seg does not span the cell.
   HalfEdgeMesh::CutResult splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan& plan, const SingleTreeNode& seg,
-                                    const OccluderKey& owner, double lo, double hi, bool partial);
+                                    const OccluderKey& owner, bool partial);
   // The cells below n overlapping `region`, in one descent with (if `nodes`) key's nodes there.
   void collectCells(NodeId n, const Polygon2& region, std::vector<CellId>& out, const OccluderKey* key = nullptr,
                     std::vector<NodeId>* nodes = nullptr) const;
@@ -177,7 +185,10 @@ class DmTree {
   // below n when they are few (they tile the region), else from regionOf(n).
   bool chordOf(NodeId n, double& lo, double& hi) const;
   const KeptSegment* liveSegmentOn(NodeId n, double lo, double hi, const std::vector<OccluderKey>& keys,
-                                   OccluderKey* owner) const;
+                                   OccluderKey* owner);
+  // An inserted occluder's discontinuity segments, derived from its shadow on first use
+  // within one removeOccluder call (which clears them when it ends).
+  const std::vector<KeptSegment>& keptSegments(const OccluderKey& key, const SingleShadow& shadow);
   void leavesAlong(NodeId n, const Vec2& p, const Vec2& q, std::vector<NodeId>& out) const;
   void deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result);
   struct SplitTree {
@@ -194,10 +205,11 @@ class DmTree {
   void killNode(NodeId n);
   void rebuild();
 
+  // Its discontinuity segments are not kept (10 MB in a sparse 1500 build, read only
+  // when removing): keptSegments() derives them from the shadow.
   struct Inserted {
-    std::vector<KeptSegment> segments;  // every discontinuity it carries
     Polygon2 penumbra;                  // as merged (short edges dropped)
-    SingleShadow shadow;                // for the counted rebuild fallback
+    SingleShadow shadow;                // its segments, and the counted rebuild fallback
     uint64_t sequence = 0;              // insertion order
     bool culled = false;                // some cell it reaches was in its light's umbra
     // Its umbra culls later shadows (SingleShadow::cullsBehind).
@@ -223,6 +235,7 @@ class DmTree {
   // regions may miss the generator's penumbra. Dead or relabeled ones are skipped
   // when read (node slots are not reused).
   std::map<OccluderKey, std::vector<NodeId>> splitNodes_;
+  std::map<OccluderKey, std::vector<KeptSegment>> keptSegments_;  // see keptSegments()
   OccluderList scratchList_;  // a list being changed before it is interned (its capacity reused)
 };
 

@@ -128,15 +128,21 @@ bool DmTree::chordOf(NodeId n, double& lo, double& hi) const {
 
 // A still-inserted occluder's discontinuity overlapping n's chord [lo, hi] (positions
 // along n's line): the edge must stay although n's own generator is gone.
+const std::vector<KeptSegment>& DmTree::keptSegments(const OccluderKey& key, const SingleShadow& shadow) {
+  const auto it = keptSegments_.find(key);
+  if (it != keptSegments_.end()) return it->second;
+  return keptSegments_.emplace(key, buildSingleTree(shadow, tolerance_).segments()).first->second;
+}
+
 const KeptSegment* DmTree::liveSegmentOn(NodeId n, double lo, double hi, const std::vector<OccluderKey>& keys,
-                                         OccluderKey* owner) const {
+                                         OccluderKey* owner) {
   const double eps = tolerance_.length();
   const Line2& line = segment(n).line;
   const Vec2 dir = along(line);
   for (const OccluderKey& key : keys) {
     const auto it = inserted_.find(key);
     if (it == inserted_.end()) continue;
-    for (const KeptSegment& s : it->second.segments) {
+    for (const KeptSegment& s : keptSegments(key, it->second.shadow)) {
       if (std::abs(line.distance(s.a)) > eps || std::abs(line.distance(s.b)) > eps) continue;
       const double ta = glm::dot(s.a, dir), tb = glm::dot(s.b, dir);
       if (std::min(hi, std::max(ta, tb)) - std::max(lo, std::min(ta, tb)) > eps) {
@@ -370,8 +376,6 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
     d.light = owner.first;
     d.occluder = owner.second;
     d.kind = s->kind;
-    d.a = s->a;
-    d.b = s->b;
     d.partial = true;
     ++result.nodesRelabeled;
     return;
@@ -539,6 +543,10 @@ RemoveResult DmTree::removeOccluder(uint32_t light, FaceId occluder) {
   const OccluderKey key{light, occluder};
   const auto it = inserted_.find(key);
   if (it == inserted_.end()) return result;
+  struct ForgetKeptSegments {  // derived for this removal only: shadows change between removals
+    std::map<OccluderKey, std::vector<KeptSegment>>& segments;
+    ~ForgetKeptSegments() { segments.clear(); }
+  } forget{keptSegments_};
   result.found = true;
   result.penumbra = it->second.penumbra;
   const std::vector<OccluderKey> recast = umbraCulling_ ? culledBehind(key) : std::vector<OccluderKey>{};

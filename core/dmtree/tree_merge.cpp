@@ -40,11 +40,10 @@ void DmTree::collectCells(NodeId n, const Polygon2& region, std::vector<CellId>&
 }
 
 HalfEdgeMesh::CutResult DmTree::splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan& plan, const SingleTreeNode& seg,
-                                          const OccluderKey& owner, double lo, double hi, bool partial) {
+                                          const OccluderKey& owner, bool partial) {
   const HalfEdgeMesh::CutResult cut = mesh_.applyCut(plan, n);
   const NodeId front = addNode(n, cut.front);
   const NodeId back = addNode(n, cut.back);
-  const Vec2 dir = glm::normalize(seg.b - seg.a);
   DmNode& d = nodes_[n.index];
   d.cell = CellId();
   d.front = front;
@@ -55,8 +54,6 @@ HalfEdgeMesh::CutResult DmTree::splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan&
   s.light = owner.first;
   s.occluder = owner.second;
   s.kind = seg.kind;
-  s.a = seg.a + lo * dir;
-  s.b = seg.a + hi * dir;
   s.partial = partial;
   s.orphan = false;
   return cut;
@@ -90,8 +87,8 @@ void DmTree::partition(CellId c, const SingleTree& tree, int s, const Generator&
     return;
   }
 
-  const HalfEdgeMesh::CutResult cut = splitLeaf(mesh_.cell(c).leaf, plan, sn, {gen.light, gen.occluder}, lo,
-                                                hi, lo > chordLo + eps || hi < chordHi - eps);
+  const HalfEdgeMesh::CutResult cut = splitLeaf(mesh_.cell(c).leaf, plan, sn, {gen.light, gen.occluder},
+                                                lo > chordLo + eps || hi < chordHi - eps);
   result.newVertices.insert(result.newVertices.end(), cut.newVertices.begin(), cut.newVertices.end());
   ++result.nodesAdded;
   partition(cut.front, tree, sn.front, gen, pieces, result);

@@ -79,21 +79,12 @@ double distanceToBoundary(const Polygon2& polygon, const Vec2& q) {
   return best;
 }
 
-// Every live internal node's segment of `from` that is a discontinuity (not an orphan
-// left by deletion), sampled, must lie on an edge of `to` or inside an umbra of its light
-// there (culled: DmTree::insert).
+// Every discontinuity segment `from` keeps for its inserted occluders, sampled, must lie
+// on an edge of `to` or inside an umbra of its light there (culled: DmTree::insert).
 void compareSegments(const Engine::Receiver& from, const Engine::Receiver& to, double eps, const char* direction,
                      EngineDiff& diff) {
-  std::vector<NodeId> stack{from.tree.root()};
-  while (!stack.empty()) {
-    const NodeId n = stack.back();
-    stack.pop_back();
-    const DmNode& node = from.tree.node(n);
-    if (node.isLeaf()) continue;
-    stack.push_back(node.front);
-    stack.push_back(node.back);
-    const NodeSegment& seg = from.tree.segment(n);
-    if (seg.orphan || glm::length(seg.b - seg.a) <= 4 * eps) continue;
+  from.tree.forEachKeptSegment([&](uint32_t light, FaceId occluder, const KeptSegment& seg) {
+    if (glm::length(seg.b - seg.a) <= 4 * eps) return;
     for (double t : {0.15, 0.5, 0.85}) {
       const Vec2 q = seg.a + t * (seg.b - seg.a);
       ++diff.segmentSamples;
@@ -101,18 +92,18 @@ void compareSegments(const Engine::Receiver& from, const Engine::Receiver& to, d
       const double d = distanceToBoundary(to.tree.cellPolygon(there), q);
       // Umbra culling: where `to` holds the segment's light wholly hidden, the light adds
       // nothing on either side of the segment, so it bounds no change there.
-      if (d > 4 * eps && !hasUmbraEntry(to.tree.occluders(there), seg.light)) {
+      if (d > 4 * eps && !hasUmbraEntry(to.tree.occluders(there), light)) {
         if (diff.segmentErrors++ == 0 && diff.firstProblem.empty()) {
           std::ostringstream out;
           out << direction << ": receiver " << describe(from.face) << " segment of occluder "
-              << describe(seg.occluder) << " light " << seg.light << " kind " << int(seg.kind)
+              << describe(occluder) << " light " << light << " kind " << int(seg.kind)
               << " not on an edge (distance " << d << ")";
           diff.firstProblem = out.str();
         }
         break;
       }
     }
-  }
+  });
 }
 
 }  // namespace
