@@ -90,7 +90,7 @@ class HalfEdgeMesh {
   // The tree node whose split created h's edge (both twins); invalid: receiver boundary.
   NodeId node(HalfEdgeId h) const { return edgeNodes_[h.index >> 1]; }
   const Cell& cell(CellId c) const { return cells_[c.index]; }
-  // A cell's occluder list; valid until that cell's list changes or the cell dies.
+  // A cell's occluder list; valid until any cell's list changes or a cell dies.
   const OccluderList& occluders(CellId c) const { return lists_.list(cells_[c.index].occluders); }
   // Writers: a list write marks the cell touched; the leaf is bookkeeping only.
   void setOccluders(CellId c, const OccluderList& list);

@@ -1,21 +1,35 @@
 #include "core/mesh/cell_memo.h"
 
 #include <algorithm>
+#include <climits>
+#include <cstdint>
 #include <cstring>
-#include <type_traits>
+#include <stdexcept>
 
 namespace penumbra {
 
 namespace {
 
-uint32_t lowWord(int64_t x) { return uint32_t(uint64_t(x)); }
-uint32_t highWord(int64_t x) { return uint32_t(uint64_t(x) >> 32); }
-int64_t fromWords(uint32_t low, uint32_t high) { return int64_t(uint64_t(high) << 32 | low); }
+uint32_t lowWord(uint64_t x) { return uint32_t(x); }
+uint32_t highWord(uint64_t x) { return uint32_t(x >> 32); }
+uint64_t fromWords(uint32_t low, uint32_t high) { return uint64_t(high) << 32 | low; }
+bool fitsOneWord(int64_t x) { return x >= INT32_MIN && x <= INT32_MAX; }
+
+uint32_t* putDouble(uint32_t* w, double x) {
+  uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  *w++ = lowWord(bits);
+  *w++ = highWord(bits);
+  return w;
+}
+double getDouble(const uint32_t* w) {
+  const uint64_t bits = fromWords(w[0], w[1]);
+  double x;
+  std::memcpy(&x, &bits, sizeof x);
+  return x;
+}
 
 }  // namespace
-
-// Own values are kept as their bytes.
-static_assert(std::is_trivially_copyable_v<CellMemo::OwnValue> && sizeof(CellMemo::OwnValue) % sizeof(uint32_t) == 0);
 
 void CellMemo::Output::clear() {
   pieces.clear();
@@ -24,19 +38,32 @@ void CellMemo::Output::clear() {
 }
 
 CellMemo::CellMemo(uint64_t inputs, const Output& output) : inputs_(inputs) {
-  const size_t count = kHeaderWords + kPieceWords * output.pieces.size() + output.points.size() +
-                       kOwnValueWords * output.ownValues.size();
+  const bool wide = std::any_of(output.pieces.begin(), output.pieces.end(), [](const Piece& p) {
+    return !fitsOneWord(p.chunk.x) || !fitsOneWord(p.chunk.y);
+  });
+  if (output.pieces.size() >= kWideKeys) throw std::length_error("CellMemo: too many pieces in one cell");
+  const size_t count = kHeaderWords + (wide ? kWidePieceWords : kPieceWords) * output.pieces.size() +
+                       output.points.size() + kOwnValueWords * output.ownValues.size();
   words_ = std::make_unique_for_overwrite<uint32_t[]>(count);
   uint32_t* w = words_.get();
-  *w++ = uint32_t(output.pieces.size());
+  *w++ = uint32_t(output.pieces.size()) | (wide ? kWideKeys : 0);
   *w++ = uint32_t(output.ownValues.size());
   for (const Piece& p : output.pieces) {
-    const uint32_t piece[kPieceWords] = {lowWord(p.chunk.x),  highWord(p.chunk.x), lowWord(p.chunk.y),
-                                         highWord(p.chunk.y), p.pointsEnd,         p.fan.apex};
-    w = std::copy(piece, piece + kPieceWords, w);
+    const uint64_t x = uint64_t(p.chunk.x), y = uint64_t(p.chunk.y);
+    if (wide) {
+      *w++ = lowWord(x), *w++ = highWord(x), *w++ = lowWord(y), *w++ = highWord(y);
+    } else {
+      *w++ = lowWord(x), *w++ = lowWord(y);
+    }
+    *w++ = p.pointsEnd;
+    *w++ = p.fan.apex;
   }
   w = std::copy(output.points.begin(), output.points.end(), w);
-  if (!output.ownValues.empty()) std::memcpy(w, output.ownValues.data(), sizeof(OwnValue) * output.ownValues.size());
+  for (const OwnValue& v : output.ownValues) {
+    for (double x : {v.at.x, v.at.y, v.value.irradiance.x, v.value.irradiance.y, v.value.irradiance.z})
+      w = putDouble(w, x);
+    *w++ = uint32_t(v.value.lightClass);
+  }
 }
 
 CellMemo::CellMemo(const CellMemo& other) : inputs_(other.inputs_) {
@@ -51,24 +78,26 @@ CellMemo& CellMemo::operator=(const CellMemo& other) {
   return *this;
 }
 
-size_t CellMemo::wordCount() const {
-  return kHeaderWords + kPieceWords * pieceCount() + pointCount() + kOwnValueWords * words_[1];
-}
+size_t CellMemo::wordCount() const { return pointsBegin() + pointCount() + kOwnValueWords * words_[1]; }
 
 CellMemo::Piece CellMemo::piece(size_t i) const {
-  const uint32_t* w = &words_[kHeaderWords + kPieceWords * i];
-  return Piece{MeshChunkKey{fromWords(w[0], w[1]), fromWords(w[2], w[3])}, w[4], CellFan{w[5]}};
+  const uint32_t* w = &words_[kHeaderWords + pieceWords() * i];
+  if (words_[0] & kWideKeys)
+    return Piece{MeshChunkKey{int64_t(fromWords(w[0], w[1])), int64_t(fromWords(w[2], w[3]))}, w[4], CellFan{w[5]}};
+  return Piece{MeshChunkKey{int32_t(w[0]), int32_t(w[1])}, w[2], CellFan{w[3]}};
 }
 
 size_t CellMemo::pointCount() const {
   const size_t pieces = pieceCount();
-  return pieces ? words_[kHeaderWords + kPieceWords * (pieces - 1) + 4] : 0;
+  return pieces ? words_[kHeaderWords + pieceWords() * pieces - 2] : 0;  // the last piece's points end
 }
 
 CellMemo::OwnValue CellMemo::ownValue(uint32_t i) const {
+  const uint32_t* w = &words_[pointsBegin() + pointCount() + kOwnValueWords * i];
   OwnValue value;
-  const uint32_t* from = &words_[kHeaderWords + kPieceWords * pieceCount() + pointCount() + kOwnValueWords * i];
-  std::memcpy(static_cast<void*>(&value), from, sizeof(OwnValue));
+  value.at = Vec2(getDouble(w), getDouble(w + 2));
+  value.value.irradiance = Vec3(getDouble(w + 4), getDouble(w + 6), getDouble(w + 8));
+  value.value.lightClass = LightClass(w[10]);
   return value;
 }
 

@@ -37,7 +37,8 @@ class CellMemo {
   // with kDarkCorner set when the value leaves out the cell's dark lights (darkLights).
   static constexpr uint32_t kOwnValue = 0x80000000u, kDarkCorner = 0x40000000u;
   static constexpr uint32_t kIndexMask = 0x3fffffffu;
-  // A point's own copy: where it is and its value.
+  // A point's own copy: where it is and its value (kept in 11 words: the position, irradiance
+  // and class; `comparisons` is not kept, the display mesh does not show it).
   struct OwnValue {
     Vec2 at{0.0};
     VertexIrradiance value;
@@ -66,19 +67,24 @@ class CellMemo {
 
   bool valid() const { return words_ != nullptr; }
   uint64_t inputs() const { return inputs_; }
-  size_t pieceCount() const { return valid() ? words_[0] : 0; }
+  size_t pieceCount() const { return valid() ? words_[0] & ~kWideKeys : 0; }
   Piece piece(size_t i) const;
   size_t pointCount() const;
-  uint32_t point(size_t e) const { return words_[kHeaderWords + kPieceWords * pieceCount() + e]; }
+  uint32_t point(size_t e) const { return words_[pointsBegin() + e]; }
   OwnValue ownValue(uint32_t i) const;
 
  private:
-  static constexpr size_t kHeaderWords = 2;  // piece count, own value count
-  static constexpr size_t kPieceWords = 6;   // chunk x and y (two words each), points end, fan
-  static constexpr size_t kOwnValueWords = sizeof(OwnValue) / sizeof(uint32_t);
+  static constexpr size_t kHeaderWords = 2;  // piece count (| kWideKeys), own value count
+  // A piece is its chunk's x and y, one word each (two if any of the cell's pieces needs them:
+  // kWideKeys), then points end and fan.
+  static constexpr uint32_t kWideKeys = 0x80000000u;
+  static constexpr size_t kPieceWords = 4, kWidePieceWords = 6;
+  static constexpr size_t kOwnValueWords = 11;
+  size_t pieceWords() const { return words_[0] & kWideKeys ? kWidePieceWords : kPieceWords; }
+  size_t pointsBegin() const { return kHeaderWords + pieceWords() * pieceCount(); }
   size_t wordCount() const;
   uint64_t inputs_ = 0;
-  // [piece count] [own value count] [pieces] [points] [own values, copied bytes]; null: not valid
+  // [piece count] [own value count] [pieces] [points] [own values]; null: not valid
   std::unique_ptr<uint32_t[]> words_;
 };
 
