@@ -16,9 +16,8 @@ DmTree::DmTree(const Polygon2& receiver, const Tolerance& tolerance) : tolerance
   root_ = addNode(NodeId(), c);
 }
 
-void DmTree::record(const OccluderKey& key, const SingleShadow& shadow, const SingleTree& tree) {
+void DmTree::record(const OccluderKey& key, const SingleShadow& shadow) {
   Inserted& entry = inserted_[key];
-  entry.penumbra = tree.penumbra;
   entry.shadow = shadow;
   entry.sequence = nextSequence_++;
 }

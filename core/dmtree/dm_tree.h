@@ -172,7 +172,7 @@ class DmTree {
                     std::vector<NodeId>* nodes = nullptr) const;
   void partition(CellId c, const SingleTree& tree, int s, const Generator& gen, std::vector<CellId>& pieces,
                  InsertResult& result);
-  void record(const OccluderKey& key, const SingleShadow& shadow, const SingleTree& tree);
+  void record(const OccluderKey& key, const SingleShadow& shadow);
   bool inUmbraOf(CellId c, uint32_t light) const;
   // The later culled occluders removing `key` must cast again, in insertion order.
   std::vector<OccluderKey> culledBehind(const OccluderKey& key) const;
@@ -208,13 +208,16 @@ class DmTree {
   // Its discontinuity segments are not kept (10 MB in a sparse 1500 build, read only
   // when removing): keptSegments() derives them from the shadow.
   struct Inserted {
-    Polygon2 penumbra;                  // as merged (short edges dropped)
-    SingleShadow shadow;                // its segments, and the counted rebuild fallback
+    SingleShadow shadow;                // its segments and penumbra, and the counted rebuild fallback
     uint64_t sequence = 0;              // insertion order
     bool culled = false;                // some cell it reaches was in its light's umbra
     // Its umbra culls later shadows (SingleShadow::cullsBehind).
     bool culls() const { return shadow.cullsBehind && !shadow.umbra.empty(); }
   };
+  // Its penumbra as merged (short edges dropped), derived from the shadow: not kept.
+  Polygon2 mergedPenumbra(const Inserted& inserted) const {
+    return withoutShortEdges(inserted.shadow.penumbra, tolerance_.length());
+  }
 
   Tolerance tolerance_;
   size_t nodeLimit_ = size_t(-1);

@@ -530,7 +530,7 @@ std::vector<DmTree::OccluderKey> DmTree::culledBehind(const OccluderKey& key) co
   std::vector<OccluderKey> out;
   for (const auto& [sequence, k] : later) {
     const Inserted& entry = inserted_.at(k);
-    const Box2 reach(entry.penumbra, eps);
+    const Box2 reach(mergedPenumbra(entry), eps);
     if (std::none_of(freed.begin(), freed.end(), [&](const Box2& b) { return b.overlaps(reach); })) continue;
     out.push_back(k);
     if (!entry.shadow.umbra.empty()) freed.push_back(Box2(entry.shadow.umbra, eps));
@@ -548,7 +548,7 @@ RemoveResult DmTree::removeOccluder(uint32_t light, FaceId occluder) {
     ~ForgetKeptSegments() { segments.clear(); }
   } forget{keptSegments_};
   result.found = true;
-  result.penumbra = it->second.penumbra;
+  result.penumbra = mergedPenumbra(it->second);
   const std::vector<OccluderKey> recast = umbraCulling_ ? culledBehind(key) : std::vector<OccluderKey>{};
   std::vector<SingleShadow> shadows;
   for (const OccluderKey& k : recast) shadows.push_back(inserted_.at(k).shadow);
@@ -601,7 +601,7 @@ RemoveResult DmTree::removeOccluder(uint32_t light, FaceId occluder) {
 // Throws std::logic_error if a geometric step fails (the caller rebuilds).
 void DmTree::removeOne(const OccluderKey& key, RemoveResult& result) {
   const auto it = inserted_.find(key);
-  const Polygon2 penumbra = it->second.penumbra;
+  const Polygon2 penumbra = mergedPenumbra(it->second);
   inserted_.erase(it);
   const uint32_t light = key.first;  // copies, not a structured binding: clang cannot capture one
   const FaceId occluder = key.second;

@@ -5,10 +5,6 @@
 
 namespace penumbra {
 
-namespace {
-
-using Region = SingleTreeNode::Region;
-
 Polygon2 withoutShortEdges(const Polygon2& polygon, double eps) {
   Polygon2 out;
   for (const Vec2& p : polygon)
@@ -17,6 +13,10 @@ Polygon2 withoutShortEdges(const Polygon2& polygon, double eps) {
   if (out.size() < 3 || !(signedArea(out) > 0)) return {};
   return out;
 }
+
+namespace {
+
+using Region = SingleTreeNode::Region;
 
 int addLeaf(SingleTree& tree, Region region) {
   SingleTreeNode leaf;

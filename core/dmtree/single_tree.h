@@ -43,4 +43,8 @@ struct SingleTree {
 
 SingleTree buildSingleTree(const SingleShadow& shadow, const Tolerance& tolerance);
 
+// A shadow region as the tree merges it: without edges of length <= eps (empty if no
+// positive area is left).
+Polygon2 withoutShortEdges(const Polygon2& polygon, double eps);
+
 }  // namespace penumbra

@@ -123,7 +123,7 @@ InsertResult DmTree::insert(const SingleShadow& shadow) {
   // The total-tree leaves the penumbra overlaps with positive area.
   std::vector<CellId> targets;
   collectCells(root_, tree.penumbra, targets);
-  record(key, shadow, tree);
+  record(key, shadow);
 
   const Generator gen{shadow.light, shadow.occluder};
   for (CellId target : targets) {

@@ -166,9 +166,17 @@ void CellLighter::emit(CellId c, CellMemo& out) {
   for (const Vec2& q : polygon) centre += source_.frame.to3D(q);
   centre /= double(polygon.size());
   litInCell_.clear();
+  ownAt_.clear();
   const auto addOwn = [&](const Vec2& q, const VertexIrradiance& value) {
     output_.points.push_back(CellMemo::kOwnValue | uint32_t(output_.ownValues.size()));
     output_.ownValues.push_back({q, value});
+  };
+  // A point's value is the same for every piece it is a corner of (valueAt), so its copy is shared.
+  const auto addPoint = [&](const Vec2& q) {
+    for (const auto& [at, index] : ownAt_)
+      if (at == q) return output_.points.push_back(CellMemo::kOwnValue | index);
+    ownAt_.push_back({q, uint32_t(output_.ownValues.size())});
+    addOwn(q, valueAt(q, list, centre));
   };
   for (const Polygon2& piece : splitByLattice(polygon, spacing_, eps_)) {
     for (const Vec2& q : piece) {
@@ -179,7 +187,7 @@ void CellLighter::emit(CellId c, CellMemo& out) {
       if (byVertex)
         output_.points.push_back(inputs_.corners[corner].index | (anyDark_ ? CellMemo::kDarkCorner : 0));
       else
-        addOwn(q, valueAt(q, list, centre));
+        addPoint(q);
     }
     // The fan's indices are the piece's points in order: its loop, then the centre if used.
     const CellFan fan = fanOfConvexCell(piece, eps_);

@@ -77,6 +77,9 @@ class CellLighter {
   bool anyDark_ = false;
   std::vector<std::pair<Vec2, VertexIrradiance>> litInCell_;  // points lit for the current cell
   CellMemo::Output output_;  // the current cell's output before packing
+  // The current cell's own values at lattice and contact points, by position: a lattice point
+  // is a corner of up to four of its pieces and is kept once.
+  std::vector<std::pair<Vec2, uint32_t>> ownAt_;
 };
 
 }  // namespace penumbra
