@@ -20,7 +20,7 @@ std::atomic<uint64_t> meshClock{0};
 
 void HalfEdgeMesh::setOccluders(CellId c, const OccluderList& list) {
   touch(c);
-  const OccluderListPool::Handle held = lists_.intern(list);  // before the release: `list` may be c's
+  const OccluderListPool::Handle held = lists_.intern(list);  // before the release: `list` may be c's own
   lists_.release(cells_[c.index].occluders);
   cells_[c.index].occluders = held;
 }

@@ -27,6 +27,7 @@ OccluderListPool::Handle OccluderListPool::intern(const OccluderList& list) {
       ++slots_[it->second].holders;
       return it->second;
     }
+  OccluderList stored(list.begin(), list.end());  // exact size; copied first: `list` may be a slot's
   Handle h;
   if (free_.empty()) {
     h = static_cast<Handle>(slots_.size());
@@ -36,7 +37,7 @@ OccluderListPool::Handle OccluderListPool::intern(const OccluderList& list) {
     free_.pop_back();
   }
   Slot& slot = slots_[h];
-  slot.list.assign(list.begin(), list.end());  // exact size: lists are never grown in place
+  slot.list = std::move(stored);
   slot.hash = hash;
   slot.holders = 1;
   byHash_.emplace(hash, h);
