@@ -56,6 +56,7 @@ HalfEdgeMesh::CutResult DmTree::splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan&
   s.kind = seg.kind;
   s.partial = partial;
   s.orphan = false;
+  s.copy = false;  // a reused slot may hold a former copy's flag
   return cut;
 }
 

@@ -1,6 +1,6 @@
 #include "core/mesh/cell_triangulation.h"
 
-#include <vector>
+#include <cmath>
 
 namespace penumbra {
 
@@ -18,14 +18,14 @@ CellFan fanOfConvexCell(const Polygon2& loop, double eps) {
   const uint32_t n = uint32_t(loop.size());
   if (n < 3) return CellFan{};  // no triangles
   // A vertex is a corner if it is not (within eps) on the segment of its neighbours.
-  std::vector<bool> corner(n);
-  for (uint32_t i = 0; i < n; ++i)
-    corner[i] = lineDistance(loop[(i + n - 1) % n], loop[(i + 1) % n], loop[i]) < -eps ||
-                lineDistance(loop[(i + n - 1) % n], loop[(i + 1) % n], loop[i]) > eps;
+  // Tested as needed, not stored: the first apex usually does (no allocation per piece).
+  const auto corner = [&](uint32_t i) {
+    return std::abs(lineDistance(loop[(i + n - 1) % n], loop[(i + 1) % n], loop[i])) > eps;
+  };
   // A fan apex must be a corner whose both neighbours are corners too: then no
   // fan triangle has its three vertices on one side.
   for (uint32_t apex = 0; apex < n; ++apex)
-    if (corner[apex] && corner[(apex + 1) % n] && corner[(apex + n - 1) % n]) return CellFan{apex};
+    if (corner(apex) && corner((apex + 1) % n) && corner((apex + n - 1) % n)) return CellFan{apex};
   return CellFan{CellFan::kCentre};
 }
 
