@@ -138,24 +138,19 @@ uint64_t CellLighter::gather(CellId c) {
 }
 
 // The value of a point of the cell's closure, as seen from the cell (centre: its centroid).
-// A point lit here is kept for the cell: a lattice point is a corner of up to four of its
-// pieces, and the same inputs give the same bits, so it is lit once.
+// emit() asks once per point of the cell (ownAt_), although a lattice point is a corner of
+// up to four of its pieces.
 VertexIrradiance CellLighter::valueAt(const Vec2& q, const OccluderList& list, const Vec3& centre) {
   const Polygon2& polygon = inputs_.outline;
   const size_t corner = size_t(std::find(polygon.begin(), polygon.end(), q) - polygon.begin());
   if (corner < polygon.size() && !inputs_.cornerFromCell[corner])
     return inputs_.cornerValues[corner];
-  for (const auto& [at, value] : litInCell_)
-    if (at == q) return value;
   const Vec3 p = source_.frame.to3D(q);
   const Vec3 normal = source_.frame.normal;
   // A contact corner or lattice point takes the limit from the cell; another lattice
   // point is lit exactly from this cell's list (cases 2 and 3 keep it dark in a light's umbra).
-  const VertexIrradiance value = corner < polygon.size() || onContact(p, list)
-                                     ? illuminatePointFromCell(scene_, p, normal, centre - p, list)
-                                     : illuminatePoint(scene_, p, normal, {&list});
-  litInCell_.push_back({q, value});
-  return value;
+  return corner < polygon.size() || onContact(p, list) ? illuminatePointFromCell(scene_, p, normal, centre - p, list)
+                                                      : illuminatePoint(scene_, p, normal, {&list});
 }
 
 void CellLighter::emit(CellId c, CellMemo& out) {
@@ -165,13 +160,12 @@ void CellLighter::emit(CellId c, CellMemo& out) {
   Vec3 centre{0.0};
   for (const Vec2& q : polygon) centre += source_.frame.to3D(q);
   centre /= double(polygon.size());
-  litInCell_.clear();
   ownAt_.clear();
   const auto addOwn = [&](const Vec2& q, const VertexIrradiance& value) {
     output_.points.push_back(CellMemo::kOwnValue | uint32_t(output_.ownValues.size()));
     output_.ownValues.push_back({q, value});
   };
-  // A point's value is the same for every piece it is a corner of (valueAt), so its copy is shared.
+  // A point is lit once and its copy shared by every piece it is a corner of.
   const auto addPoint = [&](const Vec2& q) {
     for (const auto& [at, index] : ownAt_)
       if (at == q) return output_.points.push_back(CellMemo::kOwnValue | index);

@@ -75,7 +75,6 @@ class CellLighter {
   uint64_t fingerprint_ = 0;
   std::vector<bool> dark_;
   bool anyDark_ = false;
-  std::vector<std::pair<Vec2, VertexIrradiance>> litInCell_;  // points lit for the current cell
   CellMemo::Output output_;  // the current cell's output before packing
   // The current cell's own values at lattice and contact points, by position: a lattice point
   // is a corner of up to four of its pieces and is kept once.
