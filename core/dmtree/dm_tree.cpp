@@ -34,6 +34,12 @@ NodeId DmTree::addNode(NodeId parent, CellId cell) {
   return id;
 }
 
+uint32_t DmTree::ownerIndex(const OccluderKey& key) {
+  const auto [it, added] = ownerIndex_.try_emplace(key, uint32_t(owners_.size()));
+  if (added) owners_.push_back(key);
+  return it->second;
+}
+
 uint32_t DmTree::addSegment(const NodeSegment& s) {
   if (segments_.size() >= DmNode::kNoSegment)
     throw ResourceLimitError("tree_nodes", segments_.size() + 1, DmNode::kNoSegment);
@@ -81,6 +87,7 @@ void DmTree::validate() const {
       if (!mesh_.cell(d.cell).alive || mesh_.cell(d.cell).leaf != n) fail("leaf and cell disagree");
       continue;
     }
+    if (d.segment == DmNode::kNoSegment || segment(n).owner >= owners_.size()) fail("internal node without a segment or owner");
     for (NodeId c : {d.front, d.back}) {
       if (!c.is_valid() || node(c).parent != n) fail("child/parent mismatch");
       stack.push_back(c);

@@ -14,20 +14,20 @@
 
 namespace penumbra {
 
-// An internal node's line and what it came from: its generator and segment kind
-// (DmTree::segment). Kept apart from the node, since half the nodes are leaves:
-// 40 bytes, and 20 a node. Where the generator's segment lies on the line is in its
-// kept segments (DmTree::forEachKeptSegment), not here: nothing in the tree reads it.
+// An internal node's line and what it came from: its generator (an index into its tree's
+// table of (light, occluder) keys, DmTree::owner) and segment kind. Kept apart from the
+// node, since half the nodes are leaves: 32 bytes, and 20 a node. Where the generator's
+// segment lies on the line is in its kept segments (DmTree::forEachKeptSegment), not
+// here: nothing in the tree reads it.
 struct NodeSegment {
   Line2 line;           // front child is line.distance > 0
-  uint32_t light = 0;
-  FaceId occluder;
+  uint32_t owner = 0;   // DmTree::owner()
   SegmentKind kind = SegmentKind::Internal;
   bool partial = false;  // the segment did not span that cell: construction edges extend it
   bool orphan = false;   // its occluder was removed but the node could not be condensed yet
   bool copy = false;     // made by splitting a node in two where an extended edge crossed it
 };
-static_assert(sizeof(NodeSegment) == 40);
+static_assert(sizeof(NodeSegment) == 32);
 
 struct DmNode {
   static constexpr uint32_t kNoSegment = 0x7fffffffu;
@@ -68,6 +68,8 @@ struct RemoveResult {
 
 class DmTree {
  public:
+  using OccluderKey = std::pair<uint32_t, FaceId>;  // (light, occluder face)
+
   // receiver: the face's convex CCW polygon in its 2D frame.
   DmTree(const Polygon2& receiver, const Tolerance& tolerance);
 
@@ -128,6 +130,8 @@ class DmTree {
   const DmNode& node(NodeId n) const { return nodes_[n.index]; }
   // An internal node's line, generator and segment.
   const NodeSegment& segment(NodeId n) const { return segments_[nodes_[n.index].segment]; }
+  // The (light, occluder) whose segment an internal node's line carries.
+  const OccluderKey& owner(NodeId n) const { return owners_[segment(n).owner]; }
   const HalfEdgeMesh& mesh() const { return mesh_; }
   size_t nodeCount() const { return liveNodes_; }  // leaves included
   size_t nodeSlots() const { return nodes_.size(); }  // dead nodes included
@@ -154,7 +158,6 @@ class DmTree {
   void setNodeLimit(size_t maxNodeSlots) { nodeLimit_ = maxNodeSlots; }
 
  private:
-  using OccluderKey = std::pair<uint32_t, FaceId>;
   struct Generator {
     uint32_t light;
     FaceId occluder;
@@ -163,6 +166,9 @@ class DmTree {
   NodeId addNode(NodeId parent, CellId cell);
   uint32_t addSegment(const NodeSegment& s);  // its slot
   NodeSegment& segmentForWrite(NodeId n) { return segments_[nodes_[n.index].segment]; }
+  // key's index in owners_, added on first use (entries are never dropped: a tree sees
+  // each (light, occluder) it was ever given once, a few dozen at most).
+  uint32_t ownerIndex(const OccluderKey& key);
   // Splits leaf n's cell along `seg` (a straddling plan) and makes n the internal
   // node carrying seg's line for `owner`; partial: seg does not span the cell.
   HalfEdgeMesh::CutResult splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan& plan, const SingleTreeNode& seg,
@@ -227,6 +233,8 @@ class DmTree {
   HalfEdgeMesh mesh_;
   std::vector<DmNode> nodes_;
   std::vector<NodeSegment> segments_;  // by DmNode::segment
+  std::vector<OccluderKey> owners_;    // by NodeSegment::owner
+  std::map<OccluderKey, uint32_t> ownerIndex_;
   size_t liveNodes_ = 0;
   NodeId root_;
   // What each inserted occluder carries (kept so removal can tell which edges other

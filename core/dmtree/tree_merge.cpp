@@ -36,7 +36,7 @@ void DmTree::collectCells(NodeId n, const Polygon2& region, std::vector<CellId>&
     collectCells(d.front, split.right, out, key, nodes);
   if (split.left.size() >= 3 && signedArea(split.left) > tolerance_.area())
     collectCells(d.back, split.left, out, key, nodes);
-  if (nodes && segment(n).light == key->first && segment(n).occluder == key->second) nodes->push_back(n);
+  if (nodes && owner(n) == *key) nodes->push_back(n);
 }
 
 HalfEdgeMesh::CutResult DmTree::splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan& plan, const SingleTreeNode& seg,
@@ -51,8 +51,7 @@ HalfEdgeMesh::CutResult DmTree::splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan&
   if (d.segment == DmNode::kNoSegment) d.segment = addSegment({});
   NodeSegment& s = segments_[d.segment];
   s.line = seg.line;
-  s.light = owner.first;
-  s.occluder = owner.second;
+  s.owner = ownerIndex(owner);
   s.kind = seg.kind;
   s.partial = partial;
   s.orphan = false;

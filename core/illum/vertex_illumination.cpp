@@ -36,18 +36,16 @@ VertexLight fromView(const Backprojection& view, VertexCase decidedBy) {
   VertexLight out;
   out.applies = true;
   out.decidedBy = decidedBy;
-  out.unoccludedFactor = view.unoccludedFactor();
   out.factor = view.visibleFactor();
   out.lightClass = view.lightClass();
   out.comparisons = uint32_t(view.comparisons());
   return out;
 }
 
-VertexLight umbra(const Backprojection& view) {
+VertexLight inUmbra() {
   VertexLight out;
   out.applies = true;
   out.decidedBy = VertexCase::Umbra;
-  out.unoccludedFactor = view.unoccludedFactor();
   out.lightClass = LightClass::Umbra;
   return out;
 }
@@ -114,7 +112,7 @@ VertexLight illuminateVertex(const Scene& scene, size_t light, const Vec3& p, co
       const bool everywhere = std::all_of(cellsAround.begin(), cellsAround.end(), [&](const OccluderList* other) {
         return holdsFace(*other, e.face) || hasUmbraEntry(*other, uint32_t(light));
       });
-      if (everywhere) return umbra(view);
+      if (everywhere) return inUmbra();
     }
 
   // (3) O_covering: the faces every cell lists; a face blocking p blocks positive
@@ -152,7 +150,7 @@ VertexLight illuminateVertexFromCell(const Scene& scene, size_t light, const Vec
   if (!view.applies()) return VertexLight{};
   if (entries.empty()) return fromView(view, VertexCase::Unoccluded);
   // The cell's inside is hidden throughout: so is the limit.
-  if (entries.front().umbra) return umbra(view);
+  if (entries.front().umbra) return inUmbra();
   std::vector<FaceId> faces;
   for (const OccluderEntry& e : entries) faces.push_back(e.face);
   std::sort(faces.begin(), faces.end());  // order-independent result, as in case (3)

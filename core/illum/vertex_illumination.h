@@ -22,16 +22,16 @@ enum class VertexCase : uint8_t {
 };
 
 // One light at a vertex.
-// 24 bytes: one is kept per vertex and light.
+// 16 bytes: one is kept per vertex and light. The factor over the light's whole front part
+// (Backprojection::unoccludedFactor) is not kept: nothing reads it once the vertex is lit.
 struct VertexLight {
   double factor = 0;            // ∫ cosθp·cosθL / r² dA over the visible part
-  double unoccludedFactor = 0;  // the same over the light's front part (case 3 and 1)
   uint32_t comparisons = 0;     // source/occluder comparisons (faces projected)
   LightClass lightClass = LightClass::Lit;  // meaningless when !applies
   bool applies = false;         // the light reaches p's front side at all
   VertexCase decidedBy = VertexCase::NoLight;
 };
-static_assert(sizeof(VertexLight) == 24);
+static_assert(sizeof(VertexLight) == 16);
 
 // All lights at a vertex: radiance-weighted sum and combined class (Umbra when no
 // light applies, as for the reference).

@@ -76,9 +76,9 @@ void expectNoTraceOf(const DmTree& tree, const std::vector<SingleShadow>& live) 
   for (uint32_t i = 0; i < tree.nodeSlots(); ++i) {
     const DmNode& d = tree.node(NodeId(i));
     if (!d.alive || d.isLeaf()) continue;
-    const NodeSegment& s = tree.segment(NodeId(i));
-    ASSERT_TRUE(ids.count(s.occluder.object)) << "node " << i << " of removed occluder " << s.occluder.object;
-    ASSERT_FALSE(s.orphan) << "orphan node " << i;
+    const FaceId occluder = tree.owner(NodeId(i)).second;
+    ASSERT_TRUE(ids.count(occluder.object)) << "node " << i << " of removed occluder " << occluder.object;
+    ASSERT_FALSE(tree.segment(NodeId(i)).orphan) << "orphan node " << i;
   }
   for (CellId c : tree.cells())
     for (const OccluderEntry& e : tree.occluders(c)) ASSERT_TRUE(ids.count(e.face.object)) << "cell " << c.index;
@@ -170,7 +170,7 @@ TEST(DmTreeRemoval, RandomEditSequencesMatchAFreshBuild) {
       // Nodes of `gone` with two internal subtrees: the case the paper's three steps are for.
       for (uint32_t i = 0; i < tree.nodeSlots(); ++i) {
         const DmNode& d = tree.node(NodeId(i));
-        if (d.alive && !d.isLeaf() && tree.segment(NodeId(i)).occluder == gone.occluder && !tree.node(d.front).isLeaf() &&
+        if (d.alive && !d.isLeaf() && tree.owner(NodeId(i)).second == gone.occluder && !tree.node(d.front).isLeaf() &&
             !tree.node(d.back).isLeaf())
           ++withTwoSubtrees;
       }
@@ -268,7 +268,7 @@ TEST(DmTreeRemoval, DeletesANodeWithTwoNonEmptySubtrees) {
   size_t hard = 0;
   for (uint32_t i = 0; i < tree.nodeSlots(); ++i) {
     const DmNode& d = tree.node(NodeId(i));
-    if (d.alive && !d.isLeaf() && tree.segment(NodeId(i)).occluder == big.occluder && !tree.node(d.front).isLeaf() &&
+    if (d.alive && !d.isLeaf() && tree.owner(NodeId(i)).second == big.occluder && !tree.node(d.front).isLeaf() &&
         !tree.node(d.back).isLeaf())
       ++hard;
   }

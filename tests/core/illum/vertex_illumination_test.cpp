@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "core/illum/backprojection.h"
 #include "core/render/ray_scene.h"
 #include "tests/core/illum/truth.h"
 
@@ -88,7 +89,7 @@ void checkPoint(const Scene& scene, const ExactReference& reference, double peak
         continue;
       }
       expectClose(mine.factor, expected[l].visibleFactor, lightPeak, "factor");
-      expectClose(mine.unoccludedFactor, expected[l].unoccludedFactor, lightPeak, "unoccluded");
+      expectClose(Backprojection(scene, l, p, n).unoccludedFactor(), expected[l].unoccludedFactor, lightPeak, "unoccluded");
       EXPECT_EQ(mine.lightClass, expected[l].lightClass)
           << "p=(" << p.x << "," << p.y << "," << p.z << ") light " << l;
       if (cells == &exact) {
