@@ -26,7 +26,7 @@ NodeId DmTree::addNode(NodeId parent, CellId cell) {
   if (nodes_.size() >= nodeLimit_) throw ResourceLimitError("tree_nodes", nodes_.size() + 1, nodeLimit_);
   DmNode n;
   n.parent = parent;
-  n.cell = cell;
+  if (cell.is_valid()) n.makeLeaf(cell);
   nodes_.push_back(n);
   ++liveNodes_;
   const NodeId id(static_cast<uint32_t>(nodes_.size() - 1));
@@ -64,7 +64,7 @@ std::vector<VertexId> DmTree::vertices() const {
 CellId DmTree::locate(const Vec2& p) const {
   NodeId n = root_;
   while (!node(n).isLeaf()) n = segment(n).line.distance(p) >= 0 ? node(n).front : node(n).back;
-  return node(n).cell;
+  return node(n).cell();
 }
 
 void DmTree::validate() const {
@@ -84,7 +84,7 @@ void DmTree::validate() const {
     ++reached;
     if (d.isLeaf()) {
       ++leaves;
-      if (!mesh_.cell(d.cell).alive || mesh_.cell(d.cell).leaf != n) fail("leaf and cell disagree");
+      if (!mesh_.cell(d.cell()).alive || mesh_.cell(d.cell()).leaf != n) fail("leaf and cell disagree");
       continue;
     }
     if (d.segment == DmNode::kNoSegment || segment(n).owner >= owners_.size()) fail("internal node without a segment or owner");

@@ -16,7 +16,7 @@ namespace penumbra {
 
 // An internal node's line and what it came from: its generator (an index into its tree's
 // table of (light, occluder) keys, DmTree::owner) and segment kind. Kept apart from the
-// node, since half the nodes are leaves: 32 bytes, and 20 a node. Where the generator's
+// node, since half the nodes are leaves: 32 bytes, and 16 a node. Where the generator's
 // segment lies on the line is in its kept segments (DmTree::forEachKeptSegment), not
 // here: nothing in the tree reads it.
 struct NodeSegment {
@@ -29,17 +29,30 @@ struct NodeSegment {
 };
 static_assert(sizeof(NodeSegment) == 32);
 
+// 16 bytes: a leaf keeps its cell's index where an internal node keeps its front child.
 struct DmNode {
-  static constexpr uint32_t kNoSegment = 0x7fffffffu;
-  NodeId front, back, parent;
-  CellId cell;  // valid iff the node is a leaf
+  static constexpr uint32_t kNoSegment = 0x3fffffffu;
+  NodeId front, back;  // an internal node's children; a leaf's `front` holds its cell (cell())
+  NodeId parent;
   // An internal node's NodeSegment (its line too); a leaf that was internal once keeps
-  // its slot for reuse. 31 bits: the alive flag shares the word.
-  uint32_t segment : 31 = kNoSegment;
+  // its slot for reuse. 30 bits: the leaf and alive flags share the word.
+  uint32_t segment : 30 = kNoSegment;
+  bool leaf : 1 = false;
   bool alive : 1 = true;
-  bool isLeaf() const { return cell.is_valid(); }
+  bool isLeaf() const { return leaf; }
+  CellId cell() const { return leaf ? CellId(front.index) : CellId(); }  // invalid unless a leaf
+  void makeLeaf(CellId c) {
+    leaf = true;
+    front = NodeId(c.index);
+    back = NodeId();
+  }
+  void makeInternal(NodeId f, NodeId b) {
+    leaf = false;
+    front = f;
+    back = b;
+  }
 };
-static_assert(sizeof(DmNode) == 20);
+static_assert(sizeof(DmNode) == 16);
 
 struct InsertResult {
   std::vector<CellId> changedCells;   // cells whose occluder list gained the occluder

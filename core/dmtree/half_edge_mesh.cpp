@@ -29,9 +29,15 @@ uint64_t HalfEdgeMesh::stampNow() { return meshClock.load(std::memory_order_rela
 uint64_t HalfEdgeMesh::nextStamp() { return meshClock.fetch_add(1, std::memory_order_relaxed) + 1; }
 
 VertexId HalfEdgeMesh::addVertex(const Vec2& p) {
-  vertices_.push_back(Vertex{p, HalfEdgeId(), true});
+  positions_.push_back(p);
+  outs_.push_back(HalfEdgeId());
   ++liveVertices_;
-  return VertexId(static_cast<uint32_t>(vertices_.size() - 1));
+  return VertexId(static_cast<uint32_t>(positions_.size() - 1));
+}
+
+void HalfEdgeMesh::killVertex(VertexId v) {
+  outs_[v.index] = HalfEdgeId();
+  --liveVertices_;
 }
 
 HalfEdgeId HalfEdgeMesh::addEdgePair() {
@@ -43,7 +49,8 @@ HalfEdgeId HalfEdgeMesh::addEdgePair() {
 }
 
 CellId HalfEdgeMesh::reset(const Polygon2& receiver, double eps) {
-  vertices_.clear();
+  positions_.clear();
+  outs_.clear();
   halfEdges_.clear();
   edgeNodes_.clear();
   cells_.clear();
@@ -71,7 +78,7 @@ CellId HalfEdgeMesh::reset(const Polygon2& receiver, double eps) {
     HalfEdge& out = halfEdges_[2 * i + 1];
     out.origin = VertexId(static_cast<uint32_t>(next));
     out.next = HalfEdgeId(static_cast<uint32_t>(2 * prev + 1));
-    vertices_[i].out = HalfEdgeId(static_cast<uint32_t>(2 * i));
+    outs_[i] = HalfEdgeId(static_cast<uint32_t>(2 * i));
   }
   cells_[0].edge = HalfEdgeId(0);
   touch(c);
@@ -212,8 +219,8 @@ VertexId HalfEdgeMesh::splitEdge(HalfEdgeId h, const Vec2& p) {
   halfEdges_[h.index].next = n;
   halfEdges_[tp.index].next = nt;
   halfEdges_[t.index].origin = v;
-  vertices_[v.index].out = n;
-  if (vertices_[b.index].out == t) vertices_[b.index].out = nt;
+  outs_[v.index] = n;
+  if (outs_[b.index] == t) outs_[b.index] = nt;
   for (HalfEdgeId side : {h, t})
     if (const CellId c = halfEdges_[side.index].cell; c.is_valid()) touch(c);
   return v;
@@ -288,7 +295,7 @@ void HalfEdgeMesh::dissolveVertex(VertexId v) {
   halfEdges_[e1.index].next = e2n;
   halfEdges_[t1.index].origin = b;
   halfEdges_[t2p.index].next = t1;
-  if (vertices_[b.index].out == t2) vertices_[b.index].out = t1;
+  if (outs_[b.index] == t2) outs_[b.index] = t1;
   for (auto [dead, keep] : {std::pair{e2, e1}, std::pair{t2, t1}}) {
     const CellId c = halfEdge(dead).cell;
     if (c.is_valid()) touch(c);
@@ -296,8 +303,7 @@ void HalfEdgeMesh::dissolveVertex(VertexId v) {
     kill(dead);
   }
   liveHalfEdges_ -= 2;
-  vertices_[v.index].alive = false;
-  --liveVertices_;
+  killVertex(v);
 }
 
 std::vector<VertexId> HalfEdgeMesh::mergeCells(CellId keep, CellId drop, double eps) {
@@ -327,16 +333,15 @@ std::vector<VertexId> HalfEdgeMesh::mergeCells(CellId keep, CellId drop, double 
   for (size_t i = 0; i < chain.size(); ++i) {
     if (i > 0) {
       const VertexId inner = halfEdge(chain[i]).origin;
-      vertices_[inner.index].alive = false;
-      --liveVertices_;
+      killVertex(inner);
       removed.push_back(inner);
     }
     kill(chain[i]);
     kill(twin(chain[i]));
     liveHalfEdges_ -= 2;
   }
-  if (!halfEdge(vertex(u).out).alive()) vertices_[u.index].out = qq;
-  if (!halfEdge(vertex(w).out).alive()) vertices_[w.index].out = q;
+  if (!halfEdge(vertex(u).out).alive()) outs_[u.index] = qq;
+  if (!halfEdge(vertex(w).out).alive()) outs_[w.index] = q;
   cells_[keep.index].edge = p;
   cells_[drop.index].alive = false;
   lists_.release(cells_[drop.index].occluders);
@@ -376,11 +381,11 @@ void HalfEdgeMesh::validate(double eps, double receiverArea) const {
     if (!(glm::length(vertex(h.origin).position - vertex(t.origin).position) > eps))
       fail("edge shorter than the tolerance");
   }
-  for (uint32_t i = 0; i < vertices_.size(); ++i) {
-    if (!vertices_[i].alive) continue;
+  for (uint32_t i = 0; i < outs_.size(); ++i) {
+    const HalfEdgeId out = outs_[i];
+    if (!out.is_valid()) continue;  // dead (a live vertex without one fails the count below)
     ++liveV;
-    const HalfEdgeId out = vertices_[i].out;
-    if (!out.is_valid() || !halfEdge(out).alive() || halfEdge(out).origin != VertexId(i))
+    if (!halfEdge(out).alive() || halfEdge(out).origin != VertexId(i))
       fail("vertex " + std::to_string(i) + " has a bad out half-edge");
   }
   size_t inLoops = 0;
@@ -424,7 +429,8 @@ void HalfEdgeMesh::validate(double eps, double receiverArea) const {
 }
 
 void HalfEdgeMesh::shrinkToFit() {
-  vertices_.shrink_to_fit();
+  positions_.shrink_to_fit();
+  outs_.shrink_to_fit();
   halfEdges_.shrink_to_fit();
   edgeNodes_.shrink_to_fit();
   cells_.shrink_to_fit();

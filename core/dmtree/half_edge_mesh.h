@@ -25,6 +25,8 @@ struct Line2 {
 
 class HalfEdgeMesh {
  public:
+  // A vertex as read (vertex()): its position and out half-edge are kept in two arrays,
+  // 20 bytes a vertex instead of 24; a dead vertex has no out half-edge.
   struct Vertex {
     Vec2 position{0.0};
     HalfEdgeId out;  // one half-edge leaving the vertex
@@ -40,8 +42,8 @@ class HalfEdgeMesh {
     bool alive() const { return next.is_valid(); }
   };
   static_assert(sizeof(HalfEdge) == 12);
-  // 24 bytes: the list is a handle into the mesh's pool, the alive flag shares the
-  // stamp's word.
+  // 20 bytes: the list is a handle into the mesh's pool, the alive flag shares the
+  // stamp's high word, and the stamp is kept in two 32-bit words (no 8-byte alignment).
   struct Cell {
     HalfEdgeId edge;  // one half-edge of the loop
     NodeId leaf;      // the BSP leaf holding this cell
@@ -49,9 +51,15 @@ class HalfEdgeMesh {
     bool alive : 1 = true;
     // When the cell last changed (loop, list, or death), on stampNow()'s clock. 63 bits
     // never wrap; 32 would within a few hundred large builds (5·10⁶ stamps each).
-    uint64_t touched : 63 = 0;
+    uint32_t touchedHigh : 31 = 0;
+    uint32_t touchedLow = 0;
+    uint64_t touched() const { return uint64_t(touchedHigh) << 32 | touchedLow; }
+    void setTouched(uint64_t stamp) {
+      touchedHigh = uint32_t(stamp >> 32) & 0x7fffffffu;
+      touchedLow = uint32_t(stamp);
+    }
   };
-  static_assert(sizeof(Cell) == 24);
+  static_assert(sizeof(Cell) == 20);
 
   // Where a line cuts a cell, planned before anything changes. side: +1/-1 if the
   // cell lies wholly in front/behind (within eps), 0 if it straddles: then the cut
@@ -85,7 +93,7 @@ class HalfEdgeMesh {
   // straight side between edges of the same node are dissolved. Returns removed vertices.
   std::vector<VertexId> mergeCells(CellId keep, CellId drop, double eps);
 
-  const Vertex& vertex(VertexId v) const { return vertices_[v.index]; }
+  Vertex vertex(VertexId v) const { return {positions_[v.index], outs_[v.index], outs_[v.index].is_valid()}; }
   const HalfEdge& halfEdge(HalfEdgeId h) const { return halfEdges_[h.index]; }
   // The tree node whose split created h's edge (both twins); invalid: receiver boundary.
   NodeId node(HalfEdgeId h) const { return edgeNodes_[h.index >> 1]; }
@@ -97,8 +105,8 @@ class HalfEdgeMesh {
   void setLeaf(CellId c, NodeId leaf) { cells_[c.index].leaf = leaf; }
   // The edge pair of h now belongs to `node` (a copy of its node, same line).
   void relabel(HalfEdgeId h, NodeId node) { edgeNodes_[h.index >> 1] = node; }
-  // Marks a cell changed, so meshing looks at it again (see Cell::touched).
-  void touch(CellId c) { cells_[c.index].touched = nextStamp(); }
+  // Marks a cell changed, so meshing looks at it again (see Cell::touched()).
+  void touch(CellId c) { cells_[c.index].setTouched(nextStamp()); }
   // One clock shared by every mesh in the process, so a stamp read before meshing
   // is older than any later change of any tree, rebuilt trees included. Thread-safe.
   static uint64_t stampNow();
@@ -106,7 +114,7 @@ class HalfEdgeMesh {
   VertexId destination(HalfEdgeId h) const { return halfEdge(twin(h)).origin; }
 
   // Slot counts (dead slots included) and live counts.
-  size_t vertexSlots() const { return vertices_.size(); }
+  size_t vertexSlots() const { return positions_.size(); }
   size_t halfEdgeSlots() const { return halfEdges_.size(); }
   size_t cellSlots() const { return cells_.size(); }
   size_t vertexCount() const { return liveVertices_; }
@@ -134,12 +142,15 @@ class HalfEdgeMesh {
   HalfEdgeId prev(HalfEdgeId h) const;
   void kill(HalfEdgeId h) { halfEdges_[h.index].next = HalfEdgeId(); }
   VertexId addVertex(const Vec2& p);
+  void killVertex(VertexId v);
   HalfEdgeId addEdgePair();  // counted live; alive() once the caller links its nexts
   VertexId splitEdge(HalfEdgeId h, const Vec2& p);
   void dissolveVertex(VertexId v);
   bool dissolvable(VertexId v, double eps) const;
 
-  std::vector<Vertex> vertices_;
+  // By vertex: a live vertex's out half-edge is valid (set by its maker right after addVertex).
+  std::vector<Vec2> positions_;
+  std::vector<HalfEdgeId> outs_;
   std::vector<HalfEdge> halfEdges_;
   std::vector<NodeId> edgeNodes_;  // by edge pair (half-edge index / 2)
   std::vector<Cell> cells_;

@@ -59,8 +59,7 @@ Split2 splitRegion(const Polygon2& region, const Line2& line, double eps) {
 void DmTree::killNode(NodeId n) {
   DmNode& d = nodes_[n.index];
   d.alive = false;
-  d.cell = CellId();
-  d.front = d.back = NodeId();
+  d.makeInternal(NodeId(), NodeId());  // no cell, no children
   --liveNodes_;
 }
 
@@ -119,7 +118,7 @@ bool DmTree::chordOf(NodeId n, double& lo, double& hi) const {
   hi = -INFINITY;
   for (NodeId leaf : leaves) {
     double a, b;
-    if (!chordExtent(line, mesh_.polygon(node(leaf).cell), eps, a, b)) continue;
+    if (!chordExtent(line, mesh_.polygon(node(leaf).cell()), eps, a, b)) continue;
     lo = std::min(lo, a);
     hi = std::max(hi, b);
   }
@@ -162,7 +161,7 @@ void DmTree::extendInto(NodeId n, CellId piece, const Line2& deleted, std::vecto
                         RemoveResult& result) {
   const double eps = tolerance_.length();
   if (node(n).isLeaf()) {
-    const CellId keep = node(n).cell;
+    const CellId keep = node(n).cell();
     const OccluderList pieceList = mesh_.occluders(piece);  // a copy: the merge frees piece's
     const double pieceSide = deleted.distance(areaCentroid(mesh_.polygon(piece)));
     const std::vector<VertexId> removed = mesh_.mergeCells(keep, piece, eps);
@@ -212,7 +211,7 @@ void DmTree::relabelEdges(NodeId from, NodeId to, NodeId under, const Polygon2& 
   std::vector<NodeId> leaves;
   leavesAlong(under, origin + lo * dir, origin + hi * dir, leaves);
   for (NodeId leaf : leaves)
-    for (HalfEdgeId h : mesh_.loop(node(leaf).cell))
+    for (HalfEdgeId h : mesh_.loop(node(leaf).cell()))
       if (mesh_.node(h) == from) mesh_.relabel(h, to);
 }
 
@@ -227,7 +226,7 @@ DmTree::SplitTree DmTree::partition(NodeId t, NodeId cutter, const Polygon2& reg
   if (side > 0) return {t, NodeId()};
   if (side < 0) return {NodeId(), t};
   if (node(t).isLeaf()) {
-    const HalfEdgeMesh::CutPlan plan = mesh_.planCut(node(t).cell, line, eps);
+    const HalfEdgeMesh::CutPlan plan = mesh_.planCut(node(t).cell(), line, eps);
     if (plan.side > 0) return {t, NodeId()};
     if (plan.side < 0) return {NodeId(), t};
     const HalfEdgeMesh::CutResult cut =
@@ -288,7 +287,7 @@ void DmTree::mergeInto(NodeId n, NodeId t, const Polygon2& region, const Line2& 
       nodes_[parent.index].front = t;
     else
       nodes_[parent.index].back = t;
-    const CellId piece = node(n).cell;
+    const CellId piece = node(n).cell();
     killNode(n);
     extendInto(t, piece, deleted, extended, result);
     return;
@@ -313,7 +312,7 @@ void DmTree::mergeInto(NodeId n, NodeId t, const Polygon2& region, const Line2& 
 void DmTree::condenseLeafPair(NodeId n, RemoveResult& result) {
   const DmNode& d = node(n);
   if (!d.alive || d.isLeaf() || !node(d.front).isLeaf() || !node(d.back).isLeaf()) return;
-  const CellId keep = node(d.front).cell, drop = node(d.back).cell;
+  const CellId keep = node(d.front).cell(), drop = node(d.back).cell();
   if (mesh_.cell(keep).occluders != mesh_.cell(drop).occluders) return;  // interned: equal lists, equal handles
   std::vector<OccluderKey> keys;
   for (const OccluderEntry& entry : mesh_.occluders(keep))
@@ -327,7 +326,7 @@ void DmTree::condenseLeafPair(NodeId n, RemoveResult& result) {
   killNode(front);
   killNode(back);
   NodeSegment& m = segmentForWrite(n);
-  nodes_[n.index].cell = keep;
+  nodes_[n.index].makeLeaf(keep);
   m.partial = m.orphan = false;
   mesh_.setLeaf(keep, n);
   if (owners_[m.owner] == removing_)
@@ -354,7 +353,7 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
   // (a segment always borders a cell its occluder covers).
   std::set<OccluderKey> keySet;
   auto addListed = [&](NodeId leaf) {
-    for (const OccluderEntry& entry : mesh_.occluders(node(leaf).cell)) keySet.insert({entry.light, entry.face});
+    for (const OccluderEntry& entry : mesh_.occluders(node(leaf).cell())) keySet.insert({entry.light, entry.face});
   };
   for (const auto& side : along)
     for (NodeId leaf : side) addListed(leaf);
@@ -380,7 +379,7 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
     return;
   }
   if (node(front).isLeaf() && node(back).isLeaf() &&
-      mesh_.cell(node(front).cell).occluders != mesh_.cell(node(back).cell).occluders) {
+      mesh_.cell(node(front).cell()).occluders != mesh_.cell(node(back).cell()).occluders) {
     // Different lists but no live segment between them: a numerical disagreement;
     // keep the edge rather than give one side the wrong list.
     segmentForWrite(e).orphan = true;
@@ -392,7 +391,7 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
   size_t dangling[2] = {0, 0};
   for (int side = 0; side < 2; ++side)
     for (NodeId leaf : along[side]) {
-      const std::vector<HalfEdgeId> edges = mesh_.loop(node(leaf).cell);
+      const std::vector<HalfEdgeId> edges = mesh_.loop(node(leaf).cell());
       for (size_t i = 0; i < edges.size(); ++i) {
         if (mesh_.node(edges[i]) != e) continue;
         const VertexId v = mesh_.halfEdge(edges[i]).origin;
@@ -463,7 +462,7 @@ void DmTree::deleteNode(NodeId e, const OccluderKey& key, RemoveResult& result) 
   mergeInto(a, b, bRegion, deletedLine, extended, result);
   std::vector<CellId> check(result.changedCells.begin() + firstChanged, result.changedCells.end());
   for (const auto& side : along)
-    for (NodeId leaf : side) check.push_back(node(leaf).cell);
+    for (NodeId leaf : side) check.push_back(node(leaf).cell());
   for (CellId c : check) {
     if (!c.is_valid() || !mesh_.cell(c).alive) continue;
     for (HalfEdgeId h : mesh_.loop(c))

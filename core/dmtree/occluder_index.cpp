@@ -6,7 +6,7 @@ OccluderIndex::OccluderIndex(const DmTree& tree, const PlaneFrame& frame) : fram
   leafStart_.push_back(0);
   // A leaf: its cell's list, in the tree's order, into entries_; returns its child code.
   auto addLeaf = [&](NodeId n) {
-    for (const OccluderEntry& e : tree.occluders(tree.node(n).cell))
+    for (const OccluderEntry& e : tree.occluders(tree.node(n).cell()))
       if (e.face != kLightPlaneOccluder) entries_.push_back({e.light, e.face});
     leafStart_.push_back(uint32_t(entries_.size()));
     return -int32_t(leafStart_.size() - 1);  // leaf k is stored as -(k + 1)

@@ -24,7 +24,7 @@ void DmTree::collectCells(NodeId n, const Polygon2& region, std::vector<CellId>&
                           std::vector<NodeId>* nodes) const {
   const DmNode& d = node(n);
   if (d.isLeaf()) {
-    out.push_back(d.cell);
+    out.push_back(d.cell());
     return;
   }
   // front = right of a→b for the two points a, b on the line.
@@ -45,9 +45,7 @@ HalfEdgeMesh::CutResult DmTree::splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan&
   const NodeId front = addNode(n, cut.front);
   const NodeId back = addNode(n, cut.back);
   DmNode& d = nodes_[n.index];
-  d.cell = CellId();
-  d.front = front;
-  d.back = back;
+  d.makeInternal(front, back);
   if (d.segment == DmNode::kNoSegment) d.segment = addSegment({});
   NodeSegment& s = segments_[d.segment];
   s.line = seg.line;

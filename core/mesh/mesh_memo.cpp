@@ -73,7 +73,7 @@ class MeshMemoUpdate {
   bool needsLight(uint32_t index) {
     const HalfEdgeMesh::Cell& cell = halfEdges_.cell(CellId(index));
     CellMemo& slot = memo_.cells_[index];
-    if (cell.touched <= memo_.stamp_ && (slot.valid() || !cell.alive)) {
+    if (cell.touched() <= memo_.stamp_ && (slot.valid() || !cell.alive)) {
       if (cell.alive) ++counters_.cellsReused;
       return false;
     }

@@ -143,7 +143,7 @@ OverlapCube::OverlapCube(const Scene& scene, size_t light, OverlapCubeSettings s
   cubeSide_ = box.side;
   cubeMin_ = box.min;
 
-  facesInTile_.assign(static_cast<size_t>(kSides) * grid_ * grid_, {});
+  facesInTile_ = std::vector<CompactIndexList>(static_cast<size_t>(kSides) * grid_ * grid_);
   for (const Face& face : scene.faces()) insertFace(face);
 }
 
@@ -208,10 +208,7 @@ bool OverlapCube::removeFace(FaceId face) {
   if (it == slotOf_.end()) return false;
   const uint32_t slot = it->second;
   for (const TileId tile : slots_[slot].tiles) {
-    std::vector<uint32_t>& list = facesInTile_[tile.value];
-    const auto at = std::find(list.begin(), list.end(), slot);
-    *at = list.back();
-    list.pop_back();
+    facesInTile_[tile.value].removeOne(slot);
   }
   slots_[slot] = Slot{};
   freeSlots_.push_back(slot);

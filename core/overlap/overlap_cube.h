@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/geom/polygon.h"
+#include "core/overlap/compact_index_list.h"
 #include "core/geom/tolerance.h"
 #include "core/scene/scene.h"
 
@@ -125,7 +126,7 @@ class OverlapCube {
   std::vector<Slot> slots_;
   std::vector<uint32_t> freeSlots_;
   std::map<FaceId, uint32_t> slotOf_;
-  std::vector<std::vector<uint32_t>> facesInTile_;  // slot indices, unordered
+  std::vector<CompactIndexList> facesInTile_;  // slot indices, unordered
 };
 
 }  // namespace penumbra

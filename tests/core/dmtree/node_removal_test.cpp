@@ -312,7 +312,7 @@ TEST(DmTreeRemoval, DeletingTopNodesLeavesCellsAwayFromTheShadowUntouched) {
     std::map<uint32_t, uint64_t> stamps;  // cells away from top's penumbra
     const Polygon2 near = rect(-0.35, -0.3, 0.4, 0.35);
     for (CellId c : tree.cells())
-      if (intersect(tree.cellPolygon(c), near, kTol.length()).empty()) stamps[c.index] = tree.mesh().cell(c).touched;
+      if (intersect(tree.cellPolygon(c), near, kTol.length()).empty()) stamps[c.index] = tree.mesh().cell(c).touched();
     const RemoveResult r = tree.removeOccluder(0, top.occluder);
     ASSERT_FALSE(r.rebuilt) << "seed " << seed;
     ASSERT_NO_THROW(tree.validate()) << "seed " << seed;
@@ -320,7 +320,7 @@ TEST(DmTreeRemoval, DeletingTopNodesLeavesCellsAwayFromTheShadowUntouched) {
     expectSameLists(tree, freshTree(receiver, others), receiver, others, rng);
     away += stamps.size();
     for (const auto& [index, stamp] : stamps)
-      if (tree.mesh().cell(CellId(index)).alive && tree.mesh().cell(CellId(index)).touched == stamp) ++untouched;
+      if (tree.mesh().cell(CellId(index)).alive && tree.mesh().cell(CellId(index)).touched() == stamp) ++untouched;
     if (HasFatalFailure()) FAIL() << "seed " << seed;
   }
   std::printf("cells away from the removed shadow: %zu, untouched %zu (%.0f%%)\n", away, untouched,
