@@ -22,6 +22,10 @@ class Backprojection {
  public:
   // Light `light` of `scene` seen from p with unit front normal n, nothing removed yet.
   Backprojection(const Scene& scene, size_t light, const Vec3& p, const Vec3& n);
+  Backprojection() = default;  // applies() is false until reset()
+  // Starts afresh as the constructor would, keeping the buffers' capacity: one object
+  // reused for many points allocates nothing once warm (vertex_illumination.cpp).
+  void reset(const Scene& scene, size_t light, const Vec3& p, const Vec3& n);
 
   // Whether the light faces p (p strictly in front of its plane) and some of it lies
   // in front of p's plane; otherwise it contributes nothing and has no class.
@@ -84,11 +88,12 @@ class Backprojection {
   const Scene* scene_ = nullptr;
   Tolerance tolerance_;
   Vec3 p_{0.0}, n_{0.0};
+  Polygon3 lightPolygon_;       // the light's polygon that lightPlane_ and frame_ are of
   Plane lightPlane_;
   double pHeight_ = 0;          // p's distance in front of the light's plane
   bool applies_ = false;
   Polygon3 front_;              // the light clipped to p's front half-space
-  PlaneFrame frame_;            // 2D frame on the light's plane
+  PlaneFrame frame_;            // 2D frame on the light's plane (set even when !applies_)
   std::vector<Plane> cone_;     // inward side planes of a cone from p over front_ plus a margin
   Polygon2 front2_;             // front_ in the frame, CCW
   std::vector<Vec2> shadowPoints_;      // gathered shadows in the frame, flat, CCW

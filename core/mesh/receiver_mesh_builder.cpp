@@ -34,19 +34,19 @@ uint32_t ReceiverMeshBuilder::location(const Vec2& at) {
   const long yFrom = fy > 1.25 * eps_ ? 0 : -1, yTo = side - fy > 1.25 * eps_ ? 0 : 1;
   for (long dx = xFrom; dx <= xTo; ++dx)
     for (long dy = yFrom; dy <= yTo; ++dy) {
-      const auto bucket = buckets_.find({x + dx, y + dy});
-      if (bucket == buckets_.end()) continue;
-      for (uint32_t id = bucket->second.first; id != kNone; id = nextInBucket_[id])
+      const Chain* bucket = buckets_.find(x + dx, y + dy);
+      if (!bucket) continue;
+      for (uint32_t id = bucket->first; id != kNone; id = nextInBucket_[id])
         if (glm::length(locations_[id] - at) <= eps_) return id;
     }
   const uint32_t id = uint32_t(locations_.size());
   locations_.push_back(at);
   nextInBucket_.push_back(kNone);
   firstVertexAt_.push_back(kNone);
-  const auto [bucket, added] = buckets_.try_emplace({x, y}, Chain{id, id});
+  const auto [bucket, added] = buckets_.tryEmplace(x, y, Chain{id, id});
   if (!added) {
-    nextInBucket_[bucket->second.last] = id;
-    bucket->second.last = id;
+    nextInBucket_[bucket->last] = id;
+    bucket->last = id;
   }
   return id;
 }

@@ -3,13 +3,11 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
-#include <unordered_map>
-#include <utility>
 #include <vector>
 
 #include "core/geom/plane_frame.h"
 #include "core/illum/vertex_illumination.h"
+#include "core/mesh/bucket_table.h"
 #include "core/mesh/mesh.h"
 
 namespace penumbra {
@@ -27,12 +25,6 @@ class ReceiverMeshBuilder {
   uint32_t vertex(const Vec2& at, const VertexIrradiance& value);
 
  private:
-  struct BucketHash {
-    size_t operator()(const std::pair<long, long>& b) const {
-      const size_t h = std::hash<long>{}(b.first);
-      return h ^ (std::hash<long>{}(b.second) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2));
-    }
-  };
   // The locations of a bucket, in order of appearance: a chain through nextInBucket_.
   struct Chain {
     uint32_t first, last;
@@ -48,7 +40,7 @@ class ReceiverMeshBuilder {
   uint32_t base_;  // the mesh's vertex count before this builder
   std::vector<Vec2> locations_;
   std::vector<uint32_t> nextInBucket_;  // per location
-  std::unordered_map<std::pair<long, long>, Chain, BucketHash> buckets_;
+  BucketTable<Chain> buckets_;
   // Per location, its first output vertex; per output vertex (from base_), the next one at its
   // location.
   std::vector<uint32_t> firstVertexAt_, nextVertexAt_;
