@@ -83,11 +83,9 @@ CellLighter::CellLighter(const Scene& scene, const MeshSource& source, double sp
 // near a footprint corner) lies inside one side, where the value is the point
 // value (the face does not shadow it, SCENE_FORMAT.md), with no other side's
 // copy to carry that value.
-bool CellLighter::onContact(const Vec3& p, const OccluderList& list) const {
-  for (const OccluderEntry& entry : list) {
-    const Face* face = findFace(scene_, entry.face);
+bool CellLighter::onContact(const Vec3& p) const {
+  for (const Face* face : listFaces_)
     if (face && std::abs(face->plane.signedDistance(p)) <= eps_) return true;
-  }
   return false;
 }
 
@@ -107,7 +105,10 @@ uint64_t CellLighter::gather(CellId c) {
   for (HalfEdgeId h : halfEdges.loop(c)) inputs_.corners.push_back(halfEdges.halfEdge(h).origin);
   for (VertexId v : inputs_.corners) inputs_.outline.push_back(tree.position(v));
   inputs_.occluders = list;
-  for (const OccluderEntry& entry : list) {
+  listFaces_.clear();
+  for (const OccluderEntry& entry : list) listFaces_.push_back(findFace(scene_, entry.face));
+  for (size_t k = 0; k < list.size(); ++k) {
+    const OccluderEntry& entry = list[k];
     if (isWholeObject(entry.face)) {
       // An object's faces are its authored ones placed by its transform: the transform
       // stands for all of them (a sphere's thousand faces need not be hashed per cell).
@@ -119,7 +120,7 @@ uint64_t CellLighter::gather(CellId c) {
       }
       continue;
     }
-    const Face* face = findFace(scene_, entry.face);
+    const Face* face = listFaces_[k];
     inputs_.occluderSizes.push_back(face ? uint32_t(face->polygon.size()) : 0);
     if (face)
       inputs_.occluderPoints.insert(inputs_.occluderPoints.end(), face->polygon.begin(),
@@ -129,7 +130,7 @@ uint64_t CellLighter::gather(CellId c) {
     const VertexId v = inputs_.corners[i];
     // Only a face of this cell's list can hide light from the cell and not from the
     // corner (it passes through the corner); with none, the corner's value is the limit.
-    const bool fromCell = onContact(source_.frame.to3D(inputs_.outline[i]), list);
+    const bool fromCell = onContact(source_.frame.to3D(inputs_.outline[i]));
     inputs_.cornerFromCell.push_back(fromCell ? 1 : 0);
     inputs_.cornerValues.push_back(fromCell ? VertexIrradiance{} : cornerValue(scene_, source_, v, dark_, anyDark_));
   }
@@ -149,8 +150,9 @@ VertexIrradiance CellLighter::valueAt(const Vec2& q, const OccluderList& list, c
   const Vec3 normal = source_.frame.normal;
   // A contact corner or lattice point takes the limit from the cell; another lattice
   // point is lit exactly from this cell's list (cases 2 and 3 keep it dark in a light's umbra).
-  return corner < polygon.size() || onContact(p, list) ? illuminatePointFromCell(scene_, p, normal, centre - p, list)
-                                                      : illuminatePoint(scene_, p, normal, {&list});
+  if (corner < polygon.size() || onContact(p)) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
+  oneCell_.assign(1, &list);
+  return illuminatePoint(scene_, p, normal, oneCell_);
 }
 
 void CellLighter::emit(CellId c, CellMemo& out) {
@@ -187,7 +189,8 @@ void CellLighter::emit(CellId c, CellMemo& out) {
     const CellFan fan = fanOfConvexCell(piece, eps_);
     if (fan.usesCentre()) {
       const Vec2 middle = centroid(piece);
-      addOwn(middle, illuminatePoint(scene_, source_.frame.to3D(middle), source_.frame.normal, {&list}));
+      oneCell_.assign(1, &list);
+      addOwn(middle, illuminatePoint(scene_, source_.frame.to3D(middle), source_.frame.normal, oneCell_));
     }
     output_.pieces.push_back({chunkOf(piece), uint32_t(output_.points.size()), fan});
   }

@@ -45,7 +45,8 @@ class CellLighter {
   void emit(CellId c, CellMemo& out);
 
  private:
-  bool onContact(const Vec3& p, const OccluderList& list) const;
+  // Whether a face of the gathered cell's list has its plane through p (listFaces_).
+  bool onContact(const Vec3& p) const;
   VertexIrradiance valueAt(const Vec2& q, const OccluderList& list, const Vec3& centre);
   MeshChunkKey chunkOf(const Polygon2& piece) const;
 
@@ -79,6 +80,11 @@ class CellLighter {
   // The current cell's own values at lattice and contact points, by position: a lattice point
   // is a corner of up to four of its pieces and is kept once.
   std::vector<std::pair<Vec2, uint32_t>> ownAt_;
+  // The gathered cell's listed faces, by entry (null: a whole object or not in the scene),
+  // looked up once per cell rather than per point; and a one-cell list of lists for
+  // illuminatePoint, reused.
+  std::vector<const Face*> listFaces_;
+  std::vector<const OccluderList*> oneCell_;
 };
 
 }  // namespace penumbra
