@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/geom/fingerprint.h"
 #include "core/scene/scene.h"
 
 namespace penumbra {
@@ -21,6 +22,12 @@ struct OccluderEntry {
   bool operator==(const OccluderEntry&) const = default;
 };
 static_assert(sizeof(OccluderEntry) == 12);
+
+// Adds an entry to a fingerprint as two words (the occluder list pool's hash, the mesh memo's).
+inline void addEntry(Fingerprint& f, const OccluderEntry& e) {
+  f.add(uint64_t(e.light) << 1 | uint64_t(e.umbra));
+  f.add(uint64_t(e.face.object) << 32 | uint64_t(e.face.face));
+}
 
 // The occluder of a light's own plane: where that plane cuts a receiver, the part
 // behind it gets no light (lights emit from their front only). Not a scene face.

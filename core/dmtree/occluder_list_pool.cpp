@@ -3,7 +3,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/mesh/fingerprint.h"
 
 namespace penumbra {
 
@@ -11,10 +10,7 @@ OccluderListPool::OccluderListPool() { slots_.emplace_back(); }
 
 uint64_t OccluderListPool::hashOf(const OccluderList& list) {
   Fingerprint f;
-  for (const OccluderEntry& e : list) {
-    f.add(uint64_t(e.light) << 1 | e.umbra);
-    f.add(uint64_t(e.face.object) << 32 | e.face.face);
-  }
+  for (const OccluderEntry& e : list) addEntry(f, e);
   return f.value();
 }
 

@@ -7,7 +7,7 @@
 #include "core/illum/face_lookup.h"
 #include "core/illum/light_sum.h"
 #include "core/mesh/cell_triangulation.h"
-#include "core/mesh/fingerprint.h"
+#include "core/geom/fingerprint.h"
 #include "core/mesh/lattice_split.h"
 
 namespace penumbra {
@@ -50,10 +50,7 @@ uint64_t CellLighter::Inputs::fingerprint() const {
   f.addBytes(std::span<const Vec2>(outline));
   f.addBytes(std::span<const VertexId>(corners));
   f.add(uint64_t(occluders.size()));
-  for (const OccluderEntry& e : occluders) {
-    f.add(uint64_t(e.light) << 1 | uint64_t(e.umbra));
-    f.add(uint64_t(e.face.object) << 32 | uint64_t(e.face.face));
-  }
+  for (const OccluderEntry& e : occluders) addEntry(f, e);
   f.addBytes(std::span<const Vec3>(occluderPoints));
   f.addBytes(std::span<const uint32_t>(occluderSizes));
   f.addBytes(std::span<const uint8_t>(cornerFromCell));

@@ -1,5 +1,6 @@
 #include "core/mesh/lattice_split.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra {
@@ -36,10 +37,27 @@ std::vector<Polygon2> splitAlong(std::vector<Polygon2> pieces, int axis, double 
   return out;
 }
 
+// Whether splitAlong would cut `cell` along `axis`: some line strictly inside its span by
+// more than eps (the same test, so skipping it changes nothing).
+bool crossedAlong(const Polygon2& cell, int axis, double spacing, double eps) {
+  double low = INFINITY, high = -INFINITY;
+  for (const Vec2& v : cell) {
+    low = std::min(low, v[axis]);
+    high = std::max(high, v[axis]);
+  }
+  for (long k = long(std::floor(low / spacing)) + 1; double(k) * spacing < high; ++k) {
+    const double at = double(k) * spacing;
+    if (at > low + eps && at < high - eps) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 std::vector<Polygon2> splitByLattice(const Polygon2& cell, double spacing, double eps) {
-  if (!(spacing > 0)) return {cell};
+  // Most DM cells lie between two lattice lines both ways: no copies through two passes.
+  if (!(spacing > 0) || (cell.size() >= 3 && !crossedAlong(cell, 0, spacing, eps) && !crossedAlong(cell, 1, spacing, eps)))
+    return {cell};
   return splitAlong(splitAlong({cell}, 0, spacing, eps), 1, spacing, eps);
 }
 

@@ -1,6 +1,6 @@
 // Fingerprint: any one changed bit, moved word or changed length of the data gives another
 // value (seeded; runs of 32 bytes take the four-lane path, tails the serial one).
-#include "core/mesh/fingerprint.h"
+#include "core/geom/fingerprint.h"
 
 #include <gtest/gtest.h>
 
