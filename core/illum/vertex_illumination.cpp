@@ -47,7 +47,7 @@ VertexLight fromView(const Backprojection& view, VertexCase decidedBy) {
   out.decidedBy = decidedBy;
   out.factor = view.visibleFactor();
   out.lightClass = view.lightClass();
-  out.comparisons = uint32_t(view.comparisons());
+  out.comparisons = uint32_t(std::min<size_t>(view.comparisons(), VertexLight::kMaxComparisons));
   return out;
 }
 

@@ -22,16 +22,18 @@ enum class VertexCase : uint8_t {
 };
 
 // One light at a vertex.
-// 16 bytes: one is kept per vertex and light. The factor over the light's whole front part
-// (Backprojection::unoccludedFactor) is not kept: nothing reads it once the vertex is lit.
-struct VertexLight {
+// 12 bytes: one is kept per vertex and light (PerLightValues), so the factor sits at 4-byte
+// alignment (packed) and the rest shares one word. The factor over the light's whole front
+// part (Backprojection::unoccludedFactor) is not kept: nothing reads it once the vertex is lit.
+struct __attribute__((packed, aligned(4))) VertexLight {
+  static constexpr uint32_t kMaxComparisons = (1u << 24) - 1;  // counts saturate there
   double factor = 0;            // ∫ cosθp·cosθL / r² dA over the visible part
-  uint32_t comparisons = 0;     // source/occluder comparisons (faces projected)
-  LightClass lightClass = LightClass::Lit;  // meaningless when !applies
-  bool applies = false;         // the light reaches p's front side at all
-  VertexCase decidedBy = VertexCase::NoLight;
+  uint32_t comparisons : 24 = 0;  // source/occluder comparisons (faces projected)
+  LightClass lightClass : 2 = LightClass::Lit;  // meaningless when !applies
+  bool applies : 1 = false;     // the light reaches p's front side at all
+  VertexCase decidedBy : 2 = VertexCase::NoLight;
 };
-static_assert(sizeof(VertexLight) == 16);
+static_assert(sizeof(VertexLight) == 12 && alignof(VertexLight) == 4);
 
 // All lights at a vertex: radiance-weighted sum and combined class (Umbra when no
 // light applies, as for the reference).

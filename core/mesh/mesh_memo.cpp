@@ -139,9 +139,6 @@ class MeshMemoUpdate {
     if (listed == memo_.chunkCells_.end()) return;
     std::vector<uint32_t> ids;
     std::vector<bool> dark(scene_.lights().size());
-    size_t points = 0;  // an upper bound: the listed cells' points in every chunk
-    for (uint32_t index : listed->second) points += memo_.cells_[index].pointCount();
-    builder.reserve(points);
     for (uint32_t index : listed->second) {
       const CellMemo& m = memo_.cells_[index];
       ids.resize(m.pointCount());
