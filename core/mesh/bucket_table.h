@@ -37,12 +37,6 @@ class BucketTable {
     }
   }
   size_t size() const { return size_; }
-  // Room for `count` entries without growing.
-  void reserve(size_t count) {
-    size_t slots = 64;
-    while (slots < 2 * count) slots *= 2;
-    if (slots > slots_.size()) rehash(slots);
-  }
 
  private:
   struct Slot {
@@ -57,10 +51,9 @@ class BucketTable {
     h = (h ^ (h >> 27)) * 0x94d049bb133111ebull;
     return size_t(h ^ (h >> 31)) & mask_;
   }
-  void grow() { rehash(slots_.empty() ? 64 : 2 * slots_.size()); }
-  void rehash(size_t slots) {
+  void grow() {
     std::vector<Slot> old = std::move(slots_);
-    slots_.assign(slots, Slot{});
+    slots_.assign(old.empty() ? 64 : 2 * old.size(), Slot{});
     mask_ = slots_.size() - 1;
     size_ = 0;
     for (const Slot& s : old)

@@ -23,13 +23,6 @@ class ReceiverMeshBuilder {
 
   // The id of the output vertex at `at` with `value`, added to the mesh on first sight.
   uint32_t vertex(const Vec2& at, const VertexIrradiance& value);
-  // Room for `points` vertex() calls' locations without growing (an estimate; any count works).
-  void reserve(size_t points) {
-    buckets_.reserve(points);
-    locations_.reserve(points);
-    nextInBucket_.reserve(points);
-    firstVertexAt_.reserve(points);
-  }
 
  private:
   // The locations of a bucket, in order of appearance: a chain through nextInBucket_.
