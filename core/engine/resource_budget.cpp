@@ -8,15 +8,17 @@ namespace penumbra {
 
 TreeUsage usageOf(const DmTree& tree, size_t lights) {
   const HalfEdgeMesh& mesh = tree.mesh();
-  // Per vertex slot the engine keeps a value, where it was lit, and one entry per light.
-  const size_t perVertex = sizeof(HalfEdgeMesh::Vertex) + sizeof(VertexIrradiance) + sizeof(Vec2) +
-                           lights * sizeof(VertexLight);
-  // A cell's occluder list: a few entries on average.
+  // Per vertex slot: its position and out half-edge (HalfEdgeMesh keeps them in two arrays),
+  // one value per light (Receiver::perLight) and the lit flag (Receiver::lit).
+  const size_t perVertex = sizeof(Vec2) + sizeof(HalfEdgeId) + lights * sizeof(VertexLight) + sizeof(uint8_t);
+  // A half-edge, and half of its pair's edge node.
+  const size_t perHalfEdge = sizeof(HalfEdgeMesh::HalfEdge) + sizeof(NodeId) / 2;
+  // A cell's share of the interned occluder lists: a few entries on average.
   const size_t perCell = sizeof(HalfEdgeMesh::Cell) + 2 * sizeof(OccluderEntry);
   TreeUsage usage;
   usage.nodes = tree.nodeCount();
   usage.vertices = tree.vertexCount();
-  usage.bytes = tree.nodeSlots() * sizeof(DmNode) + tree.segmentSlots() * sizeof(NodeSegment) + mesh.halfEdgeSlots() * sizeof(HalfEdgeMesh::HalfEdge) +
+  usage.bytes = tree.nodeSlots() * sizeof(DmNode) + tree.segmentSlots() * sizeof(NodeSegment) + mesh.halfEdgeSlots() * perHalfEdge +
                 mesh.vertexSlots() * perVertex + mesh.cellSlots() * perCell;
   return usage;
 }
