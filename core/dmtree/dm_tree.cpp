@@ -3,6 +3,7 @@
 #include "core/geom/resource_limit.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -38,6 +39,32 @@ uint32_t DmTree::ownerIndex(const OccluderKey& key) {
   const auto [it, added] = ownerIndex_.try_emplace(key, uint32_t(owners_.size()));
   if (added) owners_.push_back(key);
   return it->second;
+}
+
+void DmTree::compactOwners() {
+  // Keys of removed occluders stay until no live node carries them; past twice the live
+  // keys the table is rebuilt from the live internal nodes (an editing session adds new
+  // objects' faces for ever, so the table would otherwise only grow).
+  if (owners_.size() <= 2 * inserted_.size() + 64) return;
+  constexpr uint32_t kUnseen = UINT32_MAX;
+  std::vector<uint32_t> remap(owners_.size(), kUnseen);
+  std::vector<OccluderKey> kept;
+  std::vector<bool> used(segments_.size(), false);
+  for (const DmNode& d : nodes_) {
+    if (!d.alive || d.isLeaf() || d.segment == DmNode::kNoSegment) continue;
+    NodeSegment& s = segments_[d.segment];
+    if (remap[s.owner] == kUnseen) {
+      remap[s.owner] = uint32_t(kept.size());
+      kept.push_back(owners_[s.owner]);
+    }
+    s.owner = remap[s.owner];
+    used[d.segment] = true;
+  }
+  for (size_t i = 0; i < segments_.size(); ++i)
+    if (!used[i]) segments_[i].owner = 0;  // a spare slot: splitLeaf sets its owner before use
+  owners_ = std::move(kept);
+  ownerIndex_.clear();
+  for (uint32_t i = 0; i < owners_.size(); ++i) ownerIndex_.emplace(owners_[i], i);
 }
 
 uint32_t DmTree::addSegment(const NodeSegment& s) {
@@ -94,6 +121,7 @@ void DmTree::validate() const {
     }
   }
   if (reached != liveNodes_) fail("live nodes not in the tree");
+  if (ownerIndex_.size() != owners_.size()) fail("owner table and its index differ");
   if (leaves != mesh_.cellCount()) fail("leaf count differs from cell count");
 
   for (CellId c : cells()) {

@@ -145,6 +145,7 @@ class DmTree {
   const NodeSegment& segment(NodeId n) const { return segments_[nodes_[n.index].segment]; }
   // The (light, occluder) whose segment an internal node's line carries.
   const OccluderKey& owner(NodeId n) const { return owners_[segment(n).owner]; }
+  size_t ownerCount() const { return owners_.size(); }  // keys in the owner table
   const HalfEdgeMesh& mesh() const { return mesh_; }
   size_t nodeCount() const { return liveNodes_; }  // leaves included
   size_t nodeSlots() const { return nodes_.size(); }  // dead nodes included
@@ -179,9 +180,10 @@ class DmTree {
   NodeId addNode(NodeId parent, CellId cell);
   uint32_t addSegment(const NodeSegment& s);  // its slot
   NodeSegment& segmentForWrite(NodeId n) { return segments_[nodes_[n.index].segment]; }
-  // key's index in owners_, added on first use (entries are never dropped: a tree sees
-  // each (light, occluder) it was ever given once, a few dozen at most).
+  // key's index in owners_, added on first use.
   uint32_t ownerIndex(const OccluderKey& key);
+  // Drops the keys no live node carries once they outnumber the live ones (removeOccluder).
+  void compactOwners();
   // Splits leaf n's cell along `seg` (a straddling plan) and makes n the internal
   // node carrying seg's line for `owner`; partial: seg does not span the cell.
   HalfEdgeMesh::CutResult splitLeaf(NodeId n, const HalfEdgeMesh::CutPlan& plan, const SingleTreeNode& seg,

@@ -480,6 +480,8 @@ void DmTree::rebuild() {
   inserted_.clear();
   nodes_.clear();
   segments_.clear();
+  owners_.clear();
+  ownerIndex_.clear();
   splitNodes_.clear();
   liveNodes_ = 0;
   const CellId c = mesh_.reset(receiver_, tolerance_.length());
@@ -593,6 +595,7 @@ RemoveResult DmTree::removeOccluder(uint32_t light, FaceId occluder) {
   std::sort(result.changedCells.begin(), result.changedCells.end());
   result.changedCells.erase(std::unique(result.changedCells.begin(), result.changedCells.end()),
                             result.changedCells.end());
+  compactOwners();
   return result;
 }
 

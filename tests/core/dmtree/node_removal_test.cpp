@@ -246,6 +246,36 @@ TEST(DmTreeRemoval, RemoveThenReinsertRestoresAnEquivalentTree) {
   }
 }
 
+// An editing session adds new objects for ever (new face ids): the owner table of node
+// segments must drop the keys no live node carries, and the tree must stay what it was.
+TEST(DmTreeRemoval, OwnerTableStaysBoundedOverALongSessionOfNewOccluders) {
+  Rng rng(2026);
+  const Polygon2 receiver = randomConvex(rng, {0, 0}, 1.0, 6);
+  DmTree tree(receiver, kTol);
+  std::vector<SingleShadow> live;
+  for (uint32_t k = 1; k <= 4; ++k) {
+    live.push_back(randomShadow(rng, receiver, k));
+    tree.insert(live.back());
+  }
+  size_t mostOwners = 0;
+  for (uint32_t id = 5; id < 1500; ++id) {
+    live.push_back(randomShadow(rng, receiver, id));  // a new object's face
+    tree.insert(live.back());
+    const size_t gone = rng() % live.size();
+    ASSERT_TRUE(tree.removeOccluder(live[gone].light, live[gone].occluder).found);
+    live.erase(live.begin() + std::ptrdiff_t(gone));
+    mostOwners = std::max(mostOwners, tree.ownerCount());
+    if (id % 100 == 0) {
+      ASSERT_NO_THROW(tree.validate()) << "id " << id;
+      expectLists(tree, live);
+    }
+  }
+  EXPECT_LE(mostOwners, 2 * live.size() + 65);  // 1,495 keys were given, 5 stay inserted
+  ASSERT_NO_THROW(tree.validate());
+  expectLists(tree, live);
+  for (const SingleShadow& s : live) expectCovered(tree, s);
+}
+
 // Figure 8: the removed occluder's node has discontinuities of other occluders on both
 // sides; deleting it keeps them and leaves none of its own edges.
 TEST(DmTreeRemoval, DeletesANodeWithTwoNonEmptySubtrees) {
