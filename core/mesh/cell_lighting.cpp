@@ -103,9 +103,9 @@ uint64_t CellLighter::gather(CellId c) {
   for (VertexId v : inputs_.corners) inputs_.outline.push_back(tree.position(v));
   inputs_.occluders = list;
   listFaces_.clear();
-  for (const OccluderEntry& entry : list) listFaces_.push_back(findFace(scene_, entry.face));
-  for (size_t k = 0; k < list.size(); ++k) {
-    const OccluderEntry& entry = list[k];
+  for (const OccluderEntry& entry : list) {
+    const Face* face = findFace(scene_, entry.face);  // null: a whole object, or not in the scene
+    listFaces_.push_back(face);
     if (isWholeObject(entry.face)) {
       // An object's faces are its authored ones placed by its transform: the transform
       // stands for all of them (a sphere's thousand faces need not be hashed per cell).
@@ -117,7 +117,6 @@ uint64_t CellLighter::gather(CellId c) {
       }
       continue;
     }
-    const Face* face = listFaces_[k];
     inputs_.occluderSizes.push_back(face ? uint32_t(face->polygon.size()) : 0);
     if (face)
       inputs_.occluderPoints.insert(inputs_.occluderPoints.end(), face->polygon.begin(),
