@@ -25,6 +25,13 @@ struct BenchArgs {
   // (then --cubes only when given). build-row: --no-compare skips Monte Carlo and mesh quality.
   std::vector<int> denseCubes;
   bool compare = true;
+  // build, build-row: --model NAME,... (bench/lib/model_scene.h: teapot, torus-knot, blob,
+  // bowl, scan, furnished) at --triangles N,... (0: the model's default), floating or with
+  // --rest on the floor: one row per model, count and thread count (then --cubes only when
+  // given). build-row takes one model and one count.
+  std::vector<std::string> models;
+  std::vector<int> triangles{0};
+  bool rest = false;
   // build, build-row: --all-lines casts every VE/EV line of closed convex objects
   // of every face (EngineSettings::silhouetteLinesOnly and closedObjectsAsOne false), to
   // compare with the default; --face-by-face casts closed convex objects face by face with

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bench/bench_args.h"
+#include "bench/lib/model_scene.h"
 
 namespace penumbra::bench {
 
@@ -34,12 +35,13 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first) {
   for (int i = first; i < argc; ++i) {
     const std::string name = argv[i];
     if (name == "--dense" || name == "--no-compare" || name == "--all-lines" || name == "--face-by-face" ||
-        name == "--no-umbra-culling") {  // no value
+        name == "--no-umbra-culling" || name == "--rest") {  // no value
       if (name == "--dense") args.dense = true;
       if (name == "--no-compare") args.compare = false;
       if (name == "--all-lines") args.allLines = true;
       if (name == "--face-by-face") args.faceByFace = true;
       if (name == "--no-umbra-culling") args.umbraCulling = false;
+      if (name == "--rest") args.rest = true;
       continue;
     }
     if (i + 1 >= argc) throw std::invalid_argument(name + " needs a value");
@@ -50,6 +52,18 @@ BenchArgs parseBenchArgs(int argc, char** argv, int first) {
         args.cubesGiven = true;
       } else if (name == "--dense-cubes") {
         args.denseCubes = intList(value, 0);
+      } else if (name == "--model") {
+        args.models.clear();
+        std::stringstream list(value);
+        for (std::string item; std::getline(list, item, ',');) {
+          if (!modelKindFromName(item)) throw std::invalid_argument("not one of " + modelKindNames());
+          args.models.push_back(item);
+        }
+        if (args.models.empty()) throw std::invalid_argument("empty list");
+      } else if (name == "--triangles") {
+        args.triangles = intList(value, kMinModelTriangles);
+        for (int n : args.triangles)
+          if (n > kMaxModelTriangles) throw std::invalid_argument("must be <= " + std::to_string(kMaxModelTriangles));
       } else if (name == "--seed") {
         args.seed = std::stoull(value);
       } else if (name == "--light-scale") {
@@ -99,6 +113,8 @@ int main(int argc, char** argv) {
       "                             [--all-lines] (closed convex objects face by face, every VE/EV line)\n"
       "                             [--face-by-face] (closed convex objects face by face, silhouette lines)\n"
       "                             [--no-umbra-culling] (later shadows split cells in an umbra too)\n"
+      "                             [--model teapot|torus-knot|blob|bowl|scan|furnished,...]\n"
+      "                             [--triangles N,...] [--rest] (models in the dense room)\n"
       "                      edits: [--dense] [--frames F] [--rebuild-every K] [--html OUT]\n"
       "                             | --write-scripts DIR --scene FILE\n"
       "  reference: exact reference and Monte Carlo cost per point\n"

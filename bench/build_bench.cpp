@@ -13,6 +13,7 @@
 
 #include "bench/bench_args.h"
 #include "bench/child_process.h"
+#include "bench/lib/model_scene.h"
 #include "bench/report/build_report_html.h"
 #include "bench/report/build_summary.h"
 #include "protocol/json_text.h"
@@ -24,6 +25,7 @@ namespace {
 using nlohmann::json;
 
 struct RowSpec {
+  std::string model;  // empty: a cubes or dense room
   bool dense = false;
   int cubes = 0;
   double lightScale = 1;
@@ -31,19 +33,27 @@ struct RowSpec {
   bool compare = true;  // Monte Carlo and mesh quality: at the first thread count only
 };
 
-// Sparse rows: --cubes (unless only --dense-cubes was given) at light scales 1 and 0.2;
-// dense rows: --dense-cubes, or --cubes with --dense (one light size).
+// Sparse rows: --cubes (unless only --dense-cubes or --model was given) at light scales 1
+// and 0.2; dense rows: --dense-cubes, or --cubes with --dense (one light size); model rows:
+// each --model at each --triangles (`cubes` holds the count asked for).
 std::vector<RowSpec> buildPlan(const BenchArgs& args) {
   std::vector<int> sparse, dense = args.denseCubes;
   if (args.dense)
     dense.insert(dense.begin(), args.cubes.begin(), args.cubes.end());
-  else if (args.cubesGiven || args.denseCubes.empty())
+  else if (args.cubesGiven || (args.denseCubes.empty() && args.models.empty()))
     sparse = args.cubes;
   std::vector<RowSpec> plan;
   auto add = [&](bool isDense, int cubes, double lightScale) {
     for (size_t t = 0; t < args.threads.size(); ++t)
-      plan.push_back({isDense, cubes, lightScale, args.threads[t], args.compare && t == 0});
+      plan.push_back({"", isDense, cubes, lightScale, args.threads[t], args.compare && t == 0});
   };
+  for (const std::string& model : args.models)
+    for (int triangles : args.triangles)
+      for (size_t t = 0; t < args.threads.size(); ++t)
+        plan.push_back(
+            {model, false,
+             triangles > 0 ? triangles : defaultModelTriangles(*modelKindFromName(model)), 1.0,
+             args.threads[t], args.compare && t == 0});
   for (int cubes : sparse)
     for (double lightScale : {1.0, 0.2}) add(false, cubes, lightScale);
   for (int cubes : dense) add(true, cubes, 1.0);
@@ -69,6 +79,10 @@ std::vector<std::string> childArguments(const RowSpec& spec, const BenchArgs& ar
                                "--quality-max-cubes",
                                std::to_string(args.qualityMaxCubes)};
   if (spec.dense) out.push_back("--dense");
+  if (!spec.model.empty()) {
+    out.insert(out.end(), {"--model", spec.model, "--triangles", std::to_string(spec.cubes)});
+    if (args.rest) out.push_back("--rest");
+  }
   if (!spec.compare) out.push_back("--no-compare");
   if (args.allLines) out.push_back("--all-lines");
   if (args.faceByFace) out.push_back("--face-by-face");
@@ -91,9 +105,9 @@ double number(const json& value) { return value.is_number() ? value.get<double>(
 
 void printHeader() {
   std::printf(
-      "%6s %6s %5s %3s %6s %8s %8s %7s %8s %8s %6s | %8s %8s %6s %6s %8s %7s | %9s %8s %7s\n",
-      "scene", "cubes", "light", "thr", "faces", "pairs", "shadows", "nodes", "vertices",
-      "penumbra", "cmp/v", "build s", "cpu s", "cast%", "illum%", "peak MiB", "kB/face", "MC s",
+      "%6s %6s %5s %3s %6s %8s %8s %7s %8s %8s %6s | %8s %8s %6s %6s %8s %7s %9s | %9s %8s %7s\n",
+      "scene", "N", "light", "thr", "faces", "pairs", "shadows", "nodes", "vertices", "penumbra",
+      "cmp/v", "build s", "cpu s", "cast%", "illum%", "peak MiB", "kB/face", "disp tri", "MC s",
       "MC/build", "DM/grid");
 }
 
@@ -107,7 +121,7 @@ void printRow(const json& row) {
   const json& quality = row["mesh_quality"];
   std::printf(
       "%6s %6d %5.1f %3d %6zu %8zu %8zu %7zu %8zu %8zu %6.2f | %8.3f %8.3f %5.0f%% %5.0f%% %8.0f "
-      "%7.1f | "
+      "%7.1f %9zu | "
       "%9.1f %8.0f %7.3f\n",
       row["scene"].get<std::string>().c_str(), row["cubes"].get<int>(),
       row["light_scale"].get<double>(), row["threads"].get<int>(), row["faces"].get<size_t>(),
@@ -117,7 +131,7 @@ void printRow(const json& row) {
       s["build_and_mesh"].get<double>(), s["build_and_mesh_cpu"].get<double>(),
       100 * s["casting_and_merging"].get<double>() / steps,
       100 * s["illumination"].get<double>() / steps, row["peak_memory_mib"].get<double>(),
-      row["kb_per_face"].get<double>(),
+      row["kb_per_face"].get<double>(), row.value("display_triangles", size_t(0)),
       mc.is_object() ? number(mc["seconds_all_penumbra_vertices"]) : NAN,
       mc.is_object() ? number(mc["over_build"]) : NAN,
       quality.is_object() ? number(quality["dm_over_grid"]) : NAN);
@@ -152,10 +166,10 @@ json runBuildBench(const BenchArgs& args) {
     }
     if (child.exitCode != 0 || row.is_discarded() || !row.is_object()) {
       // A scene that runs out of memory or crashes is a result too: note it, go on.
-      std::printf("%6s %6d %5.1f %3d   failed (exit %d, signal %d)\n",
-                  spec.dense ? "dense" : "sparse", spec.cubes, spec.lightScale, spec.threads,
-                  child.exitCode, child.signal);
-      failures.push_back({{"scene", spec.dense ? "dense" : "sparse"},
+      const std::string scene = !spec.model.empty() ? spec.model : spec.dense ? "dense" : "sparse";
+      std::printf("%6s %6d %5.1f %3d   failed (exit %d, signal %d)\n", scene.c_str(), spec.cubes,
+                  spec.lightScale, spec.threads, child.exitCode, child.signal);
+      failures.push_back({{"scene", scene},
                           {"cubes", spec.cubes},
                           {"light_scale", spec.lightScale},
                           {"threads", spec.threads},

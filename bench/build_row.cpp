@@ -15,6 +15,7 @@
 #include "bench/lib/cubes_scene.h"
 #include "bench/lib/dense_scene.h"
 #include "bench/lib/mesh_sampling.h"
+#include "bench/lib/model_scene.h"
 #include "bench/lib/sample_points.h"
 #include "core/engine/engine.h"
 #include "core/reference/exact_irradiance.h"
@@ -205,13 +206,32 @@ nlohmann::json countersJson(const BuildStats& stats, size_t meshVertices) {
 nlohmann::json runBuildRow(const BenchArgs& args) {
   if (args.cubes.size() != 1 || args.threads.size() != 1)
     throw std::invalid_argument("build-row takes one --cubes N and one --threads T");
-  const int cubes = args.cubes.front(), threads = args.threads.front();
+  if (args.models.size() > 1 || args.triangles.size() != 1)
+    throw std::invalid_argument("build-row takes at most one --model NAME and one --triangles N");
+  int cubes = args.cubes.front();
+  const int threads = args.threads.front();
   CubesSceneOptions options;
   options.cubes = cubes;
   options.seed = args.seed;
   options.lightScale = args.lightScale;
-  const Scene scene =
-      args.dense ? makeDenseScene({.boxes = cubes, .seed = args.seed}) : makeCubesScene(options);
+  std::string sceneName = args.dense ? "dense" : "sparse";
+  Scene scene;
+  if (!args.models.empty()) {
+    const ModelSceneOptions model{.kind = *modelKindFromName(args.models.front()),
+                                  .triangles = args.triangles.front(),
+                                  .rest = args.rest,
+                                  .seed = args.seed};
+    scene = makeModelScene(model);
+    cubes = model.triangles > 0 ? model.triangles : defaultModelTriangles(model.kind);
+    sceneName = args.models.front() + (args.rest ? "-rest" : "");
+  } else {
+    scene =
+        args.dense ? makeDenseScene({.boxes = cubes, .seed = args.seed}) : makeCubesScene(options);
+  }
+  // The model's (or boxes') faces: all but the room's static quads.
+  size_t modelFaces = 0;
+  for (const Object& object : scene.objects())
+    if (!object.isStatic) modelFaces += object.faces.size();
 
   const auto start = Clock::now();
   const double cpuStart = cpuSeconds();
@@ -223,9 +243,12 @@ nlohmann::json runBuildRow(const BenchArgs& args) {
   Engine engine(scene, settings);
   // The display mesh as a server session holds it: the engine's chunks, shared, not copied.
   const auto meshStart = Clock::now();
-  size_t meshVertices = 0;
+  size_t meshVertices = 0, meshTriangles = 0;
   for (const Engine::ReceiverChunks& r : engine.meshChunks(engine.receiverFaces()))
-    for (const Engine::MeshChunk& chunk : r.chunks) meshVertices += chunk.mesh->positions.size();
+    for (const Engine::MeshChunk& chunk : r.chunks) {
+      meshVertices += chunk.mesh->positions.size();
+      meshTriangles += chunk.mesh->triangles.size();
+    }
   const double triangulationSeconds = secondsSince(meshStart);
   const double buildSeconds = secondsSince(start);
   const double buildCpuSeconds = cpuSeconds() - cpuStart;
@@ -237,11 +260,14 @@ nlohmann::json runBuildRow(const BenchArgs& args) {
   BuildTimings t = stats.seconds;
   t.triangulation = triangulationSeconds;  // mesh() above timed only its copy
 
-  nlohmann::json row = {{"scene", args.dense ? "dense" : "sparse"},
+  const bool fixedLight = args.dense || !args.models.empty();
+  nlohmann::json row = {{"scene", sceneName},
                         {"cubes", cubes},
                         {"threads", threads},
-                        {"light_scale", args.dense ? 1.0 : args.lightScale}};
+                        {"light_scale", fixedLight ? 1.0 : args.lightScale}};
   row.update(countersJson(stats, meshVertices));
+  row["display_triangles"] = meshTriangles;
+  row["object_faces"] = modelFaces;
   row["seconds"] = {{"ordering", t.ordering},
                     {"cube", t.cube},
                     {"casting_and_merging", t.castingAndMerging},

@@ -2,6 +2,7 @@
 
 #include "bench/lib/cubes_scene.h"
 #include "bench/lib/dense_scene.h"
+#include "bench/lib/model_scene.h"
 #include "bench/lib/sphere_scene.h"
 #include "protocol/scene_json.h"
 #include "cli/commands.h"
@@ -31,10 +32,62 @@ Scene sphereScene(const Args& args) {
   return makeSphereScene(options);
 }
 
+// `--model NAME`: one procedural model (or the furnished room) in the dense room. Prints
+// what it wrote: the models' triangles and whether each is closed.
+int runGenerateModel(const Args& args) {
+  args.allowOnly({"model", "triangles", "seed", "out"});
+  if (args.flag("dense") || args.flag("tilted-light") || args.flag("two-lights"))
+    throw UsageError("--model takes only --triangles, --rest, --seed and --out");
+  const auto kind = modelKindFromName(*args.option("model"));
+  if (!kind)
+    throw UsageError("--model must be one of " + modelKindNames() + ", got '" +
+                     *args.option("model") + "'");
+  ModelSceneOptions options;
+  options.kind = *kind;
+  options.triangles =
+      args.intOption("triangles", defaultModelTriangles(*kind),
+                     *kind == ModelKind::Furnished ? kMinFurnishedTriangles : kMinModelTriangles,
+                     kMaxModelTriangles);
+  options.rest = args.flag("rest");
+  if (options.rest && *kind == ModelKind::Furnished)
+    throw UsageError("--rest does not apply to --model furnished (each object has its place)");
+  options.seed = uint64_t(args.intOption("seed", int(options.seed), 0, 1 << 30));
+  const auto out = args.option("out");
+  if (!out) throw UsageError("generate needs --out SCENE");
+
+  const Scene scene = makeModelScene(options);
+  protocol::saveSceneFile(scene, *out);
+  size_t triangles = 0, closed = 0, models = 0;
+  std::string open;
+  for (const Object& object : scene.objects()) {
+    if (object.isStatic || object.id.rfind("table_", 0) == 0) continue;  // the room, tables
+    ++models;
+    triangles += object.faces.size();
+    if (meshEdges(objectMesh(object)).closed())
+      ++closed;
+    else
+      open += (open.empty() ? "" : ", ") + object.id;
+  }
+  std::printf("wrote %s: %s, %zu model triangles (%zu faces in all, %zu objects), %s, %s\n",
+              out->c_str(), modelKindName(*kind), triangles, scene.faces().size(),
+              scene.objects().size(),
+              options.rest                    ? "resting on the floor"
+              : *kind == ModelKind::Furnished ? "placed"
+                                              : "floating",
+              models == 1 ? (closed ? "closed" : "open (not watertight)")
+                          : (std::to_string(closed) + " of " + std::to_string(models) +
+                             " models closed; open: " + open)
+                                .c_str());
+  return 0;
+}
+
 }  // namespace
 
 int runGenerate(const Args& args) {
   if (args.option("volume")) return runGenerateVolume(args);
+  if (args.option("model")) return runGenerateModel(args);
+  if (args.flag("rest") || args.option("triangles"))
+    throw UsageError("--rest and --triangles need --model NAME");
   args.allowOnly({"cubes", "seed", "light-scale", "stacked-fraction", "tables", "out", "sphere"});
   CubesSceneOptions options;
   options.cubes = args.intOption("cubes", options.cubes, 0, 100000);

@@ -37,6 +37,9 @@ commands:
            [--two-lights] [--tables FRACTION]
            [--dense]                   N boxes of random size and turn floating in a 6×3×6 m room
   generate --sphere FACES --out SCENE  one UV sphere of ~FACES faces (radius 0.35 m) in that room
+  generate --model NAME --out SCENE    a tessellated model in that room: teapot | torus-knot | blob |
+           [--triangles N] [--rest]    bowl | scan (~N triangles; 6000, scan 70000), floating or on
+           [--seed S]                  the floor; furnished: 9 models and 2 tables (~N = 100000)
   generate --volume FIELD --out X.nrrd a test field (marschner-lobb, sphere, smoke, mixing) as
            [--size N] [--type T]       gzip NRRD: N³ voxels (64), uchar | ushort | float (uchar),
            [--spacing S] [--seed S]    voxel spacing (1/(N−1): a 1 m cube), noise seed
@@ -67,7 +70,7 @@ int dispatch(int argc, char** argv) {
   if (command == "render") return runRender(Args(argc, argv, 2, {"reference", "stats"}));
   if (command == "replay") return runReplay(Args(argc, argv, 2, {"verify"}));
   if (command == "serve") return runServe(Args(argc, argv, 2, {"ephemeral"}));
-  if (command == "generate") return runGenerate(Args(argc, argv, 2, {"tilted-light", "two-lights", "dense"}));
+  if (command == "generate") return runGenerate(Args(argc, argv, 2, {"tilted-light", "two-lights", "dense", "rest"}));
   throw UsageError("unknown command '" + command + "'");
 }
 
