@@ -97,7 +97,7 @@ std::vector<std::vector<ReceiverCast>> castSequences(
     }
     if (wholeObjects) {
       for (Attempt& attempt : attempts)
-        if (scene.isClosedConvex(attempt.occluder.object))
+        if (scene.castsWhole(attempt.occluder.object))
           if (const Face* receiver = findFace(scene, attempt.receiver))
             attempt.occluder = castingOccluder(scene, l, attempt.occluder, *receiver, true);
       std::sort(attempts.begin(), attempts.end(), [](const Attempt& x, const Attempt& y) {
@@ -540,8 +540,8 @@ void Engine::validate() const {
   // The cast relations mirror each other and name live faces and receivers.
   auto fail = [](const std::string& what) { throw std::logic_error("Engine: " + what); };
   for (const auto& [occluder, targets] : castOn_) {
-    if (isWholeObject(occluder) ? !scene_.isClosedConvex(occluder.object) : !findFace(scene_, occluder))
-      fail("castOn names a face or closed convex object not in the scene");
+    if (isWholeObject(occluder) ? !scene_.castsWhole(occluder.object) : !findFace(scene_, occluder))
+      fail("castOn names a face or whole object not in the scene");
     for (FaceId target : targets) {
       if (!receiver(target)) fail("castOn names a face without a DM-tree");
       const auto by = castBy_.find(target);

@@ -10,6 +10,7 @@
 #include "core/illum/shadow_merge.h"
 #include "core/illum/visible_contour.h"
 #include "core/scene/convex_solid.h"
+#include "core/scene/mesh_topology.h"
 
 namespace penumbra {
 
@@ -30,6 +31,8 @@ void Backprojection::reset(const Scene& scene, size_t light, const Vec3& p, cons
   shadowStarts_.clear();
   shadowGroups_.clear();
   groups_.clear();
+  chain_.clear();
+  chainObjects_.clear();
   resolved_ = occluded_ = anyVisible_ = false;
   visibleFactor_ = 0;
   comparisons_ = 0;
@@ -180,9 +183,30 @@ bool Backprojection::occludeApproaching(const Face& face, const Vec3& d) {
   return true;
 }
 
+bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std::span<const Face> faces) {
+  const Plane receiver = Plane::throughPoint(n_, p_);
+  const bool chain = std::all_of(mesh.welded.vertices.begin(), mesh.welded.vertices.end(), [&](const Vec3& v) {
+    const double h = lightPlane_.signedDistance(v);
+    return receiver.signedDistance(v) > 0 && h > 0 && pHeight_ - h > 1e-3 * pHeight_;
+  });
+  if (!chain) {
+    bool any = false;
+    for (const Face& face : faces) any = occlude(face) || any;
+    return any;
+  }
+  ++comparisons_;
+  if (!appendShadowChain(mesh, faces, p_, lightPlane_, pHeight_, frame_, tolerance_.onPlane(), tolerance_.area(), chain_))
+    return false;
+  chainObjects_.push_back(handle);
+  resolved_ = false;
+  return true;
+}
+
 bool Backprojection::occludeObject(uint32_t handle) {
   if (!applies_) return false;
   const std::span<const Face> faces = scene_->facesOfObject(handle);
+  if (!scene_->convexSolid(handle))
+    if (const MeshTopology* mesh = scene_->meshTopology(handle)) return occludeMesh(handle, *mesh, faces);
   // The hull needs the merge's conditions (closed convex, wholly in front of the light, p
   // off every face's plane) and every corner ahead of p's plane, with a height below p's
   // that keeps the projection within 1000 times the corner's distance.
@@ -272,6 +296,7 @@ void Backprojection::resolve() const {
     contour.compute(front2_, mergedPoints, mergedStarts, cutEps());
   else
     contour.compute(front2_, shadowPoints_, shadowStarts_, cutEps());
+  contour.subtractChain(chain_);
   occluded_ = contour.occluded();
   anyVisible_ = contour.area() > tolerance_.area() && contour.anyLeft(tolerance_.length());
   visibleFactor_ = 0;
@@ -350,6 +375,15 @@ std::vector<Polygon3> Backprojection::visiblePieces() const {
   if (!occluded_) {
     out.push_back(front_);
     return out;
+  }
+  if (!chainObjects_.empty()) {  // convex pieces need the meshes' faces one by one
+    Backprojection faceByFace = *this;
+    faceByFace.chain_.clear();
+    faceByFace.chainObjects_.clear();
+    for (uint32_t handle : chainObjects_)
+      for (const Face& face : scene_->facesOfObject(handle)) faceByFace.occlude(face);
+    faceByFace.resolved_ = false;
+    return faceByFace.visiblePieces();
   }
   VisibleRegion region;
   resolvePieces(region);

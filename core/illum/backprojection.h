@@ -12,6 +12,7 @@
 
 #include "core/geom/convex2d.h"
 #include "core/geom/plane_frame.h"
+#include "core/illum/shadow_chain.h"
 #include "core/illum/visible_region.h"
 #include "core/mesh/mesh.h"
 #include "core/scene/scene.h"
@@ -44,6 +45,10 @@ class Backprojection {
   // light, the hull of the projected corners of the faces p is behind (they tile the
   // object's projection); otherwise its faces one by one, as occlude(). One comparison.
   bool occludeObject(uint32_t handle);
+  // Any other object with a mesh (Scene::meshTopology): its blocking faces' projections as
+  // one chain (shadow_chain.h) when every corner lies ahead of p's plane and between p
+  // and the light (1e-3 of p's height short of it); otherwise its faces one by one.
+  //
   // occlude() for a face's id, occludeObject() for a wholeObject() id; ids not in the
   // scene are ignored.
   bool occludeId(FaceId id);
@@ -84,6 +89,7 @@ class Backprojection {
   // The visible part as convex pieces: the shadows subtracted, largest first.
   void resolvePieces(VisibleRegion& region) const;
   double cutEps() const;
+  bool occludeMesh(uint32_t handle, const MeshTopology& mesh, std::span<const Face> faces);
 
   const Scene* scene_ = nullptr;
   Tolerance tolerance_;
@@ -100,6 +106,8 @@ class Backprojection {
   std::vector<uint32_t> shadowStarts_;  // shadow i: [starts[i], starts[i+1])
   std::vector<uint32_t> shadowGroups_;  // shadow i's merge group
   std::vector<std::pair<uint32_t, uint32_t>> groups_;  // (object, group) decided so far
+  std::vector<ChainEdge> chain_;        // meshes' shadows as one chain, in the frame
+  std::vector<uint32_t> chainObjects_;  // the meshes in chain_
   // Resolved state (filled lazily by resolve(); one thread owns the object).
   mutable bool resolved_ = false;
   mutable bool occluded_ = false, anyVisible_ = false;

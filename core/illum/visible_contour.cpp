@@ -116,7 +116,7 @@ void VisibleContour::clipEdgeOfShadow(uint32_t i, size_t edge) {
 void VisibleContour::compute(std::span<const Vec2> light, std::span<const Vec2> points,
                              std::span<const uint32_t> starts, double eps) {
   boundary_.clear();
-  occluded_ = false;
+  occluded_ = allCovered_ = false;
   eps_ = eps;
   const size_t count = starts.size() < 2 ? 0 : starts.size() - 1;
 
@@ -147,7 +147,7 @@ void VisibleContour::compute(std::span<const Vec2> light, std::span<const Vec2> 
     }
     if (boxesApart(low_[i], high_[i], lightLow, lightHigh, eps)) continue;
     if (holdsAll(std::span<const Line>(lines_).subspan(firstLine_[i], s.size()), light, eps)) {
-      occluded_ = true;
+      occluded_ = allCovered_ = true;
       return;
     }
     active_.push_back(uint32_t(i));
@@ -171,6 +171,101 @@ void VisibleContour::compute(std::span<const Vec2> light, std::span<const Vec2> 
   // Each shadow's edges inside the light, less what the other shadows cover.
   for (uint32_t i : active_)
     for (size_t e = firstLine_[i]; e < firstLine_[i + 1]; ++e) clipEdgeOfShadow(i, e);
+}
+
+void VisibleContour::chainCrossings(std::span<const ChainEdge> chain, const Vec2& a, const Vec2& b, size_t skip) {
+  cuts_.clear();
+  const Vec2 d = b - a, low = glm::min(a, b), high = glm::max(a, b);
+  for (uint32_t j : inLight_) {
+    if (j == skip) continue;
+    const ChainEdge& c = chain[j];
+    if (boxesApart(low, high, glm::min(c.from, c.to), glm::max(c.from, c.to), 0)) continue;
+    // a + t d = c.from + u (c.to − c.from), both parameters strictly inside.
+    const Vec2 e = c.to - c.from;
+    const double denominator = cross2(d, e);
+    if (denominator == 0) continue;  // parallel: no single crossing
+    const double t = cross2(c.from - a, e) / denominator, u = cross2(c.from - a, d) / denominator;
+    if (t > 0 && t < 1 && u >= 0 && u <= 1) cuts_.push_back(t);
+  }
+  cuts_.push_back(0);
+  cuts_.push_back(1);
+  std::sort(cuts_.begin(), cuts_.end());
+}
+
+void VisibleContour::subtractChain(std::span<const ChainEdge> chain) {
+  if (chain.empty() || allCovered_) return;
+  Vec2 lightLow = lines_[0].from, lightHigh = lightLow;
+  for (size_t k = 0; k < lightLines_; ++k) {
+    lightLow = glm::min(lightLow, lines_[k].from);
+    lightHigh = glm::max(lightHigh, lines_[k].from);
+  }
+  inLight_.clear();
+  for (uint32_t i = 0; i < chain.size(); ++i)
+    if (!boxesApart(glm::min(chain[i].from, chain[i].to), glm::max(chain[i].from, chain[i].to), lightLow, lightHigh, eps_))
+      inLight_.push_back(i);
+
+  // The light's and convex shadows' stretches, cut by the chain, where it covers nothing.
+  kept_.clear();
+  for (const Segment2& s : boundary_) {
+    chainCrossings(chain, s.from, s.to, chain.size());
+    for (size_t k = 0; k + 1 < cuts_.size(); ++k) {
+      const Vec2 from = s.from + cuts_[k] * (s.to - s.from), to = s.from + cuts_[k + 1] * (s.to - s.from);
+      const Vec2 along = s.to - s.from;
+      if (chainWinding(chain, 0.5 * (from + to), Vec2(-along.y, along.x), chain.size()) == 0) {
+        kept_.push_back({from, to});
+      } else if (glm::length(to - from) > eps_) {
+        occluded_ = true;
+      }
+    }
+  }
+  boundary_.swap(kept_);
+
+  // The chain's stretches inside the light, outside every convex shadow, visible on the right.
+  for (uint32_t i : inLight_) {
+    const ChainEdge& c = chain[i];
+    double t0 = 0, t1 = 1;
+    for (size_t k = 0; k < lightLines_ && t0 < t1; ++k) {
+      const Line& line = lines_[k];
+      if (line.normal == Vec2(0.0)) continue;
+      const double dA = glm::dot(line.normal, c.from) - line.offset, dB = glm::dot(line.normal, c.to) - line.offset;
+      if (dA < 0 && dB < 0) t1 = t0;
+      else if (dA < 0) t0 = std::max(t0, dA / (dA - dB));
+      else if (dB < 0) t1 = std::min(t1, dA / (dA - dB));
+    }
+    if (!(t0 < t1)) continue;
+    const Vec2 d = c.to - c.from;
+    occluded_ |= (t1 - t0) * glm::length(d) > eps_;
+    // Convex shadows cover parts of it: their intervals become cuts as well.
+    chainCrossings(chain, c.from, c.to, i);
+    covered_.clear();
+    const Vec2 low = glm::min(c.from, c.to), high = glm::max(c.from, c.to);
+    for (uint32_t j : active_) {
+      if (boxesApart(low, high, low_[j], high_[j], eps_)) continue;
+      double u0 = 0, u1 = 1;
+      for (size_t k = firstLine_[j]; k < firstLine_[j + 1] && u0 < u1; ++k) {
+        const Line& line = lines_[k];
+        if (line.normal == Vec2(0.0)) continue;
+        const double dA = glm::dot(line.normal, c.from) - line.offset, dB = glm::dot(line.normal, c.to) - line.offset;
+        if (dA < 0 && dB < 0) u1 = u0;
+        else if (dA < 0) u0 = std::max(u0, dA / (dA - dB));
+        else if (dB < 0) u1 = std::min(u1, dA / (dA - dB));
+      }
+      if (u0 < u1) covered_.push_back({u0, u1, c.from + u0 * d, c.from + u1 * d});
+    }
+    for (const Interval& cover : covered_) cuts_.insert(cuts_.end(), {cover.from, cover.to});
+    cuts_.insert(cuts_.end(), {t0, t1});
+    std::sort(cuts_.begin(), cuts_.end());
+    for (size_t k = 0; k + 1 < cuts_.size(); ++k) {
+      const double a = cuts_[k], b = cuts_[k + 1];
+      if (!(a >= t0 && b <= t1 && a < b)) continue;
+      const double mid = 0.5 * (a + b);
+      if (std::any_of(covered_.begin(), covered_.end(), [&](const Interval& v) { return v.from < mid && mid < v.to; }))
+        continue;
+      const Vec2 from = c.from + a * d, to = c.from + b * d;
+      // Counted towards the edge's right, the side whose cover is asked for.
+      if (chainWinding(chain, 0.5 * (from + to), Vec2(d.y, -d.x), i) == 0) boundary_.push_back({to, from});
+    }
+  }
 }
 
 double VisibleContour::area() const {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/geom/convex2d.h"
+#include "core/illum/shadow_chain.h"
 
 namespace penumbra {
 
@@ -27,6 +28,13 @@ class VisibleContour {
   // other the lower index keeps the edge, so a shared boundary counts once.
   void compute(std::span<const Vec2> light, std::span<const Vec2> points,
                std::span<const uint32_t> starts, double eps);
+
+  // After compute(): also subtracts the shadows of meshes given as one chain
+  // (shadow_chain.h; covered where its winding number is positive). Light and shadow
+  // edge stretches are cut where chain edges cross them and kept where the winding is
+  // 0; chain edges add their stretches inside the light that no convex shadow covers
+  // and that have winding 0 on their right (the visible side).
+  void subtractChain(std::span<const ChainEdge> chain);
 
   // The boundary of what is left (empty when the shadows cover the light).
   std::span<const Segment2> boundary() const { return boundary_; }
@@ -67,6 +75,8 @@ class VisibleContour {
   void emitUncovered(Interval within, bool reversed);
   void addLines(std::span<const Vec2> polygon);
   void clipEdgeOfShadow(uint32_t i, size_t edge);
+  // The parameters along a→b where chain edges (those in inLight_) cross it, but `skip`.
+  void chainCrossings(std::span<const ChainEdge> chain, const Vec2& a, const Vec2& b, size_t skip);
 
   double eps_ = 0;
   std::vector<Segment2> boundary_;
@@ -77,6 +87,10 @@ class VisibleContour {
   std::vector<uint32_t> active_;             // shadows whose box meets the light's
   size_t lightLines_ = 0;
   bool occluded_ = false;
+  bool allCovered_ = false;                  // one convex shadow holds the whole light
+  std::vector<uint32_t> inLight_;            // chain edges whose box meets the light's
+  std::vector<double> cuts_;                 // chainCrossings()
+  std::vector<Segment2> kept_;
 };
 
 }  // namespace penumbra

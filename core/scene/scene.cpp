@@ -7,16 +7,27 @@
 
 #include "core/scene/closed_convex.h"
 #include "core/scene/convex_solid.h"
+#include "core/scene/mesh_topology.h"
 
 namespace penumbra {
 
 namespace {
 
-// The object's solid if it is closed convex, else null.
-std::shared_ptr<const ConvexSolid> solidIfClosedConvex(const Object& object, const std::vector<Face>& faces,
-                                                       const Tolerance& tolerance) {
-  if (!isClosedConvex(object, faces, tolerance)) return nullptr;
-  return std::make_shared<const ConvexSolid>(ConvexSolid::of(faces));
+// ElementRef indices are 16 bits: a mesh with more corners or edges casts face by face.
+constexpr size_t kMaxMeshElements = 0xffff;
+
+// The object's solid if it is closed convex; else its mesh (object_shadow.h), unless it
+// is one face or too large to cast whole.
+Scene::ObjectShape shapeOf(const Object& object, const std::vector<Face>& faces, const Tolerance& tolerance) {
+  Scene::ObjectShape shape;
+  if (isClosedConvex(object, faces, tolerance)) {
+    shape.convex = std::make_shared<const ConvexSolid>(ConvexSolid::of(faces));
+  } else if (faces.size() >= 2) {
+    auto mesh = std::make_shared<MeshTopology>(MeshTopology::of(faces));
+    if (mesh->welded.vertices.size() <= kMaxMeshElements && mesh->welded.edges.size() <= kMaxMeshElements)
+      shape.mesh = std::move(mesh);
+  }
+  return shape;
 }
 
 }  // namespace
@@ -128,7 +139,7 @@ void Scene::deriveFaces() {
   for (size_t o = 0; o < objects_.size(); ++o) {
     try {
       std::vector<Face> faces = facesOf(objects_[o], handles_[o]);
-      solids_.push_back(solidIfClosedConvex(objects_[o], faces, tolerance_));
+      solids_.push_back(shapeOf(objects_[o], faces, tolerance_));
       for (Face& face : faces) faces_.push_back(std::move(face));
     } catch (const FaceError& error) {
       throw error.atObject(o);
@@ -153,7 +164,7 @@ uint32_t Scene::addObject(Object object) {
     throw std::invalid_argument("duplicate object id '" + object.id + "'");
   const uint32_t handle = nextHandle_;
   std::vector<Face> faces = facesOf(object, handle);  // checks before changing anything
-  std::shared_ptr<const ConvexSolid> solid = solidIfClosedConvex(object, faces, tolerance_);
+  ObjectShape solid = shapeOf(object, faces, tolerance_);
   ++nextHandle_;
   objects_.push_back(std::move(object));
   handles_.push_back(handle);
@@ -182,7 +193,7 @@ void Scene::setTransform(uint32_t handle, const Transform& transform) {
   std::vector<Face> faces = facesOf(moved, handle);  // checks before changing anything
   // Closed and convex is affine-invariant, but the test is at the scene's tolerance in
   // world space: decided again, as a rebuild of the moved scene would.
-  solids_[*index] = solidIfClosedConvex(moved, faces, tolerance_);
+  solids_[*index] = shapeOf(moved, faces, tolerance_);
   objects_[*index] = std::move(moved);
   const auto first = std::lower_bound(faces_.begin(), faces_.end(), FaceId{handle, 0},
                                       [](const Face& f, const FaceId& id) { return f.id < id; });
@@ -199,7 +210,12 @@ std::span<const Face> Scene::facesOfObject(uint32_t handle) const {
 
 const ConvexSolid* Scene::convexSolid(uint32_t handle) const {
   const auto index = indexOfHandle(handle);
-  return index ? solids_[*index].get() : nullptr;
+  return index ? solids_[*index].convex.get() : nullptr;
+}
+
+const MeshTopology* Scene::meshTopology(uint32_t handle) const {
+  const auto index = indexOfHandle(handle);
+  return index ? solids_[*index].mesh.get() : nullptr;
 }
 
 std::optional<size_t> Scene::findObject(std::string_view id) const {

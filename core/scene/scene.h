@@ -23,6 +23,7 @@
 namespace penumbra {
 
 struct ConvexSolid;
+struct MeshTopology;
 
 enum class MaterialType { Diffuse, RoughDiffuse, Conductor, Dielectric };
 
@@ -165,6 +166,11 @@ class Scene {
   bool isClosedConvex(uint32_t handle) const { return convexSolid(handle) != nullptr; }
   // A closed convex object's solid (convex_solid.h), nullptr for any other handle.
   const ConvexSolid* convexSolid(uint32_t handle) const;
+  // Any other object's mesh (mesh_topology.h), nullptr for a closed convex object, a
+  // single face, a mesh past 65,535 corners or edges, or an unknown handle.
+  const MeshTopology* meshTopology(uint32_t handle) const;
+  // Whether the object may cast on a receiver as one occluder (object_shadow.h).
+  bool castsWhole(uint32_t handle) const { return convexSolid(handle) || meshTopology(handle); }
   // False when both faces belong to one closed convex object: neither can shadow the
   // other, so the engine never casts the pair.
   bool mayShadow(FaceId occluder, FaceId receiver) const {
@@ -216,6 +222,13 @@ class Scene {
   // face (degenerate, thinner than minFaceWidth()); nullopt if it can.
   static std::optional<std::string> faceProblem(const Polygon3& world, const Tolerance& tolerance);
 
+ public:
+  // What an object casts whole from: a closed convex solid or, for any other object, its mesh.
+  struct ObjectShape {
+    std::shared_ptr<const ConvexSolid> convex;
+    std::shared_ptr<const MeshTopology> mesh;
+  };
+
  private:
   void checkReferences(const Object& object) const;
   void deriveFaces();
@@ -224,8 +237,8 @@ class Scene {
   std::vector<Material> materials_;
   std::vector<Object> objects_;
   std::vector<uint32_t> handles_;  // parallel to objects_, increasing
-  // Parallel to objects_: the solid of each closed convex object, null for the others.
-  std::vector<std::shared_ptr<const ConvexSolid>> solids_;
+  // Parallel to objects_: the solid of each closed convex object, the mesh of the others.
+  std::vector<ObjectShape> solids_;
   uint32_t nextHandle_ = 0;
   std::optional<Camera> camera_;
   std::vector<VolumeObject> volumes_;

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <utility>
 #include <vector>
 
 #include "core/geom/clip.h"
 #include "core/scene/convex_solid.h"
+#include "core/scene/mesh_topology.h"
 #include "core/shadow/critical_wedge.h"
 #include "core/shadow/plane_trace.h"
 
@@ -60,6 +62,7 @@ bool mayBeSilhouetteVertex(std::span<const Face> faces, const Vec3& v, const Vec
 
 bool castsAsOneOccluder(const Scene& scene, size_t light, uint32_t handle, const Face& receiver) {
   const ConvexSolid* solid = scene.convexSolid(handle);
+  if (const MeshTopology* mesh = solid ? nullptr : scene.meshTopology(handle)) solid = &mesh->box;
   if (!solid || solid->vertices.size() > kMaxElements || solid->edges.size() > kMaxElements) return false;
   const Plane lightPlane = scene.lights().at(light).plane();
   const double onPlane = scene.tolerance().onPlane();
@@ -136,6 +139,62 @@ Polygon2 umbraRegion(const Polygon2& penumbra, const std::vector<std::vector<Sup
   return umbra;
 }
 
+// Whether light point s is off both faces' planes on one side (both strictly front or
+// both strictly back) of a regular edge: then the edge is on no silhouette seen from s.
+bool offSilhouette(const Plane& a, const Plane& b, const Vec3& s, double onPlane) {
+  const double da = a.signedDistance(s), db = b.signedDistance(s);
+  return (da > onPlane && db > onPlane) || (da < -onPlane && db < -onPlane);
+}
+
+// The VE and EV surfaces of a mesh's potential silhouette (object_shadow.h, any mesh): VE
+// (light vertex i, edge e) unless e is regular and off the silhouette from s_i; EV (light
+// edge pq, corner v) unless v is regular and p and q lie strictly on one side of every
+// face through v.
+template <class OnReceiver, class Add>
+void meshSilhouetteWedges(const Polygon3& s, std::span<const Face> faces, const MeshTopology& mesh,
+                          const OnReceiver& onReceiver, const Tolerance& tol, Add&& add) {
+  const double eps = tol.length(), onPlane = tol.onPlane();
+  const ConvexSolid& w = mesh.welded;
+  const size_t n = s.size();
+  for (size_t i = 0; i < n; ++i) {
+    if (onReceiver(s[i])) continue;  // its rays never come back to the receiver
+    for (uint32_t e = 0; e < w.edges.size(); ++e) {
+      const uint32_t* f = mesh.edgeFaces.data() + mesh.edgeStarts[e];
+      if (mesh.regularEdge[e] && offSilhouette(faces[f[0]].plane, faces[f[1]].plane, s[i], onPlane)) continue;
+      add(vertexEdgeWedge({ElementRef::Kind::Vertex, uint16_t(i)}, {ElementRef::Kind::Edge, uint16_t(e)}, s[i],
+                          w.vertices[w.edges[e].first], w.vertices[w.edges[e].second], eps));
+    }
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3 &p = s[i], &q = s[(i + 1) % n];
+    if (onReceiver(p) && onReceiver(q)) continue;
+    for (uint32_t v = 0; v < w.vertices.size(); ++v) {
+      bool allFront = mesh.regularVertex[v] != 0, allBack = allFront;
+      for (uint32_t k = mesh.vertexStarts[v]; k < mesh.vertexStarts[v + 1] && (allFront || allBack); ++k) {
+        const Plane& plane = faces[mesh.vertexFaces[k]].plane;
+        const double dp = plane.signedDistance(p), dq = plane.signedDistance(q);
+        allFront = allFront && dp > onPlane && dq > onPlane;
+        allBack = allBack && dp < -onPlane && dq < -onPlane;
+      }
+      if (allFront || allBack) continue;
+      add(edgeVertexWedge({ElementRef::Kind::Edge, uint16_t(i)}, {ElementRef::Kind::Vertex, uint16_t(v)}, p, q,
+                          w.vertices[v], eps));
+    }
+  }
+}
+
+SingleShadow finish(size_t light, uint32_t handle, const Face& receiver, SegmentCollector& segments,
+                    Polygon2 penumbra, Polygon2 umbra) {
+  SingleShadow out;
+  out.light = uint32_t(light);
+  out.occluder = wholeObject(handle);
+  out.receiver = receiver.id;
+  out.segments = segments.take();
+  out.penumbra = std::move(penumbra);
+  out.umbra = std::move(umbra);
+  return out;
+}
+
 }  // namespace
 
 std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, uint32_t handle,
@@ -146,7 +205,9 @@ std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, u
   // Light points behind the receiver's plane light none of it.
   const Polygon3 s = withoutFlatCorners(clipFront(scene.lights()[light].polygon, receiver.plane, eps), eps);
   if (s.size() < 3 || area(s) <= tol.area()) return std::nullopt;
-  const ConvexSolid* solidOf = scene.convexSolid(handle);
+  // A mesh's shadow is bounded by its box's (a superset) and has no umbra of its own.
+  const MeshTopology* mesh = scene.convexSolid(handle) ? nullptr : scene.meshTopology(handle);
+  const ConvexSolid* solidOf = mesh ? &mesh->box : scene.convexSolid(handle);
   if (!solidOf || solidOf->vertices.size() < 4) return std::nullopt;
   const ConvexSolid& solid = *solidOf;
 
@@ -164,7 +225,8 @@ std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, u
   if (penumbra.empty()) return std::nullopt;
   // A light vertex on the receiver's plane: its cone meets the plane there only.
   auto onReceiver = [&](const Vec3& p) { return std::abs(receiver.plane.signedDistance(p)) <= eps; };
-  Polygon2 umbra = std::none_of(s.begin(), s.end(), onReceiver) ? umbraRegion(penumbra, supports, clipper) : Polygon2{};
+  Polygon2 umbra = !mesh && std::none_of(s.begin(), s.end(), onReceiver) ? umbraRegion(penumbra, supports, clipper)
+                                                                          : Polygon2{};
 
   // Segments: the silhouette surfaces cut by the receiver's plane inside base.
   SegmentCollector segments(receiver2, penumbra, umbra, eps);
@@ -173,7 +235,12 @@ std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, u
     if (const auto chord = wedgeChord(*w, base, frame, tol))
       segments.add(chord->first, chord->second, w->lightElement, w->occluderElement, [] { return true; });
   };
+  const std::span<const Face> faces = scene.facesOfObject(handle);
   const size_t n = s.size();
+  if (mesh) {
+    meshSilhouetteWedges(s, faces, *mesh, onReceiver, tol, add);
+    return finish(light, handle, receiver, segments, std::move(penumbra), std::move(umbra));
+  }
   for (size_t i = 0; i < n; ++i) {
     if (onReceiver(s[i])) continue;  // its rays never come back to the receiver
     for (const Support& support : supports[i]) {
@@ -182,7 +249,6 @@ std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, u
                           s[i], solid.vertices[a], solid.vertices[b], eps));
     }
   }
-  const std::span<const Face> faces = scene.facesOfObject(handle);
   for (size_t i = 0; i < n; ++i) {
     const Vec3 &p = s[i], &q = s[(i + 1) % n];
     if (onReceiver(p) && onReceiver(q)) continue;
@@ -191,15 +257,7 @@ std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, u
         add(edgeVertexWedge({ElementRef::Kind::Edge, uint16_t(i)}, {ElementRef::Kind::Vertex, uint16_t(v)}, p, q,
                             solid.vertices[v], eps));
   }
-
-  SingleShadow out;
-  out.light = uint32_t(light);
-  out.occluder = wholeObject(handle);
-  out.receiver = receiver.id;
-  out.segments = segments.take();
-  out.penumbra = std::move(penumbra);
-  out.umbra = std::move(umbra);
-  return out;
+  return finish(light, handle, receiver, segments, std::move(penumbra), std::move(umbra));
 }
 
 }  // namespace penumbra

@@ -20,6 +20,27 @@
 // Every other VE/EV surface of O's faces is no discontinuity of what a receiver point sees.
 // The faces' own penumbra and umbra boundaries, which cast face by face cut a receiver into
 // hundreds of cells under a tessellated object, are not lines of O's shadow at all.
+//
+// Any other mesh M (closed or open, convex or not; Scene::meshTopology), issue 35:
+//   penumbra: that of M's axis-aligned box B ⊇ M, as above (a superset of M's);
+//   umbra:    none (M's umbra is not convex; no cell is culled or called umbra by it);
+//   segments: VE (light vertex s, edge e) unless e is *regular* (two faces running it in
+//             opposite directions) and s lies strictly on one side (front or back) of both
+//             faces' planes; EV (light edge pq, corner v) unless every edge at v is regular
+//             and p and q lie strictly on one side of every face through v.
+// Rule: an irradiance discontinuity on the receiver is where a VE/EV surface is tangent
+// to M's silhouette seen from a light point. Seen from s, a regular edge whose two faces
+// both face s (or both face away) is no silhouette edge: the surface folds only where
+// one face turns towards s and the other away. Points x on the receiver on the surface
+// through s and e see e from the other side of the plane (s, e) (the segment s→x crosses
+// e), so e is a silhouette edge from x exactly when it is from s, and the rays near s→x
+// meet M's surface on both sides of e alike: crossing the line changes nothing x sees. A
+// corner with all its faces on one side from both ends of pq is so for every point of
+// pq (half-spaces are convex). Edges that are not regular (open boundaries, non-manifold
+// or inconsistently oriented edges) are always kept. Every test errs towards keeping a
+// line. EEE surfaces (three edges, quadric) are left out as the paper leaves them out:
+// vertices stay exact (backprojection does not use the lines), only cells may hold a
+// value discontinuity along such a curve inside them.
 #pragma once
 
 #include <cstddef>
@@ -32,10 +53,11 @@
 namespace penumbra {
 
 // Whether object `handle` casts on `receiver` from light `light` as one occluder: it is
-// closed convex (Scene::isClosedConvex), each of its vertices lies more than onPlane() in
-// front of the receiver's plane and of the light's plane (no contact line, no light point
-// inside or behind it), and it has at most 65,535 vertices and edges. Otherwise its faces
-// cast one by one (castShadow).
+// closed convex (Scene::isClosedConvex) or has a mesh (Scene::meshTopology), each vertex
+// of the solid (of the mesh's box) lies more than onPlane() in front of the receiver's
+// plane and of the light's plane (no contact line, no light point inside or behind it),
+// and it has at most 65,535 vertices and edges. Otherwise its faces cast one by one
+// (castShadow): a mesh on its own faces (self-shadowing) always does.
 bool castsAsOneOccluder(const Scene& scene, size_t light, uint32_t handle, const Face& receiver);
 
 // The occluder a candidate face casts as: wholeObject(face.object) if `wholeObjects` and

@@ -1,0 +1,73 @@
+#include "core/illum/shadow_chain.h"
+
+#include <algorithm>
+#include <cstdlib>
+
+namespace penumbra {
+
+bool appendShadowChain(const MeshTopology& mesh, std::span<const Face> faces, const Vec3& p,
+                       const Plane& lightPlane, double pHeight, const PlaneFrame& frame, double onPlane,
+                       double minArea, std::vector<ChainEdge>& out) {
+  const ConvexSolid& w = mesh.welded;
+  thread_local std::vector<int> net;
+  thread_local std::vector<uint32_t> touched;
+  thread_local std::vector<Vec2> projected;
+  thread_local std::vector<uint8_t> isProjected;
+  net.assign(w.edges.size(), 0);
+  isProjected.assign(w.vertices.size(), 0);
+  projected.resize(w.vertices.size());
+  touched.clear();
+  for (uint32_t f = 0; f < faces.size(); ++f) {
+    if (!(faces[f].plane.signedDistance(p) < -onPlane)) continue;
+    for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
+      const uint32_t e = mesh.cornerEdge[k];
+      if (e == MeshTopology::kNoEdge) continue;
+      if (net[e] == 0) touched.push_back(e);
+      net[e] += mesh.cornerForward[k] ? 1 : -1;
+    }
+  }
+  auto project = [&](uint32_t v) -> const Vec2& {
+    if (!isProjected[v]) {
+      const Vec3& x = w.vertices[v];
+      projected[v] = frame.to2D(p + (x - p) * (pHeight / (pHeight - lightPlane.signedDistance(x))));
+      isProjected[v] = 1;
+    }
+    return projected[v];
+  };
+  const size_t first = out.size();
+  double area2 = 0;  // twice the signed area of the projected blocking faces, summed
+  for (uint32_t e : touched) {
+    const int count = net[e];
+    net[e] = 0;  // an edge may be touched twice (its balance passed through 0)
+    if (count == 0) continue;
+    const Vec2 &a = project(w.edges[e].first), &b = project(w.edges[e].second);
+    ChainEdge edge = count > 0 ? ChainEdge{a, b, count} : ChainEdge{b, a, -count};
+    area2 += edge.count * cross2(edge.from, edge.to);
+    out.push_back(edge);
+  }
+  if (!(std::abs(area2) > 2 * minArea)) {
+    out.resize(first);
+    return false;
+  }
+  if (area2 < 0)
+    for (size_t i = first; i < out.size(); ++i) std::swap(out[i].from, out[i].to);
+  return true;
+}
+
+int chainWinding(std::span<const ChainEdge> chain, const Vec2& x, const Vec2& ray, size_t skip) {
+  int w = 0;
+  // In coordinates with the ray along +x: (along, across).
+  auto local = [&](const Vec2& q) { return Vec2(glm::dot(q - x, ray), cross2(ray, q - x)); };
+  for (size_t i = 0; i < chain.size(); ++i) {
+    if (i == skip) continue;
+    const Vec2 a = local(chain[i].from), b = local(chain[i].to);
+    if (a.y <= 0) {
+      if (b.y > 0 && cross2(a, b) > 0) w += chain[i].count;
+    } else if (b.y <= 0 && cross2(a, b) < 0) {
+      w -= chain[i].count;
+    }
+  }
+  return w;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,41 @@
+// Any object's faces as one mesh (closed or open, convex or not): distinct corners, the
+// edges between them and which faces use each edge and corner. Made when the object
+// enters the scene or moves (Scene keeps one per object that is not closed convex), read
+// by casting it whole from its silhouette (core/shadow/object_shadow.h) and by
+// backprojecting it (core/illum/shadow_chain.h). Immutable.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "core/scene/convex_solid.h"
+#include "core/scene/scene.h"
+
+namespace penumbra {
+
+struct MeshTopology {
+  static constexpr uint32_t kNoEdge = 0xffffffffu;
+  // Welded corners, face corners and distinct edges (first < second), as ConvexSolid.
+  ConvexSolid welded;
+  // Per face corner k (an index into welded.corners): the edge from corner k to the next
+  // corner of its face (kNoEdge where the two corners weld into one), and whether the face runs it from edge.first to edge.second.
+  std::vector<uint32_t> cornerEdge;
+  std::vector<uint8_t> cornerForward;
+  // The faces using each edge: edgeFaces[edgeStarts[e] .. edgeStarts[e + 1]).
+  std::vector<uint32_t> edgeStarts, edgeFaces;
+  // The faces using each corner: vertexFaces[vertexStarts[v] .. vertexStarts[v + 1]).
+  std::vector<uint32_t> vertexStarts, vertexFaces;
+  // Per edge: two faces that run it in opposite directions (a manifold, consistently
+  // oriented edge). Per corner: every edge through it is so.
+  std::vector<uint8_t> regularEdge, regularVertex;
+  // The axis-aligned box around the corners as a closed convex solid (a conservative
+  // stand-in for the mesh where only a superset of its shadow is needed).
+  ConvexSolid box;
+
+  // From the object's world faces (Scene::facesOfObject order).
+  static MeshTopology of(std::span<const Face> faces);
+};
+
+}  // namespace penumbra
