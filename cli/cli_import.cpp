@@ -44,6 +44,7 @@ int runImport(const Args& args) {
   if (!out) throw UsageError("import needs --out SCENE");
   interchange::ImportOptions options;
   options.scale = args.doubleOption("scale", 1);
+  options.studio = !args.flag("no-studio");
   if (const auto radiance = args.option("light-radiance")) options.lightRadiance = parseRadiance(*radiance);
 
   const interchange::ImportResult result = interchange::importSceneFile(input, options);

@@ -32,6 +32,8 @@ commands:
          [--exposure E]                linear scale before the PNG's sRGB (0: automatic)
   import FILE --out SCENE               an OBJ (+MTL), glTF or GLB file as a scene; repairs on stderr
            [--scale S] [--light-radiance R,G,B] [--report REPORT.json]
+           [--no-studio]               a file without lights is an error (default: it goes into
+                                       a 6×3×6 m studio under a 1 m² light, scaled to fit)
   generate --cubes N --out SCENE       a seeded 'N random cubes in a room' scene
            [--seed S] [--light-scale F] [--stacked-fraction F] [--tilted-light]
            [--two-lights] [--tables FRACTION]
@@ -66,7 +68,7 @@ int dispatch(int argc, char** argv) {
   if (command == "info") return runInfo(Args(argc, argv, 2, {}));
   if (command == "reference") return runReference(Args(argc, argv, 2, {}));
   if (command == "build") return runBuild(Args(argc, argv, 2, {"stats", "edges", "indirect"}));
-  if (command == "import") return runImport(Args(argc, argv, 2, {}));
+  if (command == "import") return runImport(Args(argc, argv, 2, {"no-studio"}));
   if (command == "render") return runRender(Args(argc, argv, 2, {"reference", "stats"}));
   if (command == "replay") return runReplay(Args(argc, argv, 2, {"verify"}));
   if (command == "serve") return runServe(Args(argc, argv, 2, {"ephemeral"}));

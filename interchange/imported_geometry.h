@@ -37,7 +37,10 @@ struct ImportedGeometry {
 
 struct ImportOptions {
   double scale = 1;                  // multiplies every coordinate (e.g. 0.001 for millimetres)
-  std::optional<Vec3> lightRadiance;  // replaces every light's radiance
+  std::optional<Vec3> lightRadiance;  // replaces every light's radiance (and is the studio light's)
+  // A file with no emissive faces goes into the default studio (default_studio.h); false keeps
+  // such a file an error ("no emissive faces").
+  bool studio = true;
 };
 
 }  // namespace penumbra::interchange

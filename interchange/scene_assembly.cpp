@@ -11,7 +11,9 @@
 #include "core/geom/polygon.h"
 #include "core/geom/tolerance.h"
 #include "interchange/coplanar_overlaps.h"
+#include "interchange/default_studio.h"
 #include "interchange/light_polygons.h"
+#include "interchange/mesh_orientation.h"
 #include "interchange/vertex_weld.h"
 #include "protocol/scene_json.h"
 #include "protocol/utf8.h"
@@ -67,19 +69,22 @@ class IdPool {
 
 struct RepairedGroup {
   const ImportedGroup* source = nullptr;
-  std::vector<Vec3> positions;  // welded, scaled
+  std::vector<Vec3> positions;  // welded, scaled (and placed in the studio)
   std::vector<IndexPolygon> faces;
+  size_t verticesWelded = 0;  // used positions that joined an earlier one
+  SurfaceFacts topology;      // of `faces` once oriented (lights: unset)
 };
 
 // minWidth: the scene's Tolerance::minFaceWidth() (thinner faces are refused by Scene).
 // Emissive groups are not joined here: lightPolygons() joins them once they face the scene.
-RepairedGroup repairGroup(const ImportedGroup& group, bool emissive, double scale, double weldEps, double minWidth,
-                          ImportReport& report) {
+// Positions are scaled by `scale`, then placed by `place` (identity outside the studio).
+RepairedGroup repairGroup(const ImportedGroup& group, bool emissive, double scale, const StudioPlacement& place,
+                          double weldEps, double minWidth, ImportReport& report) {
   RepairedGroup out;
   out.source = &group;
   std::vector<Vec3> scaled;
   scaled.reserve(group.positions.size());
-  for (const Vec3& p : group.positions) scaled.push_back(p * scale);
+  for (const Vec3& p : group.positions) scaled.push_back(place.apply(p * scale));
   WeldResult weld = weldVertices(scaled, weldEps);
   out.positions = std::move(weld.positions);
 
@@ -106,6 +111,7 @@ RepairedGroup repairGroup(const ImportedGroup& group, bool emissive, double scal
   for (int i : used)
     if (!welded.insert(weld.remap[size_t(i)]).second) ++joined;
   report.count("duplicate_vertices_merged", joined);
+  out.verticesWelded = joined;
   if (group.joinTriangles && !emissive) report.count("coplanar_triangles_joined", joinCoplanarConvex(out.positions, pieces));
   const size_t before = pieces.size();
   std::erase_if(pieces, [&](const IndexPolygon& piece) {
@@ -193,6 +199,59 @@ void warnCoplanar(const CoplanarDecision& decision, const std::vector<std::vecto
                               " more coplanar faces dropped or overlapping (see the counts)");
 }
 
+// Orients every non-light group's faces (mesh_orientation.h) and counts the flips; closed
+// components around a light (a room modelled as one closed object) are wound inward.
+void orientSurfaces(std::vector<RepairedGroup>& groups, const std::vector<bool>& isLight, ImportReport& report) {
+  // Points just inside each light, toward the middle of the other faces (a lamp in a ceiling's
+  // plane lies on the room's surface itself).
+  Bounds rest{Vec3(INFINITY), Vec3(-INFINITY)};
+  for (size_t g = 0; g < groups.size(); ++g)
+    if (!isLight[g])
+      for (const IndexPolygon& face : groups[g].faces)
+        for (int i : face) {
+          rest.min = glm::min(rest.min, groups[g].positions[size_t(i)]);
+          rest.max = glm::max(rest.max, groups[g].positions[size_t(i)]);
+        }
+  std::vector<Vec3> lightPoints;
+  if (rest.min.x <= rest.max.x)
+    for (size_t g = 0; g < groups.size(); ++g)
+      if (isLight[g])
+        for (const IndexPolygon& face : groups[g].faces) {
+          Polygon3 points;
+          for (int i : face) points.push_back(groups[g].positions[size_t(i)]);
+          const Vec3 c = centroid(points);
+          lightPoints.push_back(c + 0.01 * (rest.center() - c));
+        }
+  for (size_t g = 0; g < groups.size(); ++g) {
+    if (isLight[g]) continue;
+    RepairedGroup& group = groups[g];
+    group.topology = orientFaces(group.positions, group.faces, lightPoints);
+    report.count("faces_flipped_for_consistent_orientation", group.topology.facesFlipped);
+    report.count("closed_components_turned_outward", group.topology.closedComponentsTurnedOutward);
+    report.count("closed_components_facing_inward_around_lights", group.topology.closedComponentsAroundLights);
+    report.count("non_orientable_components", group.topology.nonOrientableComponents);
+  }
+}
+
+// Non-manifold edges are counted and named per object, left as they are.
+void warnNonManifold(const std::vector<RepairedGroup>& groups, const std::vector<bool>& isLight,
+                     const std::vector<std::string>& objectIds, ImportReport& report) {
+  constexpr size_t kMaxWarnings = 20;
+  size_t objects = 0;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const size_t edges = isLight[g] ? 0 : groups[g].topology.nonManifoldEdges;
+    if (!edges) continue;
+    report.count("non_manifold_edges", edges);
+    if (++objects <= kMaxWarnings)
+      report.warnings.push_back("non-manifold edges left as they are: '" + objectIds[g] + "' has " +
+                                std::to_string(edges) + (edges == 1 ? " edge" : " edges") +
+                                " shared by three or more faces");
+  }
+  if (objects > kMaxWarnings)
+    report.warnings.push_back("… and " + std::to_string(objects - kMaxWarnings) +
+                              " more objects with non-manifold edges (see the counts)");
+}
+
 }  // namespace
 
 ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions& options, ImportReport report) {
@@ -229,12 +288,22 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
       }
   if (!anyPosition || !(bounds.diagonal() > 0))
     throw ValidationError("(import)", "the file has no faces with area");
-  const double weldEps = kWeldFraction * bounds.diagonal();
 
   auto emissionOf = [&](const ImportedGroup& g) {
     return g.material >= 0 ? geometry.materials[size_t(g.material)].emission : Vec3(0.0);
   };
-  const Tolerance tolerance = Tolerance::forSize(bounds.diagonal());
+  // No emissive faces: the model goes into the default studio, scaled and moved before
+  // anything else so that welding and every tolerance see it where it will be.
+  const bool fileHasLights = std::any_of(geometry.groups.begin(), geometry.groups.end(), [&](const ImportedGroup& g) {
+    return !g.polygons.empty() && isEmissive(emissionOf(g));
+  });
+  std::optional<StudioPlacement> studio;
+  if (!fileHasLights && options.studio) studio = placeInStudio(bounds);
+  const StudioPlacement place = studio.value_or(StudioPlacement{});
+  const Bounds placed{place.apply(bounds.min), place.apply(bounds.max)};
+  const double weldEps = kWeldFraction * placed.diagonal();
+  // The studio's room holds the model (at most 2 m, centred), so it sets the scene's size.
+  const Tolerance tolerance = Tolerance::forSize(studio ? studioBounds().diagonal() : bounds.diagonal());
   std::vector<RepairedGroup> groups;
   std::vector<bool> isLight;
   for (const ImportedGroup& group : geometry.groups) {
@@ -243,8 +312,13 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
       report.count("groups_with_undefined_material");
     isLight.push_back(isEmissive(emissionOf(group)));
     // Dropping faces only shrinks the scene, and its minimum width with it.
-    groups.push_back(repairGroup(group, isLight.back(), options.scale, weldEps, tolerance.minFaceWidth(), report));
+    groups.push_back(
+        repairGroup(group, isLight.back(), options.scale, place, weldEps, tolerance.minFaceWidth(), report));
   }
+
+  // Each object's surface wound one way, closed parts outward (README "Import"): before the
+  // coplanar test, which tells back-to-back faces from faces facing the same way.
+  orientSurfaces(groups, isLight, report);
 
   // Faces in one plane overlapping (README "Import"): a covered one goes, the others stay; all reported.
   const std::vector<std::vector<Polygon3>> polygons = facePolygons(groups, isLight);
@@ -252,6 +326,13 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
   report.count("covered_coplanar_faces_dropped", coplanar.dropped.size());
   report.count("coplanar_overlapping_face_pairs", coplanar.kept.size());
   const std::vector<std::vector<int>> afterIndex = dropFaces(groups, coplanar);
+  for (size_t g = 0; g < groups.size(); ++g)
+    if (!isLight[g] && groups[g].faces.size() != afterIndex[g].size()) {
+      // Faces went: the surface's facts are those of what is left (its flips stand).
+      const size_t flipped = groups[g].topology.facesFlipped;
+      groups[g].topology = surfaceFacts(groups[g].faces);
+      groups[g].topology.facesFlipped = flipped;
+    }
 
   // The centre of what is lit: lights are turned to face it.
   Bounds lit{Vec3(INFINITY), Vec3(-INFINITY)};
@@ -313,6 +394,10 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
     }
     objects.push_back(std::move(object));
     report.faces += g.faces.size();
+    report.meshes.push_back(ObjectMeshFacts{objectIds.back(), g.faces.size(), g.verticesWelded,
+                                            g.topology.components, g.topology.closedComponents,
+                                            g.topology.facesFlipped, g.topology.nonManifoldEdges,
+                                            g.topology.boundaryEdges});
   }
   for (const auto& [m, name] : usedMaterials) {
     const ImportedMaterial& material = geometry.materials[size_t(m)];
@@ -323,12 +408,29 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
     materials[name] = protocol::materialToJson(out);
   }
   warnCoplanar(coplanar, polygons, afterIndex, objectIds, report);
+  warnNonManifold(groups, isLight, objectIds, report);
+  if (studio && objects.empty())
+    throw ValidationError("(import)", "no faces with area are left (every face of the file is degenerate, "
+                                      "thinner than 1e-6 of the studio's size, or a duplicate)");
+  if (studio) {
+    lights.push_back(studioLight(lightIds.take("studio_light"), options.lightRadiance.value_or(Vec3(kStudioRadiance))));
+    const std::string material = materialNames.take("studio_white");
+    materials[material] = protocol::materialToJson(Material{material, Vec3(0.8)});
+    for (Json& quad : studioRoom("studio_", material)) {
+      quad["id"] = objectIdPool.take(quad["id"].get<std::string>());
+      objects.push_back(std::move(quad));
+      report.faces += 1;
+    }
+    report.studio = StudioFacts{place.scale, place.offset(), studioSentence(report.source, *studio)};
+  }
   if (lights.empty())
     throw ValidationError("(import)",
                           "no emissive faces: give a material Ke (or Ka on a material named like a light), "
-                          "an emissiveFactor, or use --light-radiance with a material named like a light");
+                          "an emissiveFactor, or use --light-radiance with a material named like a light "
+                          "(without --no-studio, or studio=0 over HTTP, such a file goes into the default studio)");
 
   Json scene = {{"format", "penumbra.scene"}, {"version", 1}, {"lights", lights}, {"objects", objects}};
+  if (report.studio) scene["camera"] = studioCamera(placed);
   if (!materials.empty()) scene["materials"] = materials;
   report.objects = objects.size();
   report.lights = lights.size();

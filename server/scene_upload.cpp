@@ -72,6 +72,13 @@ interchange::ImportOptions importOptionsOf(const httplib::Request& req) {
           "light_radiance must be 'r,g,b' (or one number), each >= 0, got '" + text + "'");
     options.lightRadiance = value.size() == 1 ? Vec3(value[0]) : Vec3(value[0], value[1], value[2]);
   }
+  if (req.has_param("studio")) {
+    const std::string text = req.get_param_value("studio");
+    if (text != "0" && text != "1")
+      throw badParameter("studio", "studio must be 1 (a file without lights goes into the default studio, "
+                                   "the default) or 0 (such a file is refused), got '" + text + "'");
+    options.studio = text == "1";
+  }
   return options;
 }
 
@@ -141,9 +148,9 @@ std::optional<SceneUpload> sceneUploadOf(const httplib::Request& req) {
     }
   } else {
     if (format.empty() || format == "scene") {
-      if (req.has_param("scale") || req.has_param("light_radiance"))
-        throw badParameter(req.has_param("scale") ? "scale" : "light_radiance",
-                           "scale and light_radiance apply to imports only (format=obj|gltf|glb)");
+      for (const char* name : {"scale", "light_radiance", "studio"})
+        if (req.has_param(name))
+          throw badParameter(name, "scale, light_radiance and studio apply to imports only (format=obj|gltf|glb)");
       return std::nullopt;
     }
     upload.bytes.assign(req.body.begin(), req.body.end());

@@ -21,7 +21,7 @@ struct SceneUpload {
   std::string fileName;        // its extension picks the reader (importSceneBytes)
   std::map<std::string, std::string>
       mtlFiles;                        // OBJ only: MTL texts by the names its 'mtllib' lines use
-  interchange::ImportOptions options;  // query scale, light_radiance
+  interchange::ImportOptions options;  // query scale, light_radiance, studio
 };
 
 // nullopt: the request carries scene JSON (no `format`, or `format=scene`, and not a form).

@@ -160,6 +160,34 @@ TEST(GltfImport, FoldedLampStaysTwoLights) {
   }
 }
 
+// A GLB with no emissive material goes into the default studio like an OBJ: scaled to fit (its
+// 40-unit card is 1 m), resting on the floor; studio = false refuses it.
+TEST(GltfImport, ModelWithoutLightsGoesIntoTheDefaultStudio) {
+  ModelWriter w;
+  const int grey = w.material("grey", {0.5, 0.6, 0.7}, {0, 0, 0}, 1);
+  w.quad("card", {{{-20, -20, 0}, {20, -20, 0}, {20, 20, 0}, {-20, 20, 0}}}, grey, {0, 7, 0});  // standing
+  const std::vector<uint8_t> glb = w.write(true);
+  const ImportResult result = importSceneBytes(glb, "card.glb", {}, {});
+  ASSERT_TRUE(result.report.studio) << result.report.summary();
+  EXPECT_EQ(result.report.studio->scale, 1.0 / 40);
+  EXPECT_NE(result.report.studio->sentence.find("no lights in card.glb"), std::string::npos);
+  ASSERT_EQ(result.scene.lights().size(), 1u);
+  const auto card = result.scene.findObject("card");
+  ASSERT_TRUE(card);
+  double lowest = INFINITY;
+  for (const Vec3& v : result.scene.objects()[*card].vertices) {
+    lowest = std::min(lowest, v.y);
+    EXPECT_LE(std::abs(v.x), 0.5 + 1e-12);
+    EXPECT_LE(v.y, 1 + 1e-12);
+  }
+  EXPECT_EQ(lowest, 0);  // standing on the floor
+  ASSERT_EQ(result.report.meshes.size(), 1u);
+  EXPECT_EQ(result.report.meshes[0].components, 1u);  // its two triangles joined into one face
+  ImportOptions noStudio;
+  noStudio.studio = false;
+  EXPECT_THROW(importSceneBytes(glb, "card.glb", {}, noStudio), protocol::ValidationError);
+}
+
 TEST(GltfImport, UploadsCannotReadFilesAndBadAccessorsAreErrors) {
   const std::string external =
       R"({"asset":{"version":"2.0"},"buffers":[{"uri":"/etc/passwd","byteLength":12}],)"

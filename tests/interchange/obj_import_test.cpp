@@ -132,9 +132,12 @@ TEST(ObjImport, CrlfCommentsAndBlankLinesAreRead) {
 TEST(ObjImport, MissingMtlFileIsCountedAndLightRadianceCanStandIn) {
   const auto dir = scratchDir();
   writeFile(dir / "small.obj", smallScene(""));
-  // No small.mtl: without a radiance there is no light, and the error says what to do.
+  // No small.mtl: without a radiance there is no light; kept out of the default studio, the
+  // error says what to do.
+  ImportOptions noStudio;
+  noStudio.studio = false;
   try {
-    importObjFile((dir / "small.obj").string(), {});
+    importObjFile((dir / "small.obj").string(), noStudio);
     FAIL() << "imported a scene without a light";
   } catch (const protocol::ValidationError& error) {
     EXPECT_NE(std::string(error.what()).find("--light-radiance"), std::string::npos) << error.what();

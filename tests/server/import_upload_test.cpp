@@ -161,6 +161,27 @@ TEST(ServerImport, RawObjBodyWithoutMtlCountsItAsMissingAndTakesTheRadianceOptio
   EXPECT_EQ(scene["lights"][0]["radiance"], json({5.0, 5.0, 5.0}));
 }
 
+// A model without lights (what a user drops in first) is served in the default studio; the
+// report says where it went and what its surface is (interchange/default_studio.h).
+TEST(ServerImport, BareModelGoesIntoTheDefaultStudio) {
+  RunningServer running;
+  auto client = running.client();
+  const std::string tetra = "o tetra\nv 0 0 0\nv 100 0 0\nv 0 100 0\nv 0 0 100\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 4 3\n";
+  const auto created = client.Post("/api/scenes?format=obj&name=tetra.obj", tetra, "model/obj");
+  ASSERT_TRUE(created);
+  ASSERT_EQ(created->status, 201) << created->body;
+  const json report = bodyJson(created)["import"];
+  EXPECT_EQ(report["studio"]["scale"], 0.01) << report.dump();
+  EXPECT_NE(report["studio"]["sentence"].get<std::string>().find("no lights in tetra.obj: placed it in the default studio"),
+            std::string::npos);
+  EXPECT_EQ(report["meshes"][0]["object"], "tetra");
+  EXPECT_EQ(report["meshes"][0]["closed_components"], 1);
+  EXPECT_EQ(report["meshes"][0]["faces_flipped"], 1);  // its last face was wound inward
+  const json scene = bodyJson(client.Get("/api/scenes/tetra"))["scene"];
+  ASSERT_EQ(scene["lights"].size(), 1u);
+  EXPECT_EQ(scene["objects"].size(), 7u);  // the model and the room's six quads
+}
+
 TEST(ServerImport, MtllibPathsMatchUploadedBaseNames) {
   RunningServer running;
   auto client = running.client();
@@ -186,7 +207,7 @@ TEST(ServerImport, BadFilesAre422WithTheImportersPathAndCreateNothing) {
   };
   const std::vector<Case> cases = {
       {"obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n", "(obj)"},              // index past the vertices
-      {"obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n", "(import)"},  // no light
+      {"obj&studio=0", "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n", "(import)"},  // no light, no studio
       {"obj", "# only a comment\n", "(import)"},                    // no faces
       {"glb", "glTF\x02\0\0\0garbage", "(gltf)"},                   // truncated GLB
       {"gltf", "{\"asset\": {\"version\": \"2.0\"}, \"scenes\": [", "(gltf)"},  // broken JSON
@@ -229,6 +250,8 @@ TEST(ServerImport, MalformedRequestsAre400NamingTheParameterOrPart) {
       {"format=obj&light_radiance=1,2", {}, "query.light_radiance"},
       {"format=obj&light_radiance=1,-2,3", {}, "query.light_radiance"},
       {"scale=0.001", {}, "query.scale"},  // options without an import
+      {"format=obj&studio=yes", {}, "query.studio"},
+      {"studio=0", {}, "query.studio"},
       {"", {{"mtl", "newmtl a\n", "a.mtl", ""}}, "(form).file"},
       {"", {{"file", "v 0 0 0\n", "box.txt", ""}}, "(form).file"},  // format unknown
       {"", {{"file", "v 0 0 0\n", "box.obj", ""}, {"extra", "x", "x.txt", ""}}, "(form).extra"},

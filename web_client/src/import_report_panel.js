@@ -41,6 +41,18 @@ export function showImportReport(root, sceneId, sceneName) {
   const seconds = typeof report.seconds === 'number' ? `, read in ${(report.seconds * 1000).toFixed(1)} ms` : '';
   line(`Imported ${report.source} (${report.format}): ${plural(report.objects, 'object')}, ` +
     `${plural(report.faces, 'face')}, ${plural(report.lights, 'light')}, ${plural(report.materials, 'material')}${seconds}`);
+  // A file without lights went into the default studio: where, and at what scale.
+  if (report.studio && report.studio.sentence) line(report.studio.sentence, 'studio');
+  // Each object's surface: components, closed ones, faces flipped, vertices welded.
+  const meshes = report.meshes || [];
+  for (const mesh of meshes.slice(0, 20)) {
+    let text = `${mesh.object}: ${plural(mesh.faces, 'face')}, ${plural(mesh.components, 'component')}, ${mesh.closed_components} closed`;
+    if (mesh.faces_flipped) text += `; ${plural(mesh.faces_flipped, 'face')} flipped`;
+    if (mesh.vertices_welded) text += `; ${mesh.vertices_welded} vertices welded`;
+    if (mesh.non_manifold_edges) text += `; ${plural(mesh.non_manifold_edges, 'non-manifold edge')} left`;
+    line(text, 'mesh');
+  }
+  if (meshes.length > 20) line(`… and ${meshes.length - 20} more objects`, 'muted');
   const repairs = Object.entries(report.repairs || {});
   if (!repairs.length) line('no repairs were needed', 'muted');
   else {
