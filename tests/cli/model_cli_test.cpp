@@ -1,0 +1,66 @@
+// `penumbra generate --model` as a user runs it: writes a scene the validator accepts and says
+// how many triangles the model has and whether it is closed; bad options exit 2 naming the option.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "tests/cli/cli_test_support.h"
+
+namespace {
+
+const std::string kBinary = std::string(PENUMBRA_BINARY_DIR) + "/penumbra";
+
+using penumbra::cli_test::tempPath;
+
+// Exit status and what the command wrote to stdout and stderr.
+std::pair<int, std::string> run(const std::string& arguments) {
+  const std::string out = tempPath("output.txt");
+  const int status = std::system((kBinary + " " + arguments + " >" + out + " 2>&1").c_str());
+  std::ifstream in(out);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  std::filesystem::remove(out);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
+}
+
+TEST(ModelCli, GenerateWritesAValidSceneAndSaysWhatItWrote) {
+  const std::string scene = tempPath("teapot.scene.json");
+  auto [status, text] = run("generate --model teapot --triangles 1000 --rest --out " + scene);
+  EXPECT_EQ(status, 0) << text;
+  EXPECT_NE(text.find("992 model triangles"), std::string::npos) << text;
+  EXPECT_NE(text.find("resting on the floor"), std::string::npos) << text;
+  EXPECT_NE(text.find("open"), std::string::npos) << text;
+  std::tie(status, text) = run("validate " + scene);
+  EXPECT_EQ(status, 0) << text;
+
+  std::tie(status, text) =
+      run("generate --model torus-knot --triangles 300 --seed 2 --out " + scene);
+  EXPECT_EQ(status, 0) << text;
+  EXPECT_NE(text.find("floating, closed"), std::string::npos) << text;
+  std::filesystem::remove(scene);
+}
+
+TEST(ModelCli, BadOptionsExit2NamingTheOption) {
+  const std::string scene = tempPath("bad.scene.json");
+  const std::pair<const char*, const char*> cases[] = {
+      {"generate --model cow --out ", "--model"},
+      {"generate --model blob --triangles 10 --out ", "--triangles"},
+      {"generate --model blob --triangles many --out ", "--triangles"},
+      {"generate --model furnished --rest --out ", "--rest"},
+      {"generate --model blob --cubes 5 --out ", "--cubes"},
+      {"generate --cubes 5 --triangles 300 --out ", "--triangles"},
+      {"generate --model blob", "--out"},
+  };
+  for (const auto& [arguments, named] : cases) {
+    const auto [status, text] =
+        run(std::string(arguments) + (std::string(arguments).ends_with("--out ") ? scene : ""));
+    EXPECT_EQ(status, 2) << arguments << ": " << text;
+    EXPECT_NE(text.find(named), std::string::npos) << arguments << ": " << text;
+  }
+  EXPECT_FALSE(std::filesystem::exists(scene));
+}
+
+}  // namespace
