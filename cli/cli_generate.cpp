@@ -44,10 +44,8 @@ int runGenerateModel(const Args& args) {
                      *args.option("model") + "'");
   ModelSceneOptions options;
   options.kind = *kind;
-  options.triangles =
-      args.intOption("triangles", defaultModelTriangles(*kind),
-                     *kind == ModelKind::Furnished ? kMinFurnishedTriangles : kMinModelTriangles,
-                     kMaxModelTriangles);
+  options.triangles = args.intOption("triangles", defaultModelTriangles(*kind),
+                                     minModelTriangles(*kind), kMaxModelTriangles);
   options.rest = args.flag("rest");
   if (options.rest && *kind == ModelKind::Furnished)
     throw UsageError("--rest does not apply to --model furnished (each object has its place)");

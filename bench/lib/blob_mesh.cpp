@@ -179,33 +179,41 @@ TriMesh blobMesh(const BlobOptions& options) {
     hi = glm::max(hi, b.centre + Vec3(reach));
   }
   const double side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-  // Triangles grow as n²: a few steps of n ← n·√(wanted / made), the nearest kept.
-  TriMesh best;
-  int n = 16, bestN = n;
-  double bestError = INFINITY;
-  for (int step = 0; step < 5; ++step) {
-    const double h = side / (n - 4);  // two cells of margin each side
-    TriMesh mesh = march(field, lo - Vec3(2 * h), h, n);
-    const double made = double(std::max<size_t>(1, mesh.triangles.size()));
-    const double error = std::abs(made - options.triangles);
-    if (error < bestError) {
-      bestError = error;
-      best = std::move(mesh);
-      bestN = n;
-    }
-    const int next = std::max(8, int(std::lround(n * std::sqrt(options.triangles / made))));
-    if (next == n || next == bestN) break;
-    n = next;
+  // A grid of cell side h covering the box with two cells to spare each side, less the shift.
+  auto marchOn = [&](double h, const Vec3& shift) {
+    return march(field, lo - Vec3(2 * h) - h * shift, h, int(std::ceil(side / h)) + 4);
+  };
+  // Triangles grow as 1/h²: two steps of h ← h·√(made / wanted) from h = side / 12 ...
+  const double wanted = options.triangles;
+  double h0 = side / 12;
+  for (int step = 0; step < 2; ++step) {
+    const double made = double(std::max<size_t>(1, marchOn(h0, Vec3(0.0)).triangles.size()));
+    h0 = std::min(side / 4, h0 * std::sqrt(made / wanted));
   }
-  // No triangle thinner than 1 % of a cell: else shift the grid by a seeded part of a cell.
-  const double h = side / (bestN - 4);
-  double bestWidth = minWidth(best);
-  for (int attempt = 1; attempt < 8 && bestWidth < 0.01 * h; ++attempt) {
-    const Vec3 shift(unit(random), unit(random), unit(random));
-    TriMesh mesh = march(field, lo - Vec3(2 * h) - h * shift, h, bestN);
-    if (const double width = minWidth(mesh); width > bestWidth) {
-      bestWidth = width;
+  // ... then the nearest count among h0 · (1 + 0.04 k), |k| ≤ 3 (≤ 1 from 20,000 on; coarse
+  // grids count unevenly), each grid shifted by a seeded part of a cell while a triangle is
+  // thinner than 1 % of a cell.
+  TriMesh best;
+  double bestError = INFINITY;
+  bool bestThick = false;
+  const int spread = wanted < 20000 ? 3 : 1;
+  for (int k = -spread; k <= spread; ++k) {
+    const double h = h0 * (1 + 0.04 * k);
+    TriMesh mesh = marchOn(h, Vec3(0.0));
+    double width = minWidth(mesh);
+    for (int attempt = 1; attempt < 8 && width < 0.01 * h; ++attempt) {
+      TriMesh shifted = marchOn(h, Vec3(unit(random), unit(random), unit(random)));
+      if (const double w = minWidth(shifted); w > width) {
+        width = w;
+        mesh = std::move(shifted);
+      }
+    }
+    const bool thick = width >= 0.01 * h;
+    const double error = std::abs(double(mesh.triangles.size()) - wanted);
+    if ((thick && !bestThick) || (thick == bestThick && error < bestError)) {
       best = std::move(mesh);
+      bestError = error;
+      bestThick = thick;
     }
   }
   return weldedMesh(best.vertices, best.triangles);

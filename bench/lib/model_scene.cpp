@@ -74,7 +74,7 @@ const Placement kFurnished[] = {
 };
 
 void checkTriangles(ModelKind kind, int triangles) {
-  const int least = kind == ModelKind::Furnished ? kMinFurnishedTriangles : kMinModelTriangles;
+  const int least = minModelTriangles(kind);
   if (triangles < least || triangles > kMaxModelTriangles)
     throw std::invalid_argument("makeModelScene: triangles must be in [" + std::to_string(least) +
                                 ", " + std::to_string(kMaxModelTriangles) + "]");
@@ -114,6 +114,10 @@ std::string modelKindNames() {
 
 int defaultModelTriangles(ModelKind kind) {
   return kind == ModelKind::Scan ? 70000 : kind == ModelKind::Furnished ? 100000 : 6000;
+}
+
+int minModelTriangles(ModelKind kind) {
+  return kind == ModelKind::Scan ? 1000 : kind == ModelKind::Furnished ? 4000 : kMinModelTriangles;
 }
 
 bool modelIsClosed(ModelKind kind) {
@@ -170,7 +174,7 @@ Scene makeModelScene(const ModelSceneOptions& options) {
       objects.push_back(std::move(table));
     }
     for (const Placement& p : kFurnished) {
-      const int share = std::max(kMinModelTriangles, int(std::lround(p.share * triangles)));
+      const int share = std::max(minModelTriangles(p.kind), int(std::lround(p.share * triangles)));
       const TriMesh mesh = modelMesh(p.kind, share, options.seed + p.seedOffset);
       objects.push_back(
           meshObject(p.id, placedMesh(mesh, modelScale(p.kind, mesh, p.size), p.at, p.rest)));

@@ -20,12 +20,13 @@ const char* modelKindName(ModelKind kind);
 std::string modelKindNames();
 
 // Triangles asked for when none are given: 6,000 for a model, 70,000 for the scan-like
-// blob, 100,000 for the furnished room. Requests must lie in [kMinModelTriangles,
-// kMaxModelTriangles] (the furnished room: at least kMinFurnishedTriangles).
+// blob, 100,000 for the furnished room. Requests must lie in [minModelTriangles(kind),
+// kMaxModelTriangles]: at least 200, the scan 1,000 (its counts step by 20·(2f + 1): below,
+// a step is more than ±25 %), the furnished room 4,000.
 int defaultModelTriangles(ModelKind kind);
-inline constexpr int kMinModelTriangles = 200;
+int minModelTriangles(ModelKind kind);
+inline constexpr int kMinModelTriangles = 200;  // the least of minModelTriangles
 inline constexpr int kMaxModelTriangles = 300000;
-inline constexpr int kMinFurnishedTriangles = 4000;
 
 // Whether the kind's mesh is closed (watertight, consistently oriented): the torus knot,
 // the blob and the scan are; the teapot (bench/lib/teapot_mesh.h) and the bowl are open.

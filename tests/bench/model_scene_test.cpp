@@ -39,6 +39,7 @@ TEST(ModelScene, EveryModelFloatingAndRestingValidates) {
        {ModelKind::Teapot, ModelKind::TorusKnot, ModelKind::Blob, ModelKind::Bowl, ModelKind::Scan})
     for (int asked : {300, 1000, 6000})
       for (bool rest : {false, true}) {
+        if (asked < minModelTriangles(kind)) continue;
         const std::string what = std::string(modelKindName(kind)) + " " + std::to_string(asked) +
                                  (rest ? " resting" : " floating");
         const Scene scene =
@@ -143,6 +144,8 @@ TEST(ModelScene, NamesDefaultsAndRefusals) {
                std::invalid_argument);
   EXPECT_THROW(makeModelScene({.kind = ModelKind::Blob, .triangles = kMaxModelTriangles + 1}),
                std::invalid_argument);
+  EXPECT_EQ(minModelTriangles(ModelKind::Scan), 1000);
+  EXPECT_THROW(makeModelScene({.kind = ModelKind::Scan, .triangles = 999}), std::invalid_argument);
   EXPECT_THROW(makeModelScene({.kind = ModelKind::Furnished, .triangles = 1000}),
                std::invalid_argument);
   EXPECT_THROW(makeModelScene({.kind = ModelKind::Furnished, .rest = true}), std::invalid_argument);
