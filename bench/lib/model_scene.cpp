@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 
 #include "bench/lib/blob_mesh.h"
 #include "bench/lib/bowl_mesh.h"
