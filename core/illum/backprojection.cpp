@@ -296,7 +296,14 @@ void Backprojection::resolve() const {
     contour.compute(front2_, mergedPoints, mergedStarts, cutEps());
   else
     contour.compute(front2_, shadowPoints_, shadowStarts_, cutEps());
-  contour.subtractChain(chain_);
+  if (chainObjects_.size() > 1) {
+    thread_local std::vector<ChainEdge> merged;
+    merged = chain_;
+    mergeChainEdges(merged);
+    contour.subtractChain(merged);
+  } else {
+    contour.subtractChain(chain_);
+  }
   occluded_ = contour.occluded();
   anyVisible_ = contour.area() > tolerance_.area() && contour.anyLeft(tolerance_.length());
   visibleFactor_ = 0;

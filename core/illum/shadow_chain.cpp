@@ -54,6 +54,25 @@ bool appendShadowChain(const MeshTopology& mesh, std::span<const Face> faces, co
   return true;
 }
 
+void mergeChainEdges(std::vector<ChainEdge>& chain) {
+  auto less = [](const Vec2& a, const Vec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); };
+  for (ChainEdge& e : chain)  // canonical direction: from the lesser end, count signed
+    if (less(e.to, e.from)) std::swap(e.from, e.to), e.count = -e.count;
+  std::sort(chain.begin(), chain.end(), [&](const ChainEdge& x, const ChainEdge& y) {
+    return less(x.from, y.from) || (x.from == y.from && less(x.to, y.to));
+  });
+  size_t kept = 0;
+  for (size_t i = 0; i < chain.size();) {
+    ChainEdge sum = chain[i];
+    size_t j = i + 1;
+    for (; j < chain.size() && chain[j].from == sum.from && chain[j].to == sum.to; ++j) sum.count += chain[j].count;
+    if (sum.count < 0) std::swap(sum.from, sum.to), sum.count = -sum.count;
+    if (sum.count != 0) chain[kept++] = sum;
+    i = j;
+  }
+  chain.resize(kept);
+}
+
 int chainWinding(std::span<const ChainEdge> chain, const Vec2& x, const Vec2& ray, size_t skip) {
   int w = 0;
   // In coordinates with the ray along +x: (along, across).

@@ -38,6 +38,11 @@ bool appendShadowChain(const MeshTopology& mesh, std::span<const Face> faces, co
                        const Plane& lightPlane, double pHeight, const PlaneFrame& frame, double onPlane,
                        double minArea, std::vector<ChainEdge>& out);
 
+// Several meshes' chains as one: edges with the same ends (coincident objects project
+// bit for bit alike) are summed, run in opposite directions they cancel, so a boundary
+// shared by two chains is counted once. Edges overlapping only in part stay separate.
+void mergeChainEdges(std::vector<ChainEdge>& chain);
+
 // The winding number of the chain around x (the number of blocking faces over x), leaving
 // out edge `skip` (an index into chain; chain.size() leaves out none), counted along the
 // ray from x in direction `ray` (nonzero). For x on an edge, a ray across it (not along

@@ -111,7 +111,7 @@ TEST(MeshTopology, RegularEdgesAndCornersOfClosedAndOpenMeshes) {
   const MeshTopology& open = *scene.meshTopology(scene.handleOf(2));
   const long irregular = std::count(open.regularEdge.begin(), open.regularEdge.end(), 0);
   EXPECT_EQ(irregular, 16);  // the rim: 16 slices
-  EXPECT_EQ(scene.meshTopology(scene.handleOf(0)), nullptr);  // one face
+  EXPECT_EQ(scene.meshTopology(scene.handleOf(0)), nullptr);  // one face: cast face by face
 }
 
 }  // namespace
