@@ -192,6 +192,34 @@ void VisibleContour::chainCrossings(std::span<const ChainEdge> chain, const Vec2
   std::sort(cuts_.begin(), cuts_.end());
 }
 
+int VisibleContour::windingAt(std::span<const ChainEdge> chain, const Vec2& x, size_t skip) const {
+  const Vec2 path = x - origin_;
+  double sideOfOrigin = 0;
+  if (skip < chain.size()) {
+    sideOfOrigin = cross2(chain[skip].to - chain[skip].from, origin_ - chain[skip].from);
+    if (sideOfOrigin == 0) {  // the path runs along the edge: count along a ray across it
+      const Vec2 d = chain[skip].to - chain[skip].from;
+      return chainWinding(chain, x, Vec2(d.y, -d.x), skip);
+    }
+  }
+  int w = originWinding_;
+  for (uint32_t j : inLight_) {
+    if (j == skip) continue;
+    const ChainEdge& e = chain[j];
+    // Half-open on the path's line, so a path through a chain corner counts it once.
+    const bool aLeft = cross2(path, e.from - origin_) > 0, bLeft = cross2(path, e.to - origin_) > 0;
+    if (aLeft == bLeft) continue;
+    const Vec2 d = e.to - e.from;
+    const double atOrigin = cross2(d, origin_ - e.from), atX = cross2(d, x - e.from);
+    if ((atOrigin > 0) == (atX > 0)) continue;
+    w += atX > 0 ? e.count : -e.count;  // into the covered (left) side, or out of it
+  }
+  // Without the edge, w is the winding next to x on the origin's side: its left side
+  // counts the edge's own faces too.
+  if (sideOfOrigin > 0) w -= chain[skip].count;
+  return w;
+}
+
 void VisibleContour::subtractChain(std::span<const ChainEdge> chain) {
   if (chain.empty() || allCovered_) return;
   Vec2 lightLow = lines_[0].from, lightHigh = lightLow;
@@ -203,6 +231,10 @@ void VisibleContour::subtractChain(std::span<const ChainEdge> chain) {
   for (uint32_t i = 0; i < chain.size(); ++i)
     if (!boxesApart(glm::min(chain[i].from, chain[i].to), glm::max(chain[i].from, chain[i].to), lightLow, lightHigh, eps_))
       inLight_.push_back(i);
+  origin_ = Vec2(0.0);
+  for (size_t k = 0; k < lightLines_; ++k) origin_ += lines_[k].from;
+  origin_ /= double(lightLines_);
+  originWinding_ = chainWinding(chain, origin_, Vec2(0.6, 0.8), chain.size());
 
   // The light's and convex shadows' stretches, cut by the chain, where it covers nothing.
   kept_.clear();
@@ -210,8 +242,7 @@ void VisibleContour::subtractChain(std::span<const ChainEdge> chain) {
     chainCrossings(chain, s.from, s.to, chain.size());
     for (size_t k = 0; k + 1 < cuts_.size(); ++k) {
       const Vec2 from = s.from + cuts_[k] * (s.to - s.from), to = s.from + cuts_[k + 1] * (s.to - s.from);
-      const Vec2 along = s.to - s.from;
-      if (chainWinding(chain, 0.5 * (from + to), Vec2(-along.y, along.x), chain.size()) == 0) {
+      if (windingAt(chain, 0.5 * (from + to), chain.size()) == 0) {
         kept_.push_back({from, to});
       } else if (glm::length(to - from) > eps_) {
         occluded_ = true;
@@ -262,8 +293,8 @@ void VisibleContour::subtractChain(std::span<const ChainEdge> chain) {
       if (std::any_of(covered_.begin(), covered_.end(), [&](const Interval& v) { return v.from < mid && mid < v.to; }))
         continue;
       const Vec2 from = c.from + a * d, to = c.from + b * d;
-      // Counted towards the edge's right, the side whose cover is asked for.
-      if (chainWinding(chain, 0.5 * (from + to), Vec2(d.y, -d.x), i) == 0) boundary_.push_back({to, from});
+      // The winding on the edge's right, the side whose cover is asked for.
+      if (windingAt(chain, 0.5 * (from + to), i) == 0) boundary_.push_back({to, from});
     }
   }
 }

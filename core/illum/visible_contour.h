@@ -75,6 +75,11 @@ class VisibleContour {
   void emitUncovered(Interval within, bool reversed);
   void addLines(std::span<const Vec2> polygon);
   void clipEdgeOfShadow(uint32_t i, size_t edge);
+  // The chain's winding number at x (leaving out chain edge `skip`; for x on that edge,
+  // the value on its right): the winding at the light's centroid (counted once per
+  // subtractChain) plus the signed crossings of the segment from there to x, which lies in
+  // the light, so only the chain edges in inLight_ can cross it.
+  int windingAt(std::span<const ChainEdge> chain, const Vec2& x, size_t skip) const;
   // The parameters along a→b where chain edges (those in inLight_) cross it, but `skip`.
   void chainCrossings(std::span<const ChainEdge> chain, const Vec2& a, const Vec2& b, size_t skip);
 
@@ -89,6 +94,8 @@ class VisibleContour {
   bool occluded_ = false;
   bool allCovered_ = false;                  // one convex shadow holds the whole light
   std::vector<uint32_t> inLight_;            // chain edges whose box meets the light's
+  Vec2 origin_{0.0};                         // a point of the light, and the chain's winding there
+  int originWinding_ = 0;
   std::vector<double> cuts_;                 // chainCrossings()
   std::vector<Segment2> kept_;
 };

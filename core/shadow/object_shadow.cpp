@@ -146,10 +146,47 @@ bool offSilhouette(const Plane& a, const Plane& b, const Vec3& s, double onPlane
   return (da > onPlane && db > onPlane) || (da < -onPlane && db < -onPlane);
 }
 
+// The stretch [from, to] of the light edge pq from whose points regular corner v may be on
+// the mesh's silhouette: not where every face through v has the point more than onPlane()
+// in front (or every one behind). Each face's side changes once along pq, so "all in
+// front" and "all behind" are two disjoint intervals; the stretch is the hull of what they
+// leave. False when they cover pq.
+bool silhouetteStretch(std::span<const Face> faces, const MeshTopology& mesh, uint32_t v, const Vec3& p, const Vec3& q,
+                       double onPlane, double& from, double& to) {
+  double frontLow = 0, frontHigh = 1, backLow = 0, backHigh = 1;  // the two intervals
+  for (uint32_t k = mesh.vertexStarts[v]; k < mesh.vertexStarts[v + 1]; ++k) {
+    const Plane& plane = faces[mesh.vertexFaces[k]].plane;
+    const double dp = plane.signedDistance(p), dq = plane.signedDistance(q);
+    // Where (1 − t) dp + t dq > onPlane, and where it is < −onPlane.
+    auto keep = [&](double a, double b, double& low, double& high) {  // {t : a + t (b − a) > 0}
+      if (a > 0 && b > 0) return;
+      if (!(a > 0) && !(b > 0)) {
+        low = 1, high = 0;
+        return;
+      }
+      const double t = a / (a - b);
+      if (a > 0) high = std::min(high, t);
+      else low = std::max(low, t);
+    };
+    keep(dp - onPlane, dq - onPlane, frontLow, frontHigh);
+    keep(-dp - onPlane, -dq - onPlane, backLow, backHigh);
+  }
+  from = 0, to = 1;
+  // An interval holding an end moves that end past it (the two never touch: a gap of
+  // 2·onPlane lies between them along every face's distance).
+  for (int pass = 0; pass < 2; ++pass) {
+    if (frontLow <= from && from <= frontHigh) from = frontHigh;
+    if (backLow <= from && from <= backHigh) from = backHigh;
+    if (frontLow <= to && to <= frontHigh) to = frontLow;
+    if (backLow <= to && to <= backHigh) to = backLow;
+  }
+  return from < to;
+}
+
 // The VE and EV surfaces of a mesh's potential silhouette (object_shadow.h, any mesh): VE
 // (light vertex i, edge e) unless e is regular and off the silhouette from s_i; EV (light
-// edge pq, corner v) unless v is regular and p and q lie strictly on one side of every
-// face through v.
+// edge pq, corner v) over the stretch of pq from which v may be on the silhouette
+// (silhouetteStretch; all of pq for a corner that is not regular).
 template <class OnReceiver, class Add>
 void meshSilhouetteWedges(const Polygon3& s, std::span<const Face> faces, const MeshTopology& mesh,
                           const OnReceiver& onReceiver, const Tolerance& tol, Add&& add) {
@@ -169,16 +206,10 @@ void meshSilhouetteWedges(const Polygon3& s, std::span<const Face> faces, const 
     const Vec3 &p = s[i], &q = s[(i + 1) % n];
     if (onReceiver(p) && onReceiver(q)) continue;
     for (uint32_t v = 0; v < w.vertices.size(); ++v) {
-      bool allFront = mesh.regularVertex[v] != 0, allBack = allFront;
-      for (uint32_t k = mesh.vertexStarts[v]; k < mesh.vertexStarts[v + 1] && (allFront || allBack); ++k) {
-        const Plane& plane = faces[mesh.vertexFaces[k]].plane;
-        const double dp = plane.signedDistance(p), dq = plane.signedDistance(q);
-        allFront = allFront && dp > onPlane && dq > onPlane;
-        allBack = allBack && dp < -onPlane && dq < -onPlane;
-      }
-      if (allFront || allBack) continue;
-      add(edgeVertexWedge({ElementRef::Kind::Edge, uint16_t(i)}, {ElementRef::Kind::Vertex, uint16_t(v)}, p, q,
-                          w.vertices[v], eps));
+      double from = 0, to = 1;
+      if (mesh.regularVertex[v] && !silhouetteStretch(faces, mesh, v, p, q, onPlane, from, to)) continue;
+      add(edgeVertexWedge({ElementRef::Kind::Edge, uint16_t(i)}, {ElementRef::Kind::Vertex, uint16_t(v)},
+                          p + from * (q - p), p + to * (q - p), w.vertices[v], eps));
     }
   }
 }

@@ -26,8 +26,11 @@
 //   umbra:    none (M's umbra is not convex; no cell is culled or called umbra by it);
 //   segments: VE (light vertex s, edge e) unless e is *regular* (two faces running it in
 //             opposite directions) and s lies strictly on one side (front or back) of both
-//             faces' planes; EV (light edge pq, corner v) unless every edge at v is regular
-//             and p and q lie strictly on one side of every face through v.
+//             faces' planes; EV (light edge pq, corner v) over the stretch of pq from
+//             whose points v may be on the silhouette: for a corner whose edges are all
+//             regular, not where every face through v has the point strictly in front
+//             (or every one strictly behind); each face's side changes once along pq, so
+//             the stretch is the hull of what those two intervals leave.
 // Rule: an irradiance discontinuity on the receiver is where a VE/EV surface is tangent
 // to M's silhouette seen from a light point. Seen from s, a regular edge whose two faces
 // both face s (or both face away) is no silhouette edge: the surface folds only where
@@ -36,7 +39,7 @@
 // e), so e is a silhouette edge from x exactly when it is from s, and the rays near s→x
 // meet M's surface on both sides of e alike: crossing the line changes nothing x sees. A
 // corner with all its faces on one side from both ends of pq is so for every point of
-// pq (half-spaces are convex). Edges that are not regular (open boundaries, non-manifold
+// pq (half-spaces are convex), and the same holds point by point along pq. Edges that are not regular (open boundaries, non-manifold
 // or inconsistently oriented edges) are always kept. Every test errs towards keeping a
 // line. EEE surfaces (three edges, quadric) are left out as the paper leaves them out:
 // vertices stay exact (backprojection does not use the lines), only cells may hold a
