@@ -184,18 +184,33 @@ bool Backprojection::occludeApproaching(const Face& face, const Vec3& d) {
 }
 
 bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std::span<const Face> faces) {
+  // Faces whose corners all lie ahead of p's plane and between p and the light (1e-3 of
+  // p's height short of it) project with one orientation: they go into the chain. Where
+  // another face (near p's height, or reaching behind p's plane) blocks p, every face is
+  // projected one by one instead: its shadow would share edges with the chain's, and only
+  // the convex contour decides edges along each other consistently.
   const Plane receiver = Plane::throughPoint(n_, p_);
-  const bool chain = std::all_of(mesh.welded.vertices.begin(), mesh.welded.vertices.end(), [&](const Vec3& v) {
-    const double h = lightPlane_.signedDistance(v);
-    return receiver.signedDistance(v) > 0 && h > 0 && pHeight_ - h > 1e-3 * pHeight_;
-  });
-  if (!chain) {
-    bool any = false;
-    for (const Face& face : faces) any = occlude(face) || any;
-    return any;
+  const ConvexSolid& w = mesh.welded;
+  thread_local std::vector<uint8_t> cornerOk, inChain;
+  cornerOk.resize(w.vertices.size());
+  for (size_t v = 0; v < w.vertices.size(); ++v) {
+    const double h = lightPlane_.signedDistance(w.vertices[v]);
+    cornerOk[v] = receiver.signedDistance(w.vertices[v]) > 0 && h > 0 && pHeight_ - h > 1e-3 * pHeight_;
+  }
+  inChain.assign(faces.size(), 1);
+  bool othersBlock = false;
+  for (size_t f = 0; f < faces.size(); ++f) {
+    for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1] && inChain[f]; ++k) inChain[f] = cornerOk[w.corners[k]];
+    if (!inChain[f]) othersBlock = occlude(faces[f]) || othersBlock;
+  }
+  if (othersBlock) {
+    for (size_t f = 0; f < faces.size(); ++f)
+      if (inChain[f]) occlude(faces[f]);
+    return true;
   }
   ++comparisons_;
-  if (!appendShadowChain(mesh, faces, p_, lightPlane_, pHeight_, frame_, tolerance_.onPlane(), tolerance_.area(), chain_))
+  if (!appendShadowChain(mesh, faces, inChain, p_, lightPlane_, pHeight_, frame_, tolerance_.onPlane(),
+                         tolerance_.area(), chain_))
     return false;
   chainObjects_.push_back(handle);
   resolved_ = false;

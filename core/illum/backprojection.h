@@ -45,9 +45,10 @@ class Backprojection {
   // light, the hull of the projected corners of the faces p is behind (they tile the
   // object's projection); otherwise its faces one by one, as occlude(). One comparison.
   bool occludeObject(uint32_t handle);
-  // Any other object with a mesh (Scene::meshTopology): its blocking faces' projections as
-  // one chain (shadow_chain.h) when every corner lies ahead of p's plane and between p
-  // and the light (1e-3 of p's height short of it); otherwise its faces one by one.
+  // Any other object with a mesh (Scene::meshTopology): the projections of its blocking
+  // faces whose corners all lie ahead of p's plane and between p and the light (1e-3 of
+  // p's height short of it) as one chain (shadow_chain.h), unless one of the others
+  // blocks p: then every face one by one, as occlude().
   //
   // occlude() for a face's id, occludeObject() for a wholeObject() id; ids not in the
   // scene are ignored.

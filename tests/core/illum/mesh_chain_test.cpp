@@ -59,9 +59,14 @@ TEST(MeshChain, EqualsFaceByFaceAndReferenceOnSeededMeshes) {
       const ExactReference reference(scene);
       std::mt19937_64 rng(seed * 7919);
       std::uniform_real_distribution<double> u(-1.2, 1.2);
-      const Vec3 n(0, 1, 0);
-      for (int i = 0; i < 60; ++i) {
-        const Vec3 p(u(rng), 0, u(rng));
+      std::uniform_real_distribution<double> height(0.2, 2.4);
+      for (int i = 0; i < 90; ++i) {
+        // Floor points, and points on a wall plane beside the mesh at its height: there part
+        // of the mesh lies above p (nearer p's height than the chain allows), projected
+        // face by face beside the chain of the rest.
+        const bool wall = i >= 60;
+        const Vec3 p = wall ? Vec3(-0.5, height(rng), u(rng)) : Vec3(u(rng), 0, u(rng));
+        const Vec3 n = wall ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
         Backprojection view(scene, 0, p, n);
         view.occludeObject(handle);
         const double chain = view.visibleFactor(), full = view.unoccludedFactor();
