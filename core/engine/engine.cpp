@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <unordered_map>
 
 #include "core/geom/clip.h"
 #include "core/illum/face_lookup.h"
@@ -86,15 +87,42 @@ std::vector<std::vector<ReceiverCast>> castSequences(
     };
     std::vector<Attempt> attempts;
     const FaceOrder& order = *orders[l];
+    // A mesh casting whole on one of its own faces (object_shadow.h) does so once, at the
+    // lowest rank of its faces paired with that face: kept per receiver here, not as one
+    // attempt per pair (a 6,000-face model has millions of such pairs). The same cast the
+    // sort and unique below would keep.
+    std::unordered_map<uint64_t, std::pair<size_t, bool>> ownWhole;  // receiver -> (lowest rank, casts whole)
+    auto castsOnOwnFace = [&](FaceId receiver) -> std::pair<size_t, bool>& {
+      auto [it, added] = ownWhole.try_emplace(uint64_t(receiver.object) << 32 | receiver.face, SIZE_MAX, false);
+      if (added && wholeObjects && scene.meshTopology(receiver.object))
+        if (const Face* face = findFace(scene, receiver))
+          it->second.second = castsAsOneOccluder(scene, l, receiver.object, *face);
+      return it->second;
+    };
     for (const auto& [a, b] : pairs) {
       if (!scene.mayShadow(a, b)) {  // faces of one closed convex object
         ++stats.closedConvexPairs;
         continue;
       }
       if (!order.contains(a) || !order.contains(b)) continue;
-      attempts.push_back({order.rank(a), order.rank(b), a, b});
-      attempts.push_back({order.rank(b), order.rank(a), b, a});
+      const size_t rankA = order.rank(a), rankB = order.rank(b);
+      for (const auto& [occluder, occluderRank, receiver, receiverRank] :
+           {std::tuple{a, rankA, b, rankB}, std::tuple{b, rankB, a, rankA}}) {
+        if (occluder.object == receiver.object && wholeObjects && receiverIndex.count(receiver)) {
+          auto& own = castsOnOwnFace(receiver);
+          if (own.second) {
+            own.first = std::min(own.first, occluderRank);
+            continue;
+          }
+        }
+        attempts.push_back({occluderRank, receiverRank, occluder, receiver});
+      }
     }
+    for (const auto& [key, own] : ownWhole)
+      if (own.second && own.first != SIZE_MAX) {
+        const FaceId receiver{uint32_t(key >> 32), uint32_t(key)};
+        attempts.push_back({own.first, order.rank(receiver), wholeObject(receiver.object), receiver});
+      }
     if (wholeObjects) {
       for (Attempt& attempt : attempts)
         if (scene.castsWhole(attempt.occluder.object))

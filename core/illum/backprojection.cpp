@@ -183,7 +183,8 @@ bool Backprojection::occludeApproaching(const Face& face, const Vec3& d) {
   return true;
 }
 
-bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std::span<const Face> faces) {
+bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std::span<const Face> faces,
+                                 const Vec3* towards) {
   // Faces whose corners all lie ahead of p's plane and between p and the light (1e-3 of
   // p's height short of it) project with one orientation: they go into the chain. Where
   // another face (near p's height, or reaching behind p's plane) blocks p, every face is
@@ -201,7 +202,7 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
   bool othersBlock = false;
   for (size_t f = 0; f < faces.size(); ++f) {
     for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1] && inChain[f]; ++k) inChain[f] = cornerOk[w.corners[k]];
-    if (!inChain[f]) othersBlock = occlude(faces[f]) || othersBlock;
+    if (!inChain[f]) othersBlock = (towards ? occludeApproaching(faces[f], *towards) : occlude(faces[f])) || othersBlock;
   }
   if (othersBlock) {
     for (size_t f = 0; f < faces.size(); ++f)
@@ -217,11 +218,11 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
   return true;
 }
 
-bool Backprojection::occludeObject(uint32_t handle) {
+bool Backprojection::occludeObject(uint32_t handle, const Vec3* towards) {
   if (!applies_) return false;
   const std::span<const Face> faces = scene_->facesOfObject(handle);
   if (!scene_->convexSolid(handle))
-    if (const MeshTopology* mesh = scene_->meshTopology(handle)) return occludeMesh(handle, *mesh, faces);
+    if (const MeshTopology* mesh = scene_->meshTopology(handle)) return occludeMesh(handle, *mesh, faces, towards);
   // The hull needs the merge's conditions (closed convex, wholly in front of the light, p
   // off every face's plane) and every corner ahead of p's plane, with a height below p's
   // that keeps the projection within 1000 times the corner's distance.

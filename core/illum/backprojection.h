@@ -44,7 +44,10 @@ class Backprojection {
   // (shadow_merge.h) and it lies wholly in front of p's plane and well between p and the
   // light, the hull of the projected corners of the faces p is behind (they tile the
   // object's projection); otherwise its faces one by one, as occlude(). One comparison.
-  bool occludeObject(uint32_t handle);
+  // With `towards` (unit, in p's plane), a mesh's faces whose plane contains p count as
+  // occludeApproaching() does: the limit as the point tends to p from that direction (a
+  // mesh on its own face, where a face in front of it meets it).
+  bool occludeObject(uint32_t handle, const Vec3* towards = nullptr);
   // Any other object with a mesh (Scene::meshTopology): the projections of its blocking
   // faces whose corners all lie ahead of p's plane and between p and the light (1e-3 of
   // p's height short of it) as one chain (shadow_chain.h), unless one of the others
@@ -90,7 +93,7 @@ class Backprojection {
   // The visible part as convex pieces: the shadows subtracted, largest first.
   void resolvePieces(VisibleRegion& region) const;
   double cutEps() const;
-  bool occludeMesh(uint32_t handle, const MeshTopology& mesh, std::span<const Face> faces);
+  bool occludeMesh(uint32_t handle, const MeshTopology& mesh, std::span<const Face> faces, const Vec3* towards);
 
   const Scene* scene_ = nullptr;
   Tolerance tolerance_;

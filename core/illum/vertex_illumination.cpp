@@ -165,7 +165,7 @@ VertexLight illuminateVertexFromCell(const Scene& scene, size_t light, const Vec
   std::sort(faces.begin(), faces.end());  // order-independent result, as in case (3)
   for (FaceId id : faces) {
     if (isWholeObject(id)) {
-      view.occludeObject(id.object);  // off the receiver's plane: continuous at p
+      view.occludeObject(id.object, &towards);  // a mesh on its own face: its faces' limits at p
     } else if (const Face* face = findFace(scene, id)) {
       view.occludeApproaching(*face, towards);
     }

@@ -7,6 +7,7 @@
 #include "core/illum/face_lookup.h"
 #include "core/illum/light_sum.h"
 #include "core/mesh/cell_triangulation.h"
+#include "core/scene/mesh_topology.h"
 #include "core/geom/fingerprint.h"
 #include "core/mesh/lattice_split.h"
 
@@ -93,6 +94,18 @@ MeshChunkKey CellLighter::chunkOf(const Polygon2& piece) const {
                       int64_t(std::floor(middle.y / chunkSide_))};
 }
 
+void CellLighter::addOwnRing(uint32_t handle) {
+  const MeshTopology* mesh = scene_.meshTopology(handle);
+  const std::span<const Face> faces = scene_.facesOfObject(handle);
+  const uint32_t f = source_.face.face;
+  if (!mesh || f + 1 >= mesh->welded.faceStarts.size()) return;
+  for (uint32_t k = mesh->welded.faceStarts[f]; k < mesh->welded.faceStarts[f + 1]; ++k) {
+    const uint32_t v = mesh->welded.corners[k];
+    for (uint32_t j = mesh->vertexStarts[v]; j < mesh->vertexStarts[v + 1]; ++j)
+      if (mesh->vertexFaces[j] != f) listFaces_.push_back(&faces[mesh->vertexFaces[j]]);
+  }
+}
+
 uint64_t CellLighter::gather(CellId c) {
   const DmTree& tree = source_.tree;
   const HalfEdgeMesh& halfEdges = tree.mesh();
@@ -107,6 +120,9 @@ uint64_t CellLighter::gather(CellId c) {
     const Face* face = findFace(scene_, entry.face);  // null: a whole object, or not in the scene
     listFaces_.push_back(face);
     if (isWholeObject(entry.face)) {
+      // A mesh on its own face: the faces meeting the receiver's corners may pass through
+      // a cell corner (where one in front of the receiver meets it), as listed faces do.
+      if (entry.face.object == source_.face.object) addOwnRing(entry.face.object);
       // An object's faces are its authored ones placed by its transform: the transform
       // stands for all of them (a sphere's thousand faces need not be hashed per cell).
       const auto index = scene_.indexOfHandle(entry.face.object);

@@ -45,6 +45,8 @@ class CellLighter {
   void emit(CellId c, CellMemo& out);
 
  private:
+  // Appends the faces of the receiver's own mesh that meet its corners to listFaces_.
+  void addOwnRing(uint32_t handle);
   // Whether a face of the gathered cell's list has its plane through p (listFaces_).
   bool onContact(const Vec3& p) const;
   VertexIrradiance valueAt(const Vec2& q, const OccluderList& list, const Vec3& centre);

@@ -33,7 +33,7 @@ void groupBy(const std::vector<std::pair<uint32_t, uint32_t>>& pairs, size_t key
 
 }  // namespace
 
-MeshTopology MeshTopology::of(std::span<const Face> faces) {
+MeshTopology MeshTopology::of(std::span<const Face> faces, double onPlane) {
   MeshTopology mesh;
   mesh.welded = ConvexSolid::of(faces);
   const ConvexSolid& w = mesh.welded;
@@ -66,6 +66,12 @@ MeshTopology MeshTopology::of(std::span<const Face> faces) {
     mesh.regularEdge[e] = mesh.edgeStarts[e + 1] - mesh.edgeStarts[e] == 2 && balance[e] == 0;
     if (!mesh.regularEdge[e]) mesh.regularVertex[w.edges[e].first] = mesh.regularVertex[w.edges[e].second] = 0;
   }
+
+  mesh.facesSomethingAhead.assign(faces.size(), 0);
+  for (size_t f = 0; f < faces.size(); ++f)
+    mesh.facesSomethingAhead[f] = std::any_of(w.vertices.begin(), w.vertices.end(), [&](const Vec3& v) {
+      return faces[f].plane.signedDistance(v) > onPlane;
+    });
 
   Vec3 low = w.vertices.empty() ? Vec3(0.0) : w.vertices[0], high = low;
   for (const Vec3& v : w.vertices) {

@@ -30,12 +30,15 @@ struct MeshTopology {
   // Per edge: two faces that run it in opposite directions (a manifold, consistently
   // oriented edge). Per corner: every edge through it is so.
   std::vector<uint8_t> regularEdge, regularVertex;
+  // Per face: some corner lies more than onPlane in front of its plane (the mesh can
+  // shadow itself there; object_shadow.h casts it on that face as one occluder).
+  std::vector<uint8_t> facesSomethingAhead;
   // The axis-aligned box around the corners as a closed convex solid (a conservative
   // stand-in for the mesh where only a superset of its shadow is needed).
   ConvexSolid box;
 
-  // From the object's world faces (Scene::facesOfObject order).
-  static MeshTopology of(std::span<const Face> faces);
+  // From the object's world faces (Scene::facesOfObject order) and the scene's onPlane().
+  static MeshTopology of(std::span<const Face> faces, double onPlane);
 };
 
 }  // namespace penumbra

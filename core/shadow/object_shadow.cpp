@@ -62,12 +62,18 @@ bool mayBeSilhouetteVertex(std::span<const Face> faces, const Vec3& v, const Vec
 
 bool castsAsOneOccluder(const Scene& scene, size_t light, uint32_t handle, const Face& receiver) {
   const ConvexSolid* solid = scene.convexSolid(handle);
-  if (const MeshTopology* mesh = solid ? nullptr : scene.meshTopology(handle)) solid = &mesh->box;
+  const MeshTopology* mesh = solid ? nullptr : scene.meshTopology(handle);
+  if (mesh) solid = &mesh->box;
   if (!solid || solid->vertices.size() > kMaxElements || solid->edges.size() > kMaxElements) return false;
   const Plane lightPlane = scene.lights().at(light).plane();
   const double onPlane = scene.tolerance().onPlane();
+  auto beforeLight = [&](const Vec3& v) { return lightPlane.signedDistance(v) > onPlane; };
+  // A mesh on one of its own faces (self-shadowing): the part in front of the face's plane.
+  if (mesh && receiver.id.object == handle)
+    return receiver.id.face < mesh->facesSomethingAhead.size() && mesh->facesSomethingAhead[receiver.id.face] &&
+           std::all_of(solid->vertices.begin(), solid->vertices.end(), beforeLight);
   return std::all_of(solid->vertices.begin(), solid->vertices.end(), [&](const Vec3& v) {
-    return receiver.plane.signedDistance(v) > onPlane && lightPlane.signedDistance(v) > onPlane;
+    return receiver.plane.signedDistance(v) > onPlane && beforeLight(v);
   });
 }
 
@@ -189,23 +195,34 @@ bool silhouetteStretch(std::span<const Face> faces, const MeshTopology& mesh, ui
 // (silhouetteStretch; all of pq for a corner that is not regular).
 template <class OnReceiver, class Add>
 void meshSilhouetteWedges(const Polygon3& s, std::span<const Face> faces, const MeshTopology& mesh,
-                          const OnReceiver& onReceiver, const Tolerance& tol, Add&& add) {
+                          const Plane& receiver, const OnReceiver& onReceiver, const Tolerance& tol, Add&& add) {
   const double eps = tol.length(), onPlane = tol.onPlane();
   const ConvexSolid& w = mesh.welded;
   const size_t n = s.size();
+  // Only what lies in front of the receiver's plane can shadow it (a mesh on its own face
+  // reaches behind it): an edge is cut there, a corner not in front is left out.
+  thread_local std::vector<double> ahead;
+  ahead.resize(w.vertices.size());
+  for (size_t v = 0; v < w.vertices.size(); ++v) ahead[v] = receiver.signedDistance(w.vertices[v]);
   for (size_t i = 0; i < n; ++i) {
     if (onReceiver(s[i])) continue;  // its rays never come back to the receiver
     for (uint32_t e = 0; e < w.edges.size(); ++e) {
+      const auto [a, b] = w.edges[e];
+      if (!(ahead[a] > onPlane) && !(ahead[b] > onPlane)) continue;
       const uint32_t* f = mesh.edgeFaces.data() + mesh.edgeStarts[e];
       if (mesh.regularEdge[e] && offSilhouette(faces[f[0]].plane, faces[f[1]].plane, s[i], onPlane)) continue;
-      add(vertexEdgeWedge({ElementRef::Kind::Vertex, uint16_t(i)}, {ElementRef::Kind::Edge, uint16_t(e)}, s[i],
-                          w.vertices[w.edges[e].first], w.vertices[w.edges[e].second], eps));
+      Vec3 from = w.vertices[a], to = w.vertices[b];
+      if (!(ahead[a] > 0)) from += (ahead[a] / (ahead[a] - ahead[b])) * (to - from);
+      else if (!(ahead[b] > 0)) to += (ahead[b] / (ahead[b] - ahead[a])) * (from - to);
+      add(vertexEdgeWedge({ElementRef::Kind::Vertex, uint16_t(i)}, {ElementRef::Kind::Edge, uint16_t(e)}, s[i], from,
+                          to, eps));
     }
   }
   for (size_t i = 0; i < n; ++i) {
     const Vec3 &p = s[i], &q = s[(i + 1) % n];
     if (onReceiver(p) && onReceiver(q)) continue;
     for (uint32_t v = 0; v < w.vertices.size(); ++v) {
+      if (!(ahead[v] > onPlane)) continue;
       double from = 0, to = 1;
       if (mesh.regularVertex[v] && !silhouetteStretch(faces, mesh, v, p, q, onPlane, from, to)) continue;
       add(edgeVertexWedge({ElementRef::Kind::Edge, uint16_t(i)}, {ElementRef::Kind::Vertex, uint16_t(v)},
@@ -269,7 +286,7 @@ std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, u
   const std::span<const Face> faces = scene.facesOfObject(handle);
   const size_t n = s.size();
   if (mesh) {
-    meshSilhouetteWedges(s, faces, *mesh, onReceiver, tol, add);
+    meshSilhouetteWedges(s, faces, *mesh, receiver.plane, onReceiver, tol, add);
     return finish(light, handle, receiver, segments, std::move(penumbra), std::move(umbra));
   }
   for (size_t i = 0; i < n; ++i) {
