@@ -11,12 +11,12 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
-#include <unordered_map>
 
 #include "core/geom/clip.h"
 #include "core/illum/face_lookup.h"
 #include "core/illum/light_sum.h"
 #include "core/shadow/cast_shadow.h"
+#include "core/scene/mesh_topology.h"
 #include "core/shadow/object_shadow.h"
 
 namespace penumbra {
@@ -79,50 +79,47 @@ std::vector<std::vector<ReceiverCast>> castSequences(
     bool wholeObjects, BuildStats& stats) {
   std::vector<std::vector<ReceiverCast>> casts(receiverIndex.size());
   for (size_t l = 0; l < scene.lights().size(); ++l) {
-    const auto pairs = cubes[l]->candidatePairs();
+    const FaceOrder& order = *orders[l];
+    // A mesh casting whole on its own faces (object_shadow.h) does so once per face, at the
+    // lowest rank of its faces sharing a tile with it (what the sort and unique below
+    // would keep of one attempt per pair): those pairs are not listed at all (a 6,000-face
+    // model has millions). Its faces with nothing in front cast nothing on each other.
+    std::map<uint32_t, bool> ownWhole;
+    auto castsOnItselfWhole = [&](uint32_t object) {
+      auto [it, added] = ownWhole.try_emplace(object, false);
+      if (added && wholeObjects) {
+        const MeshTopology* mesh = scene.convexSolid(object) ? nullptr : scene.meshTopology(object);
+        const Plane lightPlane = scene.lights()[l].plane();
+        const double onPlane = scene.tolerance().onPlane();
+        it->second = mesh && std::all_of(mesh->box.vertices.begin(), mesh->box.vertices.end(),
+                                         [&](const Vec3& v) { return lightPlane.signedDistance(v) > onPlane; });
+      }
+      return it->second;
+    };
+    const auto pairs = cubes[l]->candidatePairs(castsOnItselfWhole);
     stats.candidatePairs += pairs.size();
     struct Attempt {
       size_t occluderRank, receiverRank;
       FaceId occluder, receiver;
     };
     std::vector<Attempt> attempts;
-    const FaceOrder& order = *orders[l];
-    // A mesh casting whole on one of its own faces (object_shadow.h) does so once, at the
-    // lowest rank of its faces paired with that face: kept per receiver here, not as one
-    // attempt per pair (a 6,000-face model has millions of such pairs). The same cast the
-    // sort and unique below would keep.
-    std::unordered_map<uint64_t, std::pair<size_t, bool>> ownWhole;  // receiver -> (lowest rank, casts whole)
-    auto castsOnOwnFace = [&](FaceId receiver) -> std::pair<size_t, bool>& {
-      auto [it, added] = ownWhole.try_emplace(uint64_t(receiver.object) << 32 | receiver.face, SIZE_MAX, false);
-      if (added && wholeObjects && scene.meshTopology(receiver.object))
-        if (const Face* face = findFace(scene, receiver))
-          it->second.second = castsAsOneOccluder(scene, l, receiver.object, *face);
-      return it->second;
-    };
     for (const auto& [a, b] : pairs) {
       if (!scene.mayShadow(a, b)) {  // faces of one closed convex object
         ++stats.closedConvexPairs;
         continue;
       }
       if (!order.contains(a) || !order.contains(b)) continue;
-      const size_t rankA = order.rank(a), rankB = order.rank(b);
-      for (const auto& [occluder, occluderRank, receiver, receiverRank] :
-           {std::tuple{a, rankA, b, rankB}, std::tuple{b, rankB, a, rankA}}) {
-        if (occluder.object == receiver.object && wholeObjects && receiverIndex.count(receiver)) {
-          auto& own = castsOnOwnFace(receiver);
-          if (own.second) {
-            own.first = std::min(own.first, occluderRank);
-            continue;
-          }
-        }
-        attempts.push_back({occluderRank, receiverRank, occluder, receiver});
-      }
+      attempts.push_back({order.rank(a), order.rank(b), a, b});
+      attempts.push_back({order.rank(b), order.rank(a), b, a});
     }
-    for (const auto& [key, own] : ownWhole)
-      if (own.second && own.first != SIZE_MAX) {
-        const FaceId receiver{uint32_t(key >> 32), uint32_t(key)};
-        attempts.push_back({own.first, order.rank(receiver), wholeObject(receiver.object), receiver});
-      }
+    const auto own = cubes[l]->lowestSameObjectPartner(
+        [&](uint32_t object) { return castsOnItselfWhole(object); },
+        [&](FaceId face) { return order.contains(face) ? order.rank(face) : SIZE_MAX; });
+    for (const auto& [receiver, rank] : own) {
+      const Face* face = receiverIndex.count(receiver) ? findFace(scene, receiver) : nullptr;
+      if (face && castsAsOneOccluder(scene, l, receiver.object, *face))
+        attempts.push_back({rank, order.rank(receiver), wholeObject(receiver.object), receiver});
+    }
     if (wholeObjects) {
       for (Attempt& attempt : attempts)
         if (scene.castsWhole(attempt.occluder.object))

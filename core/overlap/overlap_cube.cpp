@@ -235,21 +235,72 @@ std::vector<FaceId> OverlapCube::candidates(FaceId face) const {
 }
 
 std::vector<std::pair<FaceId, FaceId>> OverlapCube::candidatePairs() const {
+  return candidatePairs([](uint32_t) { return false; });
+}
+
+std::vector<std::pair<FaceId, FaceId>> OverlapCube::candidatePairs(const std::function<bool(uint32_t)>& skipObject) const {
   std::vector<std::pair<FaceId, FaceId>> out;
   // mark[b] == a + 1: pair (a, b) already emitted while visiting a.
   std::vector<uint32_t> mark(slots_.size(), 0);
+  // Per tile, faces of skipped objects are looked at only if the tile holds another object.
+  uint32_t lastObject = 0xffffffffu;
+  bool lastSkipped = false;
   for (uint32_t a = 0; a < slots_.size(); ++a) {
     if (!slots_[a].live) continue;
     const FaceId fa = slots_[a].face;
+    if (fa.object != lastObject) lastObject = fa.object, lastSkipped = skipObject(fa.object);
     for (const TileId tile : slots_[a].tiles) {
       for (const uint32_t b : facesInTile_[tile.value]) {
-        if (mark[b] == a + 1 || !(fa < slots_[b].face)) continue;
+        const FaceId fb = slots_[b].face;
+        if (mark[b] == a + 1 || !(fa < fb) || (lastSkipped && fb.object == fa.object)) continue;
         mark[b] = a + 1;
-        out.emplace_back(fa, slots_[b].face);
+        out.emplace_back(fa, fb);
       }
     }
   }
   std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<std::pair<FaceId, size_t>> OverlapCube::lowestSameObjectPartner(
+    const std::function<bool(uint32_t)>& objects, const std::function<size_t(FaceId)>& rank) const {
+  // Per tile and object: the two lowest ranks and the slot holding the lowest.
+  struct Lowest {
+    uint32_t object;
+    size_t first, second;
+    uint32_t firstSlot;
+  };
+  std::vector<size_t> slotRank(slots_.size(), SIZE_MAX);
+  for (uint32_t a = 0; a < slots_.size(); ++a)
+    if (slots_[a].live && objects(slots_[a].face.object)) slotRank[a] = rank(slots_[a].face);
+  std::vector<uint32_t> tileStart(facesInTile_.size() + 1, 0);
+  std::vector<Lowest> lowest;
+  for (size_t t = 0; t < facesInTile_.size(); ++t) {
+    tileStart[t] = uint32_t(lowest.size());
+    for (const uint32_t b : facesInTile_[t]) {
+      if (slotRank[b] == SIZE_MAX) continue;
+      const uint32_t object = slots_[b].face.object;
+      auto it = std::find_if(lowest.begin() + tileStart[t], lowest.end(), [&](const Lowest& l) { return l.object == object; });
+      if (it == lowest.end()) {
+        lowest.push_back({object, slotRank[b], SIZE_MAX, b});
+      } else if (slotRank[b] < it->first) {
+        it->second = it->first, it->first = slotRank[b], it->firstSlot = b;
+      } else {
+        it->second = std::min(it->second, slotRank[b]);
+      }
+    }
+  }
+  tileStart.back() = uint32_t(lowest.size());
+  std::vector<std::pair<FaceId, size_t>> out;
+  for (uint32_t a = 0; a < slots_.size(); ++a) {
+    if (slotRank[a] == SIZE_MAX) continue;
+    size_t best = SIZE_MAX;
+    for (const TileId tile : slots_[a].tiles)
+      for (uint32_t k = tileStart[tile.value]; k < tileStart[tile.value + 1]; ++k)
+        if (lowest[k].object == slots_[a].face.object)
+          best = std::min(best, lowest[k].firstSlot == a ? lowest[k].second : lowest[k].first);
+    if (best != SIZE_MAX) out.emplace_back(slots_[a].face, best);
+  }
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 #include <utility>
+#include <functional>
 #include <vector>
 
 #include "core/geom/polygon.h"
@@ -91,6 +92,13 @@ class OverlapCube {
   // Every unordered pair of held faces sharing a tile, as (smaller, larger),
   // sorted, each once.
   std::vector<std::pair<FaceId, FaceId>> candidatePairs() const;
+  // The same without the pairs of two faces of one object that `skipObject` names (a mesh
+  // casting whole on its own faces: a 6,000-face model has millions of them).
+  std::vector<std::pair<FaceId, FaceId>> candidatePairs(const std::function<bool(uint32_t)>& skipObject) const;
+  // For each face of an object `objects` names that shares a tile with another face of
+  // its object: the lowest `rank` among those others. O(faces' tiles), not O(pairs).
+  std::vector<std::pair<FaceId, size_t>> lowestSameObjectPartner(const std::function<bool(uint32_t)>& objects,
+                                                                 const std::function<size_t(FaceId)>& rank) const;
 
   // A held face's tiles, sorted; empty if not held.
   std::vector<TileId> tilesOf(FaceId face) const;

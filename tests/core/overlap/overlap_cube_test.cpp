@@ -324,3 +324,39 @@ TEST(OverlapCube, EditVolumeEnlargesTheCube) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// The pairs without one object's own, and each face's lowest same-object partner, against
+// the full candidate pairs (seeded cube rooms: each cube an object of six faces; the room's
+// faces are objects of one).
+TEST(OverlapCube, SkippedPairsAndLowestPartnersMatchTheFullPairs) {
+  for (uint64_t seed = 1; seed <= 12; ++seed) {
+    const Scene scene = makeCubesScene(variedOptions(seed));
+    const OverlapCube cube(scene, 0);
+    auto skip = [](uint32_t object) { return object % 3 == 1; };
+    auto rank = [](FaceId f) { return size_t(f.object) * 131 + size_t(f.face) * 7 % 5; };
+    const auto all = cube.candidatePairs();
+    std::vector<std::pair<FaceId, FaceId>> expected;
+    std::map<FaceId, size_t> lowest;
+    for (const auto& [a, b] : all) {
+      if (a.object == b.object && skip(a.object)) {
+        for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
+          auto [it, added] = lowest.try_emplace(x, rank(y));
+          if (!added) it->second = std::min(it->second, rank(y));
+        }
+        continue;
+      }
+      expected.push_back({a, b});
+    }
+    EXPECT_EQ(cube.candidatePairs(skip), expected) << "seed " << seed;
+    const auto partners = cube.lowestSameObjectPartner(skip, rank);
+    const std::map<FaceId, size_t> found(partners.begin(), partners.end());
+    EXPECT_EQ(found, lowest) << "seed " << seed;
+    EXPECT_FALSE(lowest.empty());
+  }
+}
+
+}  // namespace
+}  // namespace penumbra
