@@ -198,11 +198,21 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
     const double h = lightPlane_.signedDistance(w.vertices[v]);
     cornerOk[v] = receiver.signedDistance(w.vertices[v]) > 0 && h > 0 && pHeight_ - h > 1e-3 * pHeight_;
   }
-  inChain.assign(faces.size(), 1);
+  // In the chain: faces p is strictly behind (blocking ones) with every corner usable.
+  // Faces whose plane holds p count only as limits (with `towards`); the rest go one by one.
+  const double onPlane = tolerance_.onPlane();
+  inChain.assign(faces.size(), 0);
   bool othersBlock = false;
   for (size_t f = 0; f < faces.size(); ++f) {
-    for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1] && inChain[f]; ++k) inChain[f] = cornerOk[w.corners[k]];
-    if (!inChain[f]) othersBlock = (towards ? occludeApproaching(faces[f], *towards) : occlude(faces[f])) || othersBlock;
+    const double distance = faces[f].plane.signedDistance(p_);
+    if (!(distance < -onPlane)) {
+      if (towards && !(distance > onPlane)) othersBlock = occludeApproaching(faces[f], *towards) || othersBlock;
+      continue;
+    }
+    uint8_t usable = 1;
+    for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1] && usable; ++k) usable = cornerOk[w.corners[k]];
+    inChain[f] = usable;
+    if (!usable) othersBlock = occlude(faces[f]) || othersBlock;
   }
   if (othersBlock) {
     for (size_t f = 0; f < faces.size(); ++f)
@@ -210,8 +220,7 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
     return true;
   }
   ++comparisons_;
-  if (!appendShadowChain(mesh, faces, inChain, p_, lightPlane_, pHeight_, frame_, tolerance_.onPlane(),
-                         tolerance_.area(), chain_))
+  if (!appendShadowChain(mesh, inChain, p_, lightPlane_, pHeight_, frame_, tolerance_.area(), chain_))
     return false;
   chainObjects_.push_back(handle);
   resolved_ = false;

@@ -5,9 +5,9 @@
 
 namespace penumbra {
 
-bool appendShadowChain(const MeshTopology& mesh, std::span<const Face> faces, std::span<const uint8_t> inChain,
-                       const Vec3& p, const Plane& lightPlane, double pHeight, const PlaneFrame& frame,
-                       double onPlane, double minArea, std::vector<ChainEdge>& out) {
+bool appendShadowChain(const MeshTopology& mesh, std::span<const uint8_t> inChain, const Vec3& p,
+                       const Plane& lightPlane, double pHeight, const PlaneFrame& frame, double minArea,
+                       std::vector<ChainEdge>& out) {
   const ConvexSolid& w = mesh.welded;
   thread_local std::vector<int> net;
   thread_local std::vector<uint32_t> touched;
@@ -17,8 +17,8 @@ bool appendShadowChain(const MeshTopology& mesh, std::span<const Face> faces, st
   isProjected.assign(w.vertices.size(), 0);
   projected.resize(w.vertices.size());
   touched.clear();
-  for (uint32_t f = 0; f < faces.size(); ++f) {
-    if (!inChain[f] || !(faces[f].plane.signedDistance(p) < -onPlane)) continue;
+  for (uint32_t f = 0; f < inChain.size(); ++f) {
+    if (!inChain[f]) continue;
     for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
       const uint32_t e = mesh.cornerEdge[k];
       if (e == MeshTopology::kNoEdge) continue;

@@ -30,14 +30,14 @@ struct ChainEdge {
   int count = 1;  // faces running the edge this way, net
 };
 
-// Appends the chain of the mesh's faces blocking p that `inChain` selects (in `frame`, on
-// the light's plane; pHeight: p's height over it) to `out`, oriented with the covered
-// side on the left; an edge between a selected and an unselected face stays in the chain.
-// The caller has checked every corner of a selected face lies ahead of p's plane with a
-// height in (0, pHeight). Returns whether some face blocks p with positive projected area.
-bool appendShadowChain(const MeshTopology& mesh, std::span<const Face> faces, std::span<const uint8_t> inChain,
-                       const Vec3& p, const Plane& lightPlane, double pHeight, const PlaneFrame& frame,
-                       double onPlane, double minArea, std::vector<ChainEdge>& out);
+// Appends the chain of the mesh's faces that `inChain` selects (faces p lies strictly
+// behind, whose corners all lie ahead of p's plane with a height over the light's plane in
+// (0, pHeight), p's own) to `out`, in `frame` on the light's plane, oriented with the
+// covered side on the left; an edge between a selected and an unselected face stays in the
+// chain. Returns whether the selected faces project with positive area.
+bool appendShadowChain(const MeshTopology& mesh, std::span<const uint8_t> inChain, const Vec3& p,
+                       const Plane& lightPlane, double pHeight, const PlaneFrame& frame, double minArea,
+                       std::vector<ChainEdge>& out);
 
 // Several meshes' chains as one: edges with the same ends (coincident objects project
 // bit for bit alike) are summed, run in opposite directions they cancel, so a boundary
