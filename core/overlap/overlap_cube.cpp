@@ -240,21 +240,51 @@ std::vector<std::pair<FaceId, FaceId>> OverlapCube::candidatePairs() const {
 
 std::vector<std::pair<FaceId, FaceId>> OverlapCube::candidatePairs(const std::function<bool(uint32_t)>& skipObject) const {
   std::vector<std::pair<FaceId, FaceId>> out;
-  // mark[b] == a + 1: pair (a, b) already emitted while visiting a.
-  std::vector<uint32_t> mark(slots_.size(), 0);
-  // Per tile, faces of skipped objects are looked at only if the tile holds another object.
+  std::vector<uint8_t> skipped(slots_.size(), 0);
   uint32_t lastObject = 0xffffffffu;
   bool lastSkipped = false;
   for (uint32_t a = 0; a < slots_.size(); ++a) {
     if (!slots_[a].live) continue;
+    if (slots_[a].face.object != lastObject) lastObject = slots_[a].face.object, lastSkipped = skipObject(lastObject);
+    skipped[a] = lastSkipped;
+  }
+  // Per tile, its skipped objects' faces sorted by FaceId: a skipped face looks only at
+  // those of later objects there, never at its own object's (the bulk of a big mesh's tiles).
+  std::vector<uint32_t> skippedStart(facesInTile_.size() + 1, 0);
+  std::vector<uint32_t> skippedFaces;
+  for (size_t t = 0; t < facesInTile_.size(); ++t) {
+    skippedStart[t] = uint32_t(skippedFaces.size());
+    for (const uint32_t b : facesInTile_[t])
+      if (skipped[b]) skippedFaces.push_back(b);
+    std::sort(skippedFaces.begin() + skippedStart[t], skippedFaces.end(),
+              [&](uint32_t x, uint32_t y) { return slots_[x].face < slots_[y].face; });
+  }
+  skippedStart.back() = uint32_t(skippedFaces.size());
+  // mark[b] == a + 1: pair (a, b) already emitted while visiting a.
+  std::vector<uint32_t> mark(slots_.size(), 0);
+  for (uint32_t a = 0; a < slots_.size(); ++a) {
+    if (!slots_[a].live) continue;
     const FaceId fa = slots_[a].face;
-    if (fa.object != lastObject) lastObject = fa.object, lastSkipped = skipObject(fa.object);
     for (const TileId tile : slots_[a].tiles) {
-      for (const uint32_t b : facesInTile_[tile.value]) {
-        const FaceId fb = slots_[b].face;
-        if (mark[b] == a + 1 || !(fa < fb) || (lastSkipped && fb.object == fa.object)) continue;
+      if (!skipped[a]) {  // every face of the tile; a skipped partner's pair only from here
+        for (const uint32_t b : facesInTile_[tile.value]) {
+          const FaceId fb = slots_[b].face;
+          if (mark[b] == a + 1 || b == a || (!skipped[b] && !(fa < fb))) continue;
+          mark[b] = a + 1;
+          out.emplace_back(std::min(fa, fb), std::max(fa, fb));
+        }
+        continue;
+      }
+      // Skipped faces of later objects in the tile.
+      const auto first = skippedFaces.begin() + skippedStart[tile.value];
+      const auto last = skippedFaces.begin() + skippedStart[tile.value + 1];
+      for (auto it = std::upper_bound(first, last, fa.object,
+                                      [&](uint32_t object, uint32_t b) { return object < slots_[b].face.object; });
+           it != last; ++it) {
+        const uint32_t b = *it;
+        if (mark[b] == a + 1) continue;
         mark[b] = a + 1;
-        out.emplace_back(fa, fb);
+        out.emplace_back(fa, slots_[b].face);
       }
     }
   }
