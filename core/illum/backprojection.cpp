@@ -192,35 +192,44 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
   // the convex contour decides edges along each other consistently.
   const Plane receiver = Plane::throughPoint(n_, p_);
   const ConvexSolid& w = mesh.welded;
-  thread_local std::vector<uint8_t> cornerOk, inChain;
-  cornerOk.resize(w.vertices.size());
+  thread_local std::vector<uint8_t> corner;  // kUsable, kAhead, kBeyondLight, kBeforeP
+  thread_local std::vector<uint32_t> chainFaces;
+  enum : uint8_t { kUsable = 1, kAhead = 2, kBeyondLight = 4, kBeforeP = 8 };
+  corner.resize(w.vertices.size());
   for (size_t v = 0; v < w.vertices.size(); ++v) {
     const double h = lightPlane_.signedDistance(w.vertices[v]);
-    cornerOk[v] = receiver.signedDistance(w.vertices[v]) > 0 && h > 0 && pHeight_ - h > 1e-3 * pHeight_;
+    const bool ahead = receiver.signedDistance(w.vertices[v]) > 0;
+    corner[v] = uint8_t((ahead && h > 0 && pHeight_ - h > 1e-3 * pHeight_ ? kUsable : 0) | (ahead ? kAhead : 0) |
+                        (h > 0 ? kBeyondLight : 0) | (h < pHeight_ ? kBeforeP : 0));
   }
   // In the chain: faces p is strictly behind (blocking ones) with every corner usable.
-  // Faces whose plane holds p count only as limits (with `towards`); the rest go one by one.
+  // Faces whose plane holds p count only as limits (with `towards`); the rest go one by
+  // one, but for those with no corner ahead of p's plane, past the light's or short of p's
+  // height, which cannot block (occlude() would say so).
   const double onPlane = tolerance_.onPlane();
-  inChain.assign(faces.size(), 0);
+  chainFaces.clear();
   bool othersBlock = false;
-  for (size_t f = 0; f < faces.size(); ++f) {
+  for (uint32_t f = 0; f < faces.size(); ++f) {
     const double distance = faces[f].plane.signedDistance(p_);
     if (!(distance < -onPlane)) {
       if (towards && !(distance > onPlane)) othersBlock = occludeApproaching(faces[f], *towards) || othersBlock;
       continue;
     }
-    uint8_t usable = 1;
-    for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1] && usable; ++k) usable = cornerOk[w.corners[k]];
-    inChain[f] = usable;
-    if (!usable) othersBlock = occlude(faces[f]) || othersBlock;
+    uint8_t all = 0xff, any = 0;
+    for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
+      all &= corner[w.corners[k]];
+      any |= corner[w.corners[k]];
+    }
+    if (all & kUsable) chainFaces.push_back(f);
+    else if ((any & (kAhead | kBeyondLight | kBeforeP)) == (kAhead | kBeyondLight | kBeforeP))
+      othersBlock = occlude(faces[f]) || othersBlock;
   }
   if (othersBlock) {
-    for (size_t f = 0; f < faces.size(); ++f)
-      if (inChain[f]) occlude(faces[f]);
+    for (uint32_t f : chainFaces) occlude(faces[f]);
     return true;
   }
   ++comparisons_;
-  if (!appendShadowChain(mesh, inChain, p_, lightPlane_, pHeight_, frame_, tolerance_.area(), chain_))
+  if (!appendShadowChain(mesh, chainFaces, p_, lightPlane_, pHeight_, frame_, tolerance_.area(), chain_))
     return false;
   chainObjects_.push_back(handle);
   resolved_ = false;

@@ -5,7 +5,7 @@
 
 namespace penumbra {
 
-bool appendShadowChain(const MeshTopology& mesh, std::span<const uint8_t> inChain, const Vec3& p,
+bool appendShadowChain(const MeshTopology& mesh, std::span<const uint32_t> chainFaces, const Vec3& p,
                        const Plane& lightPlane, double pHeight, const PlaneFrame& frame, double minArea,
                        std::vector<ChainEdge>& out) {
   const ConvexSolid& w = mesh.welded;
@@ -17,8 +17,7 @@ bool appendShadowChain(const MeshTopology& mesh, std::span<const uint8_t> inChai
   isProjected.assign(w.vertices.size(), 0);
   projected.resize(w.vertices.size());
   touched.clear();
-  for (uint32_t f = 0; f < inChain.size(); ++f) {
-    if (!inChain[f]) continue;
+  for (const uint32_t f : chainFaces) {
     for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
       const uint32_t e = mesh.cornerEdge[k];
       if (e == MeshTopology::kNoEdge) continue;
