@@ -33,10 +33,11 @@ void groupBy(const std::vector<std::pair<uint32_t, uint32_t>>& pairs, size_t key
 
 }  // namespace
 
-MeshTopology MeshTopology::of(std::span<const Face> faces, double onPlane) {
+MeshTopology MeshTopology::of(std::span<const Face> faces, double onPlane, size_t maxElements) {
   MeshTopology mesh;
   mesh.welded = ConvexSolid::of(faces);
   const ConvexSolid& w = mesh.welded;
+  if (w.vertices.size() > maxElements || w.edges.size() > maxElements) return mesh;  // too large: not used
   std::vector<std::pair<uint32_t, uint32_t>> edgeUses, vertexUses;
   std::vector<int> balance(w.edges.size(), 0);  // forward minus backward runs
   mesh.cornerEdge.assign(w.corners.size(), kNoEdge);
@@ -67,8 +68,11 @@ MeshTopology MeshTopology::of(std::span<const Face> faces, double onPlane) {
     if (!mesh.regularEdge[e]) mesh.regularVertex[w.edges[e].first] = mesh.regularVertex[w.edges[e].second] = 0;
   }
 
-  mesh.facesSomethingAhead.assign(faces.size(), 0);
-  for (size_t f = 0; f < faces.size(); ++f)
+  // faces × corners tests; past 5·10⁷ (as closed_convex.h) every face is taken to have
+  // something in front (it only costs a cast that finds nothing).
+  mesh.facesSomethingAhead.assign(faces.size(), 1);
+  if (double(faces.size()) * double(w.vertices.size()) <= 5e7)
+    for (size_t f = 0; f < faces.size(); ++f)
     mesh.facesSomethingAhead[f] = std::any_of(w.vertices.begin(), w.vertices.end(), [&](const Vec3& v) {
       return faces[f].plane.signedDistance(v) > onPlane;
     });

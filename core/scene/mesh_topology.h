@@ -5,6 +5,7 @@
 // backprojecting it (core/illum/shadow_chain.h). Immutable.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -31,14 +32,16 @@ struct MeshTopology {
   // oriented edge). Per corner: every edge through it is so.
   std::vector<uint8_t> regularEdge, regularVertex;
   // Per face: some corner lies more than onPlane in front of its plane (the mesh can
-  // shadow itself there; object_shadow.h casts it on that face as one occluder).
+  // shadow itself there; object_shadow.h casts it on that face as one occluder). All set
+  // past faces × corners = 5·10⁷.
   std::vector<uint8_t> facesSomethingAhead;
   // The axis-aligned box around the corners as a closed convex solid (a conservative
   // stand-in for the mesh where only a superset of its shadow is needed).
   ConvexSolid box;
 
   // From the object's world faces (Scene::facesOfObject order) and the scene's onPlane().
-  static MeshTopology of(std::span<const Face> faces, double onPlane);
+  // Past `maxElements` welded corners or edges only `welded` is filled (the caller drops it).
+  static MeshTopology of(std::span<const Face> faces, double onPlane, size_t maxElements = SIZE_MAX);
 };
 
 }  // namespace penumbra

@@ -28,7 +28,7 @@ Scene::ObjectShape shapeOf(const Object& object, const std::vector<Face>& faces,
   if (isClosedConvex(object, faces, tolerance)) {
     shape.convex = std::make_shared<const ConvexSolid>(ConvexSolid::of(faces));
   } else if (faces.size() >= kMinMeshFaces) {
-    auto mesh = std::make_shared<MeshTopology>(MeshTopology::of(faces, tolerance.onPlane()));
+    auto mesh = std::make_shared<MeshTopology>(MeshTopology::of(faces, tolerance.onPlane(), kMaxMeshElements));
     if (mesh->welded.vertices.size() <= kMaxMeshElements && mesh->welded.edges.size() <= kMaxMeshElements)
       shape.mesh = std::move(mesh);
   }
