@@ -220,6 +220,18 @@ int VisibleContour::windingAt(std::span<const ChainEdge> chain, const Vec2& x, s
   return w;
 }
 
+bool VisibleContour::insideLines(const Vec2& a, const Vec2& b, size_t first, size_t last, double& t0, double& t1) const {
+  for (size_t k = first; k < last && t0 < t1; ++k) {
+    const Line& line = lines_[k];
+    if (line.normal == Vec2(0.0)) continue;
+    const double dA = glm::dot(line.normal, a) - line.offset, dB = glm::dot(line.normal, b) - line.offset;
+    if (dA < 0 && dB < 0) t1 = t0;
+    else if (dA < 0) t0 = std::max(t0, dA / (dA - dB));
+    else if (dB < 0) t1 = std::min(t1, dA / (dA - dB));
+  }
+  return t0 < t1;
+}
+
 void VisibleContour::subtractChain(std::span<const ChainEdge> chain) {
   if (chain.empty() || allCovered_) return;
   Vec2 lightLow = lines_[0].from, lightHigh = lightLow;
@@ -255,15 +267,7 @@ void VisibleContour::subtractChain(std::span<const ChainEdge> chain) {
   for (uint32_t i : inLight_) {
     const ChainEdge& c = chain[i];
     double t0 = 0, t1 = 1;
-    for (size_t k = 0; k < lightLines_ && t0 < t1; ++k) {
-      const Line& line = lines_[k];
-      if (line.normal == Vec2(0.0)) continue;
-      const double dA = glm::dot(line.normal, c.from) - line.offset, dB = glm::dot(line.normal, c.to) - line.offset;
-      if (dA < 0 && dB < 0) t1 = t0;
-      else if (dA < 0) t0 = std::max(t0, dA / (dA - dB));
-      else if (dB < 0) t1 = std::min(t1, dA / (dA - dB));
-    }
-    if (!(t0 < t1)) continue;
+    if (!insideLines(c.from, c.to, 0, lightLines_, t0, t1)) continue;
     const Vec2 d = c.to - c.from;
     occluded_ |= (t1 - t0) * glm::length(d) > eps_;
     // Convex shadows cover parts of it: their intervals become cuts as well.
@@ -273,15 +277,8 @@ void VisibleContour::subtractChain(std::span<const ChainEdge> chain) {
     for (uint32_t j : active_) {
       if (boxesApart(low, high, low_[j], high_[j], eps_)) continue;
       double u0 = 0, u1 = 1;
-      for (size_t k = firstLine_[j]; k < firstLine_[j + 1] && u0 < u1; ++k) {
-        const Line& line = lines_[k];
-        if (line.normal == Vec2(0.0)) continue;
-        const double dA = glm::dot(line.normal, c.from) - line.offset, dB = glm::dot(line.normal, c.to) - line.offset;
-        if (dA < 0 && dB < 0) u1 = u0;
-        else if (dA < 0) u0 = std::max(u0, dA / (dA - dB));
-        else if (dB < 0) u1 = std::min(u1, dA / (dA - dB));
-      }
-      if (u0 < u1) covered_.push_back({u0, u1, c.from + u0 * d, c.from + u1 * d});
+      if (insideLines(c.from, c.to, firstLine_[j], firstLine_[j + 1], u0, u1))
+        covered_.push_back({u0, u1, c.from + u0 * d, c.from + u1 * d});
     }
     for (const Interval& cover : covered_) cuts_.insert(cuts_.end(), {cover.from, cover.to});
     cuts_.insert(cuts_.end(), {t0, t1});

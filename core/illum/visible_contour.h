@@ -80,6 +80,9 @@ class VisibleContour {
   // subtractChain) plus the signed crossings of the segment from there to x, which lies in
   // the light, so only the chain edges in inLight_ can cross it.
   int windingAt(std::span<const ChainEdge> chain, const Vec2& x, size_t skip) const;
+  // Narrows [t0, t1] along a→b to the part inside the convex polygon whose edge lines are
+  // lines_[first, last) (strictly: no along-edge convention); false when nothing is left.
+  bool insideLines(const Vec2& a, const Vec2& b, size_t first, size_t last, double& t0, double& t1) const;
   // The parameters along a→b where chain edges (those in inLight_) cross it, but `skip`.
   void chainCrossings(std::span<const ChainEdge> chain, const Vec2& a, const Vec2& b, size_t skip);
 

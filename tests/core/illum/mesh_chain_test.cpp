@@ -121,3 +121,42 @@ TEST(MeshTopology, RegularEdgesAndCornersOfClosedAndOpenMeshes) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// Near-degenerate meshes through the chain (the family of the 1-µm-off cube and its
+// coincident copy, for meshes): two coincident copies, rings a micron apart (nearly
+// coplanar neighbours), one corner moved a micron.
+TEST(MeshChain, NearDegenerateMeshesEqualFaceByFace) {
+  size_t checked = 0;
+  for (uint64_t seed = 1; seed <= 4; ++seed) {
+    Object flat = test::bumpySphere("flat", {0.05, 1.2, 0.0}, 0.45, 10, 1e-6, seed);
+    Object moved = test::torus("moved", {0.0, 1.3, 0.05}, 0.45, 0.15, 20, 8, 0.4);
+    moved.vertices[seed * 7].x += 1e-6;
+    Object copy = moved;
+    copy.id = "copy";
+    const Scene scene({ceilingLight(0.6)}, {}, {floorQuad(), flat, moved, copy});
+    const ExactReference reference(scene);
+    std::mt19937_64 rng(seed * 104729);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 0; i < 60; ++i) {
+      const Vec3 p(u(rng), 0, u(rng)), n(0, 1, 0);
+      for (uint32_t object : {1u, 2u}) {  // the near-flat sphere alone; the torus with its copy
+        Backprojection view(scene, 0, p, n);
+        view.occludeObject(scene.handleOf(object));
+        if (object == 2) view.occludeObject(scene.handleOf(3));
+        Backprojection faces(scene, 0, p, n);
+        for (uint32_t o = object; o <= (object == 2 ? 3u : 1u); ++o)
+          for (const Face& face : scene.facesOfObject(scene.handleOf(o))) faces.occlude(face);
+        EXPECT_NEAR(view.visibleFactor(), faces.visibleFactor(), 1e-9 * view.unoccludedFactor())
+            << "seed " << seed << " object " << object << " p " << p.x << "," << p.z;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_EQ(checked, 480u);
+}
+
+}  // namespace
+}  // namespace penumbra
