@@ -16,7 +16,6 @@
 #include "core/illum/face_lookup.h"
 #include "core/illum/light_sum.h"
 #include "core/shadow/cast_shadow.h"
-#include "core/scene/mesh_topology.h"
 #include "core/shadow/object_shadow.h"
 
 namespace penumbra {
@@ -87,13 +86,7 @@ std::vector<std::vector<ReceiverCast>> castSequences(
     std::map<uint32_t, bool> ownWhole;
     auto castsOnItselfWhole = [&](uint32_t object) {
       auto [it, added] = ownWhole.try_emplace(object, false);
-      if (added && wholeObjects) {
-        const MeshTopology* mesh = scene.convexSolid(object) ? nullptr : scene.meshTopology(object);
-        const Plane lightPlane = scene.lights()[l].plane();
-        const double onPlane = scene.tolerance().onPlane();
-        it->second = mesh && std::all_of(mesh->box.vertices.begin(), mesh->box.vertices.end(),
-                                         [&](const Vec3& v) { return lightPlane.signedDistance(v) > onPlane; });
-      }
+      if (added && wholeObjects) it->second = castsWholeOnItself(scene, l, object);
       return it->second;
     };
     const auto pairs = cubes[l]->candidatePairs(castsOnItselfWhole);

@@ -67,14 +67,22 @@ bool castsAsOneOccluder(const Scene& scene, size_t light, uint32_t handle, const
   if (!solid || solid->vertices.size() > kMaxElements || solid->edges.size() > kMaxElements) return false;
   const Plane lightPlane = scene.lights().at(light).plane();
   const double onPlane = scene.tolerance().onPlane();
-  auto beforeLight = [&](const Vec3& v) { return lightPlane.signedDistance(v) > onPlane; };
   // A mesh on one of its own faces (self-shadowing): the part in front of the face's plane.
   if (mesh && receiver.id.object == handle)
     return receiver.id.face < mesh->facesSomethingAhead.size() && mesh->facesSomethingAhead[receiver.id.face] &&
-           std::all_of(solid->vertices.begin(), solid->vertices.end(), beforeLight);
+           castsWholeOnItself(scene, light, handle);
   return std::all_of(solid->vertices.begin(), solid->vertices.end(), [&](const Vec3& v) {
-    return receiver.plane.signedDistance(v) > onPlane && beforeLight(v);
+    return receiver.plane.signedDistance(v) > onPlane && lightPlane.signedDistance(v) > onPlane;
   });
+}
+
+bool castsWholeOnItself(const Scene& scene, size_t light, uint32_t handle) {
+  const MeshTopology* mesh = scene.convexSolid(handle) ? nullptr : scene.meshTopology(handle);
+  if (!mesh) return false;
+  const Plane lightPlane = scene.lights().at(light).plane();
+  const double onPlane = scene.tolerance().onPlane();
+  return std::all_of(mesh->box.vertices.begin(), mesh->box.vertices.end(),
+                     [&](const Vec3& v) { return lightPlane.signedDistance(v) > onPlane; });
 }
 
 FaceId castingOccluder(const Scene& scene, size_t light, FaceId face, const Face& receiver, bool wholeObjects) {

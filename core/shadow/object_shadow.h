@@ -63,6 +63,11 @@ namespace penumbra {
 // (castShadow): a mesh on its own faces (self-shadowing) always does.
 bool castsAsOneOccluder(const Scene& scene, size_t light, uint32_t handle, const Face& receiver);
 
+// Whether mesh `handle` (Scene::meshTopology, not closed convex) casts whole on those of its
+// own faces that have a corner in front of them: its box lies farther than onPlane() in
+// front of the light's plane.
+bool castsWholeOnItself(const Scene& scene, size_t light, uint32_t handle);
+
 // The occluder a candidate face casts as: wholeObject(face.object) if `wholeObjects` and
 // castsAsOneOccluder, else the face itself.
 FaceId castingOccluder(const Scene& scene, size_t light, FaceId face, const Face& receiver, bool wholeObjects);
