@@ -67,10 +67,17 @@ bool castsAsOneOccluder(const Scene& scene, size_t light, uint32_t handle, const
   if (!solid || solid->vertices.size() > kMaxElements || solid->edges.size() > kMaxElements) return false;
   const Plane lightPlane = scene.lights().at(light).plane();
   const double onPlane = scene.tolerance().onPlane();
-  // A mesh on one of its own faces (self-shadowing): the part in front of the face's plane.
-  if (mesh && receiver.id.object == handle)
-    return receiver.id.face < mesh->facesSomethingAhead.size() && mesh->facesSomethingAhead[receiver.id.face] &&
-           castsWholeOnItself(scene, light, handle);
+  if (mesh) {
+    // A mesh on one of its own faces (self-shadowing): the part in front of the face's plane.
+    if (receiver.id.object == handle)
+      return receiver.id.face < mesh->facesSomethingAhead.size() && mesh->facesSomethingAhead[receiver.id.face] &&
+             castsWholeOnItself(scene, light, handle);
+    // On another receiver it may touch or pierce the plane (a model resting on the floor):
+    // the part in front casts, with contact lines where it meets the plane.
+    return castsWholeOnItself(scene, light, handle) &&
+           std::any_of(solid->vertices.begin(), solid->vertices.end(),
+                       [&](const Vec3& v) { return receiver.plane.signedDistance(v) > onPlane; });
+  }
   return std::all_of(solid->vertices.begin(), solid->vertices.end(), [&](const Vec3& v) {
     return receiver.plane.signedDistance(v) > onPlane && lightPlane.signedDistance(v) > onPlane;
   });
@@ -197,6 +204,41 @@ bool silhouetteStretch(std::span<const Face> faces, const MeshTopology& mesh, ui
   return from < to;
 }
 
+// D0 contact lines: where a face reaching more than onPlane in front of the receiver's
+// plane (distances `ahead` of the welded corners) meets it, the edges of its front part
+// within onPlane of the plane (a face edge on the plane, or the face cut by it). Each goes out as the VE wedge
+// of the first light vertex off the plane over that edge, whose chord is the edge itself
+// (as castShadow emits a face's contact edges). Faces lying in the plane cast nothing.
+template <class OnReceiver, class AddContact>
+void addContactLines(const Polygon3& s, std::span<const Face> faces, const MeshTopology& mesh, const Plane& receiver,
+                     const std::vector<double>& ahead, const OnReceiver& onReceiver, const Tolerance& tol,
+                     AddContact&& add) {
+  const double eps = tol.length(), onPlane = tol.onPlane();
+  const auto light = std::find_if_not(s.begin(), s.end(), onReceiver);
+  if (light == s.end()) return;
+  const ElementRef lightVertex{ElementRef::Kind::Vertex, uint16_t(light - s.begin())};
+  const ConvexSolid& w = mesh.welded;
+  thread_local Polygon3 front;
+  for (uint32_t f = 0; f < faces.size(); ++f) {
+    bool anyAhead = false, anyTouching = false;
+    for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
+      anyAhead = anyAhead || ahead[w.corners[k]] > onPlane;
+      anyTouching = anyTouching || !(ahead[w.corners[k]] > onPlane);
+    }
+    if (!anyAhead || !anyTouching) continue;
+    clipFrontInto(faces[f].polygon, receiver, eps, front);
+    for (size_t k = 0; k < front.size(); ++k) {
+      const Vec3 &a = front[k], &b = front[(k + 1) % front.size()];
+      if (!(std::abs(receiver.signedDistance(a)) <= onPlane && std::abs(receiver.signedDistance(b)) <= onPlane))
+        continue;
+      const uint32_t edge = mesh.cornerEdge[w.faceStarts[f]];  // a label only: the face's first edge
+      add(vertexEdgeWedge(lightVertex, {ElementRef::Kind::Edge, uint16_t(edge == MeshTopology::kNoEdge ? 0 : edge)},
+                          *light, a, b, eps),
+          true);
+    }
+  }
+}
+
 // The VE and EV surfaces of a mesh's potential silhouette (object_shadow.h, any mesh): VE
 // (light vertex i, edge e) unless e is regular and off the silhouette from s_i; EV (light
 // edge pq, corner v) over the stretch of pq from which v may be on the silhouette
@@ -226,6 +268,7 @@ void meshSilhouetteWedges(const Polygon3& s, std::span<const Face> faces, const 
                           to, eps));
     }
   }
+  addContactLines(s, faces, mesh, receiver, ahead, onReceiver, tol, add);
   for (size_t i = 0; i < n; ++i) {
     const Vec3 &p = s[i], &q = s[(i + 1) % n];
     if (onReceiver(p) && onReceiver(q)) continue;
@@ -286,9 +329,12 @@ std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, u
 
   // Segments: the silhouette surfaces cut by the receiver's plane inside base.
   SegmentCollector segments(receiver2, penumbra, umbra, eps);
-  auto add = [&](const std::optional<Wedge>& w) {
+  auto add = [&](const std::optional<Wedge>& w, bool contact = false) {
     if (!w) return;
-    if (const auto chord = wedgeChord(*w, base, frame, tol))
+    const auto chord = wedgeChord(*w, base, frame, tol);
+    if (chord && contact)
+      segments.addWhole(chord->first, chord->second, SegmentKind::Contact, w->lightElement, w->occluderElement);
+    else if (chord)
       segments.add(chord->first, chord->second, w->lightElement, w->occluderElement, [] { return true; });
   };
   const std::span<const Face> faces = scene.facesOfObject(handle);

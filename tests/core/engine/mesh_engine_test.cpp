@@ -4,6 +4,7 @@
 // equals a rebuild.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "bench/lib/dense_scene.h"
@@ -49,6 +50,81 @@ TEST(MeshEngine, FloatingNonConvexMeshesMatchReference) {
     const uint32_t handle = engine.scene().handleOf(*engine.scene().findObject("m"));
     ASSERT_NE(engine.scene().meshTopology(handle), nullptr);
     EXPECT_TRUE(castWhole(engine, handle)) << name;
+    expectExact(engine, name);
+  }
+}
+
+// The bumpy sphere with every corner below height `floorY` lifted onto it: a flat base
+// lying in the floor's plane when the sphere dips below it.
+Object flattenedOnto(Object o, double floorY) {
+  for (Vec3& v : o.vertices) v.y = std::max(v.y, floorY);
+  return o;
+}
+
+// The mesh mirrored in the plane y = 0 (faces reversed to keep their sides).
+Object upsideDown(Object o) {
+  for (Vec3& v : o.vertices) v.y = -v.y;
+  for (auto& f : o.faces) std::reverse(f.begin(), f.end());
+  return o;
+}
+
+// Midpoints of where a triangle mesh meets the plane y = 0 from above: its edges lying in
+// the plane beside a face that rises above it, and each face's cut where it crosses.
+std::vector<Vec3> contactMidpoints(const Object& o) {
+  std::vector<Vec3> out;
+  for (const auto& f : o.faces) {
+    std::vector<Vec3> onPlane;  // the face's points at y = 0: corners there, edges crossing
+    bool above = false;
+    for (size_t k = 0; k < f.size(); ++k) {
+      const Vec3 &a = o.vertices[size_t(f[k])], &b = o.vertices[size_t(f[(k + 1) % f.size()])];
+      above = above || a.y > 1e-12;
+      if (std::abs(a.y) <= 1e-12) onPlane.push_back(a);
+      else if ((a.y > 0) != (b.y > 0) && std::abs(b.y) > 1e-12) onPlane.push_back(a + (b - a) * (a.y / (a.y - b.y)));
+    }
+    if (above && onPlane.size() == 2) out.push_back(0.5 * (onPlane[0] + onPlane[1]));
+  }
+  return out;
+}
+
+// How many of `points` lie on no triangle edge of the receiver mesh of face `id`.
+size_t offEveryEdge(Engine& engine, FaceId id, const std::vector<Vec3>& points) {
+  size_t off = 0;
+  for (const Vec3& p : points) {
+    bool on = false;
+    for (const ReceiverMesh& r : engine.mesh().receivers) {
+      if (r.face != id) continue;
+      for (const auto& t : r.triangles)
+        for (int k = 0; k < 3 && !on; ++k) {
+          const Vec3 &a = r.positions[t[k]], &b = r.positions[t[(k + 1) % 3]];
+          const double u = std::clamp(glm::dot(p - a, b - a) / glm::dot(b - a, b - a), 0.0, 1.0);
+          on = glm::length(a + u * (b - a) - p) < 1e-7;
+        }
+    }
+    off += on ? 0 : 1;
+  }
+  return off;
+}
+
+// Meshes touching the floor (issue 35, resting models): at one corner, with a flat base
+// in the floor's plane, sunk through it, and an open bowl standing on its rim edges. Each
+// casts on the floor whole, with contact lines where it meets it.
+TEST(MeshEngine, RestingMeshesMatchReference) {
+  const std::vector<std::pair<const char*, Object>> models = {
+      {"sphere on its pole", test::bumpySphere("m", {0.3, 0.4, -0.2}, 0.4, 8, 0.05, 5)},
+      {"bumpy sphere dipping in", test::bumpySphere("m", {0.3, 0.4, -0.2}, 0.4, 8, 0.3, 5)},
+      {"flat base", flattenedOnto(test::bumpySphere("m", {0.2, 0.3, 0.1}, 0.45, 8, 0.2, 7), 0.0)},
+      {"sunk through", test::bumpySphere("m", {-0.1, 0.25, 0.2}, 0.4, 8, 0.2, 11)},
+      {"dome on its rim", upsideDown(test::bowl("m", {0.1, 0.0, -0.3}, 0.45, 10, 0.2, 3))},
+  };
+  for (const auto& [name, model] : models) {
+    Engine engine(roomWith({model}));
+    const uint32_t handle = engine.scene().handleOf(*engine.scene().findObject("m"));
+    ASSERT_NE(engine.scene().meshTopology(handle), nullptr);
+    const uint32_t floor = engine.scene().handleOf(*engine.scene().findObject("floor"));
+    EXPECT_TRUE(engine.castOn(wholeObject(handle)).count(FaceId{floor, 0})) << name;
+    // The contact lines are lines of the floor's mesh (the value jumps across them).
+    const std::vector<Vec3> contacts = contactMidpoints(model);
+    EXPECT_EQ(offEveryEdge(engine, FaceId{floor, 0}, contacts), 0u) << name << ": " << contacts.size() << " contacts";
     expectExact(engine, name);
   }
 }
