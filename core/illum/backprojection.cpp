@@ -26,6 +26,7 @@ void Backprojection::reset(const Scene& scene, size_t light, const Vec3& p, cons
   applies_ = false;
   front_.clear();
   cone_.clear();
+  lightCone_.clear();
   front2_.clear();
   shadowPoints_.clear();
   shadowStarts_.clear();
@@ -189,19 +190,32 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
   // p's height short of it) project with one orientation: they go into the chain. Where
   // another face (near p's height, or reaching behind p's plane) blocks p, every face is
   // projected one by one instead: its shadow would share edges with the chain's, and only
-  // the convex contour decides edges along each other consistently.
+  // the convex contour decides edges along each other consistently. Faces in clusters
+  // outside the cone from p over the light block nothing and are not looked at.
   const Plane receiver = Plane::throughPoint(n_, p_);
   const ConvexSolid& w = mesh.welded;
-  thread_local std::vector<uint8_t> corner;  // kUsable, kAhead, kBeyondLight, kBeforeP
-  thread_local std::vector<uint32_t> chainFaces;
   enum : uint8_t { kUsable = 1, kAhead = 2, kBeyondLight = 4, kBeforeP = 8 };
-  corner.resize(w.vertices.size());
-  for (size_t v = 0; v < w.vertices.size(); ++v) {
-    const double h = lightPlane_.signedDistance(w.vertices[v]);
-    const bool ahead = receiver.signedDistance(w.vertices[v]) > 0;
-    corner[v] = uint8_t((ahead && h > 0 && pHeight_ - h > 1e-3 * pHeight_ ? kUsable : 0) | (ahead ? kAhead : 0) |
-                        (h > 0 ? kBeyondLight : 0) | (h < pHeight_ ? kBeforeP : 0));
-  }
+  thread_local std::vector<uint8_t> corner;  // kUsable, kAhead, kBeyondLight, kBeforeP
+  thread_local std::vector<uint32_t> cornerStamp, chainFaces;
+  thread_local uint32_t stamp = 0;
+  if (cornerStamp.size() < w.vertices.size()) cornerStamp.resize(w.vertices.size(), 0), corner.resize(w.vertices.size());
+  if (++stamp == 0) std::fill(cornerStamp.begin(), cornerStamp.end(), 0), stamp = 1;
+  auto flags = [&](uint32_t v) {
+    if (cornerStamp[v] != stamp) {
+      const double h = lightPlane_.signedDistance(w.vertices[v]);
+      const bool ahead = receiver.signedDistance(w.vertices[v]) > 0;
+      corner[v] = uint8_t((ahead && h > 0 && pHeight_ - h > 1e-3 * pHeight_ ? kUsable : 0) | (ahead ? kAhead : 0) |
+                          (h > 0 ? kBeyondLight : 0) | (h < pHeight_ ? kBeforeP : 0));
+      cornerStamp[v] = stamp;
+    }
+    return corner[v];
+  };
+  const std::vector<Plane>& sides = lightCone();
+  auto missesCone = [&](const MeshTopology::Cluster& c) {
+    const double r = c.radius + tolerance_.length(), h = lightPlane_.signedDistance(c.centre);
+    if (receiver.signedDistance(c.centre) < -r || h < -r || h > pHeight_ + r) return true;
+    return std::any_of(sides.begin(), sides.end(), [&](const Plane& side) { return side.signedDistance(c.centre) < -r; });
+  };
   // In the chain: faces p is strictly behind (blocking ones) with every corner usable.
   // Faces whose plane holds p count only as limits (with `towards`); the rest go one by
   // one, but for those with no corner ahead of p's plane, past the light's or short of p's
@@ -209,20 +223,25 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
   const double onPlane = tolerance_.onPlane();
   chainFaces.clear();
   bool othersBlock = false;
-  for (uint32_t f = 0; f < faces.size(); ++f) {
-    const double distance = faces[f].plane.signedDistance(p_);
-    if (!(distance < -onPlane)) {
-      if (towards && !(distance > onPlane)) othersBlock = occludeApproaching(faces[f], *towards) || othersBlock;
-      continue;
+  for (const MeshTopology::Cluster& cluster : mesh.clusters) {
+    if (missesCone(cluster)) continue;
+    for (uint32_t i = cluster.first; i < cluster.last; ++i) {
+      const uint32_t f = mesh.clusterFaces[i];
+      const double distance = faces[f].plane.signedDistance(p_);
+      if (!(distance < -onPlane)) {
+        if (towards && !(distance > onPlane)) othersBlock = occludeApproaching(faces[f], *towards) || othersBlock;
+        continue;
+      }
+      uint8_t all = 0xff, any = 0;
+      for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
+        const uint8_t c = flags(w.corners[k]);
+        all &= c;
+        any |= c;
+      }
+      if (all & kUsable) chainFaces.push_back(f);
+      else if ((any & (kAhead | kBeyondLight | kBeforeP)) == (kAhead | kBeyondLight | kBeforeP))
+        othersBlock = occlude(faces[f]) || othersBlock;
     }
-    uint8_t all = 0xff, any = 0;
-    for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
-      all &= corner[w.corners[k]];
-      any |= corner[w.corners[k]];
-    }
-    if (all & kUsable) chainFaces.push_back(f);
-    else if ((any & (kAhead | kBeyondLight | kBeforeP)) == (kAhead | kBeyondLight | kBeforeP))
-      othersBlock = occlude(faces[f]) || othersBlock;
   }
   if (othersBlock) {
     for (uint32_t f : chainFaces) occlude(faces[f]);
@@ -234,6 +253,18 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
   chainObjects_.push_back(handle);
   resolved_ = false;
   return true;
+}
+
+const std::vector<Plane>& Backprojection::lightCone() {
+  if (!lightCone_.empty() || front_.size() < 3) return lightCone_;
+  const Vec3 inner = centroid(front_);
+  for (size_t i = 0; i < front_.size(); ++i) {
+    const Vec3 normal = glm::cross(front_[i] - p_, front_[(i + 1) % front_.size()] - p_);
+    const double length = glm::length(normal);
+    if (!(length > 0)) continue;
+    lightCone_.push_back(Plane::throughPoint((glm::dot(normal, inner - p_) < 0 ? -normal : normal) / length, p_));
+  }
+  return lightCone_;
 }
 
 bool Backprojection::occludeObject(uint32_t handle, const Vec3* towards) {

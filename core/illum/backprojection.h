@@ -94,6 +94,8 @@ class Backprojection {
   void resolvePieces(VisibleRegion& region) const;
   double cutEps() const;
   bool occludeMesh(uint32_t handle, const MeshTopology& mesh, std::span<const Face> faces, const Vec3* towards);
+  // Inward side planes of the cone from p over front_ (no margin), made on first use.
+  const std::vector<Plane>& lightCone();
 
   const Scene* scene_ = nullptr;
   Tolerance tolerance_;
@@ -105,6 +107,7 @@ class Backprojection {
   Polygon3 front_;              // the light clipped to p's front half-space
   PlaneFrame frame_;            // 2D frame on the light's plane (set even when !applies_)
   std::vector<Plane> cone_;     // inward side planes of a cone from p over front_ plus a margin
+  std::vector<Plane> lightCone_;  // lightCone(), empty until asked for
   Polygon2 front2_;             // front_ in the frame, CCW
   std::vector<Vec2> shadowPoints_;      // gathered shadows in the frame, flat, CCW
   std::vector<uint32_t> shadowStarts_;  // shadow i: [starts[i], starts[i+1])

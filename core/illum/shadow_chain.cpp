@@ -9,13 +9,15 @@ bool appendShadowChain(const MeshTopology& mesh, std::span<const uint32_t> chain
                        const Plane& lightPlane, double pHeight, const PlaneFrame& frame, double minArea,
                        std::vector<ChainEdge>& out) {
   const ConvexSolid& w = mesh.welded;
+  // Kept between calls: net all 0 (each touched edge is reset below), a corner projected
+  // in this call iff its stamp is this call's: no per-call pass over the whole mesh.
   thread_local std::vector<int> net;
-  thread_local std::vector<uint32_t> touched;
+  thread_local std::vector<uint32_t> touched, projectedStamp;
   thread_local std::vector<Vec2> projected;
-  thread_local std::vector<uint8_t> isProjected;
-  net.assign(w.edges.size(), 0);
-  isProjected.assign(w.vertices.size(), 0);
-  projected.resize(w.vertices.size());
+  thread_local uint32_t stamp = 0;
+  if (net.size() < w.edges.size()) net.resize(w.edges.size(), 0);
+  if (projected.size() < w.vertices.size()) projected.resize(w.vertices.size()), projectedStamp.resize(w.vertices.size(), 0);
+  if (++stamp == 0) std::fill(projectedStamp.begin(), projectedStamp.end(), 0), stamp = 1;
   touched.clear();
   for (const uint32_t f : chainFaces) {
     for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
@@ -26,10 +28,10 @@ bool appendShadowChain(const MeshTopology& mesh, std::span<const uint32_t> chain
     }
   }
   auto project = [&](uint32_t v) -> const Vec2& {
-    if (!isProjected[v]) {
+    if (projectedStamp[v] != stamp) {
       const Vec3& x = w.vertices[v];
       projected[v] = frame.to2D(p + (x - p) * (pHeight / (pHeight - lightPlane.signedDistance(x))));
-      isProjected[v] = 1;
+      projectedStamp[v] = stamp;
     }
     return projected[v];
   };

@@ -1,6 +1,7 @@
 #include "core/scene/mesh_topology.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace penumbra {
 
@@ -29,6 +30,41 @@ void groupBy(const std::vector<std::pair<uint32_t, uint32_t>>& pairs, size_t key
   values.assign(pairs.size(), 0);
   std::vector<uint32_t> next(starts.begin(), starts.end() - 1);
   for (const auto& [key, value] : pairs) values[next[key]++] = value;
+}
+
+// Splits faces order[begin, end) at the median of their centres along the longest side
+// of the centres' box until at most kClusterFaces are left, each then a cluster.
+void splitIntoClusters(std::vector<uint32_t>& order, size_t begin, size_t end, const std::vector<Vec3>& centres,
+                       MeshTopology& mesh) {
+  const ConvexSolid& w = mesh.welded;
+  if (end - begin <= MeshTopology::kClusterFaces) {
+    MeshTopology::Cluster cluster;
+    cluster.first = uint32_t(begin), cluster.last = uint32_t(end);
+    Vec3 low(INFINITY), high(-INFINITY);
+    for (size_t i = begin; i < end; ++i)
+      for (uint32_t k = w.faceStarts[order[i]]; k < w.faceStarts[order[i] + 1]; ++k) {
+        low = glm::min(low, w.vertices[w.corners[k]]);
+        high = glm::max(high, w.vertices[w.corners[k]]);
+      }
+    cluster.centre = 0.5 * (low + high);
+    for (size_t i = begin; i < end; ++i)
+      for (uint32_t k = w.faceStarts[order[i]]; k < w.faceStarts[order[i] + 1]; ++k)
+        cluster.radius = std::max(cluster.radius, glm::length(w.vertices[w.corners[k]] - cluster.centre));
+    mesh.clusters.push_back(cluster);
+    return;
+  }
+  Vec3 low(INFINITY), high(-INFINITY);
+  for (size_t i = begin; i < end; ++i) {
+    low = glm::min(low, centres[order[i]]);
+    high = glm::max(high, centres[order[i]]);
+  }
+  const Vec3 side = high - low;
+  const int axis = side.x >= side.y && side.x >= side.z ? 0 : side.y >= side.z ? 1 : 2;
+  const size_t middle = begin + (end - begin) / 2;
+  std::nth_element(order.begin() + long(begin), order.begin() + long(middle), order.begin() + long(end),
+                   [&](uint32_t a, uint32_t b) { return centres[a][axis] < centres[b][axis]; });
+  splitIntoClusters(order, begin, middle, centres, mesh);
+  splitIntoClusters(order, middle, end, centres, mesh);
 }
 
 }  // namespace
@@ -76,6 +112,15 @@ MeshTopology MeshTopology::of(std::span<const Face> faces, double onPlane, size_
     mesh.facesSomethingAhead[f] = std::any_of(w.vertices.begin(), w.vertices.end(), [&](const Vec3& v) {
       return faces[f].plane.signedDistance(v) > onPlane;
     });
+
+  std::vector<Vec3> centres(faces.size(), Vec3(0.0));
+  for (size_t f = 0; f < faces.size(); ++f) {
+    for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) centres[f] += w.vertices[w.corners[k]];
+    centres[f] /= double(std::max<uint32_t>(1, w.faceStarts[f + 1] - w.faceStarts[f]));
+  }
+  mesh.clusterFaces.resize(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) mesh.clusterFaces[f] = uint32_t(f);
+  if (!faces.empty()) splitIntoClusters(mesh.clusterFaces, 0, faces.size(), centres, mesh);
 
   Vec3 low = w.vertices.empty() ? Vec3(0.0) : w.vertices[0], high = low;
   for (const Vec3& v : w.vertices) {

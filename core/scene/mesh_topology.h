@@ -35,6 +35,17 @@ struct MeshTopology {
   // shadow itself there; object_shadow.h casts it on that face as one occluder). All set
   // past faces × corners = 5·10⁷.
   std::vector<uint8_t> facesSomethingAhead;
+  // The faces grouped by place, each group in a ball around its corners: a point's cone
+  // over the light that misses a ball misses all its faces (Backprojection::occludeMesh
+  // looks at the faces of the balls it meets only). Group g: clusterFaces[first, last).
+  struct Cluster {
+    Vec3 centre{0.0};
+    double radius = 0;
+    uint32_t first = 0, last = 0;
+  };
+  static constexpr size_t kClusterFaces = 32;
+  std::vector<Cluster> clusters;
+  std::vector<uint32_t> clusterFaces;
   // The axis-aligned box around the corners as a closed convex solid (a conservative
   // stand-in for the mesh where only a superset of its shadow is needed).
   ConvexSolid box;
