@@ -176,17 +176,17 @@ void VisibleContour::compute(std::span<const Vec2> light, std::span<const Vec2> 
 void VisibleContour::chainCrossings(std::span<const ChainEdge> chain, const Vec2& a, const Vec2& b, size_t skip) {
   cuts_.clear();
   const Vec2 d = b - a, low = glm::min(a, b), high = glm::max(a, b);
-  for (uint32_t j : inLight_) {
-    if (j == skip) continue;
+  grid_.forEachNear(a, b, [&](uint32_t j) {
+    if (j == skip) return;
     const ChainEdge& c = chain[j];
-    if (boxesApart(low, high, glm::min(c.from, c.to), glm::max(c.from, c.to), 0)) continue;
+    if (boxesApart(low, high, glm::min(c.from, c.to), glm::max(c.from, c.to), 0)) return;
     // a + t d = c.from + u (c.to − c.from), both parameters strictly inside.
     const Vec2 e = c.to - c.from;
     const double denominator = cross2(d, e);
-    if (denominator == 0) continue;  // parallel: no single crossing
+    if (denominator == 0) return;  // parallel: no single crossing
     const double t = cross2(c.from - a, e) / denominator, u = cross2(c.from - a, d) / denominator;
     if (t > 0 && t < 1 && u >= 0 && u <= 1) cuts_.push_back(t);
-  }
+  });
   cuts_.push_back(0);
   cuts_.push_back(1);
   std::sort(cuts_.begin(), cuts_.end());
@@ -203,17 +203,17 @@ int VisibleContour::windingAt(std::span<const ChainEdge> chain, const Vec2& x, s
     }
   }
   int w = originWinding_;
-  for (uint32_t j : inLight_) {
-    if (j == skip) continue;
+  grid_.forEachNear(origin_, x, [&](uint32_t j) {
+    if (j == skip) return;
     const ChainEdge& e = chain[j];
     // Half-open on the path's line, so a path through a chain corner counts it once.
     const bool aLeft = cross2(path, e.from - origin_) > 0, bLeft = cross2(path, e.to - origin_) > 0;
-    if (aLeft == bLeft) continue;
+    if (aLeft == bLeft) return;
     const Vec2 d = e.to - e.from;
     const double atOrigin = cross2(d, origin_ - e.from), atX = cross2(d, x - e.from);
-    if ((atOrigin > 0) == (atX > 0)) continue;
+    if ((atOrigin > 0) == (atX > 0)) return;
     w += atX > 0 ? e.count : -e.count;  // into the covered (left) side, or out of it
-  }
+  });
   // Without the edge, w is the winding next to x on the origin's side: its left side
   // counts the edge's own faces too.
   if (sideOfOrigin > 0) w -= chain[skip].count;
@@ -243,6 +243,7 @@ void VisibleContour::subtractChain(std::span<const ChainEdge> chain) {
   for (uint32_t i = 0; i < chain.size(); ++i)
     if (!boxesApart(glm::min(chain[i].from, chain[i].to), glm::max(chain[i].from, chain[i].to), lightLow, lightHigh, eps_))
       inLight_.push_back(i);
+  grid_.build(chain, inLight_, lightLow - Vec2(eps_), lightHigh + Vec2(eps_), eps_);
   origin_ = Vec2(0.0);
   for (size_t k = 0; k < lightLines_; ++k) origin_ += lines_[k].from;
   origin_ /= double(lightLines_);

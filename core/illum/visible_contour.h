@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/geom/convex2d.h"
+#include "core/illum/chain_grid.h"
 #include "core/illum/shadow_chain.h"
 
 namespace penumbra {
@@ -78,12 +79,13 @@ class VisibleContour {
   // The chain's winding number at x (leaving out chain edge `skip`; for x on that edge,
   // the value on its right): the winding at the light's centroid (counted once per
   // subtractChain) plus the signed crossings of the segment from there to x, which lies in
-  // the light, so only the chain edges in inLight_ can cross it.
+  // the light, so only the chain edges in inLight_ can cross it (those grid_ has near it).
   int windingAt(std::span<const ChainEdge> chain, const Vec2& x, size_t skip) const;
   // Narrows [t0, t1] along a→b to the part inside the convex polygon whose edge lines are
   // lines_[first, last) (strictly: no along-edge convention); false when nothing is left.
   bool insideLines(const Vec2& a, const Vec2& b, size_t first, size_t last, double& t0, double& t1) const;
-  // The parameters along a→b where chain edges (those in inLight_) cross it, but `skip`.
+  // The parameters along a→b where chain edges (those in inLight_) cross it inside the
+  // light's box, but `skip` (grid_ gives the candidates).
   void chainCrossings(std::span<const ChainEdge> chain, const Vec2& a, const Vec2& b, size_t skip);
 
   double eps_ = 0;
@@ -97,6 +99,7 @@ class VisibleContour {
   bool occluded_ = false;
   bool allCovered_ = false;                  // one convex shadow holds the whole light
   std::vector<uint32_t> inLight_;            // chain edges whose box meets the light's
+  ChainGrid grid_;                           // inLight_ over the light's box
   Vec2 origin_{0.0};                         // a point of the light, and the chain's winding there
   int originWinding_ = 0;
   std::vector<double> cuts_;                 // chainCrossings()

@@ -1,0 +1,59 @@
+// A uniform grid over the light's box holding a mesh chain's edges (shadow_chain.h), so
+// the chain edges a segment inside the light may cross are found among those of the
+// cells it passes, not among all of them: VisibleContour::subtractChain asks this for
+// every stretch of every chain edge, which made it quadratic in the silhouette's length
+// (a 6,000-face teapot's chain seen from one point has hundreds of edges). Conservative:
+// an edge sits in every cell its box, widened by eps, meets, and a segment visits every
+// cell it passes through (both clipped to the grid); an edge that would fill more than
+// a few rows of cells is visited by every query instead. One thread; buffers reused.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/geom/convex2d.h"
+#include "core/illum/shadow_chain.h"
+
+namespace penumbra {
+
+class ChainGrid {
+ public:
+  // Indexes chain[j] for j in `edges` over the box [low, high].
+  void build(std::span<const ChainEdge> chain, std::span<const uint32_t> edges, const Vec2& low, const Vec2& high,
+             double eps);
+
+  // Calls visit(j) once for each indexed edge j in a cell that segment a→b passes
+  // (a superset of those crossing it inside the box).
+  template <class Visit>
+  void forEachNear(const Vec2& a, const Vec2& b, Visit&& visit) const {
+    if (!cellsAlong(a, b)) return;
+    if (++stamp_ == 0) std::fill(seen_.begin(), seen_.end(), 0), stamp_ = 1;
+    auto once = [&](uint32_t j) {
+      if (seen_[j] == stamp_) return;
+      seen_[j] = stamp_;
+      visit(j);
+    };
+    for (uint32_t j : everywhere_) once(j);
+    for (uint32_t cell : cells_)
+      for (uint32_t k = starts_[cell]; k < starts_[cell + 1]; ++k) once(members_[k]);
+  }
+
+ private:
+  // The cells segment a→b passes into cells_; false when it misses the grid.
+  bool cellsAlong(const Vec2& a, const Vec2& b) const;
+  int column(double x) const;
+  int row(double y) const;
+
+  int size_ = 1;  // size_ × size_ cells
+  Vec2 low_{0.0}, cell_{1.0};
+  std::vector<uint32_t> starts_, members_;  // cell c: members_[starts_[c], starts_[c + 1])
+  std::vector<uint32_t> everywhere_;        // edges visited by every query
+  mutable std::vector<uint32_t> seen_;      // per chain edge: the query that last visited it
+  mutable uint32_t stamp_ = 0;
+  mutable std::vector<uint32_t> cells_;
+  mutable std::vector<double> crossings_;
+};
+
+}  // namespace penumbra
