@@ -241,9 +241,9 @@ class Engine {
   // Sorts receivers_ by face (Scene::faces() order), drops `dropped`, reindexes.
   void compactReceivers(const std::vector<bool>& dropped);
   // After a radiance-only light edit: every live vertex whose value (summed on read from its
-  // stored per-light factors) differs from the one under radianceBefore is counted changed and
-  // its cells touched (light_edits.cpp); the mesh memo is dropped (lattice values inside cells
-  // depend on radiance too) and every receiver reported changed.
+  // stored per-light factors) differs from the one under radianceBefore is counted changed
+  // (light_edits.cpp) and every receiver reported changed; no cell is touched (the mesh memo
+  // keeps per-light values and sums its chunks again with the new radiances).
   void resumRadiance(const std::vector<Vec3>& radianceBefore, FrameResult& result);
   // Counts every receiver's tree against the limits afresh (drops drift).
   void recountBudget();

@@ -170,13 +170,11 @@ void Engine::resumRadiance(const std::vector<Vec3>& radianceBefore, FrameResult&
       relit.push_back(v);
       ++result.verticesRelit;
       if (!sameLights || !sameValue(old, now)) ++result.verticesChanged;
-      if (!sameLights || !identicalValue(old, now))
-        for (CellId c : receiver.tree.cellsAround(v)) receiver.tree.touch(c);
     }
     changed.insert(receiver.face);
   }
-  // The display lattice's points inside cells are lit with the scene's radiance too.
-  forgetMeshMemo();
+  // No cell is touched: the display memo keeps each light's value and sums the chunks again
+  // with the new radiances when it is next brought up to date (mesh_memo.h).
   result.changedReceivers.assign(changed.begin(), changed.end());
   result.seconds.relight +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -42,7 +42,7 @@ void CellLighter::Inputs::clear() {
   occluderPoints.clear();
   occluderSizes.clear();
   cornerFromCell.clear();
-  cornerValues.clear();
+  cornerLights.clear();
   corners.clear();
 }
 
@@ -55,10 +55,10 @@ uint64_t CellLighter::Inputs::fingerprint() const {
   f.addBytes(std::span<const Vec3>(occluderPoints));
   f.addBytes(std::span<const uint32_t>(occluderSizes));
   f.addBytes(std::span<const uint8_t>(cornerFromCell));
-  f.add(uint64_t(cornerValues.size()));
-  for (const VertexIrradiance& v : cornerValues) {
-    for (int c = 0; c < 3; ++c) f.add(v.irradiance[c]);
-    f.add(uint64_t(v.lightClass));
+  f.add(uint64_t(cornerLights.size()));
+  for (const VertexLight& light : cornerLights) {
+    f.add(light.factor);
+    f.add(uint64_t(light.lightClass) | uint64_t(light.applies) << 8);
   }
   return f.value();
 }
@@ -144,8 +144,15 @@ uint64_t CellLighter::gather(CellId c) {
     // corner (it passes through the corner); with none, the corner's value is the limit.
     const bool fromCell = onContact(source_.frame.to3D(inputs_.outline[i]));
     inputs_.cornerFromCell.push_back(fromCell ? 1 : 0);
-    inputs_.cornerValues.push_back(fromCell ? VertexIrradiance{} : cornerValue(scene_, source_, v, dark_, anyDark_));
+    const std::span<const VertexLight> row = source_.perLight[v.index];
+    for (size_t l = 0; l < row.size(); ++l) {
+      VertexLight light = fromCell ? VertexLight{} : row[l];
+      // A light the cell is in umbra of adds nothing there and darkens it (as sumLights' dark).
+      if (!fromCell && anyDark_ && dark_[l] && light.applies) light.factor = 0, light.lightClass = LightClass::Umbra;
+      inputs_.cornerLights.push_back(light);
+    }
   }
+  inputs_.lights = source_.perLight.lightCount();
   fingerprint_ = inputs_.fingerprint();
   return fingerprint_;
 }
@@ -153,18 +160,24 @@ uint64_t CellLighter::gather(CellId c) {
 // The value of a point of the cell's closure, as seen from the cell (centre: its centroid).
 // emit() asks once per point of the cell (ownAt_), although a lattice point is a corner of
 // up to four of its pieces.
-VertexIrradiance CellLighter::valueAt(const Vec2& q, const OccluderList& list, const Vec3& centre) {
+void CellLighter::appendLightsAt(const Vec2& q, const OccluderList& list, const Vec3& centre) {
   const Polygon2& polygon = inputs_.outline;
+  const size_t lights = inputs_.lights;
   const size_t corner = size_t(std::find(polygon.begin(), polygon.end(), q) - polygon.begin());
-  if (corner < polygon.size() && !inputs_.cornerFromCell[corner])
-    return inputs_.cornerValues[corner];
+  if (corner < polygon.size() && !inputs_.cornerFromCell[corner]) {
+    const auto row = inputs_.cornerLights.begin() + long(corner * lights);
+    output_.ownLights.insert(output_.ownLights.end(), row, row + long(lights));
+    return;
+  }
   const Vec3 p = source_.frame.to3D(q);
   const Vec3 normal = source_.frame.normal;
   // A contact corner or lattice point takes the limit from the cell; another lattice
   // point is lit exactly from this cell's list (cases 2 and 3 keep it dark in a light's umbra).
-  if (corner < polygon.size() || onContact(p)) return illuminatePointFromCell(scene_, p, normal, centre - p, list);
+  const bool limit = corner < polygon.size() || onContact(p);
   oneCell_.assign(1, &list);
-  return illuminatePoint(scene_, p, normal, oneCell_);
+  for (size_t l = 0; l < lights; ++l)
+    output_.ownLights.push_back(limit ? illuminateVertexFromCell(scene_, l, p, normal, centre - p, list)
+                                      : illuminateVertex(scene_, l, p, normal, oneCell_));
 }
 
 void CellLighter::emit(CellId c, CellMemo& out) {
@@ -175,16 +188,18 @@ void CellLighter::emit(CellId c, CellMemo& out) {
   for (const Vec2& q : polygon) centre += source_.frame.to3D(q);
   centre /= double(polygon.size());
   ownAt_.clear();
-  const auto addOwn = [&](const Vec2& q, const VertexIrradiance& value) {
-    output_.points.push_back(CellMemo::kOwnValue | uint32_t(output_.ownValues.size()));
-    output_.ownValues.push_back({q, value});
+  output_.lights = inputs_.lights;
+  const auto addOwn = [&](const Vec2& q) {
+    output_.points.push_back(CellMemo::kOwnValue | uint32_t(output_.ownAt.size()));
+    output_.ownAt.push_back(q);
   };
   // A point is lit once and its copy shared by every piece it is a corner of.
   const auto addPoint = [&](const Vec2& q) {
     for (const auto& [at, index] : ownAt_)
       if (at == q) return output_.points.push_back(CellMemo::kOwnValue | index);
-    ownAt_.push_back({q, uint32_t(output_.ownValues.size())});
-    addOwn(q, valueAt(q, list, centre));
+    ownAt_.push_back({q, uint32_t(output_.ownAt.size())});
+    addOwn(q);
+    appendLightsAt(q, list, centre);
   };
   for (const Polygon2& piece : splitByLattice(polygon, spacing_, eps_)) {
     for (const Vec2& q : piece) {
@@ -202,7 +217,10 @@ void CellLighter::emit(CellId c, CellMemo& out) {
     if (fan.usesCentre()) {
       const Vec2 middle = centroid(piece);
       oneCell_.assign(1, &list);
-      addOwn(middle, illuminatePoint(scene_, source_.frame.to3D(middle), source_.frame.normal, oneCell_));
+      addOwn(middle);
+      for (size_t l = 0; l < inputs_.lights; ++l)
+        output_.ownLights.push_back(
+            illuminateVertex(scene_, l, source_.frame.to3D(middle), source_.frame.normal, oneCell_));
     }
     output_.pieces.push_back({chunkOf(piece), uint32_t(output_.points.size()), fan});
   }

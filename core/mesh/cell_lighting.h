@@ -49,7 +49,9 @@ class CellLighter {
   void addOwnRing(uint32_t handle);
   // Whether a face of the gathered cell's list has its plane through p (listFaces_).
   bool onContact(const Vec3& p) const;
-  VertexIrradiance valueAt(const Vec2& q, const OccluderList& list, const Vec3& centre);
+  // The value from each light of a point of the gathered cell's closure, as seen from the
+  // cell (centre: its centroid), appended to output_.ownLights.
+  void appendLightsAt(const Vec2& q, const OccluderList& list, const Vec3& centre);
   MeshChunkKey chunkOf(const Polygon2& piece) const;
 
   // What a cell's triangles depend on, gathered for the cell being lit.
@@ -63,9 +65,10 @@ class CellLighter {
     std::vector<uint32_t> occluderSizes;
     static constexpr uint32_t kWholeObjectSize = 0xffffffffu;
     // Per loop corner: 1 if lit from the cell (a face of its list through it), else 0 and its
-    // value.
+    // value from each light (lights() entries a corner; the cell's dark lights in umbra).
     std::vector<uint8_t> cornerFromCell;
-    std::vector<VertexIrradiance> cornerValues;
+    std::vector<VertexLight> cornerLights;
+    size_t lights = 0;
     std::vector<VertexId> corners;  // the loop's vertices (the output refers to them)
     void clear();
     uint64_t fingerprint() const;

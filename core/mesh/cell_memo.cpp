@@ -34,7 +34,8 @@ double getDouble(const uint32_t* w) {
 void CellMemo::Output::clear() {
   pieces.clear();
   points.clear();
-  ownValues.clear();
+  ownAt.clear();
+  ownLights.clear();
 }
 
 CellMemo::CellMemo(uint64_t inputs, const Output& output) : inputs_(inputs) {
@@ -42,12 +43,15 @@ CellMemo::CellMemo(uint64_t inputs, const Output& output) : inputs_(inputs) {
     return !fitsOneWord(p.chunk.x) || !fitsOneWord(p.chunk.y);
   });
   if (output.pieces.size() >= kWideKeys) throw std::length_error("CellMemo: too many pieces in one cell");
+  if (output.ownLights.size() != output.ownAt.size() * output.lights)
+    throw std::invalid_argument("CellMemo: own values and lights disagree");
   const size_t count = kHeaderWords + (wide ? kWidePieceWords : kPieceWords) * output.pieces.size() +
-                       output.points.size() + kOwnValueWords * output.ownValues.size();
+                       output.points.size() + (kOwnAtWords + kLightWords * output.lights) * output.ownAt.size();
   words_ = std::make_unique_for_overwrite<uint32_t[]>(count);
   uint32_t* w = words_.get();
   *w++ = uint32_t(output.pieces.size()) | (wide ? kWideKeys : 0);
-  *w++ = uint32_t(output.ownValues.size());
+  *w++ = uint32_t(output.ownAt.size());
+  *w++ = uint32_t(output.lights);
   for (const Piece& p : output.pieces) {
     const uint64_t x = uint64_t(p.chunk.x), y = uint64_t(p.chunk.y);
     if (wide) {
@@ -59,10 +63,10 @@ CellMemo::CellMemo(uint64_t inputs, const Output& output) : inputs_(inputs) {
     *w++ = p.fan.apex;
   }
   w = std::copy(output.points.begin(), output.points.end(), w);
-  for (const OwnValue& v : output.ownValues) {
-    for (double x : {v.at.x, v.at.y, v.value.irradiance.x, v.value.irradiance.y, v.value.irradiance.z})
-      w = putDouble(w, x);
-    *w++ = uint32_t(v.value.lightClass);
+  for (size_t i = 0; i < output.ownAt.size(); ++i) {
+    w = putDouble(putDouble(w, output.ownAt[i].x), output.ownAt[i].y);
+    std::memcpy(w, output.ownLights.data() + i * output.lights, sizeof(VertexLight) * output.lights);
+    w += kLightWords * output.lights;
   }
 }
 
@@ -78,7 +82,7 @@ CellMemo& CellMemo::operator=(const CellMemo& other) {
   return *this;
 }
 
-size_t CellMemo::wordCount() const { return pointsBegin() + pointCount() + kOwnValueWords * words_[1]; }
+size_t CellMemo::wordCount() const { return pointsBegin() + pointCount() + ownValueWords() * words_[1]; }
 
 CellMemo::Piece CellMemo::piece(size_t i) const {
   const uint32_t* w = &words_[kHeaderWords + pieceWords() * i];
@@ -92,13 +96,15 @@ size_t CellMemo::pointCount() const {
   return pieces ? words_[kHeaderWords + pieceWords() * pieces - 2] : 0;  // the last piece's points end
 }
 
-CellMemo::OwnValue CellMemo::ownValue(uint32_t i) const {
-  const uint32_t* w = &words_[pointsBegin() + pointCount() + kOwnValueWords * i];
-  OwnValue value;
-  value.at = Vec2(getDouble(w), getDouble(w + 2));
-  value.value.irradiance = Vec3(getDouble(w + 4), getDouble(w + 6), getDouble(w + 8));
-  value.value.lightClass = LightClass(w[10]);
-  return value;
+Vec2 CellMemo::ownAt(uint32_t i) const {
+  const uint32_t* w = &words_[pointsBegin() + pointCount() + ownValueWords() * i];
+  return Vec2(getDouble(w), getDouble(w + 2));
+}
+
+void CellMemo::ownLights(uint32_t i, std::vector<VertexLight>& row) const {
+  const uint32_t* w = &words_[pointsBegin() + pointCount() + ownValueWords() * i + kOwnAtWords];
+  row.resize(lightCount());
+  std::memcpy(row.data(), w, sizeof(VertexLight) * row.size());
 }
 
 }  // namespace penumbra

@@ -20,7 +20,7 @@ struct MeshChunkKey {
 };
 
 // The fingerprint covers the cell's outline and corner ids, occluder list, the listed faces'
-// polygons and its corners' values (CellLighter::gather): an equal one means the cell would
+// polygons and its corners' values from each light, radiance left out (CellLighter::gather): an equal one means the cell would
 // emit the same again (a 64-bit collision, ~2⁻⁶⁴ a compare, would keep a stale cell). Keeping
 // the inputs themselves cost ~1.5 kB a cell, most of a dense room's memory.
 //
@@ -31,18 +31,16 @@ struct MeshChunkKey {
 // points, contact corners, centres) keep a copy: 4 bytes a point instead of 56 for most. A
 // piece's triangles are one fan (CellFan), kept as one word. The object is two words: millions
 // of cells each hold one.
+//
+// A copy is each light's value (VertexLight, as the engine keeps a vertex's), not their sum:
+// chunks sum them with the scene's radiances when they are assembled, so a new radiance
+// changes no cell (issue 35: a light's power re-meshes nothing).
 class CellMemo {
  public:
   // A point word with kOwnValue set indexes the own values; otherwise it is a VertexId's index,
   // with kDarkCorner set when the value leaves out the cell's dark lights (darkLights).
   static constexpr uint32_t kOwnValue = 0x80000000u, kDarkCorner = 0x40000000u;
   static constexpr uint32_t kIndexMask = 0x3fffffffu;
-  // A point's own copy: where it is and its value (kept in 11 words: the position, irradiance
-  // and class; `comparisons` is not kept, the display mesh does not show it).
-  struct OwnValue {
-    Vec2 at{0.0};
-    VertexIrradiance value;
-  };
   // A lattice square's part of the cell: its chunk, where its points end, and its fan over
   // them (the loop, then the centre point if the fan uses one).
   struct Piece {
@@ -50,11 +48,14 @@ class CellMemo {
     uint32_t pointsEnd = 0;
     CellFan fan;
   };
-  // A cell's output as it is emitted, before packing.
+  // A cell's output as it is emitted, before packing: own point i is at ownAt[i] with the
+  // values ownLights[i·lights, (i + 1)·lights).
   struct Output {
     std::vector<Piece> pieces;
     std::vector<uint32_t> points;  // builder calls in order, one word each
-    std::vector<OwnValue> ownValues;
+    std::vector<Vec2> ownAt;
+    std::vector<VertexLight> ownLights;
+    size_t lights = 0;
     void clear();
   };
 
@@ -71,20 +72,25 @@ class CellMemo {
   Piece piece(size_t i) const;
   size_t pointCount() const;
   uint32_t point(size_t e) const { return words_[pointsBegin() + e]; }
-  OwnValue ownValue(uint32_t i) const;
+  size_t lightCount() const { return valid() ? words_[2] : 0; }
+  Vec2 ownAt(uint32_t i) const;
+  // Own point i's value from each light into `row` (resized to lightCount()).
+  void ownLights(uint32_t i, std::vector<VertexLight>& row) const;
 
  private:
-  static constexpr size_t kHeaderWords = 2;  // piece count (| kWideKeys), own value count
+  static constexpr size_t kHeaderWords = 3;  // piece count (| kWideKeys), own value count, lights
   // A piece is its chunk's x and y, one word each (two if any of the cell's pieces needs them:
   // kWideKeys), then points end and fan.
   static constexpr uint32_t kWideKeys = 0x80000000u;
   static constexpr size_t kPieceWords = 4, kWidePieceWords = 6;
-  static constexpr size_t kOwnValueWords = 11;
+  // An own value: its position (4 words), then 3 words a light.
+  static constexpr size_t kOwnAtWords = 4, kLightWords = sizeof(VertexLight) / 4;
+  size_t ownValueWords() const { return kOwnAtWords + kLightWords * words_[2]; }
   size_t pieceWords() const { return words_[0] & kWideKeys ? kWidePieceWords : kPieceWords; }
   size_t pointsBegin() const { return kHeaderWords + pieceWords() * pieceCount(); }
   size_t wordCount() const;
   uint64_t inputs_ = 0;
-  // [piece count] [own value count] [pieces] [points] [own values]; null: not valid
+  // [piece count] [own value count] [lights] [pieces] [points] [own values]; null: not valid
   std::unique_ptr<uint32_t[]> words_;
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <set>
 
+#include "core/illum/light_sum.h"
 #include "core/mesh/receiver_mesh_builder.h"
 
 namespace penumbra {
@@ -38,6 +39,12 @@ class MeshMemoUpdate {
       if (needsLight(index)) touched.push_back(index);
     lightCells(touched, parallel);
     memo_.stamp_ = stamp;
+    // Cells keep each light's value; chunks hold their sum: a new radiance changes them all.
+    std::vector<Vec3> radiance;
+    for (const Light& light : scene_.lights()) radiance.push_back(light.radiance);
+    if (radiance != memo_.radiance_)
+      for (const auto& entry : memo_.chunkCells_) dirty_.insert(entry.first);
+    memo_.radiance_ = std::move(radiance);
     assembleChunks(parallel);
     counters_.chunksMeshed += dirty_.size();
     for (const auto& entry : memo_.chunks_) counters_.chunksKept += dirty_.count(entry.first) ? 0 : 1;
@@ -164,8 +171,9 @@ class MeshMemoUpdate {
   uint32_t vertexOf(const CellMemo& m, uint32_t point, const std::vector<bool>& dark, bool anyDark,
                     ReceiverMeshBuilder& builder) const {
     if (point & CellMemo::kOwnValue) {
-      const CellMemo::OwnValue own = m.ownValue(point & CellMemo::kIndexMask);
-      return builder.vertex(own.at, own.value);
+      thread_local std::vector<VertexLight> row;
+      m.ownLights(point & CellMemo::kIndexMask, row);
+      return builder.vertex(m.ownAt(point & CellMemo::kIndexMask), sumLights(scene_, row));
     }
     const VertexId v(point & CellMemo::kIndexMask);
     return builder.vertex(source_.tree.position(v),

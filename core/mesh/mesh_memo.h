@@ -35,7 +35,8 @@ struct MeshGrid {
 
 class ReceiverMeshMemo {
  public:
-  // Brings the cells and chunks up to date with the source's tree, adding what it did to
+  // Brings the cells and chunks up to date with the source's tree and the scene's radiances
+  // (a new radiance assembles every chunk again, relighting no cell), adding what it did to
   // `counters`. Cells are triangulated (cut by the lattice); vertices repeat once per side where
   // the value jumps (contact edges, cells in a light's umbra). A changed chunk is assembled again
   // from its cells' pieces in cell order, so it is bit for bit what a fresh memo gives.
@@ -51,6 +52,7 @@ class ReceiverMeshMemo {
   MeshGrid grid_;
   double eps_ = 0;
   uint64_t stamp_ = 0;  // HalfEdgeMesh::stampNow() at the last call: cells touched later changed
+  std::vector<Vec3> radiance_;   // the lights' radiances the chunks were summed with
   std::vector<CellMemo> cells_;  // by CellId index
   std::map<MeshChunkKey, std::shared_ptr<const ReceiverMesh>> chunks_;
   std::map<MeshChunkKey, std::vector<uint32_t>> chunkCells_;  // cells with a piece in each chunk, ascending

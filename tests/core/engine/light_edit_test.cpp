@@ -95,6 +95,7 @@ TEST(LightEdit, MovedAndResizedLightEqualsAFreshBuild) {
 
 TEST(LightEdit, RadianceAloneRescalesExactly) {
   Engine engine(makeCubesScene(CubesSceneOptions{5, 4}));
+  (void)engine.mesh();  // the display memo filled: a new radiance must relight none of its cells
   const std::vector<Engine::Receiver> before = engine.receivers();
   std::vector<std::vector<VertexIrradiance>> valuesBefore(before.size());
   for (size_t r = 0; r < before.size(); ++r)
@@ -120,7 +121,27 @@ TEST(LightEdit, RadianceAloneRescalesExactly) {
   }
   Engine rebuilt(freshScene(engine.scene()));
   EXPECT_EQ(meshText(engine), meshText(rebuilt));
+  // The chunks were summed again with the new radiance; no cell was lit again (issue 35).
+  EXPECT_EQ(engine.lastMeshCounters().cellsLit, 0u);
+  EXPECT_GT(engine.lastMeshCounters().chunksMeshed, 0u);
+  EXPECT_EQ(engine.lastMeshCounters().chunksKept, 0u);
   EXPECT_NO_THROW(engine.validate());
+}
+
+// Two lights, one made brighter and the other coloured: values only, each light's share
+// rescaled, the display mesh equal to a rebuild's byte for byte and no cell lit again.
+TEST(LightEdit, RadianceOfOneOfTwoLightsRelightsNoCell) {
+  Engine engine(makeCubesScene(mixedCubesOptions(17)));
+  ASSERT_EQ(engine.scene().lights().size(), 2u);
+  (void)engine.mesh();
+  engine.apply(Frame{{setLight("light_2", std::nullopt, Vec3(0.5, 3.0, 7.25))}});
+  Engine rebuilt(freshScene(engine.scene()));
+  EXPECT_EQ(meshText(engine), meshText(rebuilt));
+  EXPECT_EQ(engine.lastMeshCounters().cellsLit, 0u);
+  engine.apply(Frame{{setLight("light", std::nullopt, Vec3(0.0))}});  // switched off
+  Engine rebuilt2(freshScene(engine.scene()));
+  EXPECT_EQ(meshText(engine), meshText(rebuilt2));
+  EXPECT_EQ(engine.lastMeshCounters().cellsLit, 0u);
 }
 
 // Light and object edits in one frame, then again after incremental frames: the result

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <random>
 
@@ -17,6 +18,7 @@ namespace {
 CellMemo::Output randomOutput(std::mt19937_64& rng) {
   CellMemo::Output out;
   std::uniform_int_distribution<int> small(0, 6);
+  out.lights = size_t(small(rng));  // no light too: a copy is then only its position
   const int64_t extremes[] = {0, -1, 1, std::numeric_limits<int64_t>::min(), std::numeric_limits<int64_t>::max(),
                               int64_t(1) << 40, -(int64_t(1) << 33)};
   const int pieces = 1 + small(rng);
@@ -27,11 +29,17 @@ CellMemo::Output randomOutput(std::mt19937_64& rng) {
     const int points = 3 + small(rng);
     for (int k = 0; k < points; ++k) {
       if (rng() % 3 == 0) {
-        out.points.push_back(CellMemo::kOwnValue | uint32_t(out.ownValues.size()));
-        VertexIrradiance value;
-        value.irradiance = Vec3(double(rng() % 1000) / 7.0, 1.5, -0.0);
-        value.lightClass = LightClass(rng() % 3);
-        out.ownValues.push_back({Vec2(double(rng() % 100) / 3.0, -2.25), value});
+        out.points.push_back(CellMemo::kOwnValue | uint32_t(out.ownAt.size()));
+        out.ownAt.push_back(Vec2(double(rng() % 100) / 3.0, -2.25));
+        for (size_t l = 0; l < out.lights; ++l) {
+          VertexLight light;
+          light.factor = l % 2 ? -0.0 : double(rng() % 1000) / 7.0;
+          light.comparisons = uint32_t(rng() % VertexLight::kMaxComparisons);
+          light.lightClass = LightClass(rng() % 3);
+          light.applies = rng() % 2;
+          light.decidedBy = VertexCase(rng() % 4);
+          out.ownLights.push_back(light);
+        }
       } else {
         out.points.push_back(uint32_t(rng() & CellMemo::kIndexMask) | (rng() % 2 ? CellMemo::kDarkCorner : 0));
       }
@@ -59,14 +67,19 @@ TEST(CellMemo, PackedOutputReadsBackExactly) {
     }
     ASSERT_EQ(memo.pointCount(), out.points.size());
     for (size_t e = 0; e < out.points.size(); ++e) EXPECT_EQ(memo.point(e), out.points[e]);
-    for (uint32_t k = 0; k < out.ownValues.size(); ++k) {
-      EXPECT_EQ(memo.ownValue(k).at, out.ownValues[k].at);
-      EXPECT_TRUE(identicalValue(memo.ownValue(k).value, out.ownValues[k].value));
+    ASSERT_EQ(memo.lightCount(), out.lights);
+    std::vector<VertexLight> row;
+    for (uint32_t k = 0; k < out.ownAt.size(); ++k) {
+      EXPECT_EQ(memo.ownAt(k), out.ownAt[k]);
+      memo.ownLights(k, row);
+      ASSERT_EQ(row.size(), out.lights);
+      for (size_t l = 0; l < out.lights; ++l)  // every bit: factor (−0 too), counts, flags
+        EXPECT_EQ(std::memcmp(&row[l], &out.ownLights[k * out.lights + l], sizeof(VertexLight)), 0);
     }
     const CellMemo copy = memo;  // a copy holds the same words
     ASSERT_EQ(copy.pointCount(), memo.pointCount());
     for (size_t e = 0; e < out.points.size(); ++e) EXPECT_EQ(copy.point(e), memo.point(e));
-    for (uint32_t k = 0; k < out.ownValues.size(); ++k) EXPECT_EQ(copy.ownValue(k).at, memo.ownValue(k).at);
+    for (uint32_t k = 0; k < out.ownAt.size(); ++k) EXPECT_EQ(copy.ownAt(k), memo.ownAt(k));
     if (HasFailure()) return;
   }
 }
