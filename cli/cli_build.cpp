@@ -100,7 +100,8 @@ int runBuild(const Args& args) {
     const std::optional<Mesh> indirect = bakedIndirect(args, engine.scene(), mesh, settings.threads);
     if (indirect) glb.indirect = &*indirect;
     const interchange::GlbFile file = interchange::saveMeshGlb(engine.scene(), mesh, *out, glb);
-    std::fprintf(stderr, "GLB COLOR_0 = radiance (W m^-2 sr^-1) x %.9g\n", file.colorScale);
+    std::fprintf(stderr, "GLB COLOR_0 = min(1, %.9g x radiance with %s (W m^-2 sr^-1)); exact values in _RADIANCE, "
+                 "_IRRADIANCE\n", file.colorScale, indirect ? "the indirect light" : "the ambient fill");
   } else {
     protocol::saveMeshFile(engine.scene(), mesh, std::filesystem::path(scenePath).filename().string(), *out);
   }

@@ -17,8 +17,10 @@ commands:
   info SCENE                           faces, lights, bounds and per-light face classes
   reference SCENE --grid N --out MESH  exact reference irradiance on an N×N grid per receiving face
   build SCENE --out MESH [--stats]     the discontinuity mesh; --stats prints counters and timings as JSON
-           [--color-scale S] [--edges] MESH ending in .glb: glTF binary, COLOR_0 = radiance × S
-           [--indirect [--sensor-size N] [--bounces B]]  .glb: COLOR_0 with the indirect light (sensors of N², 8)
+           [--color-scale S] [--edges] MESH ending in .glb: glTF binary, COLOR_0 = min(1, S × radiance
+                                       with the ambient fill; default S: the page's exposure), exact
+                                       _RADIANCE and _IRRADIANCE; lights emissive; the camera
+           [--indirect [--sensor-size N] [--bounces B]]  .glb: the indirect light instead of the fill (sensors of N², 8)
            [--grid G]                  overlap-cube tiles per side (default: from the face count)
            [--threads N]               build threads (also replay, serve); default: every core
   render SCENE --out IMG.png|IMG.exr   an image shaded by the DM mesh (built, or --mesh MESH);

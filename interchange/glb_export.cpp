@@ -8,20 +8,29 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <glm/gtc/quaternion.hpp>
 #include <tiny_gltf.h>
+
+#include "core/illum/ambient_fill.h"
+#include "core/render/camera_projection.h"
 
 namespace penumbra::interchange {
 
 namespace {
 
-// One primitive's worth of vertex data before it goes into the buffer.
+void append(std::vector<float>& out, const Vec3& v) { out.insert(out.end(), {float(v.x), float(v.y), float(v.z)}); }
+
+// One primitive's worth of vertex data before it goes into the buffer: positions, and for an
+// object's faces the display colour and the exact values (empty otherwise).
 struct PrimitiveData {
-  std::vector<float> positions;  // xyz
-  std::vector<float> colors;     // rgb
+  std::vector<float> positions, colors, radiance, irradiance;  // xyz / rgb
   std::vector<uint32_t> indices;
-  void add(const Vec3& p, const Vec3& color) {
-    positions.insert(positions.end(), {float(p.x), float(p.y), float(p.z)});
-    colors.insert(colors.end(), {float(color.x), float(color.y), float(color.z)});
+  void add(const Vec3& p) { append(positions, p); }
+  void add(const Vec3& p, const Vec3& color, const Vec3& exactRadiance, const Vec3& exactIrradiance) {
+    append(positions, p);
+    append(colors, color);
+    append(radiance, exactRadiance);
+    append(irradiance, exactIrradiance);
   }
   size_t vertexCount() const { return positions.size() / 3; }
 };
@@ -43,9 +52,59 @@ class GltfBuilder {
     material.pbrMetallicRoughness.metallicFactor = 0;
     material.pbrMetallicRoughness.roughnessFactor = 1;
     material.extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object{});
-    if (model_.extensionsUsed.empty()) model_.extensionsUsed.push_back("KHR_materials_unlit");
+    use("KHR_materials_unlit");
     model_.materials.push_back(material);
     return int(model_.materials.size() - 1);
+  }
+
+  // A black surface that emits `emitted` (linear, any size): emissiveFactor in [0, 1] and the
+  // rest as KHR_materials_emissive_strength.
+  int emissiveMaterial(const std::string& name, const Vec3& emitted) {
+    tinygltf::Material material;
+    material.name = name;
+    material.pbrMetallicRoughness.baseColorFactor = {0, 0, 0, 1};
+    material.pbrMetallicRoughness.metallicFactor = 0;
+    material.pbrMetallicRoughness.roughnessFactor = 1;
+    const double strength = std::max({emitted.x, emitted.y, emitted.z});
+    const Vec3 factor = strength > 0 ? emitted / strength : Vec3(0.0);
+    material.emissiveFactor = {factor.x, factor.y, factor.z};
+    if (strength != 1 && strength > 0) {
+      material.extensions["KHR_materials_emissive_strength"] =
+          tinygltf::Value(tinygltf::Value::Object{{"emissiveStrength", tinygltf::Value(strength)}});
+      use("KHR_materials_emissive_strength");
+    }
+    model_.materials.push_back(material);
+    return int(model_.materials.size() - 1);
+  }
+
+  // A camera node at `camera` (glTF cameras look down their −Z with +Y up). No aspect ratio:
+  // the viewer's (an orthographic view is square: xmag = ymag).
+  void addCamera(const Camera& camera) {
+    tinygltf::Camera out;
+    out.name = "camera";
+    if (camera.projection == Camera::Projection::Orthographic) {
+      out.type = "orthographic";
+      out.orthographic.ymag = camera.height / 2;
+      out.orthographic.xmag = camera.height / 2;
+      out.orthographic.znear = camera.near;
+      out.orthographic.zfar = camera.far;
+    } else {
+      out.type = "perspective";
+      out.perspective.yfov = camera.fovYDeg * M_PI / 180;
+      out.perspective.znear = camera.near;
+      out.perspective.zfar = camera.far;
+    }
+    model_.cameras.push_back(out);
+    const Vec3 back = glm::normalize(camera.position - camera.target);
+    const Vec3 right = glm::normalize(glm::cross(camera.up, back));
+    const glm::dquat rotation = glm::quat_cast(glm::dmat3(right, glm::cross(back, right), back));
+    tinygltf::Node node;
+    node.name = "camera";
+    node.camera = int(model_.cameras.size() - 1);
+    node.translation = {camera.position.x, camera.position.y, camera.position.z};
+    node.rotation = {rotation.x, rotation.y, rotation.z, rotation.w};
+    model_.nodes.push_back(node);
+    model_.scenes[0].nodes.push_back(int(model_.nodes.size() - 1));
   }
 
   // A mesh of one primitive and a node that shows it (world space: no transform).
@@ -54,8 +113,12 @@ class GltfBuilder {
     primitive.mode = mode;
     primitive.material = material;
     primitive.attributes["POSITION"] = accessor(data.positions, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
-    if (!data.colors.empty())
+    if (!data.colors.empty()) {
       primitive.attributes["COLOR_0"] = accessor(data.colors, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+      primitive.attributes["_RADIANCE"] = accessor(data.radiance, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+      primitive.attributes["_IRRADIANCE"] =
+          accessor(data.irradiance, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+    }
     primitive.indices = accessor(data.indices, TINYGLTF_TYPE_SCALAR, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER, false);
     tinygltf::Mesh mesh;
     mesh.name = name;
@@ -82,6 +145,11 @@ class GltfBuilder {
   }
 
  private:
+  void use(const std::string& extension) {
+    if (std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), extension) == model_.extensionsUsed.end())
+      model_.extensionsUsed.push_back(extension);
+  }
+
   template <typename T>
   int accessor(const std::vector<T>& values, int type, int target, bool withBounds) {
     std::vector<unsigned char>& data = model_.buffers[0].data;
@@ -115,11 +183,30 @@ class GltfBuilder {
   tinygltf::Model model_;
 };
 
-// indirect: the same receiver's indirect irradiance (GlbOptions::indirect), or null.
-Vec3 radianceOf(const Scene& scene, const ReceiverMesh& receiver, const ReceiverMesh* indirect, size_t vertex) {
+// A receiver vertex's exact outgoing radiance, albedo/π · (E + E_indirect) (indirect: the same
+// receiver's indirect irradiance, GlbOptions::indirect, or null), and its display radiance with
+// the fill: the indirect irradiance when given, else `ambient`.
+Vec3 exactRadiance(const Scene& scene, const ReceiverMesh& receiver, const ReceiverMesh* indirect, size_t vertex) {
   const Vec3 e = receiver.irradiance[vertex] + (indirect ? indirect->irradiance.at(vertex) : Vec3(0.0));
   return scene.albedo(receiver.face) / M_PI * e;
 }
+Vec3 displayRadiance(const Scene& scene, const ReceiverMesh& receiver, const ReceiverMesh* indirect, size_t vertex,
+                     const Vec3& ambient) {
+  return exactRadiance(scene, receiver, indirect, vertex) +
+         (indirect ? Vec3(0.0) : scene.albedo(receiver.face) / M_PI * ambient);
+}
+
+// The page's automatic exposure (web_client/src/tone_map.js): 1 / the 99th percentile of the
+// display radiance's largest channel over the receivers' vertices; 1 when all are dark.
+double automaticScale(const std::vector<double>& largestChannels) {
+  std::vector<double> values = largestChannels;
+  if (values.empty()) return 1;
+  const size_t at = std::min(values.size() - 1, size_t(std::floor(0.99 * double(values.size()))));
+  std::nth_element(values.begin(), values.begin() + long(at), values.end());
+  return values[at] > 0 ? 1 / values[at] : 1;
+}
+
+Vec3 clampedColour(const Vec3& radiance, double scale) { return glm::min(radiance * scale, Vec3(1.0)); }
 
 }  // namespace
 
@@ -130,15 +217,16 @@ GlbFile meshToGlb(const Scene& scene, const Mesh& mesh, const GlbOptions& option
     return options.indirect ? &options.indirect->receivers[size_t(&receiver - mesh.receivers.data())] : nullptr;
   };
   GlbFile file;
+  file.ambient = ambientIrradiance(scene);
   file.colorScale = options.colorScale;
   if (!(file.colorScale > 0)) {
-    double brightest = 0;
+    std::vector<double> largest;
     for (const ReceiverMesh& receiver : mesh.receivers)
       for (size_t v = 0; v < receiver.positions.size(); ++v) {
-        const Vec3 radiance = radianceOf(scene, receiver, indirectOf(receiver), v);
-        brightest = std::max({brightest, radiance.x, radiance.y, radiance.z});
+        const Vec3 radiance = displayRadiance(scene, receiver, indirectOf(receiver), v, file.ambient);
+        largest.push_back(std::max({radiance.x, radiance.y, radiance.z}));
       }
-    file.colorScale = brightest > 0 ? 1 / brightest : 1;
+    file.colorScale = automaticScale(largest);
   }
 
   GltfBuilder builder;
@@ -158,13 +246,17 @@ GlbFile meshToGlb(const Scene& scene, const Mesh& mesh, const GlbOptions& option
     PrimitiveData data;
     for (const ReceiverMesh* receiver : receiversOf[handle]) {
       const uint32_t first = uint32_t(data.vertexCount());
+      const ReceiverMesh* indirect = indirectOf(*receiver);
       for (size_t v = 0; v < receiver->positions.size(); ++v)
-        data.add(receiver->positions[v], radianceOf(scene, *receiver, indirectOf(*receiver), v) * file.colorScale);
+        data.add(receiver->positions[v],
+                 clampedColour(displayRadiance(scene, *receiver, indirect, v, file.ambient), file.colorScale),
+                 exactRadiance(scene, *receiver, indirect, v), receiver->irradiance[v]);
       for (const auto& t : receiver->triangles) data.indices.insert(data.indices.end(), {first + t[0], first + t[1], first + t[2]});
     }
-    for (const Face* face : darkFacesOf[handle]) {  // lit by nothing: black, as a fan (faces are convex)
+    for (const Face* face : darkFacesOf[handle]) {  // lit by no light: the fill only, as a fan (faces are convex)
       const uint32_t first = uint32_t(data.vertexCount());
-      for (const Vec3& p : face->polygon) data.add(p, Vec3(0.0));
+      const Vec3 fill = options.indirect ? Vec3(0.0) : scene.albedo(face->id) / M_PI * file.ambient;
+      for (const Vec3& p : face->polygon) data.add(p, clampedColour(fill, file.colorScale), Vec3(0.0), Vec3(0.0));
       for (uint32_t k = 1; k + 1 < face->polygon.size(); ++k) data.indices.insert(data.indices.end(), {first, first + k, first + k + 1});
     }
     if (data.indices.empty()) continue;
@@ -173,31 +265,38 @@ GlbFile meshToGlb(const Scene& scene, const Mesh& mesh, const GlbOptions& option
     builder.addMesh(scene.objects()[i].id, data, unlit, TINYGLTF_MODE_TRIANGLES);
     ++file.meshes;
   }
-  if (options.lights && !scene.lights().empty()) {
-    PrimitiveData data;
+  if (options.lights)
     for (const Light& light : scene.lights()) {
-      const uint32_t first = uint32_t(data.vertexCount());
-      for (const Vec3& p : light.polygon) data.add(p, light.radiance * file.colorScale);
-      for (uint32_t k = 1; k + 1 < light.polygon.size(); ++k) data.indices.insert(data.indices.end(), {first, first + k, first + k + 1});
+      PrimitiveData data;
+      for (const Vec3& p : light.polygon) data.add(p);
+      for (uint32_t k = 1; k + 1 < light.polygon.size(); ++k) data.indices.insert(data.indices.end(), {0, k, k + 1});
+      builder.addMesh(light.id, data, builder.emissiveMaterial("light " + light.id, light.radiance * file.colorScale),
+                      TINYGLTF_MODE_TRIANGLES);
+      ++file.meshes;
     }
-    builder.addMesh("lights", data, unlit, TINYGLTF_MODE_TRIANGLES);
-    ++file.meshes;
-  }
   if (!options.edges.empty()) {
     PrimitiveData data;
-    for (const Segment3& edge : options.edges) {
+    for (const Segment3& edge : options.edges)
       for (const Vec3& p : edge) {
-        data.positions.insert(data.positions.end(), {float(p.x), float(p.y), float(p.z)});
+        data.add(p);
         data.indices.push_back(uint32_t(data.indices.size()));
       }
-    }
     builder.addMesh("discontinuities", data, builder.unlitMaterial("penumbra-discontinuities", Vec3(1, 0.35, 0)),
                     TINYGLTF_MODE_LINE);
     ++file.meshes;
   }
-  builder.setExtras({{"color_scale", tinygltf::Value(file.colorScale)},
-                     {"indirect", tinygltf::Value(options.indirect != nullptr)},
-                     {"color", tinygltf::Value(std::string("COLOR_0 = linear radiance (W m^-2 sr^-1) x color_scale"))}});
+  builder.addCamera(scene.camera() ? *scene.camera() : defaultCamera(scene.bounds()));
+  auto rgb = [](const Vec3& v) {
+    return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(v.x), tinygltf::Value(v.y), tinygltf::Value(v.z)});
+  };
+  builder.setExtras(
+      {{"color_scale", tinygltf::Value(file.colorScale)},
+       {"ambient", rgb(file.ambient)},
+       {"indirect", tinygltf::Value(options.indirect != nullptr)},
+       {"color", tinygltf::Value(std::string("COLOR_0 = min(1, color_scale x albedo/pi x (E + fill)), fill = the "
+                                             "indirect irradiance if indirect, else ambient (W m^-2)"))},
+       {"radiance", tinygltf::Value(std::string("_RADIANCE = albedo/pi x (E + indirect) (W m^-2 sr^-1)"))},
+       {"irradiance", tinygltf::Value(std::string("_IRRADIANCE = E, the exact direct irradiance (W m^-2)"))}});
   file.bytes = builder.glb();
   return file;
 }

@@ -1,7 +1,14 @@
-// Lit mesh → glTF 2.0 binary (GLB) through tinygltf: one mesh per object with
-// POSITION, linear COLOR_0 = outgoing radiance × a documented scale, and an
-// unlit material (KHR_materials_unlit), so viewers show the baked light as is.
-// Free functions; thread-safe.
+// Lit mesh → glTF 2.0 binary (GLB) through tinygltf, valid for the Khronos glTF-Validator
+// (issue 40). One mesh and node per object, named by its id, with POSITION, COLOR_0 = the
+// display colour in [0, 1] (the page's exposure: min(1, color_scale · albedo/π · (E + fill)),
+// fill = the indirect irradiance when given, else the ambient fill, core/illum/ambient_fill.h)
+// on an unlit material (KHR_materials_unlit), and the exact values losslessly in application
+// attributes: _IRRADIANCE = the direct irradiance E (W·m⁻²), _RADIANCE = albedo/π · (E + the
+// indirect irradiance when given) (W·m⁻²·sr⁻¹), both float RGB. Each light is a mesh and node
+// named by its id with an emissive material: emissiveFactor = its radiance over its largest
+// channel, KHR_materials_emissive_strength = that channel × color_scale (the colour it would
+// have in COLOR_0, unclamped). The scene's camera (or the default view of its bounds) is a
+// camera node. Free functions; thread-safe.
 #pragma once
 
 #include <array>
@@ -17,20 +24,21 @@ namespace penumbra::interchange {
 using Segment3 = std::array<Vec3, 2>;
 
 struct GlbOptions {
-  // COLOR_0 = radiance × colorScale, radiance = albedo / π × irradiance
-  // (W·m⁻²·sr⁻¹, linear, not tone-mapped). 0: 1 / the largest channel of any
-  // receiver vertex's radiance, so the brightest vertex is 1.
+  // COLOR_0 = min(1, colorScale × albedo/π × (E + fill)), linear. 0: the page's automatic
+  // exposure, 1 / the 99th percentile over the receivers' vertices of that radiance's largest
+  // channel.
   double colorScale = 0;
-  bool lights = true;           // a mesh "lights": the light polygons, COLOR_0 = radiance × colorScale
+  bool lights = true;           // a mesh per light: its polygon, emissive (see above)
   std::vector<Segment3> edges;  // non-empty: a mesh "discontinuities" of LINES (dmEdges())
-  // Not null: indirect irradiance per vertex (gi::vertexIndirect of the same mesh, same shape),
-  // added to the direct one: radiance = albedo / π × (E_direct + E_indirect).
+  // Not null: indirect irradiance per vertex (gi::vertexIndirect of the same mesh, same shape):
+  // the fill of COLOR_0 and added to _RADIANCE (albedo / π × (E_direct + E_indirect)).
   const Mesh* indirect = nullptr;
 };
 
 struct GlbFile {
   std::vector<uint8_t> bytes;
   double colorScale = 1;  // the scale used (also in asset.extras.penumbra.color_scale)
+  Vec3 ambient{0.0};      // the fill used without indirect light (asset.extras.penumbra.ambient)
   size_t meshes = 0, vertices = 0, triangles = 0;
 };
 

@@ -85,8 +85,8 @@ void sendBinary(const httplib::Request& req, httplib::Response& res, std::string
 
 void sendGlb(const httplib::Request& req, httplib::Response& res, const SceneSnapshot& snapshot,
              const IndirectBake* bake) {
-  // A fixed color_scale keeps colours comparable across versions (the default, 1 /
-  // the brightest radiance channel, follows the scene).
+  // A fixed color_scale keeps colours comparable across versions (the default, the page's
+  // automatic exposure, follows the scene).
   interchange::GlbOptions glbOptions;
   if (const auto scale = queryNumber(req, "color_scale")) {
     if (!(*scale > 0))

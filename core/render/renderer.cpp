@@ -12,6 +12,7 @@
 #include "core/reference/exact_irradiance.h"
 #include "core/render/dm_visibility.h"
 #include "core/render/mesh_lookup.h"
+#include "core/illum/ambient_fill.h"
 #include "core/render/light_hit.h"
 #include "core/render/ray_scene.h"
 #include "core/render/volume_lighting.h"
@@ -21,15 +22,6 @@ namespace penumbra {
 namespace {
 
 constexpr double kSurfacePercentile = 0.99;
-
-Vec3 ambientIrradiance(const Scene& scene, double fraction) {
-  Vec3 power(0.0);
-  for (const Light& light : scene.lights()) power += M_PI * light.radiance * light.area();
-  const Vec3 e = scene.bounds().max - scene.bounds().min;
-  const double surface = 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
-  if (!(surface > 0)) return Vec3(0.0);
-  return fraction * power / surface;
-}
 
 Vec3 materialAlbedo(const Scene& scene, const std::string& material) {
   if (const auto index = scene.findMaterial(material)) return scene.materials()[*index].albedo;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/gi/sensor_gi.h"
+#include "core/illum/ambient_fill.h"
 #include "core/mesh/mesh.h"
 #include "core/render/camera_projection.h"
 #include "core/render/microfacet_shading.h"
@@ -32,7 +33,7 @@ struct RenderSettings {
   // power (Σ π·radiance·area) / the surface area of the scene's bounding box — roughly that
   // fraction of the mean irradiance if all power landed evenly on the box. Radiance of a
   // surface = albedo/π · (E + ambient); faces that receive no light get the ambient part only.
-  double ambientFraction = 0.1;
+  double ambientFraction = kDefaultAmbientFraction;
   Vec3 background{0.0};  // radiance of rays that hit nothing
   // Linear scale before tone mapping; 0 = automatic (see RenderedImage::exposure).
   double exposure = 0;

@@ -155,11 +155,11 @@ std::vector<float> colorsOf(const std::string& glb) {
                                           reinterpret_cast<const unsigned char*>(glb.data()),
                                           unsigned(glb.size())))
       << err;
-  std::vector<float> out;  // every object mesh's COLOR_0, in mesh order
+  std::vector<float> out;  // every object mesh's exact _RADIANCE, in mesh order (lights have none)
   for (const tinygltf::Mesh& mesh : model.meshes) {
-    if (mesh.name == "lights") continue;
+    if (!mesh.primitives[0].attributes.count("_RADIANCE")) continue;
     const tinygltf::Accessor& a =
-        model.accessors[size_t(mesh.primitives[0].attributes.at("COLOR_0"))];
+        model.accessors[size_t(mesh.primitives[0].attributes.at("_RADIANCE"))];
     const tinygltf::BufferView& view = model.bufferViews[size_t(a.bufferView)];
     const size_t begin = out.size();
     out.resize(begin + 3 * a.count);
@@ -169,7 +169,7 @@ std::vector<float> colorsOf(const std::string& glb) {
   return out;
 }
 
-TEST(MeshIndirect, GlbColorsIncludeIndirectLightAndAreBrighterInShadow) {
+TEST(MeshIndirect, GlbRadianceIncludesIndirectLightAndIsBrighterInShadow) {
   RunningServer running;
   const std::string id = running.addBundled("cornell");
   auto client = running.client();
@@ -178,7 +178,7 @@ TEST(MeshIndirect, GlbColorsIncludeIndirectLightAndAreBrighterInShadow) {
   const std::vector<float> bounced = colorsOf(client.Get((base + "&indirect=1").c_str())->body);
   ASSERT_EQ(direct.size(), bounced.size());
   EXPECT_NE(direct, bounced);
-  // Vertices in umbra (direct colour 0): indirect light only, so brighter; nothing gets darker.
+  // Vertices in umbra (direct radiance 0): indirect light only, so brighter; nothing gets darker.
   size_t shadowed = 0, brighter = 0;
   for (size_t i = 0; i < direct.size(); ++i) {
     EXPECT_GE(bounced[i], direct[i] - 1e-6f);

@@ -37,6 +37,7 @@ async function glbChecks(page, sceneId) {
     const meshJson = await meshResponse.json();
     const { scene } = await (await fetch(`/api/scenes/${sceneId}`)).json();
     const scale = gltf.asset.extras && gltf.asset.extras.penumbra ? gltf.asset.extras.penumbra.color_scale : null;
+    const ambient = gltf.asset.extras && gltf.asset.extras.penumbra ? gltf.asset.extras.penumbra.ambient : null;
 
     const meshes = new Map();
     gltf.scene.traverse((o) => { if (o.isMesh) meshes.set(o.name, o); });
@@ -55,6 +56,7 @@ async function glbChecks(page, sceneId) {
       if (!mesh) { perObject.push({ id: object.id, missing: true, expected }); continue; }
       const position = mesh.geometry.attributes.position;
       const color = mesh.geometry.attributes.color;
+      const exact = mesh.geometry.attributes._radiance;  // GLTFLoader keeps _RADIANCE lower-cased
       totalVertices += position.count;
       if (mesh.material.isMeshBasicMaterial && mesh.material.vertexColors) ++unlit;
       perObject.push({ id: object.id, vertices: position.count, expected });
@@ -65,12 +67,14 @@ async function glbChecks(page, sceneId) {
         const radiance = (k) => [0, 1, 2].map((c) => albedo[c] / Math.PI * r.irradiance[k][c]);
         const order = r.irradiance.map((e, k) => [e[0] + e[1] + e[2], k]).sort((a, b) => a[0] - b[0]);
         for (const k of new Set([0, order[0][1], order[order.length - 1][1]])) {
-          const want = radiance(k).map((x) => x * scale);
+          // COLOR_0: the page's display colour, min(1, scale × albedo/π × (E + ambient)); _RADIANCE exact.
+          const want = radiance(k).map((x, c) => Math.min(1, scale * (x + albedo[c] / Math.PI * ambient[c])));
           const got = [color.getX(base + k), color.getY(base + k), color.getZ(base + k)];
+          const gotExact = exact ? [exact.getX(base + k), exact.getY(base + k), exact.getZ(base + k)] : null;
           ++colourChecks;
-          if (!want.every((x, c) => close(got[c], x))) {
+          if (!want.every((x, c) => close(got[c], x)) || !gotExact || !radiance(k).every((x, c) => close(gotExact[c], x))) {
             ++colourMismatches;
-            if (examples.length < 5) examples.push({ object: object.id, face: r.face, vertex: k, want, got });
+            if (examples.length < 5) examples.push({ object: object.id, face: r.face, vertex: k, want, got, exact: radiance(k), gotExact });
           }
           const p = [position.getX(base + k), position.getY(base + k), position.getZ(base + k)];
           if (!p.every((x, c) => Math.abs(x - r.positions[k][c]) <= 1e-6 * Math.max(1, Math.abs(r.positions[k][c])))) ++positionMismatches;
@@ -78,9 +82,12 @@ async function glbChecks(page, sceneId) {
         base += r.positions.length;
       }
     }
-    const lights = meshes.get('lights');
+    // Each light: its own mesh, named by its id, emitting radiance × scale (emissive × intensity).
+    const lights = scene.lights.map((l) => meshes.get(l.id)).filter((m) => m);
     const lightCorners = scene.lights.reduce((n, l) => n + l.polygon.length, 0);
-    const lightColour = lights ? [lights.geometry.attributes.color.getX(0), lights.geometry.attributes.color.getY(0), lights.geometry.attributes.color.getZ(0)] : null;
+    const lightVertices = lights.reduce((n, m) => n + m.geometry.attributes.position.count, 0);
+    const first = meshes.get(scene.lights[0].id);
+    const lightColour = first ? [0, 1, 2].map((c) => first.material.emissive.toArray()[c] * first.material.emissiveIntensity) : null;
 
     // Draw the GLB as three.js shows it (unlit, vertex colours) from the scene's camera: the
     // floor must show both light and shadow (the baked soft shadows are visible).
@@ -121,7 +128,7 @@ async function glbChecks(page, sceneId) {
     for (const g of sums) { if (g >= 0.5 * floorMax) ++bright; else if (g <= 0.1 * floorMax) ++dark; }
     return { contentType, headerScale, scale, glbVersion, meshVersion: meshResponse.headers.get('X-Penumbra-Version'),
       perObject, totalVertices, expectedTotal, colourChecks, colourMismatches, positionMismatches, examples,
-      unlit, objects: scene.objects.length, lightVertices: lights ? lights.geometry.attributes.position.count : 0, lightCorners,
+      unlit, objects: scene.objects.length, lightVertices, lightCorners,
       lightColour, lightRadiance: scene.lights[0].radiance, floorPixels, floorMax, bright, dark };
   }, sceneId);
 }
@@ -136,11 +143,12 @@ async function glbTest(page, sceneId) {
   check(wrong.length === 0 && r.perObject.length === r.objects,
     'every object\'s GLB mesh has the mesh JSON\'s vertex count (receivers\' vertices + dark faces\' corners)', JSON.stringify(wrong));
   check(r.totalVertices === r.expectedTotal && r.totalVertices > 0, `GLB vertices total ${r.totalVertices} = expected ${r.expectedTotal}`);
-  check(r.lightVertices === r.lightCorners, 'the "lights" mesh has the lights\' corners', `${r.lightVertices} vs ${r.lightCorners}`);
+  check(r.lightVertices === r.lightCorners, 'the lights\' meshes have the lights\' corners', `${r.lightVertices} vs ${r.lightCorners}`);
   check(r.colourChecks >= 3 * r.objects && r.colourMismatches === 0 && r.positionMismatches === 0,
-    `COLOR_0 = albedo/π × irradiance × color_scale and POSITION = the mesh's, at ${r.colourChecks} vertices`, JSON.stringify(r.examples));
-  check(r.lightColour && r.lightColour.every((x, c) => Math.abs(x - r.lightRadiance[c] * r.scale) <= 1e-6 * Math.max(1, x)),
-    'the lights\' colour is their radiance × color_scale', JSON.stringify(r.lightColour));
+    `COLOR_0 = min(1, color_scale × albedo/π × (E + ambient)), _RADIANCE = albedo/π × E and POSITION = the mesh's, at ${r.colourChecks} vertices`,
+    JSON.stringify(r.examples));
+  check(r.lightColour && r.lightColour.every((x, c) => Math.abs(x - r.lightRadiance[c] * r.scale) <= 1e-5 * Math.max(1, x)),
+    'the light emits its radiance × color_scale (emissive × KHR_materials_emissive_strength)', JSON.stringify(r.lightColour));
   check(r.unlit === r.objects, 'GLTFLoader made unlit vertex-coloured materials (KHR_materials_unlit)', `${r.unlit} of ${r.objects}`);
   check(r.floorPixels > 50 && r.floorMax >= 20 && r.bright > 5 && r.dark > 5,
     'drawn by three.js, the floor shows both light and shadow',
