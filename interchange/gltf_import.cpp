@@ -1,5 +1,6 @@
 #include "interchange/gltf_import.h"
 
+#include "interchange/gltf_extensions.h"
 #include "interchange/material_mapping.h"
 
 #include <cstring>
@@ -58,6 +59,7 @@ class AccessorReader {
       throw ValidationError(path, "buffer view has no buffer");
     const std::vector<unsigned char>& data = model.buffers[size_t(view.buffer)].data;
     componentType_ = accessor.componentType;
+    normalized_ = accessor.normalized;
     components_ = tinygltf::GetNumComponentsInType(uint32_t(accessor.type));
     const int componentSize = tinygltf::GetComponentSizeInBytes(uint32_t(componentType_));
     if (components_ <= 0 || componentSize <= 0) throw ValidationError(path, "unknown accessor type");
@@ -75,13 +77,20 @@ class AccessorReader {
   int components() const { return components_; }
   int componentType() const { return componentType_; }
 
+  // Integer components as stored, or mapped to [0, 1] / [−1, 1] when the accessor is
+  // normalized (KHR_mesh_quantization stores positions as (normalized) bytes and shorts).
   double component(size_t i, int c) const {
     const unsigned char* p = base_ + stride_ * i + size_t(c) * (elementSize_ / size_t(components_));
+    auto scaled = [&](double v, double max, bool isSigned) {
+      return !normalized_ ? v : isSigned ? std::max(v / max, -1.0) : v / max;
+    };
     switch (componentType_) {
       case TINYGLTF_COMPONENT_TYPE_FLOAT: { float v; std::memcpy(&v, p, 4); return v; }
       case TINYGLTF_COMPONENT_TYPE_DOUBLE: { double v; std::memcpy(&v, p, 8); return v; }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return v; }
+      case TINYGLTF_COMPONENT_TYPE_BYTE: { int8_t v; std::memcpy(&v, p, 1); return scaled(v, 127, true); }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return scaled(*p, 255, false);
+      case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t v; std::memcpy(&v, p, 2); return scaled(v, 32767, true); }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return scaled(v, 65535, false); }
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return v; }
       default: throw ValidationError(path_, "unsupported component type " + std::to_string(componentType_));
     }
@@ -92,6 +101,7 @@ class AccessorReader {
   const unsigned char* base_ = nullptr;
   size_t stride_ = 0, elementSize_ = 0, count_ = 0;
   int components_ = 0, componentType_ = 0;
+  bool normalized_ = false;
 };
 
 Mat4 localMatrix(const tinygltf::Node& node) {
@@ -192,6 +202,25 @@ std::vector<IndexPolygon> trianglesOf(const tinygltf::Model& model, const tinygl
   return triangles;
 }
 
+// A primitive's positions (its own space) and triangles: Draco-decoded, or read from its
+// accessors (float, or integers as KHR_mesh_quantization stores them).
+DecodedPrimitive primitiveGeometry(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                                   const std::string& path, ImportReport& report) {
+  if (auto decoded = decodeDracoPrimitive(model, primitive, path)) {
+    report.count("draco_compressed_primitives");
+    return std::move(*decoded);
+  }
+  const auto position = primitive.attributes.find("POSITION");
+  if (position == primitive.attributes.end()) throw ValidationError(path + ".attributes", "primitive has no POSITION");
+  const AccessorReader positions(model, position->second, path + ".attributes.POSITION");
+  if (positions.components() != 3) throw ValidationError(path + ".attributes.POSITION", "POSITION must be VEC3");
+  DecodedPrimitive out;
+  for (size_t i = 0; i < positions.count(); ++i)
+    out.positions.push_back(Vec3(positions.component(i, 0), positions.component(i, 1), positions.component(i, 2)));
+  out.triangles = trianglesOf(model, primitive, positions.count(), path);
+  return out;
+}
+
 ImportResult importModel(const tinygltf::Model& model, const std::string& warn, const ImportOptions& options,
                          ImportReport report) {
   for (size_t start = 0; start < warn.size();) {
@@ -233,22 +262,15 @@ ImportResult importModel(const tinygltf::Model& model, const std::string& warn, 
           report.count("point_and_line_primitives_skipped");
           continue;
         }
-        const auto position = primitive.attributes.find("POSITION");
-        if (position == primitive.attributes.end())
-          throw ValidationError(primitivePath + ".attributes", "primitive has no POSITION");
-        const AccessorReader positions(model, position->second, primitivePath + ".attributes.POSITION");
-        if (positions.components() != 3) throw ValidationError(primitivePath + ".attributes.POSITION", "POSITION must be VEC3");
         ImportedGroup group;
         group.name = !node.name.empty() ? node.name : !mesh.name.empty() ? mesh.name : "mesh" + std::to_string(node.mesh);
         if (primitive.material >= int(geometry.materials.size()))
           throw ValidationError(primitivePath + ".material", "no such material");
         group.material = primitive.material;
         group.joinTriangles = true;
-        for (size_t i = 0; i < positions.count(); ++i) {
-          const glm::dvec4 local(positions.component(i, 0), positions.component(i, 1), positions.component(i, 2), 1.0);
-          group.positions.push_back(Vec3(worldFromNode * local));
-        }
-        group.polygons = trianglesOf(model, primitive, positions.count(), primitivePath);
+        DecodedPrimitive local = primitiveGeometry(model, primitive, primitivePath, report);
+        for (const Vec3& p : local.positions) group.positions.push_back(Vec3(worldFromNode * glm::dvec4(p, 1.0)));
+        group.polygons = std::move(local.triangles);
         if (mirrored)  // glTF: a mirroring transform flips the winding back
           for (IndexPolygon& t : group.polygons) std::swap(t[1], t[2]);
         geometry.groups.push_back(std::move(group));
@@ -272,10 +294,12 @@ ImportResult importGltf(const std::vector<uint8_t>& bytes, const std::string& ba
   report.source = sourceName;
   const bool binary = isBinary(bytes);
   report.format = binary ? "glb" : "gltf";
-  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), baseDir)
-                         : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                                      unsigned(bytes.size()), baseDir);
+  const std::vector<uint8_t> readable = withoutDracoIndices(bytes);
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, readable.data(), unsigned(readable.size()), baseDir)
+                         : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(readable.data()),
+                                                      unsigned(readable.size()), baseDir);
   if (!ok) throw ValidationError("(gltf)", err.empty() ? "tinygltf could not read the file" : err);
+  checkRequiredExtensions(model);
   return importModel(model, warn, options, std::move(report));
 }
 

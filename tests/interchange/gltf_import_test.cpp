@@ -15,6 +15,7 @@
 #include "interchange/gltf_import.h"
 #include "interchange/scene_import.h"
 #include "interchange_fixtures.h"
+#include "gltf_model_writer.h"
 #include "protocol/validation_error.h"
 
 namespace penumbra::interchange {
@@ -22,83 +23,6 @@ namespace {
 
 using testing::scratchDir;
 using testing::writeFile;
-
-// Builds a model: each added quad is a mesh of two indexed triangles under its own node.
-class ModelWriter {
- public:
-  ModelWriter() {
-    model_.asset.version = "2.0";
-    model_.buffers.emplace_back();
-    model_.scenes.emplace_back();
-    model_.defaultScene = 0;
-  }
-  int material(const std::string& name, const Vec3& base, const Vec3& emissive, double strength) {
-    tinygltf::Material m;
-    m.name = name;
-    m.pbrMetallicRoughness.baseColorFactor = {base.x, base.y, base.z, 1};
-    m.emissiveFactor = {emissive.x, emissive.y, emissive.z};
-    if (strength != 1)
-      m.extensions["KHR_materials_emissive_strength"] =
-          tinygltf::Value(tinygltf::Value::Object{{"emissiveStrength", tinygltf::Value(strength)}});
-    model_.materials.push_back(m);
-    return int(model_.materials.size() - 1);
-  }
-  // corners counter-clockwise seen from the front; translation on the node.
-  void quad(const std::string& name, const std::array<Vec3, 4>& corners, int material, const Vec3& translation) {
-    std::vector<float> positions;
-    for (const Vec3& c : corners) positions.insert(positions.end(), {float(c.x), float(c.y), float(c.z)});
-    const std::vector<uint16_t> indices = {0, 1, 2, 0, 2, 3};
-    tinygltf::Primitive p;
-    p.mode = TINYGLTF_MODE_TRIANGLES;
-    p.material = material;
-    p.attributes["POSITION"] = accessor(positions.data(), positions.size() * 4, 4, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                        TINYGLTF_TYPE_VEC3);
-    p.indices = accessor(indices.data(), indices.size() * 2, 6, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                         TINYGLTF_TYPE_SCALAR);
-    tinygltf::Mesh mesh;
-    mesh.primitives.push_back(p);
-    model_.meshes.push_back(mesh);
-    tinygltf::Node node;
-    node.name = name;
-    node.mesh = int(model_.meshes.size() - 1);
-    node.translation = {translation.x, translation.y, translation.z};
-    model_.nodes.push_back(node);
-    model_.scenes[0].nodes.push_back(int(model_.nodes.size() - 1));
-  }
-  tinygltf::Model& model() { return model_; }
-  std::vector<uint8_t> write(bool binary) {
-    tinygltf::TinyGLTF writer;
-    std::ostringstream out;
-    EXPECT_TRUE(writer.WriteGltfSceneToStream(&model_, out, false, binary));
-    const std::string s = out.str();
-    return std::vector<uint8_t>(s.begin(), s.end());
-  }
-
- private:
-  int accessor(const void* data, size_t bytes, size_t count, int componentType, int type) {
-    std::vector<unsigned char>& buffer = model_.buffers[0].data;
-    while (buffer.size() % 4) buffer.push_back(0);
-    tinygltf::BufferView view;
-    view.buffer = 0;
-    view.byteOffset = buffer.size();
-    view.byteLength = bytes;
-    buffer.resize(buffer.size() + bytes);
-    std::memcpy(buffer.data() + view.byteOffset, data, bytes);
-    model_.bufferViews.push_back(view);
-    tinygltf::Accessor a;
-    a.bufferView = int(model_.bufferViews.size() - 1);
-    a.componentType = componentType;
-    a.type = type;
-    a.count = count;
-    if (type == TINYGLTF_TYPE_VEC3) {
-      a.minValues = {-100, -100, -100};
-      a.maxValues = {100, 100, 100};
-    }
-    model_.accessors.push_back(a);
-    return int(model_.accessors.size() - 1);
-  }
-  tinygltf::Model model_;
-};
 
 std::vector<uint8_t> smallModel(bool binary) {
   ModelWriter w;

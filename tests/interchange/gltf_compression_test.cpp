@@ -1,0 +1,250 @@
+// Compressed and quantized glTF geometry, as real-world files store it (issue 40): a tessellated
+// torus written plainly, Draco-compressed (KHR_draco_mesh_compression, by Debian's libdraco
+// encoder) and quantized (KHR_mesh_quantization: normalized shorts, unnormalized unsigned shorts
+// and signed bytes, each with the node scale that undoes it) imports to the same geometry; a
+// file requiring an extension the importer does not read is refused naming it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
+
+#include "gltf_model_writer.h"
+#include "interchange/scene_import.h"
+#include "protocol/validation_error.h"
+
+namespace penumbra::interchange {
+namespace {
+
+// A torus of rings × sides quads as triangles around the y axis, 0.6 m across, at y = 1.
+struct TriangleMesh {
+  std::vector<Vec3> positions;
+  std::vector<uint32_t> indices;
+};
+TriangleMesh torus(int rings, int sides) {
+  TriangleMesh m;
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < sides; ++j) {
+      const double a = 2 * M_PI * i / rings, b = 2 * M_PI * j / sides;
+      m.positions.push_back(Vec3((0.22 + 0.08 * std::cos(b)) * std::cos(a), 1 + 0.08 * std::sin(b),
+                                 (0.22 + 0.08 * std::cos(b)) * std::sin(a)));
+    }
+  auto at = [&](int i, int j) { return uint32_t((i % rings) * sides + (j % sides)); };
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < sides; ++j)
+      m.indices.insert(m.indices.end(), {at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+  return m;
+}
+
+// The room around the model: a floor and a lamp (so no default studio is added).
+ModelWriter roomWriter() {
+  ModelWriter w;
+  const int grey = w.material("grey", {0.5, 0.6, 0.7}, {0, 0, 0}, 1);
+  const int lamp = w.material("lamp", {1, 1, 1}, {1, 1, 1}, 8);
+  w.quad("floor", {{{-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}}}, grey, {0, 0, 0});
+  w.quad("lamp", {{{-0.5, 0, -0.5}, {0.5, 0, -0.5}, {0.5, 0, 0.5}, {-0.5, 0, 0.5}}}, lamp, {0, 3, 0});
+  return w;
+}
+
+tinygltf::Primitive plainPrimitive(ModelWriter& w, const TriangleMesh& m) {
+  std::vector<float> xyz;
+  for (const Vec3& p : m.positions) xyz.insert(xyz.end(), {float(p.x), float(p.y), float(p.z)});
+  tinygltf::Primitive p;
+  p.mode = TINYGLTF_MODE_TRIANGLES;
+  p.attributes["POSITION"] = w.accessor(xyz.data(), xyz.size() * 4, m.positions.size(), TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                        TINYGLTF_TYPE_VEC3);
+  p.indices = w.accessor(m.indices.data(), m.indices.size() * 4, m.indices.size(), TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                         TINYGLTF_TYPE_SCALAR);
+  return p;
+}
+
+// The mesh as a Draco stream (16-bit positions, as exporters default to) in a KHR_draco_mesh_compression primitive.
+tinygltf::Primitive dracoPrimitive(ModelWriter& w, const TriangleMesh& m) {
+  draco::TriangleSoupMeshBuilder builder;
+  const size_t faces = m.indices.size() / 3;
+  builder.Start(int(faces));
+  const int position = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+  for (size_t f = 0; f < faces; ++f) {
+    float corner[3][3];
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) corner[k][c] = float(m.positions[m.indices[3 * f + size_t(k)]][c]);
+    builder.SetAttributeValuesForFace(position, draco::FaceIndex(uint32_t(f)), corner[0], corner[1], corner[2]);
+  }
+  const std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+  EXPECT_TRUE(mesh);
+  draco::Encoder encoder;
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, 16);
+  draco::EncoderBuffer stream;
+  EXPECT_TRUE(encoder.EncodeMeshToBuffer(*mesh, &stream).ok());
+  tinygltf::Primitive p;
+  p.mode = TINYGLTF_MODE_TRIANGLES;
+  p.attributes["POSITION"] =
+      w.accessor(nullptr, 0, mesh->num_points(), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3);
+  p.indices = w.accessor(nullptr, 0, 3 * mesh->num_faces(), TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR);
+  const int view = w.view(stream.data(), stream.size());
+  p.extensions["KHR_draco_mesh_compression"] = tinygltf::Value(tinygltf::Value::Object{
+      {"bufferView", tinygltf::Value(view)},
+      {"attributes", tinygltf::Value(tinygltf::Value::Object{
+                         {"POSITION", tinygltf::Value(int(mesh->attribute(position)->unique_id()))}})}});
+  return p;
+}
+
+// Positions as integers of `componentType` (normalized or not) with the scale that undoes
+// the quantization returned for the node: KHR_mesh_quantization as gltfpack writes it.
+tinygltf::Primitive quantizedPrimitive(ModelWriter& w, const TriangleMesh& m, int componentType, bool normalized,
+                                       Vec3& nodeScale) {
+  const double range = componentType == TINYGLTF_COMPONENT_TYPE_BYTE ? 127 : componentType == TINYGLTF_COMPONENT_TYPE_SHORT ? 32767 : 65535;
+  // Every coordinate lies in [−1.2, 1.2]; unsigned, shifted by +0.4 into [0, 1.6].
+  const bool isSigned = componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  const double extent = isSigned ? 1.2 : 1.6;
+  const double step = extent / range;  // metres per integer step
+  nodeScale = Vec3(normalized ? extent : step);
+  std::vector<uint8_t> bytes;
+  for (const Vec3& p : m.positions)
+    for (int c = 0; c < 3; ++c) {
+      const double v = std::round((isSigned ? p[c] : p[c] + 0.4) / step);
+      if (componentType == TINYGLTF_COMPONENT_TYPE_BYTE) {
+        bytes.push_back(uint8_t(int8_t(v)));
+      } else {
+        const uint16_t s = isSigned ? uint16_t(int16_t(v)) : uint16_t(v);
+        bytes.push_back(uint8_t(s & 0xff));
+        bytes.push_back(uint8_t(s >> 8));
+      }
+    }
+  const size_t size = componentType == TINYGLTF_COMPONENT_TYPE_BYTE ? 1 : 2;
+  std::vector<uint8_t> padded;
+  for (size_t i = 0; i < m.positions.size(); ++i) {  // vertex attributes are 4-byte aligned: stride 4 or 8
+    padded.insert(padded.end(), bytes.begin() + long(3 * size * i), bytes.begin() + long(3 * size * (i + 1)));
+    while (padded.size() % 4) padded.push_back(0);
+  }
+  tinygltf::Primitive p;
+  p.mode = TINYGLTF_MODE_TRIANGLES;
+  p.attributes["POSITION"] = w.accessor(padded.data(), padded.size(), m.positions.size(), componentType, TINYGLTF_TYPE_VEC3, normalized);
+  w.model().bufferViews.back().byteStride = size == 1 ? 4 : 8;
+  p.indices = w.accessor(m.indices.data(), m.indices.size() * 4, m.indices.size(), TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                         TINYGLTF_TYPE_SCALAR);
+  if (!isSigned) w.model().accessors[size_t(p.attributes["POSITION"])].minValues = {0, 0, 0};
+  return p;
+}
+
+// The model object's faces, total area and bounds.
+struct Shape {
+  size_t faces = 0;
+  double area = 0;
+  Vec3 low{INFINITY}, high{-INFINITY};
+};
+Shape shapeOf(const ImportResult& result) {
+  Shape s;
+  const auto index = result.scene.findObject("torus");
+  EXPECT_TRUE(index);
+  if (!index) return s;
+  for (const Face& face : result.scene.faces()) {
+    if (face.id.object != result.scene.handleOf(*index)) continue;
+    ++s.faces;
+    s.area += face.area;
+    for (const Vec3& p : face.polygon) s.low = glm::min(s.low, p), s.high = glm::max(s.high, p);
+  }
+  return s;
+}
+
+// Same surface within the quantization step: coplanar triangle pairs the plain file joins into
+// one face may stay two once quantized, so the face count may only grow, up to the triangles.
+void expectSameShape(const Shape& a, const Shape& b, double tolerance, size_t triangles, const std::string& label) {
+  EXPECT_GE(b.faces, a.faces) << label;
+  EXPECT_LE(b.faces, triangles) << label;
+  EXPECT_NEAR(a.area, b.area, 20 * tolerance * a.area) << label;
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(a.low[c], b.low[c], tolerance) << label;
+    EXPECT_NEAR(a.high[c], b.high[c], tolerance) << label;
+  }
+}
+
+std::vector<uint8_t> fileWith(const std::function<tinygltf::Primitive(ModelWriter&)>& primitive,
+                              const std::vector<std::string>& required) {
+  ModelWriter w = roomWriter();
+  w.node("torus", primitive(w));
+  w.model().extensionsUsed = required;
+  w.model().extensionsRequired = required;
+  return w.write(true);
+}
+
+TEST(GltfCompression, DracoAndQuantizedGeometryImportAsThePlainFile) {
+  const TriangleMesh mesh = torus(24, 12);
+  const ImportResult plain = importSceneBytes(fileWith([&](ModelWriter& w) { return plainPrimitive(w, mesh); }, {}),
+                                              "plain.glb", {}, {});
+  const Shape reference = shapeOf(plain);
+  ASSERT_GE(reference.faces, mesh.indices.size() / 3 * 9 / 10);  // a few coplanar pairs join
+
+  const ImportResult draco = importSceneBytes(
+      fileWith([&](ModelWriter& w) { return dracoPrimitive(w, mesh); }, {"KHR_draco_mesh_compression"}), "draco.glb", {}, {});
+  EXPECT_EQ(draco.report.repaired("draco_compressed_primitives"), 1u) << draco.report.summary();
+  expectSameShape(reference, shapeOf(draco), 1.2 * 2 / 65535, mesh.indices.size() / 3, "draco");
+
+  struct Case {
+    const char* label;
+    int type;
+    bool normalized;
+    double step;
+  };
+  const Case cases[] = {{"normalized short", TINYGLTF_COMPONENT_TYPE_SHORT, true, 1.2 / 32767},
+                        {"unsigned short", TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, false, 1.6 / 65535},
+                        {"normalized byte", TINYGLTF_COMPONENT_TYPE_BYTE, true, 1.2 / 127}};
+  for (const Case& c : cases) {
+    // The node's scale (and, unsigned, its shift back) undoes the quantization.
+    Vec3 scale(1.0);
+    ModelWriter w = roomWriter();
+    const tinygltf::Primitive primitive = quantizedPrimitive(w, mesh, c.type, c.normalized, scale);
+    w.node("torus", primitive, scale, c.type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? Vec3(-0.4) : Vec3(0.0));
+    w.model().extensionsRequired = w.model().extensionsUsed = {"KHR_mesh_quantization"};
+    const ImportResult quantized = importSceneBytes(w.write(true), "quantized.glb", {}, {});
+    // A byte's step (1 cm) moves corners off their neighbours' planes: faces may join differently.
+    if (c.type == TINYGLTF_COMPONENT_TYPE_BYTE) {
+      const Shape s = shapeOf(quantized);
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(s.low[k], reference.low[k], c.step) << c.label;
+    } else {
+      expectSameShape(reference, shapeOf(quantized), c.step, mesh.indices.size() / 3, c.label);
+    }
+  }
+}
+
+TEST(GltfCompression, AnUnreadRequiredExtensionIsRefusedByName) {
+  const TriangleMesh mesh = torus(8, 6);
+  const std::vector<uint8_t> file = fileWith([&](ModelWriter& w) { return plainPrimitive(w, mesh); },
+                                             {"KHR_mesh_quantization", "EXT_meshopt_compression"});
+  try {
+    importSceneBytes(file, "meshopt.glb", {}, {});
+    FAIL() << "a file requiring EXT_meshopt_compression was imported";
+  } catch (const protocol::ValidationError& e) {
+    EXPECT_EQ(e.path(), "extensionsRequired[1]");
+    EXPECT_NE(std::string(e.what()).find("EXT_meshopt_compression"), std::string::npos) << e.what();
+  }
+  // Used but not required: a reader may ignore it, and the plain data is there.
+  ModelWriter w = roomWriter();
+  w.node("torus", plainPrimitive(w, mesh));
+  w.model().extensionsUsed = {"EXT_meshopt_compression"};
+  EXPECT_NO_THROW(importSceneBytes(w.write(true), "optional.glb", {}, {}));
+}
+
+TEST(GltfCompression, ACorruptDracoStreamIsAnErrorWithItsPath) {
+  const TriangleMesh mesh = torus(8, 6);
+  ModelWriter w = roomWriter();
+  tinygltf::Primitive p = dracoPrimitive(w, mesh);
+  std::vector<unsigned char>& buffer = w.model().buffers[0].data;
+  const tinygltf::BufferView& view = w.model().bufferViews.back();
+  for (size_t i = view.byteOffset + 8; i < view.byteOffset + view.byteLength; ++i) buffer[i] = uint8_t(i * 37);
+  w.node("torus", p);
+  w.model().extensionsRequired = w.model().extensionsUsed = {"KHR_draco_mesh_compression"};
+  try {
+    importSceneBytes(w.write(true), "corrupt.glb", {}, {});
+    FAIL() << "a corrupt Draco stream was imported";
+  } catch (const protocol::ValidationError& e) {
+    EXPECT_NE(e.path().find("KHR_draco_mesh_compression"), std::string::npos) << e.path() << ": " << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace penumbra::interchange
