@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "core/render/renderer.h"
+#include "core/scene/camera_limits.h"
 #include "server/image_encoding.h"
 #include "server/limits.h"
 #include "server/request_io.h"
@@ -17,10 +18,17 @@ using nlohmann::json;
 
 namespace {
 
-// The camera of an image request: the scene's camera (or the default one) with
-// any of the query's camera parameters replacing its fields.
+// The query parameter that sets each camera field (CameraError::key()).
+const char* queryKeyOf(const std::string& cameraKey) {
+  return cameraKey == "height" ? "ortho_height" : cameraKey.c_str();
+}
+
+// The camera of an image request: the scene's camera (or the default one) with any of the
+// query's camera parameters replacing its fields, then core's validateCamera (the scene loader's
+// and the renderer's check): 400 naming `query.<name>`, or `camera.<key>` when the field at
+// fault is the scene's own.
 Camera cameraFromQuery(const httplib::Request& req, const Scene& scene) {
-  Camera camera = scene.camera().value_or(Camera{});
+  Camera camera = scene.camera().value_or(defaultCamera(scene.bounds()));
   if (auto v = queryVec3(req, "position")) camera.position = *v;
   if (auto v = queryVec3(req, "target")) camera.target = *v;
   if (auto v = queryVec3(req, "up")) camera.up = *v;
@@ -33,26 +41,20 @@ Camera cameraFromQuery(const httplib::Request& req, const Scene& scene) {
       throw ApiError(400, error_code::kBadParameter, "query.projection",
                      "projection must be 'perspective' or 'orthographic', got '" + *p + "'");
   }
-  if (auto v = queryNumber(req, "fov_y_deg")) {
-    if (!(*v > 0 && *v < 180))
-      throw ApiError(400, error_code::kBadParameter, "query.fov_y_deg",
-                     "fov_y_deg must be in (0, 180)");
-    camera.fovYDeg = *v;
-  }
+  if (auto v = queryNumber(req, "fov_y_deg")) camera.fovYDeg = *v;
   // (`height` is the image's; the orthographic view's height is `ortho_height`.)
-  if (auto v = queryNumber(req, "ortho_height")) {
-    if (!(*v > 0))
-      throw ApiError(400, error_code::kBadParameter, "query.ortho_height",
-                     "ortho_height must be positive");
-    camera.height = *v;
-  }
+  if (auto v = queryNumber(req, "ortho_height")) camera.height = *v;
   if (auto v = queryNumber(req, "near")) camera.near = *v;
   if (auto v = queryNumber(req, "far")) camera.far = *v;
-  if (!(camera.near > 0 && camera.far > camera.near))
-    throw ApiError(400, error_code::kBadParameter, "query.near", "need 0 < near < far");
-  if (glm::length(camera.target - camera.position) == 0)
-    throw ApiError(400, error_code::kBadParameter, "query.target",
-                   "target must differ from position");
+  try {
+    validateCamera(camera, scene.bounds());
+  } catch (const CameraError& error) {
+    const char* key = queryKeyOf(error.key());
+    if (req.has_param(key))
+      throw ApiError(400, error_code::kBadParameter, std::string("query.") + key, error.problem());
+    throw ApiError(400, error_code::kBadParameter, "camera." + error.key(),
+                   error.problem() + " (the scene's camera; override it with query." + key + ")");
+  }
   return camera;
 }
 
