@@ -202,6 +202,7 @@ void HttpServer::registerEditRoutes() {
   http.Post(
       scenePath + "/edits", guarded([this](const httplib::Request& req, httplib::Response& res) {
         const auto session = findScene(req.matches[1]);
+        refuseIfStalled(*session);  // before anything is read: the scene takes no edits
         const json body = parseBody(req);
         Frame frame;
         try {

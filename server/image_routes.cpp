@@ -4,6 +4,8 @@
 #include <httplib.h>
 
 #include <algorithm>
+#include <map>
+#include <vector>
 
 #include "core/render/renderer.h"
 #include "core/scene/camera_limits.h"
@@ -18,9 +20,21 @@ using nlohmann::json;
 
 namespace {
 
-// The query parameter that sets each camera field (CameraError::key()).
-const char* queryKeyOf(const std::string& cameraKey) {
-  return cameraKey == "height" ? "ortho_height" : cameraKey.c_str();
+// The query parameter to blame for a camera refused at `cameraKey` (CameraError::key()): its own
+// when the query set it, else one the check relates it to (far > near, target ≠ position, up
+// against the view direction) that the query set; null when the scene's own camera is at fault.
+const char* queryKeyFor(const httplib::Request& req, const std::string& cameraKey) {
+  const std::map<std::string, std::vector<const char*>> candidates = {
+      {"near", {"near", "far"}},          {"far", {"far", "near"}},
+      {"position", {"position"}},         {"target", {"target", "position"}},
+      {"up", {"up", "position", "target"}}, {"fov_y_deg", {"fov_y_deg"}},
+      {"height", {"ortho_height", "projection"}}};
+  const auto it = candidates.find(cameraKey);
+  if (it == candidates.end()) return nullptr;
+  for (const char* key : it->second)
+    if (req.has_param(key)) return key;
+  if (cameraKey == "fov_y_deg" && req.has_param("projection")) return "projection";
+  return nullptr;
 }
 
 // The camera of an image request: the scene's camera (or the default one) with any of the
@@ -49,11 +63,10 @@ Camera cameraFromQuery(const httplib::Request& req, const Scene& scene) {
   try {
     validateCamera(camera, scene.bounds());
   } catch (const CameraError& error) {
-    const char* key = queryKeyOf(error.key());
-    if (req.has_param(key))
+    if (const char* key = queryKeyFor(req, error.key()))
       throw ApiError(400, error_code::kBadParameter, std::string("query.") + key, error.problem());
     throw ApiError(400, error_code::kBadParameter, "camera." + error.key(),
-                   error.problem() + " (the scene's camera; override it with query." + key + ")");
+                   error.problem() + " (the scene's own camera: override it in the query)");
   }
   return camera;
 }

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include "core/volume/surface_points.h"
 #include "protocol/edits_json.h"
 #include "protocol/nrrd_volume.h"
+#include "protocol/scene_json.h"
 #include "server/api_errors.h"
 #include "server/data_directory.h"
 #include "server/http_server.h"
@@ -131,7 +133,13 @@ Edit addVolumeEdit(const httplib::Request& req, const Scene& scene, VolumeObject
   else
     volume.isovalue = 0.5 * (volume.data->minValue() + volume.data->maxValue());
   if (const auto material = queryText(req, "material")) volume.material = *material;
-  if (const auto translate = queryVec3(req, "translate")) volume.transform.translate = *translate;
+  if (const auto translate = queryVec3(req, "translate")) {
+    for (int c = 0; c < 3; ++c)
+      if (!(std::abs((*translate)[c]) <= protocol::kMaxCoordinate))
+        throw ApiError(400, error_code::kBadParameter, "query.translate",
+                       "translate coordinates must be within ±1e9 (the scene format's limit)");
+    volume.transform.translate = *translate;
+  }
   Edit edit;
   edit.op = Edit::Op::AddVolume;
   edit.id = volume.id;
@@ -173,6 +181,7 @@ void HttpServer::registerVolumeRoutes() {
   http.Post(
       scenePath + "/volumes", guarded([this](const httplib::Request& req, httplib::Response& res) {
         const auto session = findScene(req.matches[1]);
+        refuseIfStalled(*session);  // nothing stored for a scene that takes no edits
         const VolumeUpload upload = volumeUploadOf(req);
         const std::shared_ptr<const SceneSnapshot> snapshot = session->snapshot();
         VolumeObject volume;

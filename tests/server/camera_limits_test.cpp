@@ -199,6 +199,13 @@ TEST(NumericLimits, CoordinatesTransformsAndRadianceBeyondTheirBoundsAre422Namin
     EXPECT_EQ(res->status, 422) << res->body;
     EXPECT_EQ(bodyJson(res)["error"]["path"], path) << res->body;
   }
+  // A volume upload's `translate` too.
+  const auto upload = client.Post(("/api/scenes/" + id + "/volumes?name=smoke.nrrd&translate=0,1e300,0").c_str(),
+                                  protocol::readTextFile(std::string(PENUMBRA_SOURCE_DIR) +
+                                                             "/scenes/volumes/smoke64.nrrd", size_t(1) << 24),
+                                  "application/octet-stream");
+  EXPECT_EQ(upload->status, 400) << upload->body;
+  EXPECT_EQ(bodyJson(upload)["error"]["path"], "query.translate") << upload->body;
   EXPECT_EQ(bodyJson(client.Get(("/api/scenes/" + id).c_str()))["version"], 0);
 
   // Image size, samples and GI keys: 400 naming the parameter.
