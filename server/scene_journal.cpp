@@ -13,8 +13,8 @@ namespace penumbra::server {
 namespace {
 
 // Frames are keyed by (scene, version); deleting a scene deletes its frames (foreign key).
-// `parts` (PartChanges, part_changes.h) and the checksums `crc` / `source_crc` came later:
-// NULL in older journals' rows (read as intact).
+// `parts` (PartChanges, part_changes.h) and the checksums `crc` (version and frame), `parts_crc`
+// and `source_crc` came later: NULL in older journals' rows (read as intact).
 constexpr const char* kSchema = R"(
 CREATE TABLE IF NOT EXISTS scenes (
   key INTEGER PRIMARY KEY AUTOINCREMENT,
@@ -29,6 +29,7 @@ CREATE TABLE IF NOT EXISTS frames (
   frame BLOB NOT NULL,
   parts BLOB,
   crc INTEGER,
+  parts_crc INTEGER,
   PRIMARY KEY (scene, version)) WITHOUT ROWID;
 )";
 
@@ -51,8 +52,8 @@ bool matches(const SqliteStatement& row, int column, uint32_t computed) {
 
 }  // namespace
 
-uint32_t SceneJournal::frameChecksum(uint64_t version, const std::string& frame, const std::string& parts) {
-  return crcOf(crcOf(crcOf(0, std::to_string(version)), frame), parts);
+uint32_t SceneJournal::frameChecksum(uint64_t version, const std::string& frame) {
+  return crcOf(crcOf(0, std::to_string(version)), frame);
 }
 
 SceneJournal::SceneJournal(const std::string& dir) : dir_(std::make_unique<DataDirectory>(dir)) {
@@ -76,6 +77,7 @@ SceneJournal::SceneJournal(const std::string& dir) : dir_(std::make_unique<DataD
   db_->exec(kSchema);
   addColumnIfMissing(*db_, "frames", "parts", "BLOB");  // journals from before each column
   addColumnIfMissing(*db_, "frames", "crc", "INTEGER");
+  addColumnIfMissing(*db_, "frames", "parts_crc", "INTEGER");
   addColumnIfMissing(*db_, "scenes", "source_crc", "INTEGER");
   dir_->watch(path_);
 }
@@ -112,7 +114,7 @@ std::vector<SceneJournal::StoredScene> SceneJournal::load() {
       scenes.push_back(std::move(scene));
     }
     SqliteStatement frameRows =
-        db_->prepare("SELECT scene, version, frame, parts, crc FROM frames ORDER BY scene, version");
+        db_->prepare("SELECT scene, version, frame, parts, crc, parts_crc FROM frames ORDER BY scene, version");
     while (frameRows.step()) {
       const auto it = index.find(frameRows.columnInt(0));
       if (it == index.end()) continue;
@@ -120,7 +122,9 @@ std::vector<SceneJournal::StoredScene> SceneJournal::load() {
       StoredScene& scene = scenes[it->second];
       StoredScene::StoredFrame frame{uint64_t(frameRows.columnInt(1)), frameRows.columnBytes(2),
                                      frameRows.columnBytes(3)};
-      frame.intact = matches(frameRows, 4, frameChecksum(frame.version, frame.frame, frame.parts));
+      frame.intact = matches(frameRows, 4, frameChecksum(frame.version, frame.frame));
+      // Damaged part changes only cost speed: that scene replays frame by frame.
+      if (!matches(frameRows, 5, crcOf(0, frame.parts))) frame.parts.clear();
       lastVersion_[scene.key] = frame.version;
       scene.frames.push_back(std::move(frame));
     }
@@ -163,12 +167,13 @@ void SceneJournal::addFrame(int64_t key, uint64_t version, const std::string& fr
                              " (an earlier frame could not be journaled)");
   requireDurable();
   SqliteTransaction transaction(*db_);
-  db_->prepare("INSERT INTO frames (scene, version, frame, parts, crc) VALUES (?, ?, ?, ?, ?)")
+  db_->prepare("INSERT INTO frames (scene, version, frame, parts, crc, parts_crc) VALUES (?, ?, ?, ?, ?, ?)")
       .bind(1, key)
       .bind(2, int64_t(version))
       .bindBlob(3, frame)
       .bindBlob(4, parts)
-      .bind(5, int64_t(frameChecksum(version, frame, parts)))
+      .bind(5, int64_t(frameChecksum(version, frame)))
+      .bind(6, int64_t(crcOf(0, parts)))
       .run();
   transaction.commit();
   last->second = version;

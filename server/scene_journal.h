@@ -30,7 +30,8 @@ class SceneJournal {
       uint64_t version = 0;
       std::string frame;  // frame JSON as received
       std::string parts;  // what it did to the served mesh (part_changes.h); empty: not recorded
-      bool intact = true;  // its checksum matches (or it has none)
+                          // (or its checksum failed)
+      bool intact = true;  // the frame's checksum matches (or it has none)
     };
     std::vector<StoredFrame> frames;  // in version order
   };
@@ -65,8 +66,9 @@ class SceneJournal {
   void addFrame(int64_t key, uint64_t version, const std::string& frame, const std::string& parts);
   void removeScene(int64_t key);
 
-  // The checksum journaled with a frame (zlib's CRC-32 over its version, frame and part changes).
-  static uint32_t frameChecksum(uint64_t version, const std::string& frame, const std::string& parts);
+  // The checksum journaled with a frame: zlib's CRC-32 over its version and JSON. (Its part
+  // changes have their own; a mismatch there only drops them: the scene replays frame by frame.)
+  static uint32_t frameChecksum(uint64_t version, const std::string& frame);
 
  private:
   void requireDurable() const;  // throws std::runtime_error naming durabilityProblem()

@@ -135,7 +135,7 @@ TEST(JournalFaults, AGarbledOrUnappliableFrameStallsTheSceneAndKeepsEveryFrame) 
     if (keepChecksum) {
       const std::string frame = R"({"edits":[{"op":"remove","id":"no_such_object"}]})";
       execSql(data.str(), "UPDATE frames SET frame = '" + frame + "', crc = " +
-                              std::to_string(SceneJournal::frameChecksum(4, frame, "")) + ", parts = '' WHERE version = 4");
+                              std::to_string(SceneJournal::frameChecksum(4, frame)) + " WHERE version = 4");
     } else {
       execSql(data.str(), "UPDATE frames SET frame = CAST('{\"edits\":[{\"op\":\"move\",\"id\":\"box\"}' AS BLOB) "
                           "WHERE version = 4");
