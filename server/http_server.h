@@ -146,6 +146,9 @@ class HttpServer {
   std::string journaledFrameText(const Frame& frame) const;
   // 409 scene_stalled when restore left the scene stalled (SceneStall).
   void refuseIfStalled(const SceneSession& session) const;
+  // 503 journal_failed when commits would not be durable (the data directory gone, replaced or
+  // unwritable): checked before work that writes files, such as a volume upload.
+  void refuseIfNotDurable() const;
   // /api/health's "journal" member: path, integrity, durability, stalled scenes (scene_restore.cpp).
   nlohmann::json journalHealthJson() const;
   std::shared_ptr<SceneSession> findScene(const std::string& id) const;

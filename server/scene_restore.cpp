@@ -66,6 +66,13 @@ void HttpServer::refuseIfStalled(const SceneSession& session) const {
                        " and takes no edits: " + stall->problem);
 }
 
+void HttpServer::refuseIfNotDurable() const {
+  if (!journal_) return;
+  if (const std::string problem = journal_->durabilityProblem(); !problem.empty())
+    throw ApiError(503, error_code::kJournalFailed, "",
+                   "the journal cannot record anything durably (" + problem + "); nothing was acknowledged");
+}
+
 nlohmann::json HttpServer::journalHealthJson() const {
   if (!journal_) return nullptr;
   nlohmann::json problems = nlohmann::json::array();

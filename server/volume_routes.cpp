@@ -182,6 +182,7 @@ void HttpServer::registerVolumeRoutes() {
       scenePath + "/volumes", guarded([this](const httplib::Request& req, httplib::Response& res) {
         const auto session = findScene(req.matches[1]);
         refuseIfStalled(*session);  // nothing stored for a scene that takes no edits
+        refuseIfNotDurable();       // nor where the journal could not name it
         const VolumeUpload upload = volumeUploadOf(req);
         const std::shared_ptr<const SceneSnapshot> snapshot = session->snapshot();
         VolumeObject volume;

@@ -184,6 +184,10 @@ TEST(JournalFaults, ADataDirectoryRemovedWhileServingMakesEdits503AndHealthNotDu
   EXPECT_EQ(sceneJson(client, id)["version"], 1);
   const auto created = postJson(client, "/api/scenes?name=more", tinyScene());
   EXPECT_EQ(created->status, 503) << created->body;
+  const auto upload = client.Post(("/api/scenes/" + id + "/volumes?name=smoke.nrrd").c_str(), smokeBytes(),
+                                  "application/octet-stream");
+  EXPECT_EQ(upload->status, 503) << upload->body;
+  EXPECT_FALSE(fs::exists(data.str())) << "the upload made the data directory again";
   const json health = bodyJson(client.Get("/api/health"));
   EXPECT_EQ(health["durable"], false);
   EXPECT_EQ(health["status"], "degraded");
