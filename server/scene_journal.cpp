@@ -58,6 +58,17 @@ uint32_t SceneJournal::frameChecksum(uint64_t version, const std::string& frame)
 
 SceneJournal::SceneJournal(const std::string& dir) : dir_(std::make_unique<DataDirectory>(dir)) {
   path_ = (std::filesystem::path(dir_->path()) / "journal.sqlite3").string();
+  try {
+    open();
+  } catch (const SqliteError& error) {  // loud, and nothing in the file is changed or dropped
+    throw std::runtime_error("the journal '" + path_ + "' cannot be opened (" + error.what() +
+                             "): it is damaged. Nothing was changed; keep a copy, then repair it "
+                             "(sqlite3 journal.sqlite3 .recover) or move it aside to start empty");
+  }
+  dir_->watch(path_);
+}
+
+void SceneJournal::open() {
   db_ = std::make_unique<SqliteDb>(path_);
   // WAL: a commit appends to the log; synchronous=FULL fsyncs the log at every commit, so an
   // acknowledged frame survives a power loss too, not only a killed process (NORMAL would).
@@ -79,7 +90,6 @@ SceneJournal::SceneJournal(const std::string& dir) : dir_(std::make_unique<DataD
   addColumnIfMissing(*db_, "frames", "crc", "INTEGER");
   addColumnIfMissing(*db_, "frames", "parts_crc", "INTEGER");
   addColumnIfMissing(*db_, "scenes", "source_crc", "INTEGER");
-  dir_->watch(path_);
 }
 
 SceneJournal::~SceneJournal() = default;

@@ -72,6 +72,7 @@ class SceneJournal {
 
  private:
   void requireDurable() const;  // throws std::runtime_error naming durabilityProblem()
+  void open();  // the connection, pragmas, quick_check and schema; throws SqliteError
 
   mutable std::mutex mutex_;
   std::unique_ptr<DataDirectory> dir_;  // locked first, released last
