@@ -203,6 +203,12 @@ TEST(NumericLimits, CoordinatesTransformsAndRadianceBeyondTheirBoundsAre422Namin
       {moveFrame("box", 0, 1e300, 0), "edits[0].transform.translate"},
       {{{"edits", {{{"op", "move"}, {"id", "box"}, {"transform", {{"scale", {1e300, 1, 1}}}}}}}},
        "edits[0].transform.scale"},
+      {{{"edits",
+         {{{"op", "set_light"},
+           {"id", "lamp"},
+           {"polygon", {{-0.5, 2.9, -0.5}, {0.5, 2.9, -0.5}, {0.5, 2.9, 1e12}, {-0.5, 2.9, 0.5}}}}}}},
+       "edits[0].polygon[2]"},
+      {{{"edits", {{{"op", "set_light"}, {"id", "lamp"}, {"radiance", {1, 1e300, 1}}}}}}, "edits[0].radiance"},
   };
   for (const auto& [frame, path] : frames) {
     const auto res = postJson(client, edits, frame);
