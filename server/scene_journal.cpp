@@ -3,10 +3,12 @@
 #include <zlib.h>
 
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 
 #include "server/data_directory.h"
 #include "server/sqlite_db.h"
+#include "server/wal_check.h"
 
 namespace penumbra::server {
 
@@ -68,7 +70,21 @@ SceneJournal::SceneJournal(const std::string& dir) : dir_(std::make_unique<DataD
   dir_->watch(path_);
 }
 
+// Damage SQLite would pass over in silence (wal_check.h): said, and the log copied aside before
+// SQLite opens it (its next write may reuse the file).
+std::string SceneJournal::checkWriteAheadLog() const {
+  const std::string wal = path_ + "-wal";
+  const std::string problem = walProblem(wal);
+  if (problem.empty()) return "";
+  const std::string copy = wal + ".damaged-" + std::to_string(std::time(nullptr));
+  std::error_code error;
+  std::filesystem::copy_file(wal, copy, std::filesystem::copy_options::overwrite_existing, error);
+  return problem + (error ? "" : "; the log as found is kept as " + copy);
+}
+
 void SceneJournal::open() {
+  const std::string walDamage = checkWriteAheadLog();
+  logDamage_ = walDamage;
   db_ = std::make_unique<SqliteDb>(path_);
   // WAL: a commit appends to the log; synchronous=FULL fsyncs the log at every commit, so an
   // acknowledged frame survives a power loss too, not only a killed process (NORMAL would).
@@ -82,9 +98,9 @@ void SceneJournal::open() {
   } catch (const std::exception& error) {
     integrity_ = error.what();
   }
+  if (!walDamage.empty()) integrity_ = integrity_ == "ok" ? walDamage : walDamage + "; " + integrity_;
   if (integrity_ != "ok")
-    std::fprintf(stderr, "penumbra serve: the journal %s is damaged (quick_check: %s)\n", path_.c_str(),
-                 integrity_.c_str());
+    std::fprintf(stderr, "penumbra serve: the journal %s is damaged: %s\n", path_.c_str(), integrity_.c_str());
   db_->exec(kSchema);
   addColumnIfMissing(*db_, "frames", "parts", "BLOB");  // journals from before each column
   addColumnIfMissing(*db_, "frames", "crc", "INTEGER");

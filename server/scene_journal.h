@@ -46,8 +46,12 @@ class SceneJournal {
 
   const std::string& path() const { return path_; }
   const std::string& directory() const;  // the data directory, absolute
-  // "ok", or what PRAGMA quick_check reported at open (the journal is damaged).
+  // "ok", or what was found damaged at open: committed frames of the write-ahead log that SQLite
+  // would ignore (wal_check.h), what PRAGMA quick_check reported.
   const std::string& integrity() const { return integrity_; }
+  // Committed transactions of the write-ahead log SQLite ignored at open (wal_check.h): the scenes
+  // restored from it may lack acknowledged frames, so restore stalls them all.
+  const std::string& logDamage() const { return logDamage_; }
   // Empty while commits are durable; else why not (the data directory removed, replaced or
   // unwritable, the journal file gone): every write then throws without writing.
   std::string durabilityProblem() const;
@@ -73,11 +77,13 @@ class SceneJournal {
  private:
   void requireDurable() const;  // throws std::runtime_error naming durabilityProblem()
   void open();  // the connection, pragmas, quick_check and schema; throws SqliteError
+  std::string checkWriteAheadLog() const;  // wal_check.h's finding, the log copied aside; or ""
 
   mutable std::mutex mutex_;
   std::unique_ptr<DataDirectory> dir_;  // locked first, released last
   std::string path_;
   std::string integrity_ = "ok";
+  std::string logDamage_;
   std::string loadProblem_;
   std::unique_ptr<SqliteDb> db_;
   std::map<int64_t, uint64_t> lastVersion_;  // per scene key

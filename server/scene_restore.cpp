@@ -230,6 +230,8 @@ std::shared_ptr<SceneSession> restoreScene(const StoredScene& stored, const Scen
   }
   if (!done) replayOneByOne(*session, journal, frames, report, problem);
   if (problem.empty() && !stored.complete) problem = "the journal could not be read to its end";
+  if (problem.empty() && !journal.logDamage().empty())
+    problem = "the journal lost committed frames (" + journal.logDamage() + ")";
   if (!problem.empty()) {
     report.stalledAt = report.version;
     const size_t kept = stored.frames.size() - report.frames;

@@ -257,5 +257,58 @@ TEST(JournalFaults, ADamagedDatabaseIsLoudNeverSilent) {
   EXPECT_NE(health["journal"]["integrity"], "ok") << health.dump();
 }
 
+// A write-ahead log left behind (as after a kill -9): intact, it restores everything and says
+// nothing; with a byte of an early frame changed, SQLite would silently drop every later commit,
+// so the start says so (log, health `integrity`, status degraded) and keeps a copy of the log.
+TEST(JournalFaults, ADamagedWriteAheadLogIsLoudAndKeptAside) {
+  for (const bool damage : {false, true}) {
+    SCOPED_TRACE(damage ? "damaged log" : "intact log");
+    TempDataDir data;
+    std::vector<std::string> meshes;
+    std::string id;
+    sqlite3* holder = nullptr;  // keeps the log: the server's close is then not the last one
+    {
+      RunningServer running(data.durable());
+      auto client = running.client();
+      id = addTiny(client);
+      ASSERT_EQ(sqlite3_open((data.str() + "/journal.sqlite3").c_str(), &holder), SQLITE_OK);
+      ASSERT_EQ(sqlite3_exec(holder, "SELECT COUNT(*) FROM scenes", nullptr, nullptr, nullptr), SQLITE_OK);
+      meshes = dragBox(client, id, 12, 8);
+    }
+    sqlite3_db_config(holder, SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 1, nullptr);
+    sqlite3_close(holder);
+    const std::string wal = data.str() + "/journal.sqlite3-wal";
+    ASSERT_GT(fs::file_size(wal), 32u + 6 * (24 + 4096)) << "no log left behind";
+    if (damage) {
+      FILE* f = std::fopen(wal.c_str(), "r+b");
+      ASSERT_TRUE(f);
+      std::fseek(f, long(32 + 2 * (24 + 4096) + 24 + 100), SEEK_SET);  // in frame 3's page
+      const int byte = std::fgetc(f);
+      std::fseek(f, -1, SEEK_CUR);
+      std::fputc(byte ^ 0xff, f);
+      std::fclose(f);
+    }
+    RunningServer again(data.durable());
+    const auto restored = again.server().restore();
+    auto client = again.client();
+    const json health = bodyJson(client.Get("/api/health"));
+    if (!damage) {
+      EXPECT_EQ(health["status"], "ok") << health.dump();
+      EXPECT_EQ(sceneJson(client, id)["version"], 12);
+      EXPECT_TRUE(meshBin(client, id) == meshes.back());
+      continue;
+    }
+    EXPECT_EQ(health["status"], "degraded") << health.dump();
+    EXPECT_NE(health["journal"]["integrity"].get<std::string>().find("write-ahead log"), std::string::npos)
+        << health.dump();
+    bool copied = false;
+    for (const auto& entry : fs::directory_iterator(data.str()))
+      copied |= entry.path().filename().string().rfind("journal.sqlite3-wal.damaged-", 0) == 0;
+    EXPECT_TRUE(copied) << "the damaged log was not kept aside";
+    for (const RestoredScene& scene : restored)
+      EXPECT_TRUE(!scene.served || scene.stalledAt.has_value()) << "a scene from a damaged log takes edits";
+  }
+}
+
 }  // namespace
 }  // namespace penumbra::server::test
