@@ -6,8 +6,10 @@
 // data directory. Restarts serve byte-identical meshes for the versions they serve.
 #include <gtest/gtest.h>
 #include <sqlite3.h>
+#include <sys/resource.h>
 
 #include <algorithm>
+#include <csignal>
 #include <filesystem>
 #include <map>
 #include <random>
@@ -255,6 +257,43 @@ TEST(JournalFaults, ADamagedDatabaseIsLoudNeverSilent) {
     EXPECT_EQ(health["status"], "degraded") << "lost data silently: " << health.dump();
   }
   EXPECT_NE(health["journal"]["integrity"], "ok") << health.dump();
+}
+
+// A volume upload that cannot be written whole (a full disk: here a file-size limit, EFBIG) is a
+// 503 that acknowledges nothing and leaves no file behind; the next upload goes through.
+TEST(JournalFaults, AnUploadOnAFullDiskIs503AndLeavesNoFile) {
+  TempDataDir data;
+  RunningServer running(data.durable());
+  auto client = running.client();
+  const std::string id = addTiny(client);
+  dragBox(client, id, 1, 9);
+  const std::string bytes = smokeBytes();
+  const fs::path volumes = fs::path(data.str()) / "volumes";
+  auto filesIn = [&] {
+    size_t n = 0;
+    if (fs::is_directory(volumes))
+      for ([[maybe_unused]] const auto& entry : fs::directory_iterator(volumes)) ++n;
+    return n;
+  };
+  rlimit old{};
+  ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &old), 0);
+  const auto oldSignal = std::signal(SIGXFSZ, SIG_IGN);  // write() then fails with EFBIG
+  rlimit small = old;
+  small.rlim_cur = bytes.size() / 2;
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
+  const auto full = client.Post(("/api/scenes/" + id + "/volumes?name=smoke.nrrd").c_str(), bytes,
+                                "application/octet-stream");
+  setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, oldSignal);
+  ASSERT_TRUE(full);
+  EXPECT_EQ(full->status, 503) << full->body;
+  EXPECT_EQ(bodyJson(full)["error"]["code"], "journal_failed");
+  EXPECT_EQ(filesIn(), 0u) << "a partial upload was left behind";
+  EXPECT_EQ(sceneJson(client, id)["version"], 1);
+  const auto fine = client.Post(("/api/scenes/" + id + "/volumes?name=smoke.nrrd").c_str(), bytes,
+                                "application/octet-stream");
+  EXPECT_EQ(fine->status, 201) << fine->body;
+  EXPECT_EQ(filesIn(), 1u);
 }
 
 // A write-ahead log left behind (as after a kill -9): intact, it restores everything and says
