@@ -51,12 +51,14 @@ void checkPolygonSize(size_t count, const std::string& path, const std::string& 
 Vec3 checkCoordinates(const Vec3& point, const std::string& path, const std::string& what) {
   for (int c = 0; c < 3; ++c)
     if (!(std::abs(point[c]) <= kMaxCoordinate))
-      fail(path, what + " coordinate " + shortNumber(point[c]) + " is beyond ±" + shortNumber(kMaxCoordinate));
+      fail(path, what + " coordinate " + shortNumber(point[c]) + " is beyond ±" +
+                     shortNumber(kMaxCoordinate));
   return point;
 }
 
 // Each component's magnitude at most `most` (scale, rotation, radiance).
-Vec3 checkMagnitude(const Vec3& value, const std::string& path, const std::string& what, double most) {
+Vec3 checkMagnitude(const Vec3& value, const std::string& path, const std::string& what,
+                    double most) {
   for (int c = 0; c < 3; ++c)
     if (!(std::abs(value[c]) <= most))
       fail(path, what + " component " + shortNumber(value[c]) + " is beyond ±" + shortNumber(most));
@@ -114,11 +116,12 @@ Transform transformFromJson(const Json& value, const std::string& path) {
     transform.translate = checkCoordinates(expectVec3(*t, keyPath(path, "translate")),
                                            keyPath(path, "translate"), "translate");
   if (const Json* r = optionalKey(value, "rotate_deg"))
-    transform.rotateDeg = checkMagnitude(expectVec3(*r, keyPath(path, "rotate_deg")),
-                                         keyPath(path, "rotate_deg"), "rotate_deg", kMaxRotationDeg);
+    transform.rotateDeg =
+        checkMagnitude(expectVec3(*r, keyPath(path, "rotate_deg")), keyPath(path, "rotate_deg"),
+                       "rotate_deg", kMaxRotationDeg);
   if (const Json* s = optionalKey(value, "scale")) {
-    transform.scale =
-        checkMagnitude(expectVec3(*s, keyPath(path, "scale")), keyPath(path, "scale"), "scale", kMaxScale);
+    transform.scale = checkMagnitude(expectVec3(*s, keyPath(path, "scale")), keyPath(path, "scale"),
+                                     "scale", kMaxScale);
     for (int c = 0; c < 3; ++c)
       if (transform.scale[c] == 0)
         fail(keyPath(path, "scale"), "scale component " + std::to_string(c) + " is zero");
@@ -134,8 +137,8 @@ Object objectFromJson(const Json& value, const std::string& path, const std::vec
   const std::string verticesPath = keyPath(path, "vertices");
   const Json& vertices = expectArray(requireKey(value, "vertices", path), verticesPath);
   for (size_t i = 0; i < vertices.size(); ++i)
-    object.vertices.push_back(
-        checkCoordinates(expectVec3(vertices[i], indexPath(verticesPath, i)), indexPath(verticesPath, i), "vertex"));
+    object.vertices.push_back(checkCoordinates(expectVec3(vertices[i], indexPath(verticesPath, i)),
+                                               indexPath(verticesPath, i), "vertex"));
 
   const std::string facesPath = keyPath(path, "faces");
   const Json& faces = expectArray(requireKey(value, "faces", path), facesPath);
@@ -172,7 +175,8 @@ Object objectFromJson(const Json& value, const std::string& path, const std::vec
   // beyond the coordinate limit.
   const auto world = Scene::worldPolygons(object);
   for (size_t f = 0; f < world.size(); ++f) {
-    for (const Vec3& p : world[f]) checkCoordinates(p, indexPath(facesPath, f), "placed (world) vertex");
+    for (const Vec3& p : world[f])
+      checkCoordinates(p, indexPath(facesPath, f), "placed (world) vertex");
     if (!planeOf(world[f]))
       fail(indexPath(facesPath, f), "face becomes degenerate under the object's transform");
   }
@@ -193,7 +197,8 @@ Polygon3 lightPolygonFromJson(const Json& value, const std::string& path) {
   checkPolygonSize(polygon.size(), path, "light polygon");
   Polygon3 out;
   for (size_t i = 0; i < polygon.size(); ++i)
-    out.push_back(checkCoordinates(expectVec3(polygon[i], indexPath(path, i)), indexPath(path, i), "light corner"));
+    out.push_back(checkCoordinates(expectVec3(polygon[i], indexPath(path, i)), indexPath(path, i),
+                                   "light corner"));
   checkConvexPlanar(out, path, "light polygon");
   return out;
 }

@@ -41,12 +41,14 @@ void fsyncPath(const std::string& path, int flags) {
 DataDirectory::DataDirectory(const std::string& dir) {
   std::error_code error;
   fs::create_directories(dir, error);
-  if (!fs::is_directory(dir)) throw std::runtime_error("--data: cannot create directory '" + dir + "'");
+  if (!fs::is_directory(dir))
+    throw std::runtime_error("--data: cannot create directory '" + dir + "'");
   path_ = fs::absolute(dir).lexically_normal().string();
   while (path_.size() > 1 && path_.back() == '/') path_.pop_back();
   const std::string lockPath = (fs::path(path_) / "penumbra.lock").string();
   lockFd_ = ::open(lockPath.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (lockFd_ < 0) throw std::runtime_error("--data: cannot open '" + lockPath + "': " + errnoText());
+  if (lockFd_ < 0)
+    throw std::runtime_error("--data: cannot open '" + lockPath + "': " + errnoText());
   if (::flock(lockFd_, LOCK_EX | LOCK_NB) != 0) {
     const bool held = errno == EWOULDBLOCK;
     const std::string reason = errnoText();

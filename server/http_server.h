@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "core/engine/engine.h"
-#include "server/limits.h"
-#include "server/scene_journal.h"
 #include "server/edit_workers.h"
+#include "server/limits.h"
 #include "server/memory_trim.h"
+#include "server/scene_journal.h"
 #include "server/scene_session.h"
 #include "server/static_files.h"
 
@@ -67,7 +67,7 @@ struct RestoredScene {
   // Set when restore stopped before the journal's last frame (a frame that fails its checksum or
   // no longer applies): the version it is served at. The later frames stay in the journal.
   std::optional<uint64_t> stalledAt;
-  std::string problem;   // not empty: why not served, or where and why it stalled
+  std::string problem;  // not empty: why not served, or where and why it stalled
 };
 
 // A scene restore stopped short of its journal: served read-only at `version` (edits answer 409,
@@ -149,7 +149,8 @@ class HttpServer {
   // 503 journal_failed when commits would not be durable (the data directory gone, replaced or
   // unwritable): checked before work that writes files, such as a volume upload.
   void refuseIfNotDurable() const;
-  // /api/health's "journal" member: path, integrity, durability, stalled scenes (scene_restore.cpp).
+  // /api/health's "journal" member: path, integrity, durability, stalled scenes
+  // (scene_restore.cpp).
   nlohmann::json journalHealthJson() const;
   std::shared_ptr<SceneSession> findScene(const std::string& id) const;
   std::string freshId(const std::string& preferred);  // call with scenesMutex_ held

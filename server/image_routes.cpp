@@ -1,6 +1,4 @@
 // GET /api/scenes/{id}/image: the server's render of a scene version for a camera.
-#include "server/http_server.h"
-
 #include <httplib.h>
 
 #include <algorithm>
@@ -9,6 +7,7 @@
 
 #include "core/render/renderer.h"
 #include "core/scene/camera_limits.h"
+#include "server/http_server.h"
 #include "server/image_encoding.h"
 #include "server/limits.h"
 #include "server/request_io.h"
@@ -25,9 +24,12 @@ namespace {
 // against the view direction) that the query set; null when the scene's own camera is at fault.
 const char* queryKeyFor(const httplib::Request& req, const std::string& cameraKey) {
   const std::map<std::string, std::vector<const char*>> candidates = {
-      {"near", {"near", "far"}},          {"far", {"far", "near"}},
-      {"position", {"position"}},         {"target", {"target", "position"}},
-      {"up", {"up", "position", "target"}}, {"fov_y_deg", {"fov_y_deg"}},
+      {"near", {"near", "far"}},
+      {"far", {"far", "near"}},
+      {"position", {"position"}},
+      {"target", {"target", "position"}},
+      {"up", {"up", "position", "target"}},
+      {"fov_y_deg", {"fov_y_deg"}},
       {"height", {"ortho_height", "projection"}}};
   const auto it = candidates.find(cameraKey);
   if (it == candidates.end()) return nullptr;

@@ -42,8 +42,8 @@ uint32_t crcOf(uint32_t crc, const std::string& bytes) {
 // Adds `column` to `table` when a journal from before it lacks it.
 void addColumnIfMissing(SqliteDb& db, const std::string& table, const std::string& column,
                         const std::string& type) {
-  if (db.queryText("SELECT COUNT(*) FROM pragma_table_info('" + table + "') WHERE name = '" + column +
-                   "'") == "0")
+  if (db.queryText("SELECT COUNT(*) FROM pragma_table_info('" + table + "') WHERE name = '" +
+                   column + "'") == "0")
     db.exec("ALTER TABLE " + table + " ADD COLUMN " + column + " " + type);
 }
 
@@ -98,9 +98,11 @@ void SceneJournal::open() {
   } catch (const std::exception& error) {
     integrity_ = error.what();
   }
-  if (!walDamage.empty()) integrity_ = integrity_ == "ok" ? walDamage : walDamage + "; " + integrity_;
+  if (!walDamage.empty())
+    integrity_ = integrity_ == "ok" ? walDamage : walDamage + "; " + integrity_;
   if (integrity_ != "ok")
-    std::fprintf(stderr, "penumbra serve: the journal %s is damaged: %s\n", path_.c_str(), integrity_.c_str());
+    std::fprintf(stderr, "penumbra serve: the journal %s is damaged: %s\n", path_.c_str(),
+                 integrity_.c_str());
   db_->exec(kSchema);
   addColumnIfMissing(*db_, "frames", "parts", "BLOB");  // journals from before each column
   addColumnIfMissing(*db_, "frames", "crc", "INTEGER");
@@ -125,8 +127,8 @@ std::vector<SceneJournal::StoredScene> SceneJournal::load() {
   std::map<int64_t, size_t> index;
   size_t reading = 0;  // the scene whose frames are being read
   try {
-    SqliteStatement sceneRows =
-        db_->prepare("SELECT key, id, name, base_version, source, source_crc FROM scenes ORDER BY key");
+    SqliteStatement sceneRows = db_->prepare(
+        "SELECT key, id, name, base_version, source, source_crc FROM scenes ORDER BY key");
     while (sceneRows.step()) {
       StoredScene scene;
       scene.key = sceneRows.columnInt(0);
@@ -139,8 +141,8 @@ std::vector<SceneJournal::StoredScene> SceneJournal::load() {
       lastVersion_[scene.key] = scene.baseVersion;
       scenes.push_back(std::move(scene));
     }
-    SqliteStatement frameRows =
-        db_->prepare("SELECT scene, version, frame, parts, crc, parts_crc FROM frames ORDER BY scene, version");
+    SqliteStatement frameRows = db_->prepare(
+        "SELECT scene, version, frame, parts, crc, parts_crc FROM frames ORDER BY scene, version");
     while (frameRows.step()) {
       const auto it = index.find(frameRows.columnInt(0));
       if (it == index.end()) continue;
@@ -169,7 +171,8 @@ int64_t SceneJournal::addScene(const std::string& id, const std::string& name,
   std::lock_guard lock(mutex_);
   requireDurable();
   SqliteTransaction transaction(*db_);
-  db_->prepare("INSERT INTO scenes (id, name, base_version, source, source_crc) VALUES (?, ?, ?, ?, ?)")
+  db_->prepare(
+         "INSERT INTO scenes (id, name, base_version, source, source_crc) VALUES (?, ?, ?, ?, ?)")
       .bindText(1, id)
       .bindText(2, name)
       .bind(3, int64_t(baseVersion))
@@ -193,7 +196,9 @@ void SceneJournal::addFrame(int64_t key, uint64_t version, const std::string& fr
                              " (an earlier frame could not be journaled)");
   requireDurable();
   SqliteTransaction transaction(*db_);
-  db_->prepare("INSERT INTO frames (scene, version, frame, parts, crc, parts_crc) VALUES (?, ?, ?, ?, ?, ?)")
+  db_->prepare(
+         "INSERT INTO frames (scene, version, frame, parts, crc, parts_crc) VALUES (?, ?, ?, ?, ?, "
+         "?)")
       .bind(1, key)
       .bind(2, int64_t(version))
       .bindBlob(3, frame)

@@ -1,8 +1,8 @@
 // The server's side of the journal (README "Durability"): frames and deletions recorded before
 // they are acknowledged, and every journaled scene brought back at start.
 #include <chrono>
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 
 #include "protocol/edits_json.h"
@@ -62,15 +62,16 @@ std::string HttpServer::journaledFrameText(const Frame& frame) const {
 void HttpServer::refuseIfStalled(const SceneSession& session) const {
   if (const auto stall = stallOf(session))
     throw ApiError(409, error_code::kSceneStalled, "id",
-                   "scene '" + session.id() + "' is stalled at version " + std::to_string(stall->version) +
-                       " and takes no edits: " + stall->problem);
+                   "scene '" + session.id() + "' is stalled at version " +
+                       std::to_string(stall->version) + " and takes no edits: " + stall->problem);
 }
 
 void HttpServer::refuseIfNotDurable() const {
   if (!journal_) return;
   if (const std::string problem = journal_->durabilityProblem(); !problem.empty())
-    throw ApiError(503, error_code::kJournalFailed, "",
-                   "the journal cannot record anything durably (" + problem + "); nothing was acknowledged");
+    throw ApiError(
+        503, error_code::kJournalFailed, "",
+        "the journal cannot record anything durably (" + problem + "); nothing was acknowledged");
 }
 
 nlohmann::json HttpServer::journalHealthJson() const {
@@ -79,10 +80,11 @@ nlohmann::json HttpServer::journalHealthJson() const {
   {
     std::lock_guard lock(scenesMutex_);
     for (const JournalProblem& problem : journalProblems_)
-      problems.push_back({{"id", problem.id},
-                          {"stalled_at", problem.stalledAt ? nlohmann::json(*problem.stalledAt) : nullptr},
-                          {"served", problem.stalledAt.has_value()},
-                          {"problem", problem.problem}});
+      problems.push_back(
+          {{"id", problem.id},
+           {"stalled_at", problem.stalledAt ? nlohmann::json(*problem.stalledAt) : nullptr},
+           {"served", problem.stalledAt.has_value()},
+           {"problem", problem.problem}});
   }
   const std::string durability = journal_->durabilityProblem();
   return {{"path", journal_->path()},
@@ -138,7 +140,8 @@ std::shared_ptr<SceneSession> freshSession(const StoredScene& stored, const Scen
       settings);
 }
 
-Frame storedFrame(const SceneSession& session, const SceneJournal& journal, const std::string& text) {
+Frame storedFrame(const SceneSession& session, const SceneJournal& journal,
+                  const std::string& text) {
   const auto materials = session.snapshot()->scene.materials();  // edits change no material
   const protocol::VolumeFiles volumeFiles = journaledFiles(journal);
   return protocol::frameFromJson(
@@ -152,7 +155,8 @@ std::vector<StoredFrame> intactPrefix(const StoredScene& stored, std::string& pr
   std::vector<StoredFrame> frames;
   for (const StoredFrame& frame : stored.frames) {
     if (!frame.intact) {
-      problem = "frame " + std::to_string(frame.version) + " fails its checksum (damaged in the journal)";
+      problem =
+          "frame " + std::to_string(frame.version) + " fails its checksum (damaged in the journal)";
       break;
     }
     frames.push_back(frame);
@@ -180,14 +184,17 @@ bool replayAtOnce(SceneSession& session, const SceneJournal& journal,
 // Frame by frame through the path that served them, each meshed and published; a frame that no
 // longer applies ends the replay there (`problem`). The journal is not touched.
 void replayOneByOne(SceneSession& session, const SceneJournal& journal,
-                    const std::vector<StoredFrame>& stored, RestoredScene& report, std::string& problem) {
+                    const std::vector<StoredFrame>& stored, RestoredScene& report,
+                    std::string& problem) {
   for (const StoredFrame& frame : stored) {
     try {
-      const uint64_t reached = session.apply(storedFrame(session, journal, frame.frame)).snapshot->version;
+      const uint64_t reached =
+          session.apply(storedFrame(session, journal, frame.frame)).snapshot->version;
       if (reached != frame.version)
         throw std::runtime_error("replay reached version " + std::to_string(reached));
     } catch (const std::exception& error) {
-      problem = "frame " + std::to_string(frame.version) + " no longer applies (" + error.what() + ")";
+      problem =
+          "frame " + std::to_string(frame.version) + " no longer applies (" + error.what() + ")";
       return;
     }
     report.version = frame.version;
@@ -251,11 +258,13 @@ std::vector<RestoredScene> HttpServer::restore() {
     const auto start = std::chrono::steady_clock::now();
     RestoredScene report;
     report.id = stored.id;
-    std::shared_ptr<SceneSession> session = restoreScene(stored, *journal_, options_.engine, report);
+    std::shared_ptr<SceneSession> session =
+        restoreScene(stored, *journal_, options_.engine, report);
     report.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::lock_guard lock(scenesMutex_);
-    if (!report.problem.empty()) journalProblems_.push_back({report.id, report.stalledAt, report.problem});
+    if (!report.problem.empty())
+      journalProblems_.push_back({report.id, report.stalledAt, report.problem});
     if (session) {
       journalKeys_[session.get()] = stored.key;
       if (report.stalledAt) stalls_[session.get()] = SceneStall{*report.stalledAt, report.problem};

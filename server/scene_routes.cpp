@@ -39,8 +39,9 @@ void HttpServer::registerSceneRoutes() {
              // damage or stalled scene found at start makes the status "degraded".
              json journal = journalHealthJson();
              const bool durable = journal_ && journal["durability"] == "ok";
-             const bool degraded = journal_ && (!durable || journal["integrity"] != "ok" ||
-                                                journal["read"] != "ok" || !journal["scene_problems"].empty());
+             const bool degraded =
+                 journal_ && (!durable || journal["integrity"] != "ok" || journal["read"] != "ok" ||
+                              !journal["scene_problems"].empty());
              sendJson(res, 200,
                       {{"status", degraded ? "degraded" : "ok"},
                        {"scenes", scenes},
@@ -48,7 +49,8 @@ void HttpServer::registerSceneRoutes() {
                        {"durable", durable},
                        {"journal", std::move(journal)},
                        {"allocator", jemallocIsTheAllocator() ? "jemalloc" : "glibc"},
-                       {"edit_threads", {{"count", editWorkers_.threads()}, {"nice", editWorkers_.niceness()}}},
+                       {"edit_threads",
+                        {{"count", editWorkers_.threads()}, {"nice", editWorkers_.niceness()}}},
                        {"limits",
                         {{"max_body_bytes", options_.maxBodyBytes},
                          {"max_scenes", options_.maxScenes},

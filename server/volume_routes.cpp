@@ -105,8 +105,9 @@ std::string storeUpload(const std::string& dir, const std::string& sceneId,
   try {
     writeFileDurably(path, bytes);
   } catch (const std::exception& error) {
-    throw ApiError(503, error_code::kJournalFailed, "", std::string("cannot keep the uploaded volume: ") +
-                                                            error.what() + "; nothing was acknowledged");
+    throw ApiError(503, error_code::kJournalFailed, "",
+                   std::string("cannot keep the uploaded volume: ") + error.what() +
+                       "; nothing was acknowledged");
   }
   return path;
 }

@@ -26,8 +26,9 @@ struct Checksum {
   // SQLite's walChecksumBytes over `size` bytes (a multiple of 8).
   void add(const uint8_t* p, size_t size) {
     for (size_t i = 0; i + 8 <= size; i += 8) {
-      const uint32_t x0 = bigEndianWords ? bigEndian(p + i) : uint32_t(p[i]) | uint32_t(p[i + 1]) << 8 |
-                                                                   uint32_t(p[i + 2]) << 16 | uint32_t(p[i + 3]) << 24;
+      const uint32_t x0 = bigEndianWords ? bigEndian(p + i)
+                                         : uint32_t(p[i]) | uint32_t(p[i + 1]) << 8 |
+                                               uint32_t(p[i + 2]) << 16 | uint32_t(p[i + 3]) << 24;
       const uint32_t x1 = bigEndianWords ? bigEndian(p + i + 4)
                                          : uint32_t(p[i + 4]) | uint32_t(p[i + 5]) << 8 |
                                                uint32_t(p[i + 6]) << 16 | uint32_t(p[i + 7]) << 24;
@@ -42,7 +43,8 @@ struct Checksum {
 std::string walProblem(const std::string& walPath) {
   std::ifstream in(walPath, std::ios::binary);
   if (!in) return "";
-  const std::vector<uint8_t> wal((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::vector<uint8_t> wal((std::istreambuf_iterator<char>(in)),
+                                 std::istreambuf_iterator<char>());
   if (wal.size() < kHeader) return "";
   const uint32_t magic = bigEndian(wal.data());
   const uint32_t pageSize = bigEndian(wal.data() + 8);
@@ -53,7 +55,8 @@ std::string walProblem(const std::string& walPath) {
   sum.bigEndianWords = magic == kMagicBig;
   sum.add(wal.data(), 24);
   // A header that fails its checksum makes SQLite ignore the whole log.
-  const bool headerBroken = sum.s0 != bigEndian(wal.data() + 24) || sum.s1 != bigEndian(wal.data() + 28);
+  const bool headerBroken =
+      sum.s0 != bigEndian(wal.data() + 24) || sum.s1 != bigEndian(wal.data() + 28);
   const uint32_t salt1 = bigEndian(wal.data() + 16), salt2 = bigEndian(wal.data() + 20);
   const size_t frameSize = kFrameHeader + pageSize;
   size_t valid = 0, ignored = 0, lostCommits = 0;
@@ -80,9 +83,10 @@ std::string walProblem(const std::string& walPath) {
   // A kill -9 can leave only the frame being written incomplete, at the end of an unacknowledged
   // transaction; a commit after the break means acknowledged transactions are lost.
   if (lostCommits == 0) return "";
-  return "the write-ahead log is damaged after frame " + std::to_string(valid) + ": SQLite ignores " +
-         std::to_string(ignored) + " later frame" + (ignored == 1 ? "" : "s") + " of it, " +
-         std::to_string(lostCommits) + " committed transaction" + (lostCommits == 1 ? "" : "s") +
+  return "the write-ahead log is damaged after frame " + std::to_string(valid) +
+         ": SQLite ignores " + std::to_string(ignored) + " later frame" +
+         (ignored == 1 ? "" : "s") + " of it, " + std::to_string(lostCommits) +
+         " committed transaction" + (lostCommits == 1 ? "" : "s") +
          " among them (acknowledged edits are missing)";
 }
 

@@ -67,8 +67,9 @@ Camera cameraOf(const uint8_t* data, size_t size) {
 }
 
 bool allFinite(const Camera& c) {
-  const double values[] = {c.position.x, c.position.y, c.position.z, c.target.x, c.target.y, c.target.z,
-                           c.up.x,       c.up.y,       c.up.z,       c.fovYDeg,  c.height,   c.near, c.far};
+  const double values[] = {c.position.x, c.position.y, c.position.z, c.target.x, c.target.y,
+                           c.target.z,   c.up.x,       c.up.y,       c.up.z,     c.fovYDeg,
+                           c.height,     c.near,       c.far};
   for (double v : values)
     if (!std::isfinite(v)) return false;
   return true;
@@ -76,9 +77,15 @@ bool allFinite(const Camera& c) {
 
 nlohmann::json cameraJson(const Camera& c) {
   auto vec = [](const Vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
-  return {{"position", vec(c.position)}, {"target", vec(c.target)}, {"up", vec(c.up)},
-          {"projection", c.projection == Camera::Projection::Perspective ? "perspective" : "orthographic"},
-          {"fov_y_deg", c.fovYDeg}, {"height", c.height}, {"near", c.near}, {"far", c.far}};
+  return {{"position", vec(c.position)},
+          {"target", vec(c.target)},
+          {"up", vec(c.up)},
+          {"projection",
+           c.projection == Camera::Projection::Perspective ? "perspective" : "orthographic"},
+          {"fov_y_deg", c.fovYDeg},
+          {"height", c.height},
+          {"near", c.near},
+          {"far", c.far}};
 }
 
 void checkRays(const Camera& c) {

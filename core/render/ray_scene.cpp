@@ -61,7 +61,8 @@ bool finiteWithin(float x) { return std::isfinite(x) && std::fabs(x) <= kEmbreeL
 bool embreeAccepts(const RTCRay& ray) {
   return finiteWithin(ray.org_x) && finiteWithin(ray.org_y) && finiteWithin(ray.org_z) &&
          finiteWithin(ray.dir_x) && finiteWithin(ray.dir_y) && finiteWithin(ray.dir_z) &&
-         std::isfinite(ray.tnear) && ray.tnear >= 0 && !std::isnan(ray.tfar) && ray.tfar >= ray.tnear;
+         std::isfinite(ray.tnear) && ray.tnear >= 0 && !std::isnan(ray.tfar) &&
+         ray.tfar >= ray.tnear;
 }
 
 void onEmbreeError(void* user, RTCError code, const char* message) {

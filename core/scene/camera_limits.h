@@ -16,11 +16,11 @@ namespace penumbra {
 struct CameraLimits {
   static constexpr double kMinFovYDeg = 0.01;
   static constexpr double kMaxFovYDeg = 179;
-  static constexpr double kMaxDepthRatio = 1e7;   // far / near
-  static constexpr double kMaxReach = 1e4;        // eye, target within kMaxReach·S of the centre
-  static constexpr double kMaxFar = 1e5;          // far ≤ kMaxFar·S
-  static constexpr double kMinNear = 1e-7;        // near ≥ kMinNear·S
-  static constexpr double kMinOrthoHeight = 1e-6; // orthographic height in [1e-6·S, 1e5·S]
+  static constexpr double kMaxDepthRatio = 1e7;    // far / near
+  static constexpr double kMaxReach = 1e4;         // eye, target within kMaxReach·S of the centre
+  static constexpr double kMaxFar = 1e5;           // far ≤ kMaxFar·S
+  static constexpr double kMinNear = 1e-7;         // near ≥ kMinNear·S
+  static constexpr double kMinOrthoHeight = 1e-6;  // orthographic height in [1e-6·S, 1e5·S]
   static constexpr double kMaxOrthoHeight = 1e5;
 };
 
@@ -30,7 +30,9 @@ struct CameraLimits {
 class CameraError : public std::invalid_argument {
  public:
   CameraError(std::string key, const std::string& problem)
-      : std::invalid_argument("camera." + key + ": " + problem), key_(std::move(key)), problem_(problem) {}
+      : std::invalid_argument("camera." + key + ": " + problem),
+        key_(std::move(key)),
+        problem_(problem) {}
   const std::string& key() const { return key_; }
   const std::string& problem() const { return problem_; }
 

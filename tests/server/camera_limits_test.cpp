@@ -21,15 +21,45 @@ std::string addTiny(httplib::Client& client, const json& scene = tinyScene()) {
   return bodyJson(res)["id"];
 }
 
-size_t sceneCount(httplib::Client& client) { return bodyJson(client.Get("/api/scenes"))["scenes"].size(); }
+size_t sceneCount(httplib::Client& client) {
+  return bodyJson(client.Get("/api/scenes"))["scenes"].size();
+}
 
 // Extreme spellings of doubles: signed zeros, denormals, the ends of the range, non-numbers
 // (refused by the query parser), huge and tiny values, and a few ordinary ones.
-const std::vector<std::string> kSpellings = {
-    "0",      "-0",       "4.9e-324", "2.2250738585072014e-308", "1e-300", "-1e-300", "1e300", "-1e300",
-    "1.7976931348623157e308", "nan",  "NaN",   "-nan",   "inf",    "-inf",  "Infinity", "1e999",
-    "0x1p-1074", "1e-12", "1e12",   "1e19",  "-1e19",  "1e-7",  "1e7",    "0.01",  "179",  "179.5",
-    "180",    "0.5",      "3",        "-2",    "45",     "6",     ""};
+const std::vector<std::string> kSpellings = {"0",
+                                             "-0",
+                                             "4.9e-324",
+                                             "2.2250738585072014e-308",
+                                             "1e-300",
+                                             "-1e-300",
+                                             "1e300",
+                                             "-1e300",
+                                             "1.7976931348623157e308",
+                                             "nan",
+                                             "NaN",
+                                             "-nan",
+                                             "inf",
+                                             "-inf",
+                                             "Infinity",
+                                             "1e999",
+                                             "0x1p-1074",
+                                             "1e-12",
+                                             "1e12",
+                                             "1e19",
+                                             "-1e19",
+                                             "1e-7",
+                                             "1e7",
+                                             "0.01",
+                                             "179",
+                                             "179.5",
+                                             "180",
+                                             "0.5",
+                                             "3",
+                                             "-2",
+                                             "45",
+                                             "6",
+                                             ""};
 
 std::string vec3(std::mt19937& rng) {
   std::string text;
@@ -70,14 +100,23 @@ TEST(CameraLimits, AnUploadedSceneWithAnExtremeCameraIsRefusedAndNotJournaled) {
     RunningServer running(data.durable());
     auto client = running.client();
     const std::vector<std::pair<json, std::string>> cameras = {
-        {{{"position", {0, 1.5, 6}}, {"target", {0, 1, 0}}, {"near", 1e-12}, {"far", 1e12}}, "camera.near"},
+        {{{"position", {0, 1.5, 6}}, {"target", {0, 1, 0}}, {"near", 1e-12}, {"far", 1e12}},
+         "camera.near"},
         {{{"position", {1e19, 1, 0}}, {"target", {0, 1, 0}}}, "camera.position"},
-        {{{"position", {0, 1.5, 6}}, {"target", {0, 1, 0}}, {"fov_y_deg", 1e-300}}, "camera.fov_y_deg"},
-        {{{"position", {0, 1.5, 6}}, {"target", {0, 1, 0}}, {"projection", "orthographic"}, {"height", 1e300}},
+        {{{"position", {0, 1.5, 6}}, {"target", {0, 1, 0}}, {"fov_y_deg", 1e-300}},
+         "camera.fov_y_deg"},
+        {{{"position", {0, 1.5, 6}},
+          {"target", {0, 1, 0}},
+          {"projection", "orthographic"},
+          {"height", 1e300}},
          "camera.height"},
-        {{{"position", {0, 1.5, 6}}, {"target", {0, 1, 0}}, {"projection", "orthographic"}, {"height", 1e-300}},
+        {{{"position", {0, 1.5, 6}},
+          {"target", {0, 1, 0}},
+          {"projection", "orthographic"},
+          {"height", 1e-300}},
          "camera.height"},
-        {{{"position", {0, 1.5, 6}}, {"target", {0, 1, 0}}, {"near", 1e-9}, {"far", 10}}, "camera.near"},
+        {{{"position", {0, 1.5, 6}}, {"target", {0, 1, 0}}, {"near", 1e-9}, {"far", 10}},
+         "camera.near"},
     };
     for (const auto& [camera, path] : cameras) {
       json scene = tinyScene();
@@ -110,12 +149,15 @@ TEST(CameraLimits, ExtremeDoublesInImageQueriesAndSceneCamerasNeverCrashTheServe
     if (rng() % 2) query += rng() % 2 ? "&projection=orthographic" : "&projection=perspective";
     for (const char* key : keys) {
       if (rng() % 3) continue;
-      const bool isVector = std::string(key) == "position" || std::string(key) == "target" || std::string(key) == "up";
-      query += std::string("&") + key + "=" + (isVector ? vec3(rng) : kSpellings[rng() % kSpellings.size()]);
+      const bool isVector = std::string(key) == "position" || std::string(key) == "target" ||
+                            std::string(key) == "up";
+      query += std::string("&") + key + "=" +
+               (isVector ? vec3(rng) : kSpellings[rng() % kSpellings.size()]);
     }
     const auto res = client.Get(query.c_str());
     ASSERT_TRUE(res) << query << ": no answer (the server died?)";
-    ASSERT_TRUE(res->status == 200 || res->status == 400) << query << " → " << res->status << " " << res->body;
+    ASSERT_TRUE(res->status == 200 || res->status == 400)
+        << query << " → " << res->status << " " << res->body;
     if (res->status == 200) {
       ++ok;
     } else {
@@ -127,24 +169,30 @@ TEST(CameraLimits, ExtremeDoublesInImageQueriesAndSceneCamerasNeverCrashTheServe
   EXPECT_GT(ok, 100u) << "the generator should also make valid cameras";
   EXPECT_GT(refused, 500u);
 
-  const double numbers[] = {0.0, -0.0, 4.9e-324, 2.2e-308, 1e-300, 1e300, -1e300, 1.7976931348623157e308,
-                            1e-12, 1e12, 1e19, 1e-7, 0.01, 179, 180, 0.5, 3, -2, 45, 6};
+  const double numbers[] = {
+      0.0,   -0.0, 4.9e-324, 2.2e-308, 1e-300, 1e300, -1e300, 1.7976931348623157e308,
+      1e-12, 1e12, 1e19,     1e-7,     0.01,   179,   180,    0.5,
+      3,     -2,   45,       6};
   auto number = [&] { return numbers[rng() % std::size(numbers)]; };
   size_t kept = 0;
   for (int i = 0; i < 300; ++i) {
-    json camera = {{"position", {number(), number(), number()}}, {"target", {number(), number(), number()}}};
+    json camera = {{"position", {number(), number(), number()}},
+                   {"target", {number(), number(), number()}}};
     if (rng() % 2) camera["up"] = {number(), number(), number()};
     if (rng() % 2) camera["projection"] = rng() % 2 ? "orthographic" : "perspective";
     for (const char* key : {"fov_y_deg", "height", "near", "far"})
       if (rng() % 2) camera[key] = number();
-    if (i % 4 == 0) camera = {{"position", {0, 1.5, 6}}, {"target", {0, 1, 0}}, {"near", number()}, {"far", number()}};
+    if (i % 4 == 0)
+      camera = {
+          {"position", {0, 1.5, 6}}, {"target", {0, 1, 0}}, {"near", number()}, {"far", number()}};
     json scene = tinyScene();
     scene["camera"] = camera;
     const auto res = postJson(client, "/api/scenes?name=fuzz", scene);
     ASSERT_TRUE(res) << camera.dump() << ": no answer";
     ASSERT_TRUE(res->status == 201 || res->status == 422) << camera.dump() << " → " << res->body;
     if (res->status == 422) {
-      EXPECT_EQ(bodyJson(res)["error"]["path"].get<std::string>().rfind("camera", 0), 0u) << res->body;
+      EXPECT_EQ(bodyJson(res)["error"]["path"].get<std::string>().rfind("camera", 0), 0u)
+          << res->body;
       EXPECT_EQ(sceneCount(client), 1u) << "a refused upload left a scene";
       continue;
     }
@@ -182,7 +230,8 @@ TEST(NumericLimits, CoordinatesTransformsAndRadianceBeyondTheirBoundsAre422Namin
   scene["objects"][1]["transform"]["scale"] = {1e300, 1, 1};
   refused(scene, "objects[1].transform.scale");
   scene = tinyScene();
-  scene["objects"][1]["transform"]["scale"] = {1e5, 1e5, 1e5};  // within the scale bound, beyond ±1e9 placed
+  scene["objects"][1]["transform"]["scale"] = {1e5, 1e5,
+                                               1e5};  // within the scale bound, beyond ±1e9 placed
   scene["objects"][1]["transform"]["translate"] = {0, 9.9999e8, 0};
   refused(scene, "objects[1].faces[0]");
   scene = tinyScene();
@@ -206,9 +255,11 @@ TEST(NumericLimits, CoordinatesTransformsAndRadianceBeyondTheirBoundsAre422Namin
       {{{"edits",
          {{{"op", "set_light"},
            {"id", "lamp"},
-           {"polygon", {{-0.5, 2.9, -0.5}, {0.5, 2.9, -0.5}, {0.5, 2.9, 1e12}, {-0.5, 2.9, 0.5}}}}}}},
+           {"polygon",
+            {{-0.5, 2.9, -0.5}, {0.5, 2.9, -0.5}, {0.5, 2.9, 1e12}, {-0.5, 2.9, 0.5}}}}}}},
        "edits[0].polygon[2]"},
-      {{{"edits", {{{"op", "set_light"}, {"id", "lamp"}, {"radiance", {1, 1e300, 1}}}}}}, "edits[0].radiance"},
+      {{{"edits", {{{"op", "set_light"}, {"id", "lamp"}, {"radiance", {1, 1e300, 1}}}}}},
+       "edits[0].radiance"},
   };
   for (const auto& [frame, path] : frames) {
     const auto res = postJson(client, edits, frame);
@@ -216,10 +267,11 @@ TEST(NumericLimits, CoordinatesTransformsAndRadianceBeyondTheirBoundsAre422Namin
     EXPECT_EQ(bodyJson(res)["error"]["path"], path) << res->body;
   }
   // A volume upload's `translate` too.
-  const auto upload = client.Post(("/api/scenes/" + id + "/volumes?name=smoke.nrrd&translate=0,1e300,0").c_str(),
-                                  protocol::readTextFile(std::string(PENUMBRA_SOURCE_DIR) +
-                                                             "/scenes/volumes/smoke64.nrrd", size_t(1) << 24),
-                                  "application/octet-stream");
+  const auto upload = client.Post(
+      ("/api/scenes/" + id + "/volumes?name=smoke.nrrd&translate=0,1e300,0").c_str(),
+      protocol::readTextFile(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/volumes/smoke64.nrrd",
+                             size_t(1) << 24),
+      "application/octet-stream");
   EXPECT_EQ(upload->status, 400) << upload->body;
   EXPECT_EQ(bodyJson(upload)["error"]["path"], "query.translate") << upload->body;
   EXPECT_EQ(bodyJson(client.Get(("/api/scenes/" + id).c_str()))["version"], 0);
@@ -227,8 +279,10 @@ TEST(NumericLimits, CoordinatesTransformsAndRadianceBeyondTheirBoundsAre422Namin
   // Image size, samples and GI keys: 400 naming the parameter.
   const std::string image = "/api/scenes/" + id + "/image?";
   const std::vector<std::pair<std::string, std::string>> queries = {
-      {"width=1e300&height=4", "query.width"},     {"width=4&height=-1", "query.height"},
-      {"width=0&height=4", "query.width"},         {"width=4&height=4&samples=1e300", "query.samples"},
+      {"width=1e300&height=4", "query.width"},
+      {"width=4&height=-1", "query.height"},
+      {"width=0&height=4", "query.width"},
+      {"width=4&height=4&samples=1e300", "query.samples"},
       {"width=4&height=4&samples=0", "query.samples"},
       {"width=4&height=4&gi=sensors&threshold=nan", "query.threshold"},
       {"width=4&height=4&gi=sensors&threshold=1e300", "query.threshold"},

@@ -35,13 +35,14 @@ json sceneJson(httplib::Client& client, const std::string& id) {
 }
 
 // Seeded moves of the box; the mesh served at each version (index = version).
-std::vector<std::string> dragBox(httplib::Client& client, const std::string& id, int frames, uint32_t seed,
-                                 std::vector<std::string> meshes = {}) {
+std::vector<std::string> dragBox(httplib::Client& client, const std::string& id, int frames,
+                                 uint32_t seed, std::vector<std::string> meshes = {}) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> where(-1.5, 1.5);
   if (meshes.empty()) meshes.push_back(meshBin(client, id));
   for (int i = 0; i < frames; ++i) {
-    const auto res = postJson(client, "/api/scenes/" + id + "/edits", moveFrame("box", where(rng), 0.5, where(rng)));
+    const auto res = postJson(client, "/api/scenes/" + id + "/edits",
+                              moveFrame("box", where(rng), 0.5, where(rng)));
     EXPECT_TRUE(res && res->status == 200) << (res ? res->body : "no answer");
     EXPECT_EQ(bodyJson(res)["version"], meshes.size());
     meshes.push_back(meshBin(client, id));
@@ -61,11 +62,13 @@ std::map<int64_t, std::string> journaledFrames(const std::string& dir) {
   sqlite3* db = nullptr;
   EXPECT_EQ(sqlite3_open((dir + "/journal.sqlite3").c_str(), &db), SQLITE_OK);
   sqlite3_stmt* rows = nullptr;
-  EXPECT_EQ(sqlite3_prepare_v2(db, "SELECT version, frame FROM frames ORDER BY version", -1, &rows, nullptr),
+  EXPECT_EQ(sqlite3_prepare_v2(db, "SELECT version, frame FROM frames ORDER BY version", -1, &rows,
+                               nullptr),
             SQLITE_OK);
   while (sqlite3_step(rows) == SQLITE_ROW)
     frames[sqlite3_column_int64(rows, 0)] =
-        std::string(static_cast<const char*>(sqlite3_column_blob(rows, 1)), size_t(sqlite3_column_bytes(rows, 1)));
+        std::string(static_cast<const char*>(sqlite3_column_blob(rows, 1)),
+                    size_t(sqlite3_column_bytes(rows, 1)));
   sqlite3_finalize(rows);
   sqlite3_close(db);
   return frames;
@@ -75,13 +78,15 @@ void execSql(const std::string& dir, const std::string& sql) {
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open((dir + "/journal.sqlite3").c_str(), &db), SQLITE_OK);
   char* error = nullptr;
-  EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error), SQLITE_OK) << (error ? error : "");
+  EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error), SQLITE_OK)
+      << (error ? error : "");
   sqlite3_free(error);
   sqlite3_close(db);
 }
 
 std::string smokeBytes() {
-  return protocol::readTextFile(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/volumes/smoke64.nrrd", size_t(1) << 24);
+  return protocol::readTextFile(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/volumes/smoke64.nrrd",
+                                size_t(1) << 24);
 }
 
 TEST(JournalFaults, AMovedDataDirectoryRestoresEveryAcknowledgedVersionWithItsUploads) {
@@ -93,15 +98,17 @@ TEST(JournalFaults, AMovedDataDirectoryRestoresEveryAcknowledgedVersionWithItsUp
     auto client = running.client();
     id = addTiny(client);
     meshes = dragBox(client, id, 2, 1);
-    const auto upload = client.Post(("/api/scenes/" + id + "/volumes?name=smoke.nrrd&translate=2,1,2").c_str(),
-                                    smokeBytes(), "application/octet-stream");
+    const auto upload =
+        client.Post(("/api/scenes/" + id + "/volumes?name=smoke.nrrd&translate=2,1,2").c_str(),
+                    smokeBytes(), "application/octet-stream");
     ASSERT_EQ(upload->status, 201) << upload->body;
     meshes.push_back(meshBin(client, id));
     meshes = dragBox(client, id, 4, 2, meshes);
   }
   const auto frames = journaledFrames(data.str());
   ASSERT_EQ(frames.size(), 7u);
-  EXPECT_NE(frames.at(3).find("\"volumes/"), std::string::npos) << "upload not kept relative: " << frames.at(3);
+  EXPECT_NE(frames.at(3).find("\"volumes/"), std::string::npos)
+      << "upload not kept relative: " << frames.at(3);
   fs::rename(data.str(), moved.str());
   for (int restart = 0; restart < 2; ++restart) {  // twice: the first restore changed nothing
     RunningServer again(moved.durable());
@@ -124,7 +131,8 @@ TEST(JournalFaults, AMovedDataDirectoryRestoresEveryAcknowledgedVersionWithItsUp
 // restart.
 TEST(JournalFaults, AGarbledOrUnappliableFrameStallsTheSceneAndKeepsEveryFrame) {
   for (const bool keepChecksum : {false, true}) {
-    SCOPED_TRACE(keepChecksum ? "a frame that no longer applies" : "a frame that fails its checksum");
+    SCOPED_TRACE(keepChecksum ? "a frame that no longer applies"
+                              : "a frame that fails its checksum");
     TempDataDir data;
     std::vector<std::string> meshes;
     std::string id;
@@ -136,11 +144,14 @@ TEST(JournalFaults, AGarbledOrUnappliableFrameStallsTheSceneAndKeepsEveryFrame) 
     }
     if (keepChecksum) {
       const std::string frame = R"({"edits":[{"op":"remove","id":"no_such_object"}]})";
-      execSql(data.str(), "UPDATE frames SET frame = '" + frame + "', crc = " +
-                              std::to_string(SceneJournal::frameChecksum(4, frame)) + " WHERE version = 4");
+      execSql(data.str(), "UPDATE frames SET frame = '" + frame +
+                              "', crc = " + std::to_string(SceneJournal::frameChecksum(4, frame)) +
+                              " WHERE version = 4");
     } else {
-      execSql(data.str(), "UPDATE frames SET frame = CAST('{\"edits\":[{\"op\":\"move\",\"id\":\"box\"}' AS BLOB) "
-                          "WHERE version = 4");
+      execSql(
+          data.str(),
+          "UPDATE frames SET frame = CAST('{\"edits\":[{\"op\":\"move\",\"id\":\"box\"}' AS BLOB) "
+          "WHERE version = 4");
     }
     const auto kept = journaledFrames(data.str());
     ASSERT_EQ(kept.size(), 6u);
@@ -155,8 +166,10 @@ TEST(JournalFaults, AGarbledOrUnappliableFrameStallsTheSceneAndKeepsEveryFrame) 
       const json scene = sceneJson(client, id);
       EXPECT_EQ(scene["version"], 3);
       EXPECT_EQ(scene["stalled_at"], 3);
-      EXPECT_TRUE(meshBin(client, id) == meshes[3]) << "the stalled version is not served byte for byte";
-      const auto edit = postJson(client, "/api/scenes/" + id + "/edits", moveFrame("box", 0, 0.5, 0));
+      EXPECT_TRUE(meshBin(client, id) == meshes[3])
+          << "the stalled version is not served byte for byte";
+      const auto edit =
+          postJson(client, "/api/scenes/" + id + "/edits", moveFrame("box", 0, 0.5, 0));
       EXPECT_EQ(edit->status, 409) << edit->body;
       EXPECT_EQ(bodyJson(edit)["error"]["code"], "scene_stalled");
       const json health = bodyJson(client.Get("/api/health"));
@@ -186,8 +199,8 @@ TEST(JournalFaults, ADataDirectoryRemovedWhileServingMakesEdits503AndHealthNotDu
   EXPECT_EQ(sceneJson(client, id)["version"], 1);
   const auto created = postJson(client, "/api/scenes?name=more", tinyScene());
   EXPECT_EQ(created->status, 503) << created->body;
-  const auto upload = client.Post(("/api/scenes/" + id + "/volumes?name=smoke.nrrd").c_str(), smokeBytes(),
-                                  "application/octet-stream");
+  const auto upload = client.Post(("/api/scenes/" + id + "/volumes?name=smoke.nrrd").c_str(),
+                                  smokeBytes(), "application/octet-stream");
   EXPECT_EQ(upload->status, 503) << upload->body;
   EXPECT_FALSE(fs::exists(data.str())) << "the upload made the data directory again";
   const json health = bodyJson(client.Get("/api/health"));
@@ -252,7 +265,8 @@ TEST(JournalFaults, ADamagedDatabaseIsLoudNeverSilent) {
   auto client = again->client();
   const json health = bodyJson(client.Get("/api/health"));
   const bool everything = restored.size() == 1 && restored[0].problem.empty() &&
-                          sceneJson(client, id)["version"] == 40 && meshBin(client, id) == meshes.back();
+                          sceneJson(client, id)["version"] == 40 &&
+                          meshBin(client, id) == meshes.back();
   if (!everything) {
     EXPECT_EQ(health["status"], "degraded") << "lost data silently: " << health.dump();
   }
@@ -311,7 +325,8 @@ TEST(JournalFaults, ADamagedWriteAheadLogIsLoudAndKeptAside) {
       auto client = running.client();
       id = addTiny(client);
       ASSERT_EQ(sqlite3_open((data.str() + "/journal.sqlite3").c_str(), &holder), SQLITE_OK);
-      ASSERT_EQ(sqlite3_exec(holder, "SELECT COUNT(*) FROM scenes", nullptr, nullptr, nullptr), SQLITE_OK);
+      ASSERT_EQ(sqlite3_exec(holder, "SELECT COUNT(*) FROM scenes", nullptr, nullptr, nullptr),
+                SQLITE_OK);
       meshes = dragBox(client, id, 12, 8);
     }
     sqlite3_db_config(holder, SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 1, nullptr);
@@ -338,14 +353,16 @@ TEST(JournalFaults, ADamagedWriteAheadLogIsLoudAndKeptAside) {
       continue;
     }
     EXPECT_EQ(health["status"], "degraded") << health.dump();
-    EXPECT_NE(health["journal"]["integrity"].get<std::string>().find("write-ahead log"), std::string::npos)
+    EXPECT_NE(health["journal"]["integrity"].get<std::string>().find("write-ahead log"),
+              std::string::npos)
         << health.dump();
     bool copied = false;
     for (const auto& entry : fs::directory_iterator(data.str()))
       copied |= entry.path().filename().string().rfind("journal.sqlite3-wal.damaged-", 0) == 0;
     EXPECT_TRUE(copied) << "the damaged log was not kept aside";
     for (const RestoredScene& scene : restored)
-      EXPECT_TRUE(!scene.served || scene.stalledAt.has_value()) << "a scene from a damaged log takes edits";
+      EXPECT_TRUE(!scene.served || scene.stalledAt.has_value())
+          << "a scene from a damaged log takes edits";
   }
 }
 
