@@ -1,12 +1,14 @@
 #include "protocol/scene_json.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <set>
 
 #include "core/geom/polygon.h"
 #include "core/geom/tolerance.h"
+#include "core/scene/camera_limits.h"
 #include "protocol/json_reader.h"
 #include "protocol/json_text.h"
 #include "protocol/material_json.h"
@@ -45,6 +47,24 @@ void checkPolygonSize(size_t count, const std::string& path, const std::string& 
                    std::to_string(kMaxPolygonVertices));
 }
 
+// A point within ±kMaxCoordinate on every axis (`what` names it in the message).
+Vec3 checkCoordinates(const Vec3& point, const std::string& path, const std::string& what) {
+  for (int c = 0; c < 3; ++c)
+    if (!(std::abs(point[c]) <= kMaxCoordinate))
+      fail(path, what + " coordinate " + shortNumber(point[c]) + " is beyond ±" +
+                     shortNumber(kMaxCoordinate));
+  return point;
+}
+
+// Each component's magnitude at most `most` (scale, rotation, radiance).
+Vec3 checkMagnitude(const Vec3& value, const std::string& path, const std::string& what,
+                    double most) {
+  for (int c = 0; c < 3; ++c)
+    if (!(std::abs(value[c]) <= most))
+      fail(path, what + " component " + shortNumber(value[c]) + " is beyond ±" + shortNumber(most));
+  return value;
+}
+
 std::vector<Material> materialsFromJson(const Json& value, const std::string& path) {
   expectObject(value, path);
   std::vector<Material> materials;
@@ -57,7 +77,9 @@ std::vector<Material> materialsFromJson(const Json& value, const std::string& pa
   return materials;
 }
 
-Camera cameraFromJson(const Json& value, const std::string& path, double sceneSize) {
+// Types here; every limit (finite, depth range, field of view, reach) in core's validateCamera, the
+// one check the image route and the renderer use too.
+Camera cameraFromJson(const Json& value, const std::string& path, const Bounds& sceneBounds) {
   expectObject(value, path);
   Camera camera;
   camera.position = expectVec3(requireKey(value, "position", path), keyPath(path, "position"));
@@ -71,29 +93,17 @@ Camera cameraFromJson(const Json& value, const std::string& path, double sceneSi
       fail(keyPath(path, "projection"),
            "unknown projection '" + name + "' (expected perspective or orthographic)");
   }
-  if (const Json* fov = optionalKey(value, "fov_y_deg")) {
+  if (const Json* fov = optionalKey(value, "fov_y_deg"))
     camera.fovYDeg = expectNumber(*fov, keyPath(path, "fov_y_deg"));
-    if (!(camera.fovYDeg > 0 && camera.fovYDeg < 180))
-      fail(keyPath(path, "fov_y_deg"), "fov_y_deg " + shortNumber(camera.fovYDeg) +
-                                           " is outside (0, 180) degrees");
-  }
-  if (const Json* height = optionalKey(value, "height")) {
+  if (const Json* height = optionalKey(value, "height"))
     camera.height = expectNumber(*height, keyPath(path, "height"));
-    if (!(camera.height > 0)) fail(keyPath(path, "height"), "orthographic height must be positive");
-  }
   if (const Json* near = optionalKey(value, "near")) camera.near = expectNumber(*near, keyPath(path, "near"));
   if (const Json* far = optionalKey(value, "far")) camera.far = expectNumber(*far, keyPath(path, "far"));
-  if (!(camera.near > 0)) fail(keyPath(path, "near"), "near must be positive");
-  if (!(camera.far > camera.near)) fail(keyPath(path, "far"), "far must be greater than near");
-
-  const Vec3 view = camera.target - camera.position;
-  if (!(glm::length(view) > Tolerance::forSize(sceneSize).length()))
-    fail(keyPath(path, "target"), "target is at the camera position (no view direction)");
-  // Sine of the angle between up and the view direction, as a relative tolerance.
-  const double upLength = glm::length(camera.up);
-  if (!(upLength > 0) ||
-      glm::length(glm::cross(glm::normalize(view), camera.up)) <= kRelativePlanarity * upLength)
-    fail(keyPath(path, "up"), "up is parallel to the view direction");
+  try {
+    validateCamera(camera, sceneBounds);
+  } catch (const CameraError& error) {
+    fail(keyPath(path, error.key()), error.problem());
+  }
   return camera;
 }
 
@@ -103,11 +113,15 @@ Transform transformFromJson(const Json& value, const std::string& path) {
   expectObject(value, path);
   Transform transform;
   if (const Json* t = optionalKey(value, "translate"))
-    transform.translate = expectVec3(*t, keyPath(path, "translate"));
+    transform.translate = checkCoordinates(expectVec3(*t, keyPath(path, "translate")),
+                                           keyPath(path, "translate"), "translate");
   if (const Json* r = optionalKey(value, "rotate_deg"))
-    transform.rotateDeg = expectVec3(*r, keyPath(path, "rotate_deg"));
+    transform.rotateDeg =
+        checkMagnitude(expectVec3(*r, keyPath(path, "rotate_deg")), keyPath(path, "rotate_deg"),
+                       "rotate_deg", kMaxRotationDeg);
   if (const Json* s = optionalKey(value, "scale")) {
-    transform.scale = expectVec3(*s, keyPath(path, "scale"));
+    transform.scale = checkMagnitude(expectVec3(*s, keyPath(path, "scale")), keyPath(path, "scale"),
+                                     "scale", kMaxScale);
     for (int c = 0; c < 3; ++c)
       if (transform.scale[c] == 0)
         fail(keyPath(path, "scale"), "scale component " + std::to_string(c) + " is zero");
@@ -123,7 +137,8 @@ Object objectFromJson(const Json& value, const std::string& path, const std::vec
   const std::string verticesPath = keyPath(path, "vertices");
   const Json& vertices = expectArray(requireKey(value, "vertices", path), verticesPath);
   for (size_t i = 0; i < vertices.size(); ++i)
-    object.vertices.push_back(expectVec3(vertices[i], indexPath(verticesPath, i)));
+    object.vertices.push_back(checkCoordinates(expectVec3(vertices[i], indexPath(verticesPath, i)),
+                                               indexPath(verticesPath, i), "vertex"));
 
   const std::string facesPath = keyPath(path, "faces");
   const Json& faces = expectArray(requireKey(value, "faces", path), facesPath);
@@ -156,11 +171,15 @@ Object objectFromJson(const Json& value, const std::string& path, const std::vec
   if (const Json* transform = optionalKey(value, "transform"))
     object.transform = transformFromJson(*transform, keyPath(path, "transform"));
 
-  // An extreme non-uniform scale can flatten a face that was fine in object space.
+  // An extreme non-uniform scale can flatten a face that was fine in object space, or place it
+  // beyond the coordinate limit.
   const auto world = Scene::worldPolygons(object);
-  for (size_t f = 0; f < world.size(); ++f)
+  for (size_t f = 0; f < world.size(); ++f) {
+    for (const Vec3& p : world[f])
+      checkCoordinates(p, indexPath(facesPath, f), "placed (world) vertex");
     if (!planeOf(world[f]))
       fail(indexPath(facesPath, f), "face becomes degenerate under the object's transform");
+  }
   return object;
 }
 
@@ -177,7 +196,9 @@ Polygon3 lightPolygonFromJson(const Json& value, const std::string& path) {
   const Json& polygon = expectArray(value, path);
   checkPolygonSize(polygon.size(), path, "light polygon");
   Polygon3 out;
-  for (size_t i = 0; i < polygon.size(); ++i) out.push_back(expectVec3(polygon[i], indexPath(path, i)));
+  for (size_t i = 0; i < polygon.size(); ++i)
+    out.push_back(checkCoordinates(expectVec3(polygon[i], indexPath(path, i)), indexPath(path, i),
+                                   "light corner"));
   checkConvexPlanar(out, path, "light polygon");
   return out;
 }
@@ -186,7 +207,7 @@ Vec3 radianceFromJson(const Json& value, const std::string& path) {
   const Vec3 radiance = expectVec3(value, path);
   for (int c = 0; c < 3; ++c)
     if (radiance[c] < 0) fail(path, "radiance is negative");
-  return radiance;
+  return checkMagnitude(radiance, path, "radiance", kMaxRadiance);
 }
 
 Json polygonToJson(const Polygon3& polygon) {
@@ -241,7 +262,7 @@ Scene sceneFromJson(const Json& root, const VolumeFiles* volumeFiles) {
 
   std::optional<Camera> camera;
   if (const Json* c = optionalKey(root, "camera")) {
-    // The camera's "same point" tolerance is relative to the scene's size.
+    // The camera's limits are relative to the scene's size and centre (camera_limits.h).
     Bounds bounds{lights[0].polygon[0], lights[0].polygon[0]};
     auto grow = [&](const Vec3& p) {
       bounds.min = glm::min(bounds.min, p);
@@ -251,7 +272,7 @@ Scene sceneFromJson(const Json& root, const VolumeFiles* volumeFiles) {
       for (const Vec3& p : light.polygon) grow(p);
     for (const Object& object : objects)
       for (const Vec3& p : object.vertices) grow(object.transform.apply(p));
-    camera = cameraFromJson(*c, "camera", bounds.diagonal());
+    camera = cameraFromJson(*c, "camera", bounds);
   }
 
   try {

@@ -15,6 +15,14 @@ namespace penumbra::protocol {
 // Largest polygon (face or light) accepted: validation cost grows with the square
 // of a polygon's vertex count, and no sensible scene needs more.
 inline constexpr size_t kMaxPolygonVertices = 1024;
+// Magnitudes (SCENE_FORMAT.md "Limits"; issue 36): coordinates (object vertices, light corners,
+// translations, and every vertex once placed in the world) within ±1e9 m, so products of
+// coordinates stay finite in double and Embree's float rays (±1.8e18) can reach them; scale
+// factors within ±1e6 (and not 0), rotations within ±1e6 degrees, radiance at most 1e12.
+inline constexpr double kMaxCoordinate = 1e9;
+inline constexpr double kMaxScale = 1e6;
+inline constexpr double kMaxRotationDeg = 1e6;
+inline constexpr double kMaxRadiance = 1e12;
 
 struct VolumeFiles;  // protocol/volume_json.h
 

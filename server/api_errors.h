@@ -28,6 +28,7 @@ inline constexpr const char* kBusy = "busy";                          // 503, wi
 inline constexpr const char* kNotImplemented = "not_implemented";     // 501
 inline constexpr const char* kUnauthorized = "unauthorized";          // 401
 inline constexpr const char* kJournalFailed = "journal_failed";       // 503
+inline constexpr const char* kSceneStalled = "scene_stalled";         // 409
 }  // namespace error_code
 
 // Fixed bodies for when building one fails (no memory left, or a throwing error path).

@@ -160,7 +160,7 @@ void HttpServer::applyFrameBatch(SceneSession& session, const std::vector<EditSc
   SceneSession::Applied applied;
   try {
     applied = session.apply(*combined, [&](const SceneSnapshot& next) {
-      journalFrame(session, next, protocol::frameToJson(*combined).dump());
+      journalFrame(session, next, journaledFrameText(*combined));
     });
   } catch (...) {
     // One frame of the batch is refused (or failed): nothing was applied. Each frame on its
@@ -174,6 +174,7 @@ void HttpServer::applyFrameBatch(SceneSession& session, const std::vector<EditSc
 
 void HttpServer::submitFrame(SceneSession& session, Frame frame, const std::string& journaled,
                              const httplib::Request& req, httplib::Response& res) {
+  refuseIfStalled(session);  // its kept frames must not be overwritten by new versions
   QueuedFrame queued;
   queued.frame = std::move(frame);
   queued.client = clientOf(req);
@@ -201,6 +202,7 @@ void HttpServer::registerEditRoutes() {
   http.Post(
       scenePath + "/edits", guarded([this](const httplib::Request& req, httplib::Response& res) {
         const auto session = findScene(req.matches[1]);
+        refuseIfStalled(*session);  // before anything is read: the scene takes no edits
         const json body = parseBody(req);
         Frame frame;
         try {
@@ -221,12 +223,12 @@ void HttpServer::registerEditRoutes() {
                     edit >= 0 ? json{{"edit", edit}} : json::object());
           return;
         }
-        // A frame adding a volume is journaled with its file resolved (absolute), as a restart
-        // reads it.
+        // A frame adding a volume is journaled with its file resolved (relative to the data
+        // directory when inside it), as a restart reads it.
         const bool addsVolume =
             std::any_of(frame.edits.begin(), frame.edits.end(),
                         [](const Edit& e) { return e.op == Edit::Op::AddVolume; });
-        const std::string journaled = addsVolume ? protocol::frameToJson(frame).dump() : req.body;
+        const std::string journaled = addsVolume ? journaledFrameText(frame) : req.body;
         submitFrame(*session, std::move(frame), journaled, req, res);
       }));
 }

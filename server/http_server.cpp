@@ -72,6 +72,12 @@ HttpServer::HttpServer(ServerOptions options)
   http_->set_keep_alive_max_count(1000);
   http_->set_keep_alive_timeout(2);  // idle keep-alive connections hold a worker too
   http_->set_tcp_nodelay(true);
+  // cpp-httplib's default sets SO_REUSEPORT, which lets a second server bind the same port and
+  // take half the connections (issue 36): SO_REUSEADDR only (a restart may rebind at once).
+  http_->set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, reinterpret_cast<void*>(&yes), sizeof(yes));
+  });
   http_->set_logger([this](const httplib::Request&, const httplib::Response&) {
     trimmer_.noteActivity();
   });

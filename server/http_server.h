@@ -7,13 +7,16 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "core/engine/engine.h"
-#include "server/limits.h"
-#include "server/scene_journal.h"
 #include "server/edit_workers.h"
+#include "server/limits.h"
 #include "server/memory_trim.h"
+#include "server/scene_journal.h"
 #include "server/scene_session.h"
 #include "server/static_files.h"
 
@@ -61,7 +64,24 @@ struct RestoredScene {
   bool meshedOnce = false;  // replayed through the engine alone and meshed once (part changes journaled)
   double seconds = 0;    // build + replay
   bool served = true;    // false: the scene no longer builds (kept in the journal, not served)
-  std::string problem;   // not empty: why not served, or which frames no longer replay (dropped)
+  // Set when restore stopped before the journal's last frame (a frame that fails its checksum or
+  // no longer applies): the version it is served at. The later frames stay in the journal.
+  std::optional<uint64_t> stalledAt;
+  std::string problem;  // not empty: why not served, or where and why it stalled
+};
+
+// A scene restore stopped short of its journal: served read-only at `version` (edits answer 409,
+// so no new version overwrites a kept frame) until an operator repairs the journal.
+struct SceneStall {
+  uint64_t version = 0;
+  std::string problem;
+};
+
+// A problem restore met, for /api/health: the scene, where it stalled (if served), and why.
+struct JournalProblem {
+  std::string id;
+  std::optional<uint64_t> stalledAt;
+  std::string problem;
 };
 
 class HttpServer {
@@ -79,6 +99,8 @@ class HttpServer {
   // before addScene, so that journaled scenes keep their ids.
   std::vector<RestoredScene> restore();
   bool hasScene(const std::string& id) const;
+  // The stall restore left on a served scene, if any (SceneStall).
+  std::optional<SceneStall> stallOf(const SceneSession& session) const;
 
   // Binds the listening socket; returns the port. Throws std::runtime_error.
   int bind();
@@ -119,6 +141,17 @@ class HttpServer {
   // `volumes/`, or a temporary folder when ephemeral; created on first use.
   std::string volumeUploadDir();
   void journalRemove(const SceneSession& session);
+  // A frame's JSON as the journal keeps it: the volume files it adds under the data directory
+  // written relative to it (so the directory may be moved), other files as resolved.
+  std::string journaledFrameText(const Frame& frame) const;
+  // 409 scene_stalled when restore left the scene stalled (SceneStall).
+  void refuseIfStalled(const SceneSession& session) const;
+  // 503 journal_failed when commits would not be durable (the data directory gone, replaced or
+  // unwritable): checked before work that writes files, such as a volume upload.
+  void refuseIfNotDurable() const;
+  // /api/health's "journal" member: path, integrity, durability, stalled scenes
+  // (scene_restore.cpp).
+  nlohmann::json journalHealthJson() const;
   std::shared_ptr<SceneSession> findScene(const std::string& id) const;
   std::string freshId(const std::string& preferred);  // call with scenesMutex_ held
 
@@ -134,6 +167,8 @@ class HttpServer {
   std::map<std::string, std::shared_ptr<SceneSession>> scenes_;
   std::unique_ptr<SceneJournal> journal_;  // null: ephemeral
   std::map<const SceneSession*, int64_t> journalKeys_;  // guarded by scenesMutex_
+  std::map<const SceneSession*, SceneStall> stalls_;    // guarded by scenesMutex_
+  std::vector<JournalProblem> journalProblems_;         // guarded by scenesMutex_
   std::vector<std::pair<std::string, std::string>> staticRoots_;  // URL prefix → canonical dir
   StaticFiles staticFiles_;  // the page, served from those roots
   size_t nextId_ = 1;

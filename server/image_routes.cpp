@@ -1,11 +1,13 @@
 // GET /api/scenes/{id}/image: the server's render of a scene version for a camera.
-#include "server/http_server.h"
-
 #include <httplib.h>
 
 #include <algorithm>
+#include <map>
+#include <vector>
 
 #include "core/render/renderer.h"
+#include "core/scene/camera_limits.h"
+#include "server/http_server.h"
 #include "server/image_encoding.h"
 #include "server/limits.h"
 #include "server/request_io.h"
@@ -17,10 +19,32 @@ using nlohmann::json;
 
 namespace {
 
-// The camera of an image request: the scene's camera (or the default one) with
-// any of the query's camera parameters replacing its fields.
+// The query parameter to blame for a camera refused at `cameraKey` (CameraError::key()): its own
+// when the query set it, else one the check relates it to (far > near, target ≠ position, up
+// against the view direction) that the query set; null when the scene's own camera is at fault.
+const char* queryKeyFor(const httplib::Request& req, const std::string& cameraKey) {
+  const std::map<std::string, std::vector<const char*>> candidates = {
+      {"near", {"near", "far"}},
+      {"far", {"far", "near"}},
+      {"position", {"position"}},
+      {"target", {"target", "position"}},
+      {"up", {"up", "position", "target"}},
+      {"fov_y_deg", {"fov_y_deg"}},
+      {"height", {"ortho_height", "projection"}}};
+  const auto it = candidates.find(cameraKey);
+  if (it == candidates.end()) return nullptr;
+  for (const char* key : it->second)
+    if (req.has_param(key)) return key;
+  if (cameraKey == "fov_y_deg" && req.has_param("projection")) return "projection";
+  return nullptr;
+}
+
+// The camera of an image request: the scene's camera (or the default one) with any of the
+// query's camera parameters replacing its fields, then core's validateCamera (the scene loader's
+// and the renderer's check): 400 naming `query.<name>`, or `camera.<key>` when the field at
+// fault is the scene's own.
 Camera cameraFromQuery(const httplib::Request& req, const Scene& scene) {
-  Camera camera = scene.camera().value_or(Camera{});
+  Camera camera = scene.camera().value_or(defaultCamera(scene.bounds()));
   if (auto v = queryVec3(req, "position")) camera.position = *v;
   if (auto v = queryVec3(req, "target")) camera.target = *v;
   if (auto v = queryVec3(req, "up")) camera.up = *v;
@@ -33,26 +57,19 @@ Camera cameraFromQuery(const httplib::Request& req, const Scene& scene) {
       throw ApiError(400, error_code::kBadParameter, "query.projection",
                      "projection must be 'perspective' or 'orthographic', got '" + *p + "'");
   }
-  if (auto v = queryNumber(req, "fov_y_deg")) {
-    if (!(*v > 0 && *v < 180))
-      throw ApiError(400, error_code::kBadParameter, "query.fov_y_deg",
-                     "fov_y_deg must be in (0, 180)");
-    camera.fovYDeg = *v;
-  }
+  if (auto v = queryNumber(req, "fov_y_deg")) camera.fovYDeg = *v;
   // (`height` is the image's; the orthographic view's height is `ortho_height`.)
-  if (auto v = queryNumber(req, "ortho_height")) {
-    if (!(*v > 0))
-      throw ApiError(400, error_code::kBadParameter, "query.ortho_height",
-                     "ortho_height must be positive");
-    camera.height = *v;
-  }
+  if (auto v = queryNumber(req, "ortho_height")) camera.height = *v;
   if (auto v = queryNumber(req, "near")) camera.near = *v;
   if (auto v = queryNumber(req, "far")) camera.far = *v;
-  if (!(camera.near > 0 && camera.far > camera.near))
-    throw ApiError(400, error_code::kBadParameter, "query.near", "need 0 < near < far");
-  if (glm::length(camera.target - camera.position) == 0)
-    throw ApiError(400, error_code::kBadParameter, "query.target",
-                   "target must differ from position");
+  try {
+    validateCamera(camera, scene.bounds());
+  } catch (const CameraError& error) {
+    if (const char* key = queryKeyFor(req, error.key()))
+      throw ApiError(400, error_code::kBadParameter, std::string("query.") + key, error.problem());
+    throw ApiError(400, error_code::kBadParameter, "camera." + error.key(),
+                   error.problem() + " (the scene's own camera: override it in the query)");
+  }
   return camera;
 }
 

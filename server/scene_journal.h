@@ -14,6 +14,7 @@
 namespace penumbra::server {
 
 class SqliteDb;
+class DataDirectory;
 
 class SceneJournal {
  public:
@@ -23,23 +24,44 @@ class SceneJournal {
     std::string id, name;
     std::string source;  // scene JSON v1 (sceneToJson of the scene as created)
     uint64_t baseVersion = 0;
+    bool sourceIntact = true;  // its checksum matches (or it has none: a journal from before them)
+    bool complete = true;      // false: reading its frames failed part-way (loadProblem())
     struct StoredFrame {
       uint64_t version = 0;
       std::string frame;  // frame JSON as received
       std::string parts;  // what it did to the served mesh (part_changes.h); empty: not recorded
+                          // (or its checksum failed)
+      bool intact = true;  // the frame's checksum matches (or it has none)
     };
     std::vector<StoredFrame> frames;  // in version order
   };
 
-  // Opens DIR/journal.sqlite3, creating DIR and the schema. Throws std::runtime_error.
+  // Locks DIR (one server per data directory: DataDirectoryLocked) and opens
+  // DIR/journal.sqlite3, creating DIR and the schema, then runs SQLite's quick_check (what it
+  // found: integrity()). Throws std::runtime_error.
   explicit SceneJournal(const std::string& dir);
   ~SceneJournal();
   SceneJournal(const SceneJournal&) = delete;
   SceneJournal& operator=(const SceneJournal&) = delete;
 
   const std::string& path() const { return path_; }
+  const std::string& directory() const;  // the data directory, absolute
+  // "ok", or what was found damaged at open: committed frames of the write-ahead log that SQLite
+  // would ignore (wal_check.h), what PRAGMA quick_check reported.
+  const std::string& integrity() const { return integrity_; }
+  // Committed transactions of the write-ahead log SQLite ignored at open (wal_check.h): the scenes
+  // restored from it may lack acknowledged frames, so restore stalls them all.
+  const std::string& logDamage() const { return logDamage_; }
+  // Empty while commits are durable; else why not (the data directory removed, replaced or
+  // unwritable, the journal file gone): every write then throws without writing.
+  std::string durabilityProblem() const;
+  // Read only: restore never changes the journal. A checksum mismatch marks the frame (or the
+  // scene's source) not intact; a read error part-way is `loadProblem` (the scenes read so far
+  // come back; the scene being read and those after it are flagged by `complete = false`).
   std::vector<StoredScene> load();
-  // Each call is one committed transaction; throws std::runtime_error (nothing written) on failure.
+  const std::string& loadProblem() const { return loadProblem_; }
+  // Each call is one committed transaction; throws std::runtime_error (nothing written) on failure,
+  // and before writing anything when durabilityProblem() is not empty.
   int64_t addScene(const std::string& id, const std::string& name, const std::string& source,
                    uint64_t baseVersion);
   // `version` must follow the scene's last journaled version by exactly one: a gap means an
@@ -47,12 +69,22 @@ class SceneJournal {
   // `parts`: the frame's PartChanges as text, which lets a restart mesh once (scene_restore.cpp).
   void addFrame(int64_t key, uint64_t version, const std::string& frame, const std::string& parts);
   void removeScene(int64_t key);
-  // Drops a scene's frames after `version` (those that no longer replay; see restore).
-  void truncateAfter(int64_t key, uint64_t version);
+
+  // The checksum journaled with a frame: zlib's CRC-32 over its version and JSON. (Its part
+  // changes have their own; a mismatch there only drops them: the scene replays frame by frame.)
+  static uint32_t frameChecksum(uint64_t version, const std::string& frame);
 
  private:
-  std::mutex mutex_;
+  void requireDurable() const;  // throws std::runtime_error naming durabilityProblem()
+  void open();  // the connection, pragmas, quick_check and schema; throws SqliteError
+  std::string checkWriteAheadLog() const;  // wal_check.h's finding, the log copied aside; or ""
+
+  mutable std::mutex mutex_;
+  std::unique_ptr<DataDirectory> dir_;  // locked first, released last
   std::string path_;
+  std::string integrity_ = "ok";
+  std::string logDamage_;
+  std::string loadProblem_;
   std::unique_ptr<SqliteDb> db_;
   std::map<int64_t, uint64_t> lastVersion_;  // per scene key
 };

@@ -35,13 +35,22 @@ void HttpServer::registerSceneRoutes() {
                std::lock_guard lock(scenesMutex_);
                scenes = scenes_.size();
              }
+             // Durable: a journal whose directory is still the one locked and writable; any
+             // damage or stalled scene found at start makes the status "degraded".
+             json journal = journalHealthJson();
+             const bool durable = journal_ && journal["durability"] == "ok";
+             const bool degraded =
+                 journal_ && (!durable || journal["integrity"] != "ok" || journal["read"] != "ok" ||
+                              !journal["scene_problems"].empty());
              sendJson(res, 200,
-                      {{"status", "ok"},
+                      {{"status", degraded ? "degraded" : "ok"},
                        {"scenes", scenes},
                        {"event_streams", openStreams_.load()},
-                       {"durable", journal_ != nullptr},
+                       {"durable", durable},
+                       {"journal", std::move(journal)},
                        {"allocator", jemallocIsTheAllocator() ? "jemalloc" : "glibc"},
-                       {"edit_threads", {{"count", editWorkers_.threads()}, {"nice", editWorkers_.niceness()}}},
+                       {"edit_threads",
+                        {{"count", editWorkers_.threads()}, {"nice", editWorkers_.niceness()}}},
                        {"limits",
                         {{"max_body_bytes", options_.maxBodyBytes},
                          {"max_scenes", options_.maxScenes},
@@ -58,8 +67,14 @@ void HttpServer::registerSceneRoutes() {
                  if (session) sessions.push_back(session);
              }
              json list = json::array();
-             for (const auto& session : sessions)
-               list.push_back(sceneSummaryJson(*session->snapshot()));
+             for (const auto& session : sessions) {
+               json summary = sceneSummaryJson(*session->snapshot());
+               if (const auto stall = stallOf(*session)) {  // restore stopped short (SceneStall)
+                 summary["stalled_at"] = stall->version;
+                 summary["problem"] = stall->problem;
+               }
+               list.push_back(std::move(summary));
+             }
              sendJson(res, 200, {{"scenes", std::move(list)}});
            }));
 
@@ -111,13 +126,18 @@ void HttpServer::registerSceneRoutes() {
             }));
 
   http.Get(scenePath, guarded([this](const httplib::Request& req, httplib::Response& res) {
-             const auto snapshot = findScene(req.matches[1])->snapshot();
-             sendJson(res, 200,
-                      {{"id", snapshot->id},
-                       {"name", snapshot->name},
-                       {"version", snapshot->version},
-                       {"scene", protocol::sceneToJson(snapshot->scene)},
-                       {"volumes", volumesInfoJson(snapshot->scene)}});
+             const auto session = findScene(req.matches[1]);
+             const auto snapshot = session->snapshot();
+             json body = {{"id", snapshot->id},
+                          {"name", snapshot->name},
+                          {"version", snapshot->version},
+                          {"scene", protocol::sceneToJson(snapshot->scene)},
+                          {"volumes", volumesInfoJson(snapshot->scene)}};
+             if (const auto stall = stallOf(*session)) {
+               body["stalled_at"] = stall->version;
+               body["problem"] = stall->problem;
+             }
+             sendJson(res, 200, body);
            }));
 
   http.Delete(scenePath, guarded([this](const httplib::Request& req, httplib::Response& res) {

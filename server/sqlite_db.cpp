@@ -90,6 +90,10 @@ void SqliteStatement::reset() {
 
 int64_t SqliteStatement::columnInt(int column) const { return sqlite3_column_int64(stmt_, column); }
 
+bool SqliteStatement::columnIsNull(int column) const {
+  return sqlite3_column_type(stmt_, column) == SQLITE_NULL;
+}
+
 std::string SqliteStatement::columnBytes(int column) const {
   const void* data = sqlite3_column_blob(stmt_, column);
   const int size = sqlite3_column_bytes(stmt_, column);

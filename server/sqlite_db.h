@@ -58,6 +58,7 @@ class SqliteStatement {
   void reset();
 
   int64_t columnInt(int column) const;
+  bool columnIsNull(int column) const;
   std::string columnBytes(int column) const;  // text or blob
 
  private:

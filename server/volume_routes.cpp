@@ -5,10 +5,10 @@
 #include <unistd.h>
 
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <mutex>
 #include <random>
 
@@ -17,6 +17,9 @@
 #include "core/volume/surface_points.h"
 #include "protocol/edits_json.h"
 #include "protocol/nrrd_volume.h"
+#include "protocol/scene_json.h"
+#include "server/api_errors.h"
+#include "server/data_directory.h"
 #include "server/http_server.h"
 #include "server/request_io.h"
 #include "server/response_json.h"
@@ -85,7 +88,8 @@ std::string volumeIdFor(const httplib::Request& req, const VolumeUpload& upload,
   return id;
 }
 
-// Keeps the upload where a restart finds it (the journal names the file).
+// Keeps the upload where a restart finds it (the journal names the file, relative to the data
+// directory): written and fsynced with its directory before the frame naming it is journaled.
 std::string storeUpload(const std::string& dir, const std::string& sceneId,
                         const std::string& bytes) {
   static std::mt19937_64 random{std::random_device{}()};
@@ -98,10 +102,13 @@ std::string storeUpload(const std::string& dir, const std::string& sceneId,
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)name);
   const std::string path = (std::filesystem::path(dir) / (sceneId + "-" + hex + ".nrrd")).string();
-  std::ofstream out(path, std::ios::binary);
-  out.write(bytes.data(), std::streamsize(bytes.size()));
-  out.close();
-  if (!out) throw std::runtime_error("cannot write the uploaded volume to '" + path + "'");
+  try {
+    writeFileDurably(path, bytes);
+  } catch (const std::exception& error) {
+    throw ApiError(503, error_code::kJournalFailed, "",
+                   std::string("cannot keep the uploaded volume: ") + error.what() +
+                       "; nothing was acknowledged");
+  }
   return path;
 }
 
@@ -127,7 +134,13 @@ Edit addVolumeEdit(const httplib::Request& req, const Scene& scene, VolumeObject
   else
     volume.isovalue = 0.5 * (volume.data->minValue() + volume.data->maxValue());
   if (const auto material = queryText(req, "material")) volume.material = *material;
-  if (const auto translate = queryVec3(req, "translate")) volume.transform.translate = *translate;
+  if (const auto translate = queryVec3(req, "translate")) {
+    for (int c = 0; c < 3; ++c)
+      if (!(std::abs((*translate)[c]) <= protocol::kMaxCoordinate))
+        throw ApiError(400, error_code::kBadParameter, "query.translate",
+                       "translate coordinates must be within ±1e9 (the scene format's limit)");
+    volume.transform.translate = *translate;
+  }
   Edit edit;
   edit.op = Edit::Op::AddVolume;
   edit.id = volume.id;
@@ -169,6 +182,8 @@ void HttpServer::registerVolumeRoutes() {
   http.Post(
       scenePath + "/volumes", guarded([this](const httplib::Request& req, httplib::Response& res) {
         const auto session = findScene(req.matches[1]);
+        refuseIfStalled(*session);  // nothing stored for a scene that takes no edits
+        refuseIfNotDurable();       // nor where the journal could not name it
         const VolumeUpload upload = volumeUploadOf(req);
         const std::shared_ptr<const SceneSnapshot> snapshot = session->snapshot();
         VolumeObject volume;
@@ -183,7 +198,7 @@ void HttpServer::registerVolumeRoutes() {
           frame.edits.push_back(addVolumeEdit(req, snapshot->scene, std::move(volume)));
           const VolumeObject& added = frame.edits[0].volume;
           const json info = volumeInfoJson(added);
-          const std::string journaled = protocol::frameToJson(frame).dump();
+          const std::string journaled = journaledFrameText(frame);
           submitFrame(*session, std::move(frame), journaled, req, res);
           kept = res.status == 200;
           if (kept) {

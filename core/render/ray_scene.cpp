@@ -3,6 +3,7 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/engine/parallel.h"
 
@@ -47,6 +48,21 @@ void segmentFilter(const RTCFilterFunctionNArguments* args) {
       args->valid[i] = 0;  // keep traversing to find the others
     }
   }
+}
+
+// What Embree's RayK::valid() asserts (kernels/common/ray.h): origin and direction components
+// within FLT_LARGE (1.844e18) in magnitude, tnear and tfar not NaN; and a ray interval that is not
+// empty. Checked on the float values Embree gets: a ray that fails is a miss, never handed over,
+// so no input can reach Embree's assertion (issue 36).
+constexpr float kEmbreeLargest = 1.8e18f;
+
+bool finiteWithin(float x) { return std::isfinite(x) && std::fabs(x) <= kEmbreeLargest; }
+
+bool embreeAccepts(const RTCRay& ray) {
+  return finiteWithin(ray.org_x) && finiteWithin(ray.org_y) && finiteWithin(ray.org_z) &&
+         finiteWithin(ray.dir_x) && finiteWithin(ray.dir_y) && finiteWithin(ray.dir_z) &&
+         std::isfinite(ray.tnear) && ray.tnear >= 0 && !std::isnan(ray.tfar) &&
+         ray.tfar >= ray.tnear;
 }
 
 void onEmbreeError(void* user, RTCError code, const char* message) {
@@ -179,6 +195,7 @@ bool RayScene::traceSegment(const Vec3& p, const Vec3& q, std::vector<uint32_t>*
   context.onPlane = tolerance_.onPlane();
   context.blockers = blockers;
   RTCRay ray = segmentRay(p, q);
+  if (!embreeAccepts(ray)) return false;  // not a ray Embree can trace: nothing blocks it
   rtcOccluded1(scene_, &context.base, &ray);
   // Embree marks an occluded ray by setting tfar to -inf.
   return ray.tfar < 0.0f;
@@ -202,6 +219,7 @@ bool RayScene::volumeOccluded(const Vec3& p, const Vec3& q) const {
   ray.tnear = 1e-6f;  // p itself may lie on the isosurface that was hit
   ray.tfar = 1.0f - 1e-6f;
   ray.mask = kVolumeRays;
+  if (!embreeAccepts(ray)) return false;
   rtcOccluded1(scene_, &context, &ray);
   return ray.tfar < 0.0f;
 }
@@ -222,6 +240,7 @@ std::optional<RayScene::Hit> RayScene::intersect(const Vec3& origin, const Vec3&
   rayHit.ray.mask = mask;
   rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  if (!embreeAccepts(rayHit.ray)) return std::nullopt;  // a miss, never Embree's assertion
   rtcIntersect1(scene_, &context, &rayHit);
   if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   if (rayHit.hit.geomID >= geometries_.size()) {

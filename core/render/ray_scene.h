@@ -33,6 +33,8 @@ class RayTracingError : public std::runtime_error {
 // plane contains p — is decided in double with the Scene's face planes and
 // Tolerance::onPlane(). Points within ~1e-7 of the scene's size of a face's edge
 // may be classified either way; that zone has measure zero for sampling.
+// Every query first checks the float ray Embree would get (finite, components within 1.8e18, a
+// non-empty interval): one that fails is a miss (nothing hit, nothing blocked), never traced.
 class RayScene {
  public:
   struct Hit {

@@ -16,6 +16,7 @@
 #include "core/render/light_hit.h"
 #include "core/render/ray_scene.h"
 #include "core/render/volume_lighting.h"
+#include "core/scene/camera_limits.h"
 
 namespace penumbra {
 
@@ -93,8 +94,9 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
                      const RenderProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   checkSettings(settings);
-  const CameraProjection camera(renderCamera(scene, settings), settings.width, settings.height,
-                                settings.convention);
+  const Camera view = renderCamera(scene, settings);
+  validateCamera(view, scene.bounds());  // every path's camera, whoever checked it before
+  const CameraProjection camera(view, settings.width, settings.height, settings.convention);
 
   const RayScene rays(scene);
   const MeshLookup lookup(scene, mesh);

@@ -83,9 +83,10 @@ struct RenderedImage {
 // sensors are placed (sensors so far, 0).
 using RenderProgress = std::function<void(size_t done, size_t total)>;
 
-// Throws std::invalid_argument if width or height is outside 1..kMaxSize or the camera is
-// degenerate; RayTracingError on an Embree failure. `mesh` must belong to `scene` (Engine::mesh());
-// it is not used with settings.reference.
+// Throws std::invalid_argument if width or height is outside 1..kMaxSize, CameraError if
+// the camera breaks CameraLimits (core/scene/camera_limits.h) or is degenerate; RayTracingError
+// on an Embree failure. `mesh` must belong to `scene` (Engine::mesh()); it is not used with
+// settings.reference.
 RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings& settings,
                      const RenderProgress& progress = {});
 

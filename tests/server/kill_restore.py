@@ -2,11 +2,16 @@
 """SIGKILL test of the journal (README "Durability"): starts `penumbra serve SCENE --data DIR
 --port 0`, drags cubes (POST /edits, then GET /mesh?format=bin of each acknowledged version),
 SIGKILLs the server at a seeded random moment (during the drag, or during start-up and restore),
-restarts it on the same DIR, and checks after each restart:
+restarts it on the same DIR (or, a third of the time, on DIR moved to another path: issue 36),
+and checks after each restart:
   - the scene is back at the last acknowledged version (or one past it: a frame committed whose
     answer the kill cut off; never more, never less);
   - its binary mesh is byte-identical to the one received for that version;
-  - the journal holds every acknowledged frame, byte for byte as sent.
+  - the journal holds every acknowledged frame, byte for byte as sent (the first run also uploads
+    a NRRD volume: that frame is the server's, naming the file relative to DIR).
+At the end, a frame in the middle is garbled in the file: the restart must serve the version
+before it (stalled, byte-identical mesh, edits 409, health degraded) and keep every frame; then
+the directory is removed while serving: an edit must answer 503 and health durable: false.
 Exits 1 naming the first acknowledged version lost or changed. Usage:
   python3 tests/server/kill_restore.py --penumbra build/penumbra [--kills 10] [--seed 1]
 """
@@ -18,6 +23,7 @@ import json
 import os
 import random
 import re
+import shutil
 import sqlite3
 import subprocess
 import sys
@@ -28,6 +34,8 @@ import time
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SCENE_ID = "cubes15"
 OBJECTS = ["cube_0", "cube_1", "cube_2"]
+UPLOAD = "<the volume upload's frame>"  # journaled by the server, not sent as text
+SMOKE = os.path.join(REPO, "scenes", "volumes", "smoke64.nrrd")
 
 
 CHILDREN = []  # every server started, killed at exit (a failure leaves none running)
@@ -65,11 +73,11 @@ class Server:
         self.proc.wait()
 
 
-def request(port, method, path, body=None):
+def request(port, method, path, body=None, content_type="application/json"):
     conn = http.client.HTTPConnection("127.0.0.1", port, timeout=60)
     try:
         conn.request(method, path, body=body, headers={"Accept-Encoding": "identity",
-                                                        "Content-Type": "application/json"})
+                                                        "Content-Type": content_type})
         res = conn.getresponse()
         return res.status, dict(res.getheaders()), res.read()
     finally:
@@ -81,6 +89,17 @@ def drag_until_killed(port, rng, state):
     base = f"/api/scenes/{SCENE_ID}"
     _, _, body = request(port, "GET", base)
     starts = {o["id"]: o["transform"] for o in json.loads(body)["scene"]["objects"] if o["id"] in OBJECTS}
+    if not state["uploaded"]:  # a volume, so that moving the directory has a file to find
+        state["in_flight"] = UPLOAD
+        with open(SMOKE, "rb") as f:
+            status, _, answer = request(port, "POST", base + "/volumes?name=smoke.nrrd&translate=0,1,0",
+                                        f.read(), "application/octet-stream")
+        if status != 201:
+            fail(f"POST /volumes answered {status}: {answer[:300]!r}")
+        state["frames"][json.loads(answer)["version"]] = UPLOAD
+        state["acked"] = json.loads(answer)["version"]
+        state["in_flight"] = None
+        state["uploaded"] = True
     while True:
         obj = rng.choice(OBJECTS)
         transform = dict(starts[obj])
@@ -125,11 +144,68 @@ def check_restored(port, data, state, stats):
                            "WHERE s.id = ?", (SCENE_ID,)).fetchall())
     db.close()
     for v, text in state["frames"].items():
+        if text == UPLOAD:
+            if v not in rows or b'"volumes/' not in bytes(rows[v]):
+                fail(f"the upload's frame {v} is missing or names its file outside the data directory")
+            state["uploaded"] = True
+            continue
         if v <= version and (v not in rows or bytes(rows[v]).decode() != text):
             fail(f"acknowledged version {v} is missing from the journal or changed "
                  f"(journal versions {sorted(rows)[:5]}..{len(rows)}, server {version}, sent: {text:.100})")
     if max(rows, default=0) != version:
         fail(f"the journal ends at version {max(rows, default=0)}, the server at {version}")
+    _, _, body = request(port, "GET", base)
+    if len(json.loads(body)["volumes"]) != (1 if UPLOAD in state["frames"].values() else 0):
+        fail("the uploaded volume did not come back")
+
+
+def health(port):
+    return json.loads(request(port, "GET", "/api/health")[2])
+
+
+def final_faults(args, data, state):
+    """A garbled frame in the middle: stalled at the version before, every frame kept; then the
+    data directory removed while serving: 503 and durable: false."""
+    middle = max(v for v, text in state["frames"].items() if text != UPLOAD and v > 1) // 2 + 1
+    db = sqlite3.connect(os.path.join(data, "journal.sqlite3"))
+    before = db.execute("SELECT COUNT(*) FROM frames").fetchone()[0]
+    db.execute("UPDATE frames SET frame = CAST('{\"edits\": garbled' AS BLOB) WHERE version = ?", (middle,))
+    db.commit()
+    db.close()
+    server = Server(args.penumbra, args.scene, data)
+    if not server.ready.wait(60) or server.port is None:
+        fail("server did not start on the garbled journal: " + "".join(server.stderr)[-2000:])
+    base = f"/api/scenes/{SCENE_ID}"
+    status, headers, mesh = request(server.port, "GET", base + "/mesh?format=bin")
+    if int(headers["X-Penumbra-Version"]) != middle - 1:
+        fail(f"garbled frame {middle}: served version {headers['X-Penumbra-Version']}, not {middle - 1}")
+    if middle - 1 in state["meshes"] and hashlib.sha256(mesh).hexdigest() != state["meshes"][middle - 1]:
+        fail(f"garbled frame {middle}: the stalled version's mesh differs from the one served before")
+    move = json.dumps({"edits": [{"op": "move", "id": "cube_0", "transform": {"translate": [0.1, 0.5, 0.1]}}]})
+    if request(server.port, "POST", base + "/edits", move)[0] != 409:
+        fail("an edit to the stalled scene was not refused with 409")
+    if health(server.port)["status"] != "degraded":
+        fail("health does not report the stalled scene")
+    db = sqlite3.connect(f"file:{os.path.join(data, 'journal.sqlite3')}?mode=ro", uri=True)
+    after = db.execute("SELECT COUNT(*) FROM frames").fetchone()[0]
+    db.close()
+    if after != before:
+        fail(f"the restart changed the journal: {before} frames before, {after} after")
+    # Make the scene editable again for the last check: delete it and serve the file afresh.
+    request(server.port, "DELETE", base)
+    status, _, body = request(server.port, "POST", "/api/scenes?name=again", open(args.scene, "rb").read())
+    if status != 201:
+        fail(f"POST /api/scenes answered {status}")
+    again = json.loads(body)["id"]
+    shutil.rmtree(data)
+    status, _, answer = request(server.port, "POST", f"/api/scenes/{again}/edits", move)
+    if status != 503:
+        fail(f"an edit with the data directory removed answered {status}: {answer[:200]!r}")
+    if health(server.port)["durable"] is not False:
+        fail("health says durable with the data directory removed")
+    server.proc.terminate()
+    server.proc.wait()
+    return middle
 
 
 def main():
@@ -142,10 +218,12 @@ def main():
                     help="a kill lands within this long after the server is up")
     args = ap.parse_args()
     rng = random.Random(args.seed)
-    state = {"frames": {}, "meshes": {}, "acked": 0, "in_flight": None}
-    stats = {"kills": 0, "during_startup": 0, "committed_unanswered": 0, "meshes_compared": 0}
+    state = {"frames": {}, "meshes": {}, "acked": 0, "in_flight": None, "uploaded": False}
+    stats = {"kills": 0, "during_startup": 0, "committed_unanswered": 0, "meshes_compared": 0, "moves": 0}
     start = time.perf_counter()
-    with tempfile.TemporaryDirectory(prefix="penumbra-kill-") as data:
+    with tempfile.TemporaryDirectory(prefix="penumbra-kill-") as parent:
+        data = os.path.join(parent, "data-0")
+        os.mkdir(data)
         server = Server(args.penumbra, args.scene, data)
         for kill in range(args.kills + 1):
             during_startup = kill < args.kills and rng.random() < 0.2
@@ -170,14 +248,22 @@ def main():
                     pass  # the kill
                 timer.join()
             stats["kills"] += 1
+            if rng.random() < 1 / 3:  # the data directory moved to another path
+                moved = os.path.join(parent, f"data-{kill + 1}")
+                os.rename(data, moved)
+                data = moved
+                stats["moves"] += 1
             server = Server(args.penumbra, args.scene, data)
         server.proc.terminate()
         server.proc.wait()
+        garbled = final_faults(args, data, state)
     seconds = time.perf_counter() - start
-    print(f"kill_restore: {stats['kills']} SIGKILLs ({stats['during_startup']} during start-up), "
+    print(f"kill_restore: {stats['kills']} SIGKILLs ({stats['during_startup']} during start-up, "
+          f"{stats['moves']} restarts on a moved data directory), "
           f"{state['acked']} versions acknowledged, 0 lost; {stats['meshes_compared']} restored meshes "
           f"byte-identical; {stats['committed_unanswered']} committed frames whose answer the kill cut "
-          f"off (kept); {seconds:.1f} s (seed {args.seed})")
+          f"off (kept); garbled frame {garbled}: stalled before it, every frame kept; data directory "
+          f"removed while serving: 503, durable false; {seconds:.1f} s (seed {args.seed})")
 
 
 if __name__ == "__main__":
