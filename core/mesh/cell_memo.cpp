@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
+#include <type_traits>
 
 namespace penumbra {
 
@@ -104,7 +105,8 @@ Vec2 CellMemo::ownAt(uint32_t i) const {
 void CellMemo::ownLights(uint32_t i, std::vector<VertexLight>& row) const {
   const uint32_t* w = &words_[pointsBegin() + pointCount() + ownValueWords() * i + kOwnAtWords];
   row.resize(lightCount());
-  std::memcpy(row.data(), w, sizeof(VertexLight) * row.size());
+  static_assert(std::is_trivially_copyable_v<VertexLight>);
+  std::memcpy(static_cast<void*>(row.data()), w, sizeof(VertexLight) * row.size());
 }
 
 }  // namespace penumbra
