@@ -9,6 +9,7 @@
 
 #include "protocol/scene_json.h"
 #include "server/api_errors.h"
+#include "server/range_limits.h"
 #include "server/gzip_encoding.h"
 #include "server/request_io.h"
 
@@ -113,7 +114,7 @@ HttpServer::HttpServer(ServerOptions options)
         bodiesAreNotForms(req);
         gzipNotBrotli(req);
         try {
-          if (refuseAccess(req, res)) return httplib::Server::HandlerResponse::Handled;
+          if (refuseAccess(req, res) || refuseHostileRanges(req, res)) return httplib::Server::HandlerResponse::Handled;
         } catch (...) {
           res.status = 500;
           res.set_content(kInternalErrorBody, "application/json");
