@@ -397,6 +397,7 @@ class App {
         this.gizmo.select(null);
         this.buildStandIns(wrapped.scene);
       }
+      this.view.requestRender(); // the stand-ins and lights moved after the mesh was drawn
     } catch (error) {
       this.fail(error);
     }
