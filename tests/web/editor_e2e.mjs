@@ -1,7 +1,8 @@
 #!/usr/bin/env node
 // The page as an editor (README "The page"), in Debian's chromium with real keys and clicks: add a
 // box (B), duplicate (Ctrl+D), delete (Delete) and undo them; typed transforms; scale mode (R) and
-// snapping; focus (F), frame all (A), camera home (H); the "?" sheet; a light selected (its edits:
+// snapping; typed values sent exactly, fields at full precision on focus and following a drag;
+// focus (F), frame all (A), camera home (H); the "?" sheet; a light selected (its edits:
 // light_e2e.mjs); downloads of the scene JSON and GLB; reset to the file; an imported OBJ's pivots
 // at their objects' centres, its walls locked and its default camera on its open side; the scene
 // list and deleting a scene from it.
@@ -99,6 +100,43 @@ async function inspector(page, base, sceneId) {
   await page.uncheck('#snap');
 }
 
+// A typed field changes that value only, exactly as typed (issue 37: the other fields went back
+// rounded to 4 decimals, 0.2265625 as 0.2266, and rotations through a quaternion); a focused field
+// shows the whole number; the fields follow a drag while it goes.
+async function exactFields(page, base, sceneId) {
+  const id = 'cube_4';
+  const transform = async () => (await serverScene(base, sceneId)).scene.objects.find((o) => o.id === id).transform;
+  check((await clickObject(page, id)) === id, `a click selects ${id}`);
+  const before = await transform();
+  const field = (key) => page.locator(`#inspector input[data-key="${key}"]`);
+  await field('translate.0').fill('-1.123456789012345');
+  await field('translate.0').press('Enter');
+  await idle(page);
+  const after = await transform();
+  const expected = { ...before, translate: [-1.123456789012345, ...before.translate.slice(1)] };
+  check(JSON.stringify(after) === JSON.stringify(expected), 'a typed x reaches the server exactly as typed, every other value unchanged',
+    JSON.stringify({ before, after }));
+  const shown = await field('translate.2').inputValue();
+  await field('translate.2').focus();
+  const focused = await field('translate.2').inputValue();
+  await field('translate.2').blur();
+  await idle(page);
+  check(Number(focused) === before.translate[2] && shown !== focused && JSON.stringify(await transform()) === JSON.stringify(after),
+    'a focused field shows the whole number; leaving it untyped sends nothing', JSON.stringify({ shown, focused }));
+  const startX = await field('translate.0').inputValue();
+  let midway = null;
+  await press(page, 'w');
+  await dragXHandle(page, 0.5, 8, 60, async () => { midway = await field('translate.0').inputValue(); });
+  await idle(page);
+  const dropped = (await transform()).translate[0];
+  check(midway !== null && Number(midway) > Number(startX) + 0.05 && Math.abs(Number(await field('translate.0').inputValue()) - dropped) < 1e-4,
+    'the fields follow a drag while it goes, and show the server\'s value after it', JSON.stringify({ startX, midway, dropped }));
+  await press(page, 'Control+z');
+  await press(page, 'Control+z');
+  check(JSON.stringify(await transform()) === JSON.stringify(before), 'two undos give the file\'s transform back exactly', JSON.stringify(await transform()));
+  await press(page, 'Escape');
+}
+
 async function camera(page) {
   const target = () => page.evaluate(() => window.penumbra.cameraQuery().target.split(',').map(Number));
   await press(page, 'f');
@@ -185,6 +223,7 @@ async function main() {
     await locked(page);
     await inspector(page, base, sceneId);
     await camera(page);
+    await exactFields(page, base, sceneId);
     await light(page);
     await downloads(page, base, sceneId);
     await reset(page, base, sceneId, original);

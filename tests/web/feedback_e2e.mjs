@@ -2,8 +2,10 @@
 // What the page says back (README "The page"): a drag past the edit volume stops the object at
 // its last accepted place with one banner (a few refused frames, not one per pointer move), which
 // the next accepted edit clears; the edges legend shows only with the overlay; the edit-vs-build
-// plot and ratio fill in; a stopped server shows "disconnected — reconnecting", and the page
-// catches up when a server comes back on the same port; leaving the page logs nothing.
+// plot and ratio fill in ("slower" when slower); the banner says why in a sentence with the code
+// and key path on a detail line; a stopped server shows "disconnected — reconnecting", and the
+// page catches up when a server comes back on the same port (dropping the undo steps of the old
+// version, and the "could not be reached" banner); leaving the page logs nothing.
 //
 // usage: node tests/web/feedback_e2e.mjs --penumbra build/penumbra [--scene scenes/cubes15.scene.json]
 import path from 'node:path';
@@ -47,6 +49,10 @@ async function refusedDrag(page, base, sceneId) {
     'the object stops at its last accepted place (page = server), near the volume\'s edge', `page ${held}, server ${server}`);
   const refusedErrors = state.errors.filter((e) => /422/.test(e));
   check(state.bannerVisible && refusedErrors.length === 1, 'one banner for the whole drag', JSON.stringify(state.errors));
+  const banner = await page.evaluate(() => ({ sentence: document.getElementById('error-text').firstChild.textContent,
+    detail: (document.querySelector('#error-text .error-detail') || {}).textContent }));
+  check(/^The server refused the edit: .*edit volume.*\. It stays at its last accepted place\.$/.test(banner.sentence) && !/invalid_frame|edits\[/.test(banner.sentence)
+    && /^422 invalid_frame at edits\[\d+\]/.test(banner.detail || ''), 'the banner says why in a sentence, the code and key path on a detail line', JSON.stringify(banner));
   await page.keyboard.press('Control+z'); // an accepted edit: back to where the drag began
   await page.evaluate(() => window.penumbra.idle());
   const after = await page.evaluate(() => window.penumbra.state());
@@ -64,8 +70,19 @@ async function plot(page) {
     for (let i = 0; i < data.length; i += 4) if (data[i] === 0xff && data[i + 1] === 0x90 && data[i + 2] === 0x20) ++orange;
     return { text: document.getElementById('edit-ratio').textContent, orange, history: window.penumbra.state().editHistory };
   });
-  check(r.orange > 0 && r.history > 0 && /edit [\d.]+ ms .* vs full build [\d.]+ ms \(rebuild of v\d+\): [\d.]+× faster/.test(r.text),
-    'the plot shows the edits\' times and the ratio to a full build', JSON.stringify(r));
+  check(r.orange > 0 && r.history > 0 && /edit [\d.]+ ms .* vs full build [\d.]+ ms \(rebuild of v\d+, engine \+ display meshing\): [\d.]+× (faster|slower)$/.test(r.text),
+    'the plot shows the edits\' times and the ratio to a full build, both with their display meshing', JSON.stringify(r));
+  // A build faster than the edits (a rebuild answer that says so): the words say "slower", not "0.1× faster".
+  await page.route(/\/rebuild$/, async (route) => {
+    const answer = await (await route.fetch()).json();
+    answer.seconds = { build: 1e-5, mesh: 1e-5, total: 2e-5 };
+    await route.fulfill({ json: answer });
+  });
+  await page.click('#rebuild');
+  await page.waitForFunction(() => /0\.0 ms \(rebuild/.test(document.getElementById('edit-ratio').textContent), null, { timeout: 30000 }).catch(() => {});
+  const slower = await page.textContent('#edit-ratio');
+  check(/: [\d.]+× slower$/.test(slower) && !/faster/.test(slower), 'an edit slower than the build reads "slower"', slower);
+  await page.unroute(/\/rebuild$/);
 }
 
 async function disconnect(args, page, server, url) {
@@ -79,6 +96,7 @@ async function disconnect(args, page, server, url) {
   const failed = await page.waitForFunction(() => window.penumbra.state().errors.some((e) => /network_error/.test(e)), null, { timeout: 5000 })
     .then(() => true, () => false);
   check(failed, 'a request to a stopped server shows a network error in the banner', JSON.stringify(await page.evaluate(() => window.penumbra.state().errors)));
+  const redoBefore = await page.evaluate(() => !document.getElementById('redo').disabled);
   const port = Number(new URL(url).port);
   const again = await startServer(args.penumbra, args.scene, args.startupSeconds, port);
   await page.waitForFunction((s) => !eval(s) && window.penumbra.state().connection === 'connected' && !window.penumbra.state().busy,
@@ -87,6 +105,9 @@ async function disconnect(args, page, server, url) {
   const back = await page.evaluate(() => window.penumbra.state());
   check(back.connection === 'connected' && back.version === 0 && back.receivers > 0,
     'when a server is back on the port the bar goes and the page holds its scene (a fresh one: version 0)', JSON.stringify({ c: back.connection, v: back.version }));
+  const buttons = await page.evaluate(() => ({ undo: document.getElementById('undo').disabled, redo: document.getElementById('redo').disabled }));
+  check(redoBefore && buttons.undo && buttons.redo, 'a server back at another version (no journal): the page offers no undo or redo from before', JSON.stringify({ redoBefore, buttons }));
+  check(!back.bannerVisible, 'the "could not be reached" banner goes once the server is back', JSON.stringify(back.errors));
   return again.server;
 }
 

@@ -1,13 +1,13 @@
 #!/usr/bin/env node
 // Bounced light in the page (README "The page"), in Debian's chromium, on the Cornell room: the
-// image panel's GI toggle (off at first) asks the server for gi=sensors and shows the sensors
-// placed and the GI time; the "bounced light on the mesh" toggle fetches mesh?indirect=1 and the
+// image panel's GI toggle (off at first) asks the server for gi=sensors, says it is rendering with
+// a seconds counter while the image is on its way, and shows the sensors placed and the GI time; the "bounced light on the mesh" toggle fetches mesh?indirect=1 and the
 // mesh's shadows get brighter; after an edit the bake follows the new version; no error shown.
 //
 // usage: node tests/web/gi_e2e.mjs --penumbra build/penumbra [--scene scenes/cornell.scene.json]
 import path from 'node:path';
 
-import { check, repo, runWithServerAndBrowser, until, usageOnHelp } from './harness.mjs';
+import { check, repo, runWithServerAndBrowser, sleep, until, usageOnHelp } from './harness.mjs';
 import { openPage, serverScene } from './page_actions.mjs';
 
 const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'cornell.scene.json'), startupSeconds: 120 };
@@ -36,8 +36,18 @@ async function main() {
     check(!(await page.isChecked('#toggle-gi')) && !(await page.isChecked('#toggle-indirect')), 'both GI toggles are off at first');
     check(images.every((u) => !u.includes('gi=')), 'without GI the image request has no gi parameter', images.join('\n'));
 
+    // The GI render is held back 2 s on its way: meanwhile the panel says it is rendering, and counts.
+    await page.route(/\/image\?.*gi=sensors/, async (route) => { await sleep(2000); await route.continue(); });
     await page.check('#toggle-gi');
+    const working = await until(async () => {
+      const text = await page.textContent('#render-progress');
+      const m = text.match(/^rendering with GI \(sensors\)… (\d+\.\d) s$/);
+      return m && Number(m[1]) >= 1 && text;
+    }, 10);
+    check(working !== null, 'while a GI render runs the panel says so and counts its seconds', await page.textContent('#render-progress'));
     const withGi = await until(async () => (await passes(page)).find((p) => p.giSensors > 0));
+    await page.unroute(/\/image\?.*gi=sensors/);
+    check(await page.textContent('#render-progress') === '', 'the counter goes when the image comes', await page.textContent('#render-progress'));
     check(withGi !== null && images.some((u) => new URL(u).searchParams.get('gi') === 'sensors'),
       'the GI toggle asks for gi=sensors', JSON.stringify({ passes: await passes(page), images }));
     const info = await page.textContent('#render-info');

@@ -4,7 +4,8 @@
 // intensity; a typed bigger width × depth is one set_light (the server's light grows, the mesh
 // version moves, the floor's penumbrae get wider); a typed double intensity doubles the floor's
 // irradiance (radiance alone: the same mesh, values × 2); the W gizmo drags the light along x;
-// each is undone by Ctrl+Z back to the file's light; nothing is shown or logged as an error.
+// each is undone by Ctrl+Z back to the file's light; a typed x leaves the other coordinates exactly
+// as they were; nothing is shown or logged as an error.
 //
 // usage: node tests/web/light_e2e.mjs --penumbra build/penumbra [--scene scenes/cubes15.scene.json]
 import path from 'node:path';
@@ -106,6 +107,17 @@ async function refused(page, base, sceneId) {
   await page.click('#error-close');
 }
 
+// A typed x changes the light's x only (issue 37: the centre's other fields went back rounded to
+// 4 decimals, the height 2.984375 as 2.9844).
+async function exactCentre(page, base, sceneId) {
+  const before = await serverLight(base, sceneId);
+  await type(page, 'centre.0', 0.1);
+  const after = await serverLight(base, sceneId);
+  const kept = after.polygon.every((p, i) => p[1] === before.polygon[i][1] && p[2] === before.polygon[i][2]);
+  check(kept && Math.abs(centre(after.polygon)[0] - 0.1) < 1e-12 && JSON.stringify(after.radiance) === JSON.stringify(before.radiance),
+    'a typed x moves the light along x only: its height and depth stay exactly as they were', JSON.stringify({ before: before.polygon, after: after.polygon }));
+}
+
 async function main() {
   const args = usageOnHelp(process.argv, defaults, 'node tests/web/light_e2e.mjs --penumbra build/penumbra [--scene FILE]');
   await runWithServerAndBrowser(args, async ({ browser, url, base, sceneId }) => {
@@ -117,6 +129,7 @@ async function main() {
     await drag(page, base, sceneId);
     await undo(page, base, sceneId, original);
     await refused(page, base, sceneId);
+    await exactCentre(page, base, sceneId);
     await page.screenshot({ path: path.join(repo, 'build', 'web-light.png') });
     const final = await state(page);
     check(!final.bannerVisible && pageErrors.filter((e) => !/422/.test(e)).length === 0, 'no other error shown or logged', JSON.stringify([final.errors, pageErrors]));

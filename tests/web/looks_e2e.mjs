@@ -5,7 +5,7 @@
 // shadows and dark edges do not count). Before the stand-ins took their lit mesh's mean colour,
 // cubes15's view had ~40 of them (cracks of the lit mesh showing the dark stand-in behind). Also:
 // the edges overlay leaves out the umbra-to-lit edges of the strip above the light's plane (the
-// blue zig-zag along the walls' tops). (editor_e2e.mjs checks the default camera of an imported file.)
+// blue zig-zag along the walls' tops); a coloured light's polygon is drawn in its colour. (editor_e2e.mjs checks the default camera of an imported file.)
 //
 // usage: node tests/web/looks_e2e.mjs --penumbra build/penumbra [--scene scenes/cubes15.scene.json] [--specks 10]
 import path from 'node:path';
@@ -71,12 +71,38 @@ async function wallTops(page) {
   check(r.total > 0 && r.above === 0, 'the edges overlay draws nothing in the unlit strip above the light\'s plane', JSON.stringify(r));
 }
 
+// A coloured light is drawn in its colour (issue 37: the polygon stayed white): the light's radiance
+// set to orange through the API, the page follows, and the pixel at the light's centre is orange.
+async function lightColour(page, base, sceneId) {
+  const light = (await (await fetch(`${base}/api/scenes/${sceneId}`)).json()).scene.lights[0];
+  const radiance = [light.radiance[0], 0.5 * light.radiance[0], 0.1 * light.radiance[0]];
+  const version = (await page.evaluate(() => window.penumbra.state().version)) + 1;
+  await fetch(`${base}/api/scenes/${sceneId}/edits`, { method: 'POST', headers: { 'Content-Type': 'application/json' },
+    body: JSON.stringify({ edits: [{ op: 'set_light', id: light.id, radiance }] }) });
+  await page.waitForFunction((v) => window.penumbra.state().version >= v, version, { timeout: 30000 }).catch(() => {});
+  await page.keyboard.press('a'); // the whole scene, the ceiling's light in view
+  await sleep(300);
+  const at = await page.evaluate((id) => window.penumbra.screenOf(window.penumbra.lightCentre(id)), light.id);
+  const png = await page.screenshot({ clip: { x: Math.round(at.x) - 1, y: Math.round(at.y) - 1, width: 3, height: 3 } });
+  const [r, g, b] = await page.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${b64}`;
+    await img.decode();
+    const canvas = Object.assign(document.createElement('canvas'), { width: img.width, height: img.height });
+    const ctx = canvas.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    return [...ctx.getImageData(1, 1, 1, 1).data.slice(0, 3)];
+  }, png.toString('base64'));
+  check(r > 200 && g > 0.5 * r && g < 0.85 * r && b < 0.5 * r, 'a coloured light\'s polygon is drawn in its colour (orange)', JSON.stringify({ r, g, b }));
+}
+
 async function main() {
   const args = usageOnHelp(process.argv, defaults, 'node tests/web/looks_e2e.mjs --penumbra build/penumbra [--scene FILE] [--specks N]');
-  await runWithServerAndBrowser(args, async ({ browser, url, sceneId }) => {
+  await runWithServerAndBrowser(args, async ({ browser, url, base, sceneId }) => {
     const { page } = await openPage(browser, url);
     await specks(page, sceneId, args.specks);
     await wallTops(page);
+    await lightColour(page, base, sceneId);
   });
 }
 

@@ -20,8 +20,9 @@ export async function serverScene(base, id) {
 }
 
 // Presses on the selected object's X translate handle and drags it so the object moves about
-// `dx` metres along x, in `steps` real mouse moves `stepMs` apart. Returns the handle's start.
-export async function dragXHandle(page, dx, steps, stepMs) {
+// `dx` metres along x, in `steps` real mouse moves `stepMs` apart; `midway` (async), if given, runs
+// halfway, the button still down. Returns the handle's start.
+export async function dragXHandle(page, dx, steps, stepMs, midway = null) {
   let handle = null;
   for (const t of [0.35, -0.35, 0.5, -0.5, 0.2, -0.2]) {
     const point = await page.evaluate((t) => window.penumbra.gizmoAxisPoint('x', t), t);
@@ -45,6 +46,7 @@ export async function dragXHandle(page, dx, steps, stepMs) {
   for (let s = 1; s <= steps; ++s) {
     await page.mouse.move(handle.x + shift.x * s / steps, handle.y + shift.y * s / steps);
     await sleep(stepMs);
+    if (midway && s === Math.ceil(steps / 2)) await midway();
   }
   await page.mouse.up();
   return handle;

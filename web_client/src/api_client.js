@@ -4,6 +4,7 @@
 export class ApiError extends Error {
   constructor(status, code, message, path) {
     super(`${status} ${code}: ${message}${path ? ` (at ${path})` : ''}`);
+    this.reason = message; // the server's own words
     this.status = status;
     this.code = code;
     this.path = path;

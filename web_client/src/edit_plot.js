@@ -1,11 +1,16 @@
 // "Edit vs full build": a small live plot of the last edits' times beside the time of building the
 // same scene from scratch, on a log scale (edits take milliseconds, a build tens to thousands):
-// per edit frame, the engine's time (orange) and the page's round trip (blue, edit sent → its
-// mesh drawn); the full build's engine time as a grey line; and below, the ratio in words.
-// Both engine figures are the same work measured the same way (core's Engine: build vs apply).
-
+// per edit frame, the server's work (orange: the engine and the display meshing of the changed
+// receivers) and the page's round trip (blue, edit sent → its mesh drawn); the full build as a grey
+// line; and below, the ratio in words, "faster" or "slower". A ratio compares only what was
+// measured the same way: after a *Full rebuild* (engine + display meshing, timed by the server)
+// the edits' engine + meshing; at load, when only the build's engine time is known, the edits'
+// engine time alone, and the caption says so. Frames the engine did no timed work for (a volume's
+// isovalue or upload) are left out of the ratio.
 const KEEP = 60;
-const COLOURS = { engine: '#ff9020', roundTrip: '#4090ff', build: '#888', grid: '#2a2a2a', text: '#aaa' };
+const COLOURS = { work: '#ff9020', roundTrip: '#4090ff', build: '#888', grid: '#2a2a2a', text: '#aaa' };
+
+const ms = (s) => `${(1000 * s).toFixed(s < 0.01 ? 1 : 0)} ms`;
 
 const median = (values) => {
   if (!values.length) return null;
@@ -17,29 +22,52 @@ export class EditPlot {
   constructor(canvas, caption) {
     this.canvas = canvas;
     this.caption = caption;
-    this.history = []; // {engine, roundTrip} seconds, oldest first
-    this.build = null; // {seconds, label}
+    this.history = []; // {engine, work, roundTrip} seconds, oldest first (work: engine + display meshing)
+    this.build = null; // {seconds, label, meshing: whether seconds include the display meshing}
     // No drawing until there is something to show: a 2D canvas's first use costs a software GL
     // ~0.1 s, which the page's opening need not wait for.
     this.caption.textContent = 'no edit yet';
   }
 
-  add(engineSeconds, roundTripSeconds) {
-    this.history.push({ engine: engineSeconds, roundTrip: roundTripSeconds });
+  // engineSeconds: the frame's engine time; meshSeconds: the server's display meshing of it.
+  add(engineSeconds, meshSeconds, roundTripSeconds) {
+    this.history.push({ engine: engineSeconds, work: engineSeconds + meshSeconds, roundTrip: roundTripSeconds });
     if (this.history.length > KEEP) this.history.shift();
     this.draw();
   }
 
-  // The full build's engine seconds; label says which build ('at load' or 'rebuild of vN').
-  setBuild(seconds, label) {
-    this.build = seconds > 0 ? { seconds, label } : null;
+  // The full build's seconds; label says which build ('at load' or 'rebuild of vN'); meshing:
+  // whether they include the display meshing (a rebuild's total) or are the engine's alone.
+  setBuild(seconds, label, meshing) {
+    this.build = seconds > 0 ? { seconds, label, meshing } : null;
     this.draw();
   }
 
-  // Full build ÷ the median edit of the last 10 (engine times), or null.
+  // The comparison the figures allow: {edit (median of the last 10 timed frames, measured as the
+  // build was), frames, ratio = build ÷ edit}, or null.
+  comparison() {
+    if (!this.build) return null;
+    const timed = this.history.filter((h) => h.engine > 0).slice(-10);
+    const edit = median(timed.map((h) => (this.build.meshing ? h.work : h.engine)));
+    return edit > 0 ? { edit, frames: timed.length, ratio: this.build.seconds / edit } : null;
+  }
+
+  // The last comparison's ratio (full build ÷ edit), or null.
   ratio() {
-    const edit = median(this.history.slice(-10).map((h) => h.engine));
-    return this.build && edit > 0 ? this.build.seconds / edit : null;
+    const comparison = this.comparison();
+    return comparison && comparison.ratio;
+  }
+
+  words() {
+    const { build } = this;
+    if (!this.history.length) return build ? `full build ${ms(build.seconds)} (${build.label}); drag an object to compare` : 'no edit yet';
+    const comparison = this.comparison();
+    if (!comparison) return build ? `full build ${ms(build.seconds)} (${build.label}); no timed edit to compare yet` : 'no full build timed yet';
+    const { edit, frames, ratio } = comparison;
+    const what = build.meshing ? 'engine + display meshing' : 'engine only; Full rebuild times the display meshing too';
+    const factor = ratio >= 1 ? ratio : 1 / ratio;
+    return `edit ${ms(edit)} (median of last ${frames}) vs full build ${ms(build.seconds)} (${build.label}, ${what}): `
+      + `${factor.toFixed(factor < 10 ? 1 : 0)}× ${ratio >= 1 ? 'faster' : 'slower'}`;
   }
 
   draw() {
@@ -48,8 +76,7 @@ export class EditPlot {
     const w = canvas.width, h = canvas.height;
     ctx.fillStyle = '#161616';
     ctx.fillRect(0, 0, w, h);
-    const values = this.history.flatMap((e) => [e.engine, e.roundTrip]).concat(this.build ? [this.build.seconds] : []).filter((v) => v > 0);
-    const ms = (s) => `${(1000 * s).toFixed(s < 0.01 ? 1 : 0)} ms`;
+    const values = this.history.flatMap((e) => [e.work, e.roundTrip]).concat(this.build ? [this.build.seconds] : []).filter((v) => v > 0);
     if (values.length) {
       // Decades from 1 ms (or less) up to the largest value.
       const lo = Math.log10(Math.min(1e-3, ...values)), hi = Math.log10(Math.max(...values)) + 0.15;
@@ -76,16 +103,12 @@ export class EditPlot {
       const step = w / KEEP;
       this.history.forEach((e, i) => {
         const x = w - (this.history.length - i) * step + step / 2;
-        for (const [key, colour] of [['roundTrip', COLOURS.roundTrip], ['engine', COLOURS.engine]]) {
+        for (const [key, colour] of [['roundTrip', COLOURS.roundTrip], ['work', COLOURS.work]]) {
           ctx.fillStyle = colour;
           ctx.fillRect(x - 1.5, y(e[key]) - 1.5, 3, 3);
         }
       });
     }
-    const ratio = this.ratio();
-    const edit = median(this.history.slice(-10).map((e) => e.engine));
-    this.caption.textContent = ratio
-      ? `edit ${ms(edit)} (median of last ${Math.min(10, this.history.length)}) vs full build ${ms(this.build.seconds)} (${this.build.label}): ${ratio.toFixed(ratio < 10 ? 1 : 0)}× faster`
-      : this.build ? `full build ${ms(this.build.seconds)} (${this.build.label}); drag an object to compare` : 'no edit yet';
+    this.caption.textContent = this.words();
   }
 }

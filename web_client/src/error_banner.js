@@ -2,7 +2,11 @@
 // for the test hook); it stays until dismissed, except a transient one (a refused edit), which the
 // next successful edit clears. The same transient message is shown (and kept) once, not once per
 // refused frame. A network failure is shown after a short hold and dropped if the page is being
-// left meanwhile: leaving cuts off the requests still in flight, which is not an error to report.
+// left meanwhile: leaving cuts off the requests still in flight, which is not an error to report;
+// and it is taken down once the server answers again (serverBack()). The banner says each failure
+// as a plain sentence with the server's code and key path on a detail line (error_text.js).
+
+import { plainError } from './error_text.js';
 
 const NETWORK_HOLD_MS = 300;
 
@@ -31,15 +35,27 @@ export class ErrorBanner {
     this.display(error, options);
   }
 
-  display(error, { transient = false, key = null } = {}) {
-    const message = error && error.message ? error.message : String(error);
-    if (transient && this.transient && this.visible() && (key ? this.key === key : this.text.textContent === message)) return;
-    this.errors.push(message);
+  // also: a sentence to add (what the page did about it).
+  display(error, { transient = false, key = null, also = '' } = {}) {
+    const plain = plainError(error);
+    const message = also ? `${plain.sentence} ${also}` : plain.sentence;
+    if (transient && this.transient && this.visible() && (key ? this.key === key : this.message === message)) return;
+    this.errors.push(plain.detail ? `${message} (${plain.detail})` : message);
     console.error('penumbra:', error);
-    this.text.textContent = message;
+    const detail = document.createElement('div');
+    detail.className = 'error-detail';
+    detail.textContent = plain.detail;
+    this.text.replaceChildren(message, ...(plain.detail ? [detail] : []));
+    this.message = message;
+    this.code = error && error.code;
     this.transient = transient;
     this.key = key;
     this.root.hidden = false;
+  }
+
+  // The server answers again: a shown "could not be reached" is no longer true.
+  serverBack() {
+    if (this.code === 'network_error') this.root.hidden = true;
   }
 
   clearTransient() {

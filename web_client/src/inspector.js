@@ -1,11 +1,12 @@
 // The inspector: the selected object's transform as numbers (translate m, rotate °, scale), or the
 // selected light's centre, size, radiance and intensity; either may be typed (Enter or leaving the
-// field applies, as one undoable edit: a move, or a set_light).
+// field applies, as one undoable edit: a move, or a set_light). Each field is an ExactField: a
+// value not typed goes back exactly as the page holds it, never as the rounded text shown.
 
+import { ExactField } from './exact_field.js';
 import { centroid, intensityOf, movedTo, quadAxes, resized, resizedQuad, sizeOf, withIntensity } from './light_shape.js';
 
 const ROWS = [['translate', 'move (m)'], ['rotate_deg', 'rotate (°)'], ['scale', 'scale']];
-const round = (x) => String(Math.round(x * 1e4) / 1e4);
 
 export class Inspector {
   // onTransform(id, transform): a typed transform to apply; onLight(lightId, {polygon, radiance}):
@@ -34,25 +35,7 @@ export class Inspector {
     title.className = 'inspector-title';
     this.root.append(title);
     this.inputs = {};
-    for (const [key, label] of ROWS) {
-      const row = document.createElement('div');
-      row.className = 'row inspector-row';
-      const name = document.createElement('span');
-      name.textContent = label;
-      row.append(name);
-      this.inputs[key] = [0, 1, 2].map((k) => {
-        const input = document.createElement('input');
-        input.type = 'text';
-        input.inputMode = 'decimal';
-        input.size = 6;
-        input.dataset.key = `${key}.${k}`;
-        input.addEventListener('change', () => this.typed());
-        input.addEventListener('keydown', (event) => { if (event.key === 'Enter') input.blur(); });
-        row.append(input);
-        return input;
-      });
-      this.root.append(row);
-    }
+    for (const [key, label] of ROWS) this.inputs[key] = this.row(key, label, 3, () => this.typed());
     this.update(data);
   }
 
@@ -63,21 +46,22 @@ export class Inspector {
     if (this.light) return this.updateLight(transform);
     for (const [key] of ROWS) {
       const values = transform[key] || (key === 'scale' ? [1, 1, 1] : [0, 0, 0]);
-      this.inputs[key].forEach((input, k) => { if (document.activeElement !== input) input.value = round(values[k]); });
+      this.inputs[key].forEach((field, k) => field.set(values[k]));
     }
   }
 
+  // The fields as a transform: the typed value, and every other exactly as held.
   typed() {
-    const transform = {};
-    for (const [key] of ROWS) {
-      const values = this.inputs[key].map((input) => Number(input.value.replace(',', '.')));
-      if (values.some((v) => !Number.isFinite(v))) {
-        this.inputs[key].forEach((input) => input.classList.toggle('invalid', !Number.isFinite(Number(input.value.replace(',', '.')))));
-        return;
+    let bad = false;
+    for (const fields of Object.values(this.inputs))
+      for (const field of fields) {
+        const invalid = !Number.isFinite(field.read());
+        field.input.classList.toggle('invalid', invalid);
+        bad ||= invalid;
       }
-      this.inputs[key].forEach((input) => input.classList.remove('invalid'));
-      transform[key] = values;
-    }
+    if (bad) return;
+    const transform = {};
+    for (const [key] of ROWS) transform[key] = this.inputs[key].map((field) => field.read());
     this.onTransform(this.id, transform);
   }
 
@@ -109,19 +93,10 @@ export class Inspector {
     const name = document.createElement('span');
     name.textContent = label;
     row.append(name);
-    const inputs = Array.from({ length: count }, (_, k) => {
-      const input = document.createElement('input');
-      input.type = 'text';
-      input.inputMode = 'decimal';
-      input.size = 6;
-      input.dataset.key = `${key}.${k}`;
-      input.addEventListener('change', onChange);
-      input.addEventListener('keydown', (event) => { if (event.key === 'Enter') input.blur(); });
-      row.append(input);
-      return input;
-    });
+    const fields = Array.from({ length: count }, (_, k) => new ExactField(`${key}.${k}`, onChange));
+    row.append(...fields.map((field) => field.input));
     this.root.append(row);
-    return inputs;
+    return fields;
   }
 
   // The light's fields from its JSON (unless one is being typed in).
@@ -130,36 +105,39 @@ export class Inspector {
     const quad = quadAxes(light.polygon);
     const values = { centre: centroid(light.polygon), radiance: light.radiance, intensity: [intensityOf(light.radiance)],
       quad: quad ? [quad.width, quad.depth] : null, size: [sizeOf(light.polygon)] };
-    for (const [key, inputs] of Object.entries(this.inputs))
-      if (values[key]) inputs.forEach((input, k) => { if (document.activeElement !== input) input.value = round(values[key][k]); });
+    for (const [key, fields] of Object.entries(this.inputs))
+      if (values[key]) fields.forEach((field, k) => field.set(values[key][k]));
   }
 
   // The typed fields as a light: the fields that differ from the light's own are applied in order
-  // (centre, size, radiance, intensity). Invalid numbers are marked and nothing is sent.
+  // (centre, size, radiance, intensity); a field not typed reads back exactly the light's value, so
+  // it changes nothing. Invalid numbers are marked and nothing is sent.
   typedLight(lightId) {
-    const read = (key) => this.inputs[key] && this.inputs[key].map((input) => Number(input.value.replace(',', '.')));
+    const read = (key) => this.inputs[key] && this.inputs[key].map((field) => field.read());
+    const positive = (key) => key.startsWith('quad') || key.startsWith('size');
+    const nonNegative = (key) => key.startsWith('radiance') || key.startsWith('intensity');
     let bad = false;
-    for (const inputs of Object.values(this.inputs))
-      for (const input of inputs) {
-        const v = Number(input.value.replace(',', '.'));
-        const invalid = !Number.isFinite(v) || (input.dataset.key.startsWith('quad') || input.dataset.key.startsWith('size') ? v <= 0 : false)
-          || ((input.dataset.key.startsWith('radiance') || input.dataset.key.startsWith('intensity')) && v < 0);
-        input.classList.toggle('invalid', invalid);
+    for (const fields of Object.values(this.inputs))
+      for (const field of fields) {
+        const v = field.read();
+        const { key } = field.input.dataset;
+        const invalid = !Number.isFinite(v) || (positive(key) && v <= 0) || (nonNegative(key) && v < 0);
+        field.input.classList.toggle('invalid', invalid);
         bad ||= invalid;
       }
     if (bad || !this.light) return;
-    const near = (a, b) => a.every((x, k) => Math.abs(x - b[k]) < 6e-5);
+    const same = (a, b) => a.every((x, k) => x === b[k]);
     let { polygon, radiance } = this.light;
     const centre = read('centre');
-    if (!near(centre, centroid(polygon))) polygon = movedTo(polygon, centre);
+    if (!same(centre, centroid(polygon))) polygon = movedTo(polygon, centre);
     const quad = read('quad'), size = read('size');
     const axes = quadAxes(polygon);
-    if (quad && axes && !near(quad, [axes.width, axes.depth])) polygon = resizedQuad(polygon, quad[0], quad[1]);
-    if (size && !near(size, [sizeOf(polygon)])) polygon = resized(polygon, size[0]);
+    if (quad && axes && !same(quad, [axes.width, axes.depth])) polygon = resizedQuad(polygon, quad[0], quad[1]);
+    if (size && !same(size, [sizeOf(polygon)])) polygon = resized(polygon, size[0]);
     const typedRadiance = read('radiance');
-    if (!near(typedRadiance, radiance)) radiance = typedRadiance;
+    if (!same(typedRadiance, radiance)) radiance = typedRadiance;
     const intensity = read('intensity')[0];
-    if (Math.abs(intensity - intensityOf(this.light.radiance)) >= 6e-5) radiance = withIntensity(radiance, intensity);
+    if (intensity !== intensityOf(this.light.radiance)) radiance = withIntensity(radiance, intensity);
     this.onLight(lightId, { polygon, radiance });
   }
 }

@@ -3,17 +3,22 @@
 // progress bar when the size is known. The panel's controls stay disabled (their fieldset) until
 // the scene is ready.
 
+import { ElapsedCounter } from './elapsed_counter.js';
+
 export class LoadingIndicator {
   constructor(root, text, bar, controls) {
     Object.assign(this, { root, text, bar, controls });
     this.started = performance.now();
-    this.timer = null;
+    this.counter = new ElapsedCounter((text) => this.show(text, null));
   }
 
-  // fraction: 0..1, or null for an indeterminate bar.
+  // fraction: 0..1, or null for an indeterminate bar. A new step ends a waiting() counter.
   step(message, fraction = null) {
-    clearInterval(this.timer);
-    this.timer = null;
+    this.counter.stop();
+    this.show(message, fraction);
+  }
+
+  show(message, fraction) {
     this.root.hidden = false;
     this.root.classList.remove('failed');
     this.text.textContent = message;
@@ -23,10 +28,7 @@ export class LoadingIndicator {
 
   // A step without progress events (the server building a scene): shows the seconds waited.
   waiting(message) {
-    const since = performance.now();
-    const show = () => this.step(`${message} ${((performance.now() - since) / 1000).toFixed(1)} s`);
-    show();
-    this.timer = setInterval(show, 100);
+    this.counter.start(message);
   }
 
   // Bytes received of a download (total 0 when the server did not say).
@@ -36,8 +38,7 @@ export class LoadingIndicator {
   }
 
   done() {
-    clearInterval(this.timer);
-    this.timer = null;
+    this.counter.stop();
     this.root.hidden = true;
     this.controls.disabled = false;
     this.readySeconds = (performance.now() - this.started) / 1000;
@@ -51,8 +52,7 @@ export class LoadingIndicator {
 
   failed(message) {
     this.failure = message;
-    clearInterval(this.timer);
-    this.timer = null;
+    this.counter.stop();
     this.root.hidden = false;
     this.root.classList.add('failed');
     this.text.textContent = message;

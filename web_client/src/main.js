@@ -151,12 +151,13 @@ class App {
         if (!this.dragLimit.allows(id, transform) || flat) applyTransform(this.gizmo.holder(), this.dragLimit.lastGood(id)); // held at the last good place
         else if (isLight(id)) this.coalescer.setLight(id.slice(6), { polygon: this.objects.lightPolygon(id.slice(6)) }, transform);
         else this.coalescer.move(id, transform);
+        this.followDrag(id);
       },
       onDragEnd: (id) => this.dragEnded(id),
       onMode: (mode) => this.showMode(mode),
     });
     this.showMode('translate');
-    this.renderPanel = new RenderPanel(this.api, sceneId, this.view, $('render'), $('render-info'), this.fail,
+    this.renderPanel = new RenderPanel(this.api, sceneId, this.view, $('render'), $('render-info'), $('render-progress'), this.fail,
       () => hasPhysicalMaterials(this.sceneJson));
     this.view.onCameraChange(() => this.renderPanel.schedule());
     this.bakedIndirect = new BakedIndirect(this.api, sceneId, (indirect) => {
@@ -183,7 +184,7 @@ class App {
     this.api.stats(sceneId).then((stats) => {
       this.timings.initialBuild = stats.build && stats.build.seconds ? stats.build.seconds.total : null;
       this.timings.draw();
-      if (!this.timings.rebuild) this.plot.setBuild(this.timings.initialBuild, 'at load');
+      if (!this.timings.rebuild) this.plot.setBuild(this.timings.initialBuild, 'at load', false);
     }).catch(this.fail);
 
     this.renderPanel.schedule();
@@ -225,7 +226,7 @@ class App {
       const fetched = await this.meshSync.refresh(Math.max(result.version, this.announced));
       const end = performance.now();
       this.timings.edited(result, (end - start) / 1000, fetched.bytes, { edit: (answered - start) / 1000, mesh: (end - answered) / 1000 });
-      this.plot.add(result.seconds ? result.seconds.total : 0, (end - start) / 1000);
+      this.plot.add(result.seconds ? result.seconds.total : 0, result.mesh_seconds || 0, (end - start) / 1000);
       // The server's image waits for the drag's end: it would compete with the edits for the server.
       if (!this.gizmo.dragging) this.renderPanel.schedule();
     } catch (error) {
@@ -237,8 +238,8 @@ class App {
   // the stand-ins back: a dragged object to its last accepted place, where it is held (DragLimit).
   async editFailed(error, frame) {
     const refused = error.status === 422;
-    this.banner.show(refused ? new Error(`${error.message} — the object stays at its last accepted place`) : error,
-      { transient: refused, key: refused ? `${error.code}:${error.path}` : null });
+    this.banner.show(error, { transient: refused, key: refused ? `${error.code}:${error.path}` : null,
+      also: refused ? 'It stays at its last accepted place.' : '' });
     const held = refused && frame ? this.dragLimit.refused(frame.edits) : null;
     if (held) {
       this.coalescer.discard(held);
@@ -284,6 +285,13 @@ class App {
     if (!isLight(id)) return transformOf(this.objects.byId.get(id));
     const light = this.objects.lightJson.get(id.slice(6));
     return { polygon: light.polygon, radiance: light.radiance };
+  }
+
+  // The inspector's fields follow a drag as it goes (the dragged holder, not yet the server's scene).
+  followDrag(id) {
+    if (this.inspector.id !== id) return;
+    if (isLight(id)) this.inspector.update({ ...this.objects.lightJson.get(id.slice(6)), polygon: this.objects.lightPolygon(id.slice(6)) });
+    else this.inspector.update(transformOf(this.gizmo.holder()));
   }
 
   refreshInspector() {
@@ -389,6 +397,7 @@ class App {
         this.gizmo.select(null);
         this.buildStandIns(wrapped.scene);
       }
+      this.view.requestRender(); // the stand-ins and lights moved after the mesh was drawn
     } catch (error) {
       this.fail(error);
     }
@@ -413,11 +422,19 @@ class App {
   async resync() {
     try {
       const wrapped = await this.api.getScene(this.sceneId);
+      // The undo steps lead to the version held; a server at another one (restarted without a
+      // journal, or edited meanwhile) has a scene they do not describe.
+      if (wrapped.version !== this.meshSync.version) {
+        this.history.clear();
+        this.knownVersion = wrapped.version;
+        this.updateUndoButtons();
+      }
       this.gizmo.select(null);
       this.adopt(wrapped);
       this.buildStandIns(wrapped.scene);
       this.ownVersions.clear();
       await this.meshSync.reload();
+      this.banner.serverBack();
       this.announced = this.meshSync.version;
       this.renderPanel.schedule();
       this.view.requestRender();

@@ -41,7 +41,7 @@ export function installPanelControls(app, editor) {
     try {
       app.timings.rebuild = await app.api.rebuild(app.sceneId);
       app.timings.draw();
-      app.plot.setBuild(app.timings.rebuild.seconds.build, `rebuild of v${app.timings.rebuild.version}`);
+      app.plot.setBuild(app.timings.rebuild.seconds.total, `rebuild of v${app.timings.rebuild.version}`, true);
     } catch (error) {
       app.fail(error);
     } finally {

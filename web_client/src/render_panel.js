@@ -3,6 +3,10 @@
 // Scenes with microfacet materials refine progressively: a fast image with few samples first,
 // then better ones, each replacing the shown one; a new camera or version aborts the passes left.
 // With GI on, the last pass asks for bounced light by sensors and the info shows their count and time.
+// While a pass is on its way a counter beside the info says so ("rendering with GI… 12.3 s"): a GI
+// render takes seconds to minutes.
+
+import { ElapsedCounter } from './elapsed_counter.js';
 
 const DEBOUNCE_MS = 250;
 const WIDTH = 320;
@@ -11,8 +15,10 @@ export const PROGRESSIVE_SAMPLES = [1, 4, 16];
 
 export class RenderPanel {
   // progressive(): whether the scene has materials that need samples (else one pass).
-  constructor(api, sceneId, view, img, info, onError, progressive = () => false) {
-    Object.assign(this, { api, sceneId, view, img, info, onError, progressive });
+  // progress: the element for the running pass's counter.
+  constructor(api, sceneId, view, img, info, progress, onError, progressive = () => false) {
+    Object.assign(this, { api, sceneId, view, img, info, progress, onError, progressive });
+    this.counter = new ElapsedCounter((text) => { this.progress.textContent = text; });
     this.timer = null;
     this.abort = null;
     this.url = null;
@@ -48,6 +54,7 @@ export class RenderPanel {
       for (const [i, samples] of passes.entries()) {
         // GI costs the same whatever the samples: only the last pass pays it, the first shows fast.
         const gi = this.gi && i === passes.length - 1;
+        this.counter.start(`rendering${gi ? ' with GI (sensors)' : ''}${samples ? `, ${samples} samples` : ''}…`);
         const image = await this.api.image(this.sceneId, width, height, camera, abort.signal, samples, gi);
         if (abort.signal.aborted) return;
         this.show(image, width, height, passes.length > 1 ? `${image.samples}/${passes.at(-1)} samples, ` : '');
@@ -55,7 +62,11 @@ export class RenderPanel {
     } catch (error) {
       if (error.name !== 'AbortError') this.onError(error);
     } finally {
-      if (this.abort === abort) this.abort = null;
+      if (this.abort === abort) {
+        this.abort = null;
+        this.counter.stop();
+        this.progress.textContent = '';
+      }
     }
   }
 

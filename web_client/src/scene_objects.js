@@ -33,6 +33,13 @@ function polygonsGeometry(vertices, faces) {
 }
 
 // Local vertex bounds' centre.
+// A light's polygon is drawn in its colour: the radiance's hue at full brightness (linear RGB,
+// its largest channel 1), white for a light of no power.
+export function lightColour(radiance) {
+  const peak = Math.max(...radiance);
+  return peak > 0 ? radiance.map((x) => Math.max(0, x) / peak) : [1, 1, 1];
+}
+
 function pivotOf(vertices) {
   const box = new THREE.Box3();
   for (const p of vertices) box.expandByPoint(new THREE.Vector3(...p));
@@ -229,6 +236,7 @@ export class SceneObjects {
     holder.scale.set(1, 1, 1);
     holder.userData.local = local;
     holder.updateMatrixWorld(true);
+    mesh.material.color.setRGB(...lightColour(light.radiance));
     this.lightJson.set(id, { ...(this.lightJson.get(id) || { id }), polygon: light.polygon, radiance: light.radiance });
     if (this.onLight) this.onLight(id, this.lightJson.get(id));
   }

@@ -34,6 +34,12 @@ export class UndoHistory {
     return entry || null;
   }
 
+  // Forgets every step (the scene is no longer the one they were made on).
+  clear() {
+    this.done = [];
+    this.undone = [];
+  }
+
   canUndo() { return this.done.length > 0; }
   canRedo() { return this.undone.length > 0; }
 
