@@ -35,7 +35,7 @@ std::string defaultStaticDir() {
 
 // serve's options, checked: a usage error for what cannot work.
 server::ServerOptions serveOptions(const Args& args) {
-  args.allowOnly({"host", "port", "static", "grid", "data", "ephemeral", "token", "max-scenes",
+  args.allowOnly({"host", "port", "static", "grid", "data", "ephemeral", "token", "allow-origin", "max-scenes",
                   "max-body-mib", "threads", "edit-nice"});
   server::ServerOptions options;
   options.host = args.option("host").value_or("127.0.0.1");
@@ -47,6 +47,12 @@ server::ServerOptions serveOptions(const Args& args) {
       size_t(args.intOption("max-body-mib", int(server::kMaxBodyBytes >> 20), 1, 4096)) << 20;
   const char* envToken = std::getenv("PENUMBRA_TOKEN");
   options.token = args.option("token").value_or(envToken ? envToken : "");
+  // --allow-origin A,B: pages of these origins may edit too (e.g. a dev server of the page).
+  for (std::string rest = args.option("allow-origin").value_or(""); !rest.empty();) {
+    const size_t comma = rest.find(',');
+    if (comma) options.allowedOrigins.push_back(rest.substr(0, comma));
+    rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+  }
   if (!server::isLoopbackHost(options.host) && options.token.empty())
     throw UsageError("--host " + options.host +
                      " is reachable from other machines: give a token with --token T or the "

@@ -56,6 +56,8 @@ commands:
         [--token T] [--max-scenes N]   token for mutating requests (needed off loopback; or
         [--max-body-mib M]             PENUMBRA_TOKEN); limits (default 32 scenes, 16 MiB)
         [--edit-nice K]                edits apply K nice steps below reads (0-19; default 0)
+        [--allow-origin O,...]         other origins whose pages may edit (default: only the
+                                       server's own page; a loopback server answers loopback Hosts)
   help                                 this text
 )";
 

@@ -1,7 +1,11 @@
-// Who may do what (README "HTTP server"): the bearer token on every mutating request, and static
-// files only from inside their mounted folder (no "..", no symlink leading out).
+// Who may do what (docs/SERVER.md "Access"): the bearer token on every mutating request; pages of
+// other origins never mutate (Origin checked; issue 36, item 6), a loopback server answers only
+// requests naming a loopback host (Host checked: DNS rebinding); static files only from inside
+// their mounted folder (no "..", no symlink leading out). No CORS headers are ever sent.
 #include <httplib.h>
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 
 #include "server/http_server.h"
@@ -36,7 +40,52 @@ bool staysInside(const fs::path& root, const std::string& sub) {
   return rootEnd == root.end();
 }
 
+std::string lowered(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// The host of an authority "name", "name:port" or "[v6]:port", lower-cased, brackets kept off.
+std::string hostOf(const std::string& authority) {
+  const std::string a = lowered(authority);
+  if (!a.empty() && a[0] == '[') return a.substr(1, a.find(']') == std::string::npos ? std::string::npos : a.find(']') - 1);
+  return a.substr(0, a.find(':'));
+}
+
+// The authority of an origin "scheme://authority" (empty when it is not one, e.g. "null").
+std::string authorityOf(const std::string& origin) {
+  const size_t at = origin.find("://");
+  return at == std::string::npos ? std::string() : lowered(origin.substr(at + 3));
+}
+
 }  // namespace
+
+bool HttpServer::refuseForeignOrigin(const httplib::Request& req, httplib::Response& res) const {
+  const std::string host = req.get_header_value("Host");
+  const bool allowedHost = std::any_of(options_.allowedOrigins.begin(), options_.allowedOrigins.end(),
+                                       [&](const std::string& o) { return hostOf(authorityOf(o)) == hostOf(host); });
+  if (isLoopbackHost(options_.host) && !host.empty() && !isLoopbackHost(hostOf(host)) && !allowedHost) {
+    sendJson(res, 403,
+             errorJson(error_code::kForbiddenOrigin,
+                       "this server listens on a loopback address and answers only requests naming a loopback host, "
+                       "not '" + host + "' (a page could reach it through a name resolving to 127.0.0.1); open it as "
+                       "http://127.0.0.1 or http://localhost, or allow that name's origin with --allow-origin",
+                       "(header).Host"));
+    return true;
+  }
+  const std::string origin = req.get_header_value("Origin");
+  if (!isMutating(req.method) || origin.empty()) return false;  // not a browser's cross-site write
+  const bool same = authorityOf(origin) == lowered(host) && !host.empty();
+  const bool listed = std::any_of(options_.allowedOrigins.begin(), options_.allowedOrigins.end(),
+                                  [&](const std::string& o) { return lowered(o) == lowered(origin); });
+  if (same || listed) return false;
+  sendJson(res, 403,
+           errorJson(error_code::kForbiddenOrigin,
+                     "a page from " + origin + " may not change this server's scenes (only its own page, or an "
+                     "origin given with --allow-origin)",
+                     "(header).Origin"));
+  return true;
+}
 
 bool HttpServer::refuseAccess(const httplib::Request& req, httplib::Response& res) const {
   {

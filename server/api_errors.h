@@ -27,6 +27,7 @@ inline constexpr const char* kResourceLimit = "resource_limit";  // 507, names t
 inline constexpr const char* kBusy = "busy";                          // 503, with Retry-After
 inline constexpr const char* kNotImplemented = "not_implemented";     // 501
 inline constexpr const char* kUnauthorized = "unauthorized";          // 401
+inline constexpr const char* kForbiddenOrigin = "forbidden_origin";   // 403: Origin or Host
 inline constexpr const char* kJournalFailed = "journal_failed";       // 503
 inline constexpr const char* kSceneStalled = "scene_stalled";         // 409
 }  // namespace error_code

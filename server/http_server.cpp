@@ -114,7 +114,8 @@ HttpServer::HttpServer(ServerOptions options)
         bodiesAreNotForms(req);
         gzipNotBrotli(req);
         try {
-          if (refuseAccess(req, res) || refuseHostileRanges(req, res)) return httplib::Server::HandlerResponse::Handled;
+          if (refuseForeignOrigin(req, res) || refuseAccess(req, res) || refuseHostileRanges(req, res))
+            return httplib::Server::HandlerResponse::Handled;
         } catch (...) {
           res.status = 500;
           res.set_content(kInternalErrorBody, "application/json");

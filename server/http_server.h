@@ -44,6 +44,11 @@ struct ServerOptions {
   // Required (Authorization: Bearer TOKEN) on every POST/PUT/PATCH/DELETE when not empty; a
   // host other than loopback is refused without one.
   std::string token;
+  // Origins ("http://host:port") whose pages may send mutating requests besides the server's own
+  // (same origin: Origin = http:// + Host); any other Origin is refused with 403. On a loopback
+  // address a Host naming anything but loopback is refused too (DNS rebinding), unless it is the
+  // host of one of these.
+  std::vector<std::string> allowedOrigins;
   size_t maxScenes = kMaxScenes;        // served at once, else 429
   size_t maxBodyBytes = kMaxBodyBytes;  // request bodies, else 413
   // Edit batches apply on one thread per core, this many nice steps below the request
@@ -126,6 +131,9 @@ class HttpServer {
   // Answers (and returns true) when the request may not go on: no token on a mutating
   // request, a static path leading out of its root (access_control.cpp).
   bool refuseAccess(const httplib::Request& req, httplib::Response& res) const;
+  // A Host other than loopback on a loopback server, or a mutating request whose Origin is
+  // neither this server's nor allowed: 403 forbidden_origin (access_control.cpp).
+  bool refuseForeignOrigin(const httplib::Request& req, httplib::Response& res) const;
   // Journal writes (no-ops when ephemeral); throw ApiError 503 when the journal fails.
   // `next`: the version the frame made (its number, and its part changes for a fast restore).
   void journalFrame(const SceneSession& session, const SceneSnapshot& next, const std::string& frame);

@@ -98,7 +98,7 @@ std::string rawGet(int port, const std::string& target) {
     close(fd);
     return "";
   }
-  const std::string request = "GET " + target + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n";
+  const std::string request = "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n";
   (void)!write(fd, request.data(), request.size());
   std::string answer;
   char buffer[4096];
