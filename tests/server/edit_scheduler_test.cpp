@@ -41,17 +41,18 @@ struct BatchLog {
 std::vector<std::vector<std::string>> batchesAfterAHeldTurn(size_t maxBatch) {
   EditScheduler scheduler(16, maxBatch);
   BatchLog log;
-  std::promise<void> release;
+  std::promise<void> release, applying;
   std::shared_future<void> released = release.get_future().share();
   std::thread first([&] {
     EditScheduler::Ticket ticket{"first"};
-    scheduler.submit(ticket, [&](const std::vector<EditScheduler::Ticket*>&) { released.wait(); });
+    scheduler.submit(ticket, [&](const std::vector<EditScheduler::Ticket*>&) {
+      applying.set_value();
+      released.wait();
+    });
   });
-  while (true) {  // "first" is applying once it has left the queue
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    if (scheduler.queued() == 0) break;
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  // "first" is applying: its batch has started (polling for an empty queue raced with the
+  // thread's start on a loaded machine, and the next frames then applied at once).
+  applying.get_future().wait();
   std::vector<std::thread> threads;
   std::vector<EditScheduler::Ticket> tickets(6);
   size_t queued = 0;
