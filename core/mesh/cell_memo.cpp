@@ -66,7 +66,8 @@ CellMemo::CellMemo(uint64_t inputs, const Output& output) : inputs_(inputs) {
   w = std::copy(output.points.begin(), output.points.end(), w);
   for (size_t i = 0; i < output.ownAt.size(); ++i) {
     w = putDouble(putDouble(w, output.ownAt[i].x), output.ownAt[i].y);
-    std::memcpy(w, output.ownLights.data() + i * output.lights, sizeof(VertexLight) * output.lights);
+    if (output.lights)  // no light: no copy (memcpy from a null pointer is undefined even for 0 bytes)
+      std::memcpy(w, output.ownLights.data() + i * output.lights, sizeof(VertexLight) * output.lights);
     w += kLightWords * output.lights;
   }
 }
@@ -106,7 +107,7 @@ void CellMemo::ownLights(uint32_t i, std::vector<VertexLight>& row) const {
   const uint32_t* w = &words_[pointsBegin() + pointCount() + ownValueWords() * i + kOwnAtWords];
   row.resize(lightCount());
   static_assert(std::is_trivially_copyable_v<VertexLight>);
-  std::memcpy(static_cast<void*>(row.data()), w, sizeof(VertexLight) * row.size());
+  if (!row.empty()) std::memcpy(static_cast<void*>(row.data()), w, sizeof(VertexLight) * row.size());
 }
 
 }  // namespace penumbra
