@@ -4,14 +4,14 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <thread>
 
+#include "cli/commands.h"
 #include "protocol/scene_json.h"
 #include "server/api_errors.h"
-#include "cli/commands.h"
 #include "server/http_server.h"
 
 namespace penumbra::cli {
@@ -35,8 +35,8 @@ std::string defaultStaticDir() {
 
 // serve's options, checked: a usage error for what cannot work.
 server::ServerOptions serveOptions(const Args& args) {
-  args.allowOnly({"host", "port", "static", "grid", "data", "ephemeral", "token", "allow-origin", "max-scenes",
-                  "max-body-mib", "threads", "edit-nice"});
+  args.allowOnly({"host", "port", "static", "grid", "data", "ephemeral", "token", "allow-origin",
+                  "max-scenes", "max-body-mib", "image-memory-mib", "threads", "edit-nice"});
   server::ServerOptions options;
   options.host = args.option("host").value_or("127.0.0.1");
   options.port = args.intOption("port", 8080, 0, 65535);
@@ -45,6 +45,10 @@ server::ServerOptions serveOptions(const Args& args) {
   options.maxScenes = size_t(args.intOption("max-scenes", int(server::kMaxScenes), 1, 100000));
   options.maxBodyBytes =
       size_t(args.intOption("max-body-mib", int(server::kMaxBodyBytes >> 20), 1, 4096)) << 20;
+  options.imageMemoryBytes =
+      uint64_t(
+          args.intOption("image-memory-mib", int(server::kImageMemoryBytes >> 20), 16, 1 << 20))
+      << 20;
   const char* envToken = std::getenv("PENUMBRA_TOKEN");
   options.token = args.option("token").value_or(envToken ? envToken : "");
   // --allow-origin A,B: pages of these origins may edit too (e.g. a dev server of the page).
@@ -77,17 +81,19 @@ std::vector<std::string> serveScenes(server::HttpServer& server, const Args& arg
   std::vector<std::string> ids;
   for (const server::RestoredScene& restored : server.restore()) {
     if (restored.served) ids.push_back(restored.id);
-    std::fprintf(stderr, "penumbra serve: restored scene '%s' at version %llu (%zu frames%s) in %.2f s%s%s\n",
-                 restored.id.c_str(), static_cast<unsigned long long>(restored.version),
-                 restored.frames, restored.meshedOnce ? ", meshed once" : "", restored.seconds,
-                 restored.problem.empty() ? "" : ": ",
-                 restored.problem.c_str());
+    std::fprintf(
+        stderr,
+        "penumbra serve: restored scene '%s' at version %llu (%zu frames%s) in %.2f s%s%s\n",
+        restored.id.c_str(), static_cast<unsigned long long>(restored.version), restored.frames,
+        restored.meshedOnce ? ", meshed once" : "", restored.seconds,
+        restored.problem.empty() ? "" : ": ", restored.problem.c_str());
   }
   for (const std::string& path : args.positionals()) {
     const std::string name = fs::path(path).filename().string();
     // The journal wins: a scene already restored under this file's id keeps the user's edits.
     if (!options.dataDir.empty() && server.hasScene(server::sceneIdFromName(name))) {
-      std::fprintf(stderr, "penumbra serve: %s: scene '%s' comes from the journal (%s), not the file\n",
+      std::fprintf(stderr,
+                   "penumbra serve: %s: scene '%s' comes from the journal (%s), not the file\n",
                    path.c_str(), server::sceneIdFromName(name).c_str(), options.dataDir.c_str());
       continue;
     }
@@ -134,9 +140,9 @@ int runServe(const Args& args) {
   const std::string tokenQuery = options.token.empty() ? "" : "&token=" + options.token;
   for (const std::string& id : ids)
     std::printf("  open %s?scene=%s%s\n", url.c_str(), id.c_str(), tokenQuery.c_str());
-  std::printf("  (scenes and edits %s)\n",
-              options.dataDir.empty() ? "are not kept: --ephemeral"
-                                      : ("are kept in " + options.dataDir).c_str());
+  std::printf("  (scenes and edits %s)\n", options.dataDir.empty()
+                                               ? "are not kept: --ephemeral"
+                                               : ("are kept in " + options.dataDir).c_str());
   std::printf("  (API: %sapi/health; stop with Ctrl-C)\n", url.c_str());
   std::fflush(stdout);
 

@@ -55,6 +55,7 @@ commands:
         [--data DIR | --ephemeral]     journal of scenes and edits (default ./penumbra-data)
         [--token T] [--max-scenes N]   token for mutating requests (needed off loopback; or
         [--max-body-mib M]             PENUMBRA_TOKEN); limits (default 32 scenes, 16 MiB)
+        [--image-memory-mib M]         images rendering at once (default 512 MiB; then 503)
         [--edit-nice K]                edits apply K nice steps below reads (0-19; default 0)
         [--allow-origin O,...]         other origins whose pages may edit (default: only the
                                        server's own page; a loopback server answers loopback Hosts)

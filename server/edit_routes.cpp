@@ -1,6 +1,4 @@
 // POST /api/scenes/{id}/edits: one frame of edits, applied whole or refused.
-#include "server/http_server.h"
-
 #include <httplib.h>
 
 #include <algorithm>
@@ -14,7 +12,9 @@
 #include "core/geom/resource_limit.h"
 #include "protocol/edits_json.h"
 #include "protocol/frame_result_json.h"
+#include "server/body_reader.h"
 #include "server/frame_batch.h"
+#include "server/http_server.h"
 #include "server/request_io.h"
 #include "server/response_json.h"
 
@@ -42,13 +42,12 @@ void sendNotApplied(httplib::Response& res, const SceneSession& session, bool ou
                               " while applying the frame (" + what +
                               "): the frame was not applied; the scene is unchanged at version " +
                               std::to_string(version);
-  sendError(res,
-            ApiError(outOfMemory ? 507 : 500,
-                     outOfMemory ? error_code::kOutOfMemory : error_code::kFrameNotApplied, "",
-                     message),
-            {{"applied", false}, {"version", version}});
+  sendError(
+      res,
+      ApiError(outOfMemory ? 507 : 500,
+               outOfMemory ? error_code::kOutOfMemory : error_code::kFrameNotApplied, "", message),
+      {{"applied", false}, {"version", version}});
 }
-
 
 // Who takes turns in a scene's edit queue: the X-Penumbra-Client header, else the
 // connection (HTTP/1.1 carries one request at a time per connection).
@@ -58,15 +57,12 @@ std::string clientOf(const httplib::Request& req) {
   return "c:" + req.remote_addr + ":" + std::to_string(req.remote_port);
 }
 
-void sendBusy(httplib::Response& res, const std::string& why) {
-  sendError(res, ApiError(503, error_code::kBusy, "", why + "; retry after 1 s"));
-  res.set_header("Retry-After", "1");
-}
-
 // Counts a waiting edit while it lives.
 class WaitingEdit {
  public:
-  explicit WaitingEdit(std::atomic<int>& count) : count_(count) { admitted_ = ++count_ <= kMaxWaitingEdits; }
+  explicit WaitingEdit(std::atomic<int>& count) : count_(count) {
+    admitted_ = ++count_ <= kMaxWaitingEdits;
+  }
   ~WaitingEdit() { --count_; }
   WaitingEdit(const WaitingEdit&) = delete;
   WaitingEdit& operator=(const WaitingEdit&) = delete;
@@ -99,7 +95,7 @@ void sendFrameApplied(httplib::Response& res, const SceneSession::Applied& appli
 // applies its batch; read by its own request thread after EditScheduler::submit returns).
 struct QueuedFrame : EditScheduler::Ticket {
   Frame frame;
-  std::string body;          // as the client sent it: journaled when applied alone
+  std::string body;  // as the client sent it: journaled when applied alone
   httplib::Response* res = nullptr;
 };
 
@@ -111,9 +107,8 @@ void HttpServer::applyFrameAlone(SceneSession& session, EditScheduler::Ticket& t
   SceneSession::Applied applied;
   try {
     // Journaled (committed) before it is published and acknowledged.
-    applied = session.apply(queued.frame, [&](const SceneSnapshot& next) {
-      journalFrame(session, next, queued.body);
-    });
+    applied = session.apply(
+        queued.frame, [&](const SceneSnapshot& next) { journalFrame(session, next, queued.body); });
   } catch (const EditError& error) {
     const std::string path = "edits[" + std::to_string(error.editIndex()) + "]" +
                              (error.path().empty() ? "" : "." + error.path());
@@ -148,9 +143,11 @@ void HttpServer::applyFrameAlone(SceneSession& session, EditScheduler::Ticket& t
   sendFrameApplied(res, applied, 1);
 }
 
-void HttpServer::applyFrameBatch(SceneSession& session, const std::vector<EditScheduler::Ticket*>& batch) {
+void HttpServer::applyFrameBatch(SceneSession& session,
+                                 const std::vector<EditScheduler::Ticket*>& batch) {
   std::vector<const Frame*> frames;
-  for (EditScheduler::Ticket* ticket : batch) frames.push_back(&static_cast<QueuedFrame*>(ticket)->frame);
+  for (EditScheduler::Ticket* ticket : batch)
+    frames.push_back(&static_cast<QueuedFrame*>(ticket)->frame);
   std::optional<Frame> combined;
   if (batch.size() > 1) combined = combinedFrame(frames);
   if (!combined) {
@@ -200,37 +197,42 @@ void HttpServer::registerEditRoutes() {
   const std::string scenePath = std::string("/api/scenes/") + kIdPattern;
 
   http.Post(
-      scenePath + "/edits", guarded([this](const httplib::Request& req, httplib::Response& res) {
-        const auto session = findScene(req.matches[1]);
-        refuseIfStalled(*session);  // before anything is read: the scene takes no edits
-        const json body = parseBody(req);
-        Frame frame;
-        try {
-          const auto materials = session->snapshot()->scene.materials();
-          // add_volume may name only files the server holds (its uploads, the scene's own).
-          protocol::VolumeFiles known;
-          known.onlyKnown = true;
-          try {
-            known.knownDirectory = known.baseDirectory = volumeUploadDir();
-          } catch (const std::filesystem::filesystem_error&) {
-            // No upload folder (unwritable): only the scene's own files are known.
-          }
-          known.knownFiles = session->initialVolumeFiles();
-          frame = protocol::frameFromJson(body, &materials, &known);
-        } catch (const protocol::ValidationError& error) {
-          const long edit = editIndexOf(error.path());
-          sendError(res, ApiError(422, error_code::kInvalidFrame, error.path(), error.problem()),
-                    edit >= 0 ? json{{"edit", edit}} : json::object());
-          return;
-        }
-        // A frame adding a volume is journaled with its file resolved (relative to the data
-        // directory when inside it), as a restart reads it.
-        const bool addsVolume =
-            std::any_of(frame.edits.begin(), frame.edits.end(),
-                        [](const Edit& e) { return e.op == Edit::Op::AddVolume; });
-        const std::string journaled = addsVolume ? journaledFrameText(frame) : req.body;
-        submitFrame(*session, std::move(frame), journaled, req, res);
-      }));
+      scenePath + "/edits",
+      readingBody(options_.maxBodyBytes,
+                  guarded([this](const httplib::Request& req, httplib::Response& res) {
+                    const auto session = findScene(req.matches[1]);
+                    refuseIfStalled(*session);  // before anything is read: the scene takes no edits
+                    const json body = parseBody(req);
+                    Frame frame;
+                    try {
+                      const auto materials = session->snapshot()->scene.materials();
+                      // add_volume may name only files the server holds (its uploads, the scene's
+                      // own).
+                      protocol::VolumeFiles known;
+                      known.onlyKnown = true;
+                      try {
+                        known.knownDirectory = known.baseDirectory = volumeUploadDir();
+                      } catch (const std::filesystem::filesystem_error&) {
+                        // No upload folder (unwritable): only the scene's own files are known.
+                      }
+                      known.knownFiles = session->initialVolumeFiles();
+                      frame = protocol::frameFromJson(body, &materials, &known);
+                    } catch (const protocol::ValidationError& error) {
+                      const long edit = editIndexOf(error.path());
+                      sendError(
+                          res,
+                          ApiError(422, error_code::kInvalidFrame, error.path(), error.problem()),
+                          edit >= 0 ? json{{"edit", edit}} : json::object());
+                      return;
+                    }
+                    // A frame adding a volume is journaled with its file resolved (relative to the
+                    // data directory when inside it), as a restart reads it.
+                    const bool addsVolume =
+                        std::any_of(frame.edits.begin(), frame.edits.end(),
+                                    [](const Edit& e) { return e.op == Edit::Op::AddVolume; });
+                    const std::string journaled = addsVolume ? journaledFrameText(frame) : req.body;
+                    submitFrame(*session, std::move(frame), journaled, req, res);
+                  })));
 }
 
 }  // namespace penumbra::server

@@ -1,7 +1,6 @@
 #include "server/http_server.h"
 
 #include <httplib.h>
-
 #include <strings.h>
 
 #include <cctype>
@@ -9,8 +8,9 @@
 
 #include "protocol/scene_json.h"
 #include "server/api_errors.h"
-#include "server/range_limits.h"
+#include "server/body_reader.h"
 #include "server/gzip_encoding.h"
+#include "server/range_limits.h"
 #include "server/request_io.h"
 
 namespace penumbra::server {
@@ -60,6 +60,7 @@ void gzipNotBrotli(const httplib::Request& req) {
 
 HttpServer::HttpServer(ServerOptions options)
     : options_(std::move(options)),
+      imageBudget_(options_.imageMemoryBytes),
       editWorkers_(0, options_.editNiceness),
       http_(std::make_unique<httplib::Server>()) {
   if (!isLoopbackHost(options_.host) && options_.token.empty())
@@ -79,9 +80,8 @@ HttpServer::HttpServer(ServerOptions options)
     int yes = 1;
     setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, reinterpret_cast<void*>(&yes), sizeof(yes));
   });
-  http_->set_logger([this](const httplib::Request&, const httplib::Response&) {
-    trimmer_.noteActivity();
-  });
+  http_->set_logger(
+      [this](const httplib::Request&, const httplib::Response&) { trimmer_.noteActivity(); });
   const size_t maxBody = options_.maxBodyBytes;
   http_->set_error_handler(httplib::Server::HandlerWithResponse(
       [maxBody](const httplib::Request& req, httplib::Response& res) noexcept {
@@ -114,7 +114,8 @@ HttpServer::HttpServer(ServerOptions options)
         bodiesAreNotForms(req);
         gzipNotBrotli(req);
         try {
-          if (refuseForeignOrigin(req, res) || refuseAccess(req, res) || refuseHostileRanges(req, res))
+          if (refuseForeignOrigin(req, res) || refuseAccess(req, res) ||
+              refuseHostileRanges(req, res))
             return httplib::Server::HandlerResponse::Handled;
         } catch (...) {
           res.status = 500;
@@ -252,6 +253,20 @@ void HttpServer::registerRoutes() {
   registerImageRoutes();
   registerEventRoutes();
   registerVolumeRoutes();
+  registerBodyFallbacks();  // last: httplib tries content-reader routes in order
+}
+
+// A request with a body to any other path or method is read within the limit too, then
+// answered 404 (or 413): httplib would read it whole first, without bound when chunked.
+void HttpServer::registerBodyFallbacks() {
+  const size_t maxBody = options_.maxBodyBytes;
+  const auto notFound = [maxBody](const httplib::Request& req, httplib::Response& res) {
+    sendJson(res, 404, errorJsonForStatus(404, req.method, req.path, maxBody));
+  };
+  http_->Post(".*", readingBody(maxBody, notFound));
+  http_->Put(".*", readingBody(maxBody, notFound));
+  http_->Patch(".*", readingBody(maxBody, notFound));
+  http_->Delete(".*", readingBody(maxBody, notFound));
 }
 
 }  // namespace penumbra::server

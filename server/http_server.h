@@ -19,12 +19,13 @@
 #include "server/scene_journal.h"
 #include "server/scene_session.h"
 #include "server/static_files.h"
+#include "server/work_budget.h"
 
 namespace httplib {
 class Server;
 struct Request;
 struct Response;
-}
+}  // namespace httplib
 
 namespace penumbra::server {
 
@@ -49,8 +50,9 @@ struct ServerOptions {
   // address a Host naming anything but loopback is refused too (DNS rebinding), unless it is the
   // host of one of these.
   std::vector<std::string> allowedOrigins;
-  size_t maxScenes = kMaxScenes;        // served at once, else 429
-  size_t maxBodyBytes = kMaxBodyBytes;  // request bodies, else 413
+  size_t maxScenes = kMaxScenes;                  // served at once, else 429
+  size_t maxBodyBytes = kMaxBodyBytes;            // request bodies, else 413
+  uint64_t imageMemoryBytes = kImageMemoryBytes;  // images rendering at once (WorkBudget)
   // Edit batches apply on one thread per core, this many nice steps below the request
   // threads (server/edit_workers.h).
   int editNiceness = kEditNiceness;
@@ -66,9 +68,10 @@ struct RestoredScene {
   std::string id;
   uint64_t version = 0;  // the last acknowledged version it is back at
   size_t frames = 0;     // frames replayed
-  bool meshedOnce = false;  // replayed through the engine alone and meshed once (part changes journaled)
-  double seconds = 0;    // build + replay
-  bool served = true;    // false: the scene no longer builds (kept in the journal, not served)
+  bool meshedOnce =
+      false;           // replayed through the engine alone and meshed once (part changes journaled)
+  double seconds = 0;  // build + replay
+  bool served = true;  // false: the scene no longer builds (kept in the journal, not served)
   // Set when restore stopped before the journal's last frame (a frame that fails its checksum or
   // no longer applies): the version it is served at. The later frames stay in the journal.
   std::optional<uint64_t> stalledAt;
@@ -127,6 +130,8 @@ class HttpServer {
   void registerImageRoutes();
   void registerEventRoutes();
   void registerVolumeRoutes();
+  void registerBodyFallbacks();
+  std::optional<WorkBudget::Share> takeImageMemory(uint64_t pixels, bool gi);
   void registerStaticFiles();
   // Answers (and returns true) when the request may not go on: no token on a mutating
   // request, a static path leading out of its root (access_control.cpp).
@@ -136,7 +141,8 @@ class HttpServer {
   bool refuseForeignOrigin(const httplib::Request& req, httplib::Response& res) const;
   // Journal writes (no-ops when ephemeral); throw ApiError 503 when the journal fails.
   // `next`: the version the frame made (its number, and its part changes for a fast restore).
-  void journalFrame(const SceneSession& session, const SceneSnapshot& next, const std::string& frame);
+  void journalFrame(const SceneSession& session, const SceneSnapshot& next,
+                    const std::string& frame);
   // Edit frames (edit_routes.cpp): a batch of queued frames applied as one frame when they
   // touch different objects, else (or when that fails) one by one; answers in the tickets.
   void applyFrameBatch(SceneSession& session, const std::vector<EditScheduler::Ticket*>& batch);
@@ -165,18 +171,19 @@ class HttpServer {
 
   ServerOptions options_;
   MemoryTrimmer trimmer_{kTrimInterval};  // gives freed memory back after requests (outlives http_)
+  WorkBudget imageBudget_;   // working memory of the images rendering now (image_routes)
   EditWorkers editWorkers_;  // apply edit batches, one per core at most (outlives http_)
   std::unique_ptr<httplib::Server> http_;
   int port_ = 0;
   std::atomic<bool> stopping_{false};
   std::atomic<int> openStreams_{0};
   std::atomic<int> waitingEdits_{0};  // edits waiting for their scene's turn, all scenes
-  mutable std::mutex scenesMutex_;  // guards scenes_, nextId_, journalKeys_
+  mutable std::mutex scenesMutex_;    // guards scenes_, nextId_, journalKeys_
   std::map<std::string, std::shared_ptr<SceneSession>> scenes_;
-  std::unique_ptr<SceneJournal> journal_;  // null: ephemeral
-  std::map<const SceneSession*, int64_t> journalKeys_;  // guarded by scenesMutex_
-  std::map<const SceneSession*, SceneStall> stalls_;    // guarded by scenesMutex_
-  std::vector<JournalProblem> journalProblems_;         // guarded by scenesMutex_
+  std::unique_ptr<SceneJournal> journal_;                         // null: ephemeral
+  std::map<const SceneSession*, int64_t> journalKeys_;            // guarded by scenesMutex_
+  std::map<const SceneSession*, SceneStall> stalls_;              // guarded by scenesMutex_
+  std::vector<JournalProblem> journalProblems_;                   // guarded by scenesMutex_
   std::vector<std::pair<std::string, std::string>> staticRoots_;  // URL prefix → canonical dir
   StaticFiles staticFiles_;  // the page, served from those roots
   size_t nextId_ = 1;

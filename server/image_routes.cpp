@@ -81,7 +81,8 @@ uint64_t samplesFromQuery(const httplib::Request& req, uint64_t pixels) {
   if (!samples) return std::min(kDefaultImageSamples, most);
   if (*samples > most)
     throw ApiError(400, error_code::kBadParameter, "query.samples",
-                   "samples × width × height must be at most " + std::to_string(kMaxImageSampleBudget) +
+                   "samples × width × height must be at most " +
+                       std::to_string(kMaxImageSampleBudget) +
                        ": at this size samples can be at most " + std::to_string(most) + ", got " +
                        std::to_string(*samples));
   return *samples;
@@ -100,25 +101,42 @@ std::optional<gi::GiSettings> giFromQuery(const httplib::Request& req, uint64_t 
     return std::nullopt;
   }
   if (*mode != "sensors")
-    throw ApiError(400, error_code::kBadParameter, "query.gi", "gi must be 'sensors' or 'none', got '" + *mode + "'");
+    throw ApiError(400, error_code::kBadParameter, "query.gi",
+                   "gi must be 'sensors' or 'none', got '" + *mode + "'");
   gi::GiSettings gi;
-  gi.sensorSize = int(queryUnsigned(req, "sensor_size", 1, kMaxGiSensorSize).value_or(gi.sensorSize));
+  gi.sensorSize =
+      int(queryUnsigned(req, "sensor_size", 1, kMaxGiSensorSize).value_or(gi.sensorSize));
   if (pixels * uint64_t(gi.sensorSize) * uint64_t(gi.sensorSize) > kMaxGiRayBudget)
     throw ApiError(400, error_code::kBadParameter, "query.sensor_size",
-                   "width × height × sensor_size² must be at most " + std::to_string(kMaxGiRayBudget) +
-                       ": use a smaller image or sensor");
+                   "width × height × sensor_size² must be at most " +
+                       std::to_string(kMaxGiRayBudget) + ": use a smaller image or sensor");
   gi.placement.tile = int(queryUnsigned(req, "tile", 1, 256).value_or(gi.placement.tile));
   gi.bounces = int(queryUnsigned(req, "bounces", 1, kMaxGiBounces).value_or(gi.bounces));
   gi.filterRadius = int(queryUnsigned(req, "filter", 0, 16).value_or(gi.filterRadius));
   if (const auto threshold = queryNumber(req, "threshold")) {
     if (!(*threshold >= 0 && *threshold <= 10))
-      throw ApiError(400, error_code::kBadParameter, "query.threshold", "threshold must be in [0, 10]");
+      throw ApiError(400, error_code::kBadParameter, "query.threshold",
+                     "threshold must be in [0, 10]");
     gi.placement.threshold = *threshold;
   }
   return gi;
 }
 
 }  // namespace
+
+// The image's estimated working memory from the budget, or nullopt when others hold it now;
+// 400 when the image alone needs more than the whole budget.
+std::optional<WorkBudget::Share> HttpServer::takeImageMemory(uint64_t pixels, bool gi) {
+  const uint64_t bytes = pixels * (gi ? kGiImageBytesPerPixel : kImageBytesPerPixel);
+  if (!imageBudget_.fits(bytes))
+    throw ApiError(400, error_code::kBadParameter, "query.width",
+                   "this image needs about " + std::to_string(bytes >> 20) +
+                       " MiB of working memory, more than the server's " +
+                       std::to_string(imageBudget_.capacity() >> 20) +
+                       " MiB for images (serve --image-memory-mib): ask for fewer pixels" +
+                       (gi ? " (sensor GI takes 4× the memory a pixel)" : ""));
+  return imageBudget_.tryTake(bytes);
+}
 
 void HttpServer::registerImageRoutes() {
   httplib::Server& http = *http_;
@@ -144,13 +162,18 @@ void HttpServer::registerImageRoutes() {
         settings.height = int(*height);
         settings.camera = cameraFromQuery(req, snapshot->scene);
         // Progressive passes ask for few samples first (README "The page"): paths per pixel,
-        // and stratified samples per light (split over its visible pieces) from 4 up to the CLI's 16.
+        // and stratified samples per light (split over its visible pieces) from 4 up to the
+        // CLI's 16.
         const uint64_t samples = samplesFromQuery(req, *width * *height);
         settings.microfacet.pathsPerPixel = int(samples);
         settings.microfacet.lightSamples = int(std::clamp<uint64_t>(samples, 4, 16));
         // The DM's exact visibility from the snapshot's frozen occluder lists: no engine, no lock.
         settings.occluders = occluderLookup(snapshot->occluders);
         settings.gi = giFromQuery(req, *width * *height);
+        const auto share = takeImageMemory(*width * *height, settings.gi.has_value());
+        if (!share)
+          return sendBusy(res, "the images rendering now hold the server's image memory (" +
+                                   std::to_string(imageBudget_.capacity() >> 20) + " MiB)");
         RenderedImage image;
         try {
           image = render(snapshot->scene, snapshot->mesh(), settings);

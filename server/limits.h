@@ -37,6 +37,13 @@ inline constexpr int kMaxImageSide = 4096;  // image width/height in [1, 4096]
 // samples × width × height at most this (a 4096² image at 1 sample, 1024² at 16).
 inline constexpr uint64_t kMaxImageSamples = 256;
 inline constexpr uint64_t kMaxImageSampleBudget = uint64_t(1) << 24;
+// Working memory of the images rendered at once, each estimated before it starts from its
+// pixels (peak RSS on cubes15 at 2048² and 4096²: 23 bytes a pixel, 101 with sensor GI, the
+// sensor size and bounces adding little): past it 503 busy; an image that alone needs more is
+// refused (400). `serve --image-memory-mib`.
+inline constexpr uint64_t kImageMemoryBytes = uint64_t(512) << 20;
+inline constexpr uint64_t kImageBytesPerPixel = 24;
+inline constexpr uint64_t kGiImageBytesPerPixel = 104;
 // Sensor GI on images (`gi=sensors`): sensor maps up to 64², bounces up to 4, and
 // width × height × sensor_size² at most 2^27 (a 512 × 256 image with 32² sensors).
 inline constexpr uint64_t kMaxGiSensorSize = 64;

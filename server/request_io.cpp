@@ -30,6 +30,11 @@ void sendError(httplib::Response& res, const ApiError& error, const json& extra)
 }
 
 // Request bodies: size was checked by httplib (413); here syntax and depth.
+void sendBusy(httplib::Response& res, const std::string& why) {
+  sendError(res, ApiError(503, error_code::kBusy, "", why + "; retry after 1 s"));
+  res.set_header("Retry-After", "1");
+}
+
 json parseBody(const httplib::Request& req) {
   if (req.body.empty())
     throw ApiError(400, error_code::kMalformedJson, "(json)",
@@ -109,10 +114,10 @@ void sendInternalError(const httplib::Request& req, httplib::Response& res, cons
                req.path.c_str(), what);
   const int status = outOfMemory ? 507 : 500;
   try {
-    sendJson(res, status,
-             errorJson(outOfMemory ? error_code::kOutOfMemory : error_code::kInternal,
-                       std::string(outOfMemory ? "out of memory: " : "internal error: ") + what,
-                       ""));
+    sendJson(
+        res, status,
+        errorJson(outOfMemory ? error_code::kOutOfMemory : error_code::kInternal,
+                  std::string(outOfMemory ? "out of memory: " : "internal error: ") + what, ""));
   } catch (...) {  // e.g. no memory for the body: a fixed one
     res.status = status;
     res.set_content(outOfMemory ? kOutOfMemoryBody : kInternalErrorBody, "application/json");

@@ -5,10 +5,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <new>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "core/geom/vec.h"
 #include "server/api_errors.h"
@@ -33,6 +32,9 @@ void sendError(httplib::Response& res, const ApiError& error,
 // The request body as JSON: 400 naming the problem when empty, malformed or too deep;
 // 400 `invalid_utf8` naming the key path when a string or key is not valid UTF-8.
 nlohmann::json parseBody(const httplib::Request& req);
+
+// 503 `busy` with Retry-After: 1, saying `why` (a queue or budget that is full right now).
+void sendBusy(httplib::Response& res, const std::string& why);
 
 // Query parameters: absent → nullopt; present but not what we need → 400 naming `query.<name>`.
 std::optional<std::string> queryText(const httplib::Request& req, const char* name);

@@ -1,7 +1,5 @@
 // Scenes as resources: health, list, create (JSON or an imported file), get, delete,
 // rebuild, stats.
-#include "server/http_server.h"
-
 #include <httplib.h>
 
 #include <chrono>
@@ -10,6 +8,8 @@
 #include "interchange/scene_import.h"
 #include "protocol/frame_result_json.h"
 #include "protocol/scene_json.h"
+#include "server/body_reader.h"
+#include "server/http_server.h"
 #include "server/request_io.h"
 #include "server/response_json.h"
 #include "server/scene_upload.h"
@@ -78,52 +78,57 @@ void HttpServer::registerSceneRoutes() {
              sendJson(res, 200, {{"scenes", std::move(list)}});
            }));
 
-  http.Post("/api/scenes", guarded([this](const httplib::Request& req, httplib::Response& res) {
-              // Scene JSON as the body, or a file to import (?format=obj|gltf|glb, docs/API.md).
-              const std::optional<SceneUpload> upload = sceneUploadOf(req);
-              Scene scene;
-              std::string name = queryText(req, "name").value_or("scene");
-              json importJson;
-              if (upload) {
-                const auto start = Clock::now();
-                try {
-                  interchange::ImportResult imported = interchange::importSceneBytes(
-                      upload->bytes, upload->fileName, upload->mtlFiles, upload->options);
-                  scene = std::move(imported.scene);
-                  // Names from the file become ids the API answers with: refuse bad bytes.
-                  if (const auto bad = invalidUtf8Path(scene))
-                    throw ApiError(400, error_code::kInvalidUtf8, *bad,
-                                   "a name in the imported file is not valid UTF-8");
-                  importJson = imported.report.toJson();
-                } catch (const protocol::ValidationError& error) {
-                  throw ApiError(422, error_code::kInvalidScene, error.path(), error.problem());
-                }
-                importJson["seconds"] = std::chrono::duration<double>(Clock::now() - start).count();
-                if (!req.has_param("name")) name = upload->fileName;
-              } else {
-                const json body = parseBody(req);
-                try {
-                  scene = protocol::sceneFromJson(body);
-                } catch (const protocol::ValidationError& error) {
-                  throw ApiError(422, error_code::kInvalidScene, error.path(), error.problem());
-                }
-              }
-              std::string id;
-              try {
-                id = addScene(std::move(scene), name, name);
-              } catch (const std::invalid_argument& error) {  // geometry the engine refuses
-                throw ApiError(422, error_code::kInvalidScene, "", error.what());
-              } catch (const ResourceLimitError& error) {  // nothing was created
-                throw ApiError(507, error_code::kResourceLimit, "limits." + error.limit(),
-                               error.what());
-              }
-              const auto snapshot = findScene(id)->snapshot();
-              res.set_header("Location", "/api/scenes/" + id);
-              json body201 = sceneSummaryJson(*snapshot);
-              body201["build_seconds"] = snapshot->buildStats.seconds.total();
-              if (upload) body201["import"] = std::move(importJson);
-              sendJson(res, 201, body201);
-            }));
+  http.Post("/api/scenes",
+            readingBody(
+                options_.maxBodyBytes,
+                guarded([this](const httplib::Request& req, httplib::Response& res) {
+                  // Scene JSON as the body, or a file to import (?format=obj|gltf|glb,
+                  // docs/API.md).
+                  const std::optional<SceneUpload> upload = sceneUploadOf(req);
+                  Scene scene;
+                  std::string name = queryText(req, "name").value_or("scene");
+                  json importJson;
+                  if (upload) {
+                    const auto start = Clock::now();
+                    try {
+                      interchange::ImportResult imported = interchange::importSceneBytes(
+                          upload->bytes, upload->fileName, upload->mtlFiles, upload->options);
+                      scene = std::move(imported.scene);
+                      // Names from the file become ids the API answers with: refuse bad bytes.
+                      if (const auto bad = invalidUtf8Path(scene))
+                        throw ApiError(400, error_code::kInvalidUtf8, *bad,
+                                       "a name in the imported file is not valid UTF-8");
+                      importJson = imported.report.toJson();
+                    } catch (const protocol::ValidationError& error) {
+                      throw ApiError(422, error_code::kInvalidScene, error.path(), error.problem());
+                    }
+                    importJson["seconds"] =
+                        std::chrono::duration<double>(Clock::now() - start).count();
+                    if (!req.has_param("name")) name = upload->fileName;
+                  } else {
+                    const json body = parseBody(req);
+                    try {
+                      scene = protocol::sceneFromJson(body);
+                    } catch (const protocol::ValidationError& error) {
+                      throw ApiError(422, error_code::kInvalidScene, error.path(), error.problem());
+                    }
+                  }
+                  std::string id;
+                  try {
+                    id = addScene(std::move(scene), name, name);
+                  } catch (const std::invalid_argument& error) {  // geometry the engine refuses
+                    throw ApiError(422, error_code::kInvalidScene, "", error.what());
+                  } catch (const ResourceLimitError& error) {  // nothing was created
+                    throw ApiError(507, error_code::kResourceLimit, "limits." + error.limit(),
+                                   error.what());
+                  }
+                  const auto snapshot = findScene(id)->snapshot();
+                  res.set_header("Location", "/api/scenes/" + id);
+                  json body201 = sceneSummaryJson(*snapshot);
+                  body201["build_seconds"] = snapshot->buildStats.seconds.total();
+                  if (upload) body201["import"] = std::move(importJson);
+                  sendJson(res, 201, body201);
+                })));
 
   http.Get(scenePath, guarded([this](const httplib::Request& req, httplib::Response& res) {
              const auto session = findScene(req.matches[1]);
@@ -140,26 +145,30 @@ void HttpServer::registerSceneRoutes() {
              sendJson(res, 200, body);
            }));
 
-  http.Delete(scenePath, guarded([this](const httplib::Request& req, httplib::Response& res) {
-                const auto session = findScene(req.matches[1]);
-                journalRemove(*session);  // first: if it fails, the scene stays
-                {
-                  std::lock_guard lock(scenesMutex_);
-                  const auto it = scenes_.find(req.matches[1]);
-                  if (it == scenes_.end() || it->second != session)
-                    throw ApiError(404, error_code::kNotFound, "id",
-                                   "no scene with id '" + std::string(req.matches[1]) + "'");
-                  scenes_.erase(it);
-                }
-                session->close();
-                res.status = 204;
-              }));
+  http.Delete(scenePath,
+              readingBody(options_.maxBodyBytes,
+                          guarded([this](const httplib::Request& req, httplib::Response& res) {
+                            const auto session = findScene(req.matches[1]);
+                            journalRemove(*session);  // first: if it fails, the scene stays
+                            {
+                              std::lock_guard lock(scenesMutex_);
+                              const auto it = scenes_.find(req.matches[1]);
+                              if (it == scenes_.end() || it->second != session)
+                                throw ApiError(
+                                    404, error_code::kNotFound, "id",
+                                    "no scene with id '" + std::string(req.matches[1]) + "'");
+                              scenes_.erase(it);
+                            }
+                            session->close();
+                            res.status = 204;
+                          })));
 
   http.Post(scenePath + "/rebuild",
-            guarded([this](const httplib::Request& req, httplib::Response& res) {
-              const auto session = findScene(req.matches[1]);
-              sendJson(res, 200, rebuildJson(session->rebuild()));
-            }));
+            readingBody(options_.maxBodyBytes,
+                        guarded([this](const httplib::Request& req, httplib::Response& res) {
+                          const auto session = findScene(req.matches[1]);
+                          sendJson(res, 200, rebuildJson(session->rebuild()));
+                        })));
 
   http.Get(
       scenePath + "/stats", guarded([this](const httplib::Request& req, httplib::Response& res) {

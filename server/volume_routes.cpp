@@ -19,6 +19,7 @@
 #include "protocol/nrrd_volume.h"
 #include "protocol/scene_json.h"
 #include "server/api_errors.h"
+#include "server/body_reader.h"
 #include "server/data_directory.h"
 #include "server/http_server.h"
 #include "server/request_io.h"
@@ -180,42 +181,45 @@ void HttpServer::registerVolumeRoutes() {
   const std::string scenePath = std::string("/api/scenes/") + kIdPattern;
 
   http.Post(
-      scenePath + "/volumes", guarded([this](const httplib::Request& req, httplib::Response& res) {
-        const auto session = findScene(req.matches[1]);
-        refuseIfStalled(*session);  // nothing stored for a scene that takes no edits
-        refuseIfNotDurable();       // nor where the journal could not name it
-        const VolumeUpload upload = volumeUploadOf(req);
-        const std::shared_ptr<const SceneSnapshot> snapshot = session->snapshot();
-        VolumeObject volume;
-        volume.id = volumeIdFor(req, upload, snapshot->scene);
-        const std::string stored = storeUpload(volumeUploadDir(), session->id(), upload.bytes);
-        volume.file = stored;
-        bool kept = false;
-        try {
-          volume.data =
-              readUpload(volume.file, req.is_multipart_form_data() ? "(form).file" : "(body)");
-          Frame frame;
-          frame.edits.push_back(addVolumeEdit(req, snapshot->scene, std::move(volume)));
-          const VolumeObject& added = frame.edits[0].volume;
-          const json info = volumeInfoJson(added);
-          const std::string journaled = journaledFrameText(frame);
-          submitFrame(*session, std::move(frame), journaled, req, res);
-          kept = res.status == 200;
-          if (kept) {
-            json body = json::parse(res.body);
-            body["volume"] = info;
-            sendJson(res, 201, body);
-          }
-        } catch (...) {
-          std::error_code ignored;
-          std::filesystem::remove(stored, ignored);
-          throw;
-        }
-        if (!kept) {
-          std::error_code ignored;
-          std::filesystem::remove(stored, ignored);
-        }
-      }));
+      scenePath + "/volumes",
+      readingBody(options_.maxBodyBytes,
+                  guarded([this](const httplib::Request& req, httplib::Response& res) {
+                    const auto session = findScene(req.matches[1]);
+                    refuseIfStalled(*session);  // nothing stored for a scene that takes no edits
+                    refuseIfNotDurable();       // nor where the journal could not name it
+                    const VolumeUpload upload = volumeUploadOf(req);
+                    const std::shared_ptr<const SceneSnapshot> snapshot = session->snapshot();
+                    VolumeObject volume;
+                    volume.id = volumeIdFor(req, upload, snapshot->scene);
+                    const std::string stored =
+                        storeUpload(volumeUploadDir(), session->id(), upload.bytes);
+                    volume.file = stored;
+                    bool kept = false;
+                    try {
+                      volume.data = readUpload(
+                          volume.file, req.is_multipart_form_data() ? "(form).file" : "(body)");
+                      Frame frame;
+                      frame.edits.push_back(addVolumeEdit(req, snapshot->scene, std::move(volume)));
+                      const VolumeObject& added = frame.edits[0].volume;
+                      const json info = volumeInfoJson(added);
+                      const std::string journaled = journaledFrameText(frame);
+                      submitFrame(*session, std::move(frame), journaled, req, res);
+                      kept = res.status == 200;
+                      if (kept) {
+                        json body = json::parse(res.body);
+                        body["volume"] = info;
+                        sendJson(res, 201, body);
+                      }
+                    } catch (...) {
+                      std::error_code ignored;
+                      std::filesystem::remove(stored, ignored);
+                      throw;
+                    }
+                    if (!kept) {
+                      std::error_code ignored;
+                      std::filesystem::remove(stored, ignored);
+                    }
+                  })));
 
   http.Get(scenePath + "/volumes/" + kIdPattern + "/preview",
            guarded([this](const httplib::Request& req, httplib::Response& res) {
