@@ -3,10 +3,12 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <future>
 #include <thread>
 
 #include "cli/commands.h"
@@ -22,6 +24,8 @@ namespace fs = std::filesystem;
 
 // Where the journal lives unless --data says otherwise (relative to the working directory).
 constexpr const char* kDefaultDataDir = "penumbra-data";
+// How long a stop waits for the requests in flight (exitAfterGrace).
+constexpr std::chrono::seconds kStopGrace{4};
 
 // The page: ./web_client, else web_client beside the build directory holding this binary.
 std::string defaultStaticDir() {
@@ -107,6 +111,22 @@ std::vector<std::string> serveScenes(server::HttpServer& server, const Args& arg
   return ids;
 }
 
+// A stop (SIGTERM, Ctrl-C) waits for the requests in flight, but not for ever: a large import or
+// rebuild runs for minutes and cannot be interrupted. Past the grace the process ends as a
+// SIGKILL would, which loses nothing acknowledged: every acknowledged version is committed in the
+// journal before its answer, and an unanswered build was never acknowledged (the kill test).
+void exitAfterGrace() {
+  std::thread([] {
+    std::this_thread::sleep_for(kStopGrace);
+    std::fprintf(stderr,
+                 "penumbra serve: requests still running %lld s after the stop (a build or "
+                 "import): ending without them; the journal holds every acknowledged version\n",
+                 static_cast<long long>(kStopGrace.count()));
+    std::fflush(stderr);
+    std::_Exit(0);
+  }).detach();
+}
+
 }  // namespace
 
 int runServe(const Args& args) {
@@ -120,6 +140,29 @@ int runServe(const Args& args) {
   sigaddset(&signals, SIGTERM);
   sigaddset(&signals, SIGUSR1);  // the listener ended by itself
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  // One thread takes the signals from the start: a stop while scenes build or restore (minutes
+  // for a large journal) ends the process at once, as nothing has been acknowledged yet.
+  std::atomic<bool> serving{false};
+  std::promise<int> stopSignal;
+  std::thread signalWaiter([&signals, &serving, &stopSignal] {
+    int signal = 0;
+    sigwait(&signals, &signal);
+    if (!serving && signal != SIGUSR1) {
+      std::fprintf(stderr, "penumbra serve: stopped while starting\n");
+      std::_Exit(0);
+    }
+    stopSignal.set_value(signal);
+  });
+  // When start-up throws (a scene file that does not load), the waiter is woken and joined.
+  struct WakeWaiter {
+    std::thread& waiter;
+    ~WakeWaiter() {
+      if (!waiter.joinable()) return;
+      kill(getpid(), SIGUSR1);
+      waiter.join();
+    }
+  } wakeWaiter{signalWaiter};
 
   server::limitMallocArenas(server::kMallocArenas);  // before the server's threads start
   server::HttpServer server(options);
@@ -146,8 +189,10 @@ int runServe(const Args& args) {
   std::printf("  (API: %sapi/health; stop with Ctrl-C)\n", url.c_str());
   std::fflush(stdout);
 
-  int signal = 0;
-  sigwait(&signals, &signal);
+  serving = true;
+  const int signal = stopSignal.get_future().get();
+  signalWaiter.join();
+  if (signal != SIGUSR1) exitAfterGrace();
   server.stop();
   listener.join();
   if (signal != SIGUSR1) std::fprintf(stderr, "penumbra serve: stopped\n");
