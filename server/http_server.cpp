@@ -9,6 +9,7 @@
 #include "protocol/scene_json.h"
 #include "server/api_errors.h"
 #include "server/body_reader.h"
+#include "server/elastic_pool.h"
 #include "server/gzip_encoding.h"
 #include "server/range_limits.h"
 #include "server/request_io.h"
@@ -67,18 +68,21 @@ HttpServer::HttpServer(ServerOptions options)
     throw std::invalid_argument("listening on " + options_.host +
                                 " (not loopback) needs a token: --token T or PENUMBRA_TOKEN");
   if (!options_.dataDir.empty()) journal_ = std::make_unique<SceneJournal>(options_.dataDir);
-  // Every open event stream holds a worker for its lifetime (DEPENDENCIES.md): the
-  // pool has one per allowed stream plus kRequestWorkers for everything else.
-  http_->new_task_queue = [] { return new httplib::ThreadPool(kWorkerThreads); };
+  // Every open connection (an event stream, a slow client) holds a worker for its lifetime
+  // (DEPENDENCIES.md): the pool grows with them.
+  http_->new_task_queue = [] {
+    return new ElasticPool(kMinWorkerThreads, kWorkerThreads, kWorkerIdleSeconds);
+  };
   http_->set_payload_max_length(options_.maxBodyBytes);
   http_->set_keep_alive_max_count(1000);
   http_->set_keep_alive_timeout(2);  // idle keep-alive connections hold a worker too
   http_->set_tcp_nodelay(true);
   // cpp-httplib's default sets SO_REUSEPORT, which lets a second server bind the same port and
   // take half the connections (issue 36): SO_REUSEADDR only (a restart may rebind at once).
-  http_->set_socket_options([](socket_t sock) {
+  http_->set_socket_options([this](socket_t sock) {
     int yes = 1;
     setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, reinterpret_cast<void*>(&yes), sizeof(yes));
+    listenSocket_ = sock;  // for its backlog (bind)
   });
   http_->set_logger(
       [this](const httplib::Request&, const httplib::Response&) { trimmer_.noteActivity(); });
@@ -210,6 +214,10 @@ int HttpServer::bind() {
   if (port_ <= 0)
     throw std::runtime_error("cannot listen on " + options_.host + ":" +
                              std::to_string(options_.port) + " (address in use or not available)");
+  // cpp-httplib 0.11 listens with a backlog of 5: a burst of connections overflowed it and each
+  // connection past it waited a second for its SYN to be sent again (500 clients took 45 s to
+  // connect). Listening again on the bound socket only changes the backlog.
+  if (listenSocket_ >= 0) ::listen(listenSocket_, kListenBacklog);
   return port_;
 }
 

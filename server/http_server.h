@@ -176,6 +176,7 @@ class HttpServer {
   std::unique_ptr<httplib::Server> http_;
   int port_ = 0;
   std::atomic<bool> stopping_{false};
+  int listenSocket_ = -1;  // the bound socket (set by httplib's socket-options callback)
   std::atomic<int> openStreams_{0};
   std::atomic<int> waitingEdits_{0};  // edits waiting for their scene's turn, all scenes
   mutable std::mutex scenesMutex_;    // guards scenes_, nextId_, journalKeys_

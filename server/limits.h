@@ -10,11 +10,15 @@ namespace penumbra::server {
 // Documented limits (docs/API.md "Limits").
 inline constexpr size_t kMaxBodyBytes = size_t(16) << 20;  // 16 MiB request bodies, else 413
 inline constexpr size_t kMaxScenes = 32;                   // served at once, else 429
-// cpp-httplib serves a connection on one worker until it closes (keep-alive included), so
-// the pool is sized for the connections of the clients served at once (docs/API.md "Load").
-inline constexpr int kMaxEventStreams = 64;                // open /events streams, else 429
-inline constexpr int kRequestWorkers = 64;                 // workers left for ordinary requests
-inline constexpr int kWorkerThreads = kMaxEventStreams + kRequestWorkers;
+// cpp-httplib serves a connection on one worker until it closes (keep-alive included): the pool
+// (ElasticPool) starts a thread per connection when none is idle, up to kWorkerThreads, so slow
+// or idle clients cannot hold every worker (docs/API.md "Load").
+inline constexpr int kMaxEventStreams = 64;    // open /events streams, else 429
+inline constexpr int kRequestWorkers = 64;     // sizes the edit queues below
+inline constexpr int kMinWorkerThreads = 16;   // kept when idle
+inline constexpr int kWorkerThreads = 1024;    // connections served at once
+inline constexpr int kListenBacklog = 1024;    // connections not yet accepted
+inline constexpr int kWorkerIdleSeconds = 30;  // before a thread above the minimum ends
 // Edits waiting for their scene's turn: per scene, and over all scenes (so waiting edits
 // never hold more than three quarters of the request workers); beyond either, 503 busy.
 inline constexpr size_t kMaxQueuedEdits = 16;
