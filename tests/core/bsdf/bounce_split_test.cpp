@@ -11,6 +11,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "bench/lib/heitz_walk.h"
 #include "core/bsdf/walk.h"
@@ -66,46 +68,61 @@ Split heitzSplit(const Config& c, int walks, uint64_t seed) {
   return s;
 }
 
+// Differences of each order (reflected and transmitted) over σ; worst receives the largest |z|.
+std::vector<double> zScores(const Split& ref, const Split& ours, double& worst) {
+  std::vector<double> z;
+  worst = 0;
+  for (int i = 0; i < 6; ++i) {
+    const double sigma = std::hypot(ref.sigma(i), ours.sigma(i));
+    if (sigma == 0) continue;
+    z.push_back((ours.mean(i) - ref.mean(i)) / sigma);
+    worst = std::max(worst, std::abs(z.back()));
+  }
+  return z;
+}
+
+std::string row(const Config& c, const Split& ref, const Split& ours, double worst) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "| %s | %s | %.2f | %.1f |", c.ndf == Ndf::GGX ? "GGX" : "Beckmann",
+                c.facets == Facets::Conductor ? "conductor" : "dielectric", c.alpha, c.theta);
+  std::string out = buf;
+  for (int order = 0; order < 3; ++order) {
+    const int r = 2 * order, t = r + 1;
+    const double sigma = std::hypot(std::hypot(ref.sigma(r), ours.sigma(r)), std::hypot(ref.sigma(t), ours.sigma(t)));
+    std::snprintf(buf, sizeof buf, " %.4f / %.4f (%.4f) |", ref.mean(r) + ref.mean(t), ours.mean(r) + ours.mean(t), sigma);
+    out += buf;
+  }
+  std::snprintf(buf, sizeof buf, " %.1f |", worst);
+  return out + buf;
+}
+
+// A configuration with a difference beyond 3σ is measured again with 4× the walks and fresh
+// seeds, and must then be within 3σ everywhere: a bias doubles its z-score, a fluctuation of
+// one in ~200 differences (3σ: p = 0.0027 each) does not come back.
 TEST(BounceSplit, CorrelatedWalkMatchesExplicitHeights) {
-  const int walks = 60000;
+  const int walks = 100000;
   uint64_t seed = 4100;
   double chi = 0;
-  int terms = 0, outside = 0;
+  int terms = 0, remeasured = 0;
   std::printf("| ndf | facets | alpha | theta | order 1 | 2 | 3+ (explicit / walk, σ of the difference) | worst z |\n");
   for (Ndf ndf : {Ndf::GGX, Ndf::Beckmann})
     for (Facets facets : {Facets::Conductor, Facets::Dielectric})
       for (double alpha : {0.25, 0.5, 1.0})
         for (double theta : {0.0, 0.5, 1.0, 1.5}) {
           const Config c{ndf, facets, alpha, theta};
-          const Split ref = heitzSplit(c, walks, seed++), ours = walkSplit(c, walks, seed++);
-          std::printf("| %s | %s | %.2f | %.1f |", ndf == Ndf::GGX ? "GGX" : "Beckmann",
-                      facets == Facets::Conductor ? "conductor" : "dielectric", alpha, theta);
+          Split ref = heitzSplit(c, walks, seed++), ours = walkSplit(c, walks, seed++);
           double worst = 0;
-          for (int order = 0; order < 3; ++order) {
-            double r = 0, o = 0, var = 0;
-            for (int t = 0; t < 2; ++t) {
-              const int i = 2 * order + t;
-              const double sigma = std::hypot(ref.sigma(i), ours.sigma(i));
-              r += ref.mean(i);
-              o += ours.mean(i);
-              var += sigma * sigma;
-              if (sigma == 0) continue;
-              const double z = (ours.mean(i) - ref.mean(i)) / sigma;
-              chi += z * z;
-              ++terms;
-              worst = std::max(worst, std::abs(z));
-              if (std::abs(z) > 3) ++outside;
-              EXPECT_LE(std::abs(z), 3.0) << (ndf == Ndf::GGX ? "GGX " : "Beckmann ") << int(facets) << " alpha "
-                                          << alpha << " theta " << theta << " order " << order + 1
-                                          << (t ? " transmitted " : " reflected ") << ref.mean(i) << " vs "
-                                          << ours.mean(i) << " sigma " << sigma;
-            }
-            std::printf(" %.4f / %.4f (%.4f) |", r, o, std::sqrt(var));
-          }
-          std::printf(" %.1f |\n", worst);
+          for (double z : zScores(ref, ours, worst)) chi += z * z, ++terms;
+          std::printf("%s\n", row(c, ref, ours, worst).c_str());
+          if (worst <= 3) continue;
+          ++remeasured;
+          ref = heitzSplit(c, 4 * walks, seed + 1000), ours = walkSplit(c, 4 * walks, seed + 1001);
+          zScores(ref, ours, worst);
+          std::printf("%s (again, 4x walks)\n", row(c, ref, ours, worst).c_str());
+          EXPECT_LE(worst, 3.0) << row(c, ref, ours, worst);
         }
-  std::printf("sum of z² %.1f over %d differences (threshold %.1f), %d beyond 3σ\n", chi, terms,
-              test::chiSquareThreshold(terms), outside);
+  std::printf("sum of z² %.1f over %d differences (threshold %.1f); %d configurations measured again\n", chi,
+              terms, test::chiSquareThreshold(terms), remeasured);
   EXPECT_LT(chi, test::chiSquareThreshold(terms));
 }
 
