@@ -1,7 +1,7 @@
 // Per-bounce energies of the position-free walk (core/bsdf) against the explicit-height walk of
 // Heitz et al. 2016 (bench/lib/heitz_walk.h: sampled heights, no code shared) for GGX and
 // Beckmann, F = 1 conductors and ior 1.5 dielectrics, alpha 0.25, 0.5, 1, at the supplement's
-// incident angles 0, 0.5, 1.0, 1.5 rad. Per configuration the energy of orders 1, 2, 3+ (the
+// incident angles 0, 0.5, 1.0, 1.5 rad and at 60°. Per configuration the energy of orders 1, 2, 3+ (the
 // dielectric's split into reflection and transmission) is a mean over independent walks, with σ
 // estimated from the walks; each difference must be within 3σ, and the sum of the squared
 // z-scores of all of them within the chi-square threshold at p ~ 1e-4 (a bias shared by many
@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -83,13 +84,15 @@ std::vector<double> zScores(const Split& ref, const Split& ours, double& worst) 
 
 std::string row(const Config& c, const Split& ref, const Split& ours, double worst) {
   char buf[256];
-  std::snprintf(buf, sizeof buf, "| %s | %s | %.2f | %.1f |", c.ndf == Ndf::GGX ? "GGX" : "Beckmann",
+  std::snprintf(buf, sizeof buf, "| %s | %s | %.2f | %.2f |", c.ndf == Ndf::GGX ? "GGX" : "Beckmann",
                 c.facets == Facets::Conductor ? "conductor" : "dielectric", c.alpha, c.theta);
   std::string out = buf;
   for (int order = 0; order < 3; ++order) {
     const int r = 2 * order, t = r + 1;
     const double sigma = std::hypot(std::hypot(ref.sigma(r), ours.sigma(r)), std::hypot(ref.sigma(t), ours.sigma(t)));
-    std::snprintf(buf, sizeof buf, " %.4f / %.4f (%.4f) |", ref.mean(r) + ref.mean(t), ours.mean(r) + ours.mean(t), sigma);
+    const double a = ref.mean(r) + ref.mean(t), b = ours.mean(r) + ours.mean(t);
+    std::snprintf(buf, sizeof buf, sigma > 0 ? " %.4f / %.4f (%.4f, z %+.1f) |" : " %.4f / %.4f (%.4f) |", a, b, sigma,
+                  sigma > 0 ? (b - a) / sigma : 0.0);
     out += buf;
   }
   std::snprintf(buf, sizeof buf, " %.1f |", worst);
@@ -104,11 +107,11 @@ TEST(BounceSplit, CorrelatedWalkMatchesExplicitHeights) {
   uint64_t seed = 4100;
   double chi = 0;
   int terms = 0, remeasured = 0;
-  std::printf("| ndf | facets | alpha | theta | order 1 | 2 | 3+ (explicit / walk, σ of the difference) | worst z |\n");
+  std::printf("| ndf | facets | alpha | theta | order 1 | 2 | 3+ (explicit / walk (σ of the difference, z)) | worst z |\n");
   for (Ndf ndf : {Ndf::GGX, Ndf::Beckmann})
     for (Facets facets : {Facets::Conductor, Facets::Dielectric})
       for (double alpha : {0.25, 0.5, 1.0})
-        for (double theta : {0.0, 0.5, 1.0, 1.5}) {
+        for (double theta : {0.0, 0.5, 1.0, std::numbers::pi / 3, 1.5}) {
           const Config c{ndf, facets, alpha, theta};
           Split ref = heitzSplit(c, walks, seed++), ours = walkSplit(c, walks, seed++);
           double worst = 0;
