@@ -38,16 +38,18 @@ VertexHeight intoSurface(const VertexHeight& h, double hitRate, Rng& rng) {
 }
 
 VertexHeight crossed(const VertexHeight& h, Rng& rng) {
-  const double e = h.depth + exponentialPart(h, rng);  // -ln u
+  const double e = h.depth + exponentialPart(h, rng);                            // -ln u
   return {-std::log(-std::expm1(-e)), std::numeric_limits<double>::infinity()};  // -ln(1 - u)
 }
 
 double escapeAcross(const VertexHeight& h, double lambda, Rng& rng) {
   if (std::isinf(lambda)) return 0;
   if (h.depth == 0) {
-    if (std::isinf(h.rate)) return lambda == 0 ? 1.0 : 0.0;  // at the very top: the bottom is out of reach
+    if (std::isinf(h.rate))
+      return lambda == 0 ? 1.0 : 0.0;  // at the very top: the bottom is out of reach
     // rate B(rate, 1 + Λ) = Γ(rate + 1) Γ(1 + Λ) / Γ(rate + 1 + Λ), in logs for a large rate.
-    return std::exp(std::lgamma(h.rate + 1.0) + std::lgamma(1.0 + lambda) - std::lgamma(h.rate + 1.0 + lambda));
+    return std::exp(std::lgamma(h.rate + 1.0) + std::lgamma(1.0 + lambda) -
+                    std::lgamma(h.rate + 1.0 + lambda));
   }
   return decay(crossed(h, rng).depth, lambda);
 }

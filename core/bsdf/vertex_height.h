@@ -15,7 +15,7 @@ namespace penumbra::bsdf {
 // c u^(c - 1), c = 1 + Λ(w) = 1 / G1(w) (seed 004 eq. 3). These keep the family closed: an
 // exponential part survives a blocked ray (memoryless), and a ray into the surface adds one.
 struct VertexHeight {
-  double depth = 0;  // the sampled part of -ln u, >= 0
+  double depth = 0;                                       // the sampled part of -ln u, >= 0
   double rate = std::numeric_limits<double>::infinity();  // of the unsampled part; infinite: none
 };
 
@@ -23,7 +23,8 @@ struct VertexHeight {
 inline VertexHeight firstVertex(double invG1) { return {0.0, invG1}; }
 
 // Probability that a ray leaving the vertex away from the surface, with Smith Λ = lambda,
-// escapes: E[u^Λ] = exp(-depth Λ) rate / (rate + Λ). At the first vertex: G2(w, d) / G1(w) (eq. 12).
+// escapes: E[u^Λ] = exp(-depth Λ) rate / (rate + Λ). At the first vertex: G2(w, d) / G1(w) (eq.
+// 12).
 double escapeAway(const VertexHeight& h, double lambda);
 // The next vertex's height when that ray is blocked: its posterior (above the sampled depth the
 // exponential part is unchanged; below it, a truncated exponential is sampled).
