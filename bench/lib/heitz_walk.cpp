@@ -11,15 +11,19 @@ constexpr double kPi = std::numbers::pi;
 
 double rnd(std::mt19937_64& g) { return std::uniform_real_distribution<double>(0.0, 1.0)(g); }
 
-// GGX Smith Λ, analytically continued below the horizon (sign of z on the square root).
-double lambdaGgx(const HeitzSurface& s, const V& w) {
+// Smith Λ, analytically continued below the horizon: GGX by the sign of z on the square root,
+// Beckmann by Λ(-w) = -1 - Λ(w).
+double lambdaOf(const HeitzSurface& s, const V& w) {
   const double q = (s.alphaX * s.alphaX * w.x * w.x + s.alphaY * s.alphaY * w.y * w.y) / (w.z * w.z);
-  return 0.5 * (-1.0 + std::copysign(std::sqrt(1.0 + q), w.z));
+  if (s.ndf == HeitzSurface::Ndf::GGX) return 0.5 * (-1.0 + std::copysign(std::sqrt(1.0 + q), w.z));
+  if (q == 0) return w.z > 0 ? 0.0 : -1.0;
+  const double a = 1.0 / std::sqrt(q);  // cot θ over the projected roughness
+  const double up = 0.5 * (std::erf(a) - 1.0) + std::exp(-a * a) / (2.0 * a * std::sqrt(kPi));
+  return w.z > 0 ? up : -1.0 - up;
 }
 
 // Visible GGX normals by Heitz 2018's warped disk (projected hemisphere), any side of w.
-V sampleVisible(const HeitzSurface& s, const V& w, std::mt19937_64& g) {
-  const V vh = glm::normalize(V(s.alphaX * w.x, s.alphaY * w.y, w.z));
+V sampleVisibleGgx(const V& vh, std::mt19937_64& g) {
   const double len2 = vh.x * vh.x + vh.y * vh.y;
   const V t1 = len2 > 0 ? V(-vh.y, vh.x, 0) / std::sqrt(len2) : V(1, 0, 0);
   const V t2 = glm::cross(vh, t1);
@@ -27,7 +31,50 @@ V sampleVisible(const HeitzSurface& s, const V& w, std::mt19937_64& g) {
   const double p1 = r * std::cos(phi);
   const double half = 0.5 * (1.0 + vh.z);
   const double p2 = (1.0 - half) * std::sqrt(std::max(0.0, 1.0 - p1 * p1)) + half * r * std::sin(phi);
-  const V nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
+  return p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
+}
+
+// A standard normal deviate by Box-Muller.
+double gaussian(std::mt19937_64& g) {
+  return std::sqrt(-2.0 * std::log(1.0 - rnd(g))) * std::cos(2 * kPi * rnd(g));
+}
+
+// The slope x along the view azimuth of the alpha = 1 Beckmann surface seen from cot θ = mu:
+// density ∝ (mu - x)^+ exp(-x²). Far below (mu < -1) t = mu - x has density ∝ t exp(2 mu t - t²):
+// a Gamma(2, -2 mu) proposal accepted with exp(-t²). Otherwise the CDF
+// mu sqrt(π)/2 erfc(-x) + exp(-x²)/2 inverted by bisection.
+double beckmannSlope(double mu, std::mt19937_64& g) {
+  if (mu < -1.0) {
+    for (;;) {
+      const double t = -(std::log(1.0 - rnd(g)) + std::log(1.0 - rnd(g))) / (-2.0 * mu);
+      if (rnd(g) < std::exp(-t * t)) return mu - t;
+    }
+  }
+  const auto cdf = [mu](double x) { return 0.5 * mu * std::sqrt(kPi) * std::erfc(-x) + 0.5 * std::exp(-x * x); };
+  double lo = -12.0, hi = std::min(mu, 12.0);
+  const double target = rnd(g) * cdf(hi);
+  for (int i = 0; i < 80; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (cdf(mid) < target ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// Visible Beckmann normals of the alpha = 1 surface seen from unit vh, any side: slopes along and
+// across the azimuth, the normal (-slope, 1) normalised.
+V sampleVisibleBeckmann(const V& vh, std::mt19937_64& g) {
+  const double sinT = std::sqrt(vh.x * vh.x + vh.y * vh.y);
+  const double y = gaussian(g) / std::sqrt(2.0);
+  if (sinT < 1e-9) return glm::normalize(V(-gaussian(g) / std::sqrt(2.0), -y, 1.0));
+  const double x = beckmannSlope(vh.z / sinT, g);
+  const double c = vh.x / sinT, s = vh.y / sinT;
+  return glm::normalize(V(-(c * x - s * y), -(s * x + c * y), 1.0));
+}
+
+// Visible normals of w, any side of the macrosurface: stretched to alpha = 1 and back.
+V sampleVisible(const HeitzSurface& s, const V& w, std::mt19937_64& g) {
+  const V vh = glm::normalize(V(s.alphaX * w.x, s.alphaY * w.y, w.z));
+  const V nh = s.ndf == HeitzSurface::Ndf::GGX ? sampleVisibleGgx(vh, g) : sampleVisibleBeckmann(vh, g);
   return glm::normalize(V(s.alphaX * nh.x, s.alphaY * nh.y, std::max(1e-12, nh.z)));
 }
 
@@ -44,10 +91,10 @@ double fresnel(double c, double eta) {  // eta = n_transmitted / n_incident
 double nextHeight(const HeitzSurface& s, const V& d, double x, std::mt19937_64& g) {
   const double u = 1.0 - rnd(g);  // (0, 1]
   if (d.z > 0) {  // P(pass x') = (x / x')^Λ
-    const double l = lambdaGgx(s, d);
+    const double l = lambdaOf(s, d);
     return l <= 0 ? 2.0 : x * std::pow(u, -1.0 / l);
   }
-  return x * std::pow(u, 1.0 / (-lambdaGgx(s, d)));  // -Λ(d) = 1 + Λ(-d) going down
+  return x * std::pow(u, 1.0 / (-lambdaOf(s, d)));  // -Λ(d) = 1 + Λ(-d) going down
 }
 
 V cosineAround(const V& n, std::mt19937_64& g) {

@@ -1,5 +1,6 @@
 // Independent reference for core/bsdf: the microsurface random walk WITH sampled heights of
-// Heitz et al. 2016 (GGX, uniform height distribution), sharing no code with core/bsdf. Pure; thread-safe given one generator per thread.
+// Heitz et al. 2016 (GGX or Beckmann, uniform height distribution), sharing no code with core/bsdf.
+// Pure; thread-safe given one generator per thread.
 #pragma once
 
 #include <cstdint>
@@ -12,7 +13,9 @@ namespace penumbra::bench {
 
 struct HeitzSurface {
   enum class Kind { Conductor, Diffuse, Dielectric };
-  double alphaX = 1, alphaY = 1;  // GGX
+  enum class Ndf { GGX, Beckmann };
+  Ndf ndf = Ndf::GGX;
+  double alphaX = 1, alphaY = 1;
   Kind kind = Kind::Conductor;    // conductor: F = 1; diffuse: albedo 1
   double ior = 1.5;               // dielectric: below the macrosurface / above
   int maxBounces = 256;

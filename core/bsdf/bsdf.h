@@ -25,7 +25,8 @@ class MicrofacetBsdf {
 
   // f(wo, wi) (no cosine). Multiple scattering: a one-walk unbiased estimate, traced from wi.
   Vec3 eval(const Vec3& wo, const Vec3& wi, Rng& rng) const;
-  // Samples wi by a walk traced from wo (reciprocity; exact for the height-uncorrelated model).
+  // Samples wi by a walk traced from wo: the adjoint direction, the same BSDF because both height
+  // models are reciprocal (f(wo, wi) / η_wo² = f(wi, wo) / η_wi²; tests Reciprocity, SampleEval).
   std::optional<BsdfSample> sample(const Vec3& wo, Rng& rng) const;
   // Exact for single scattering of conductors and dielectrics; otherwise the normalised
   // first-bounce density (integrates to 1; proportional only).

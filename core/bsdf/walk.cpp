@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "core/bsdf/fresnel.h"
+#include "core/bsdf/vertex_height.h"
 
 namespace penumbra::bsdf {
 namespace {
@@ -12,11 +13,13 @@ constexpr double kPi = std::numbers::pi;
 
 // The walk's state: the side of the interface the ray is on (+1 outside, -1 inside a
 // dielectric) and, in that side's frame (world mirrored through the origin for -1, so +z
-// points into the ray's medium), the direction the light arrived from at the next vertex.
+// points into the ray's medium), the direction the light arrived from at the next vertex, and
+// (height-correlated model) that vertex's height as a distribution.
 struct State {
   int side = 1;
   Vec3 w;
   Vec3 beta{1.0};
+  VertexHeight height;
 };
 
 double indexOf(const WalkParams& p, int side) { return side > 0 ? 1.0 : p.ior; }
@@ -58,9 +61,34 @@ Scattered scatter(const WalkParams& p, const State& s, const Vec3& m, Rng& rng) 
   return {-*t, -s.side, Vec3(1.0)};
 }
 
-double escape(const WalkParams& p, const State& s, const Scattered& sc) {
-  return sc.side == s.side ? escapeReflected(p.surface, p.height, s.w, sc.d)
-                           : escapeTransmitted(p.surface, p.height, s.w, sc.d);
+// Probability that a ray leaving the vertex of s along d escapes; d in the frame of the side it
+// leaves into (across: the other one, after refraction).
+double escapeProbability(const WalkParams& p, const State& s, const Vec3& d, bool across, Rng& rng) {
+  if (d.z <= 0) return 0;
+  if (p.height == HeightModel::Uncorrelated) return p.surface.g1Dist(d);
+  const double lambda = p.surface.lambdaUp(d);
+  return across ? escapeAcross(s.height, lambda, rng) : escapeAway(s.height, lambda);
+}
+
+// Follows the scattered ray: true when it escapes; otherwise s becomes the next vertex's state.
+// Correlated: the escape and the next height are drawn from the vertex's height distribution,
+// so the heights of successive vertices stay correlated as on a real microsurface.
+bool escapes(const WalkParams& p, State& s, const Scattered& sc, Rng& rng) {
+  VertexHeight h = s.height;
+  if (p.height == HeightModel::Uncorrelated) {
+    if (rng.uniform() < escapeProbability(p, s, sc.d, sc.side != s.side, rng)) return true;
+  } else {
+    if (sc.side != s.side) h = crossed(h, rng);
+    const double lambda = p.surface.lambdaUp(sc.d);
+    if (sc.d.z > 0) {
+      if (rng.uniform() < escapeAway(h, lambda)) return true;
+      h = blockedAway(h, lambda, rng);
+    } else {
+      h = intoSurface(h, 1.0 + lambda, rng);
+    }
+  }
+  s = State{sc.side, -sc.d, s.beta * sc.weight, h};
+  return false;
 }
 
 // Density of the mirror direction o about visible normals from w, per unit solid angle of o;
@@ -90,11 +118,11 @@ double refractDensity(const Microsurface& ms, const Vec3& w, const Vec3& t, doub
 
 // Density of leaving at this vertex along world direction wo, times the escape probability.
 // m: the sampled visible normal, used only by diffuse facets (a one-sample estimate).
-Vec3 exitDensity(const WalkParams& p, const State& s, const Vec3& m, const Vec3& wo) {
+Vec3 exitDensity(const WalkParams& p, const State& s, const Vec3& m, const Vec3& wo, Rng& rng) {
   const Microsurface& ms = p.surface;
   const Vec3 o = double(s.side) * wo;  // wo in this side's frame
   if (o.z > 0) {                       // leaving by reflection
-    const double esc = escapeReflected(ms, p.height, s.w, o);
+    const double esc = escapeProbability(p, s, o, false, rng);
     if (esc <= 0) return Vec3(0.0);
     if (p.facets == Facets::RoughDiffuse) return p.albedo * (std::max(0.0, glm::dot(o, m)) / kPi * esc);
     double cosWh = 0;
@@ -109,7 +137,7 @@ Vec3 exitDensity(const WalkParams& p, const State& s, const Vec3& m, const Vec3&
   }
   if (p.facets != Facets::Dielectric || o.z == 0) return Vec3(0.0);
   // Leaving by refraction: o points into the other medium; -o is its direction in that side's frame.
-  const double esc = escapeTransmitted(ms, p.height, s.w, -o);
+  const double esc = escapeProbability(p, s, -o, true, rng);
   if (esc <= 0) return Vec3(0.0);
   const double etaI = indexOf(p, s.side), etaT = indexOf(p, -s.side);
   double cosWh = 0;
@@ -120,8 +148,10 @@ Vec3 exitDensity(const WalkParams& p, const State& s, const Vec3& m, const Vec3&
 
 // The first state of a walk for light arriving from wi; nothing when wi cannot be lit.
 std::optional<State> start(const WalkParams& p, const Vec3& wi) {
-  if (wi.z > 0) return State{1, wi, Vec3(1.0)};
-  if (wi.z < 0 && p.facets == Facets::Dielectric) return State{-1, -wi, Vec3(1.0)};
+  // The first hit's height: rate 1 / G1 of wi seen from its own side (the same for ±wi).
+  const VertexHeight h = firstVertex(1.0 + p.surface.lambdaUp(wi));
+  if (wi.z > 0) return State{1, wi, Vec3(1.0), h};
+  if (wi.z < 0 && p.facets == Facets::Dielectric) return State{-1, -wi, Vec3(1.0), h};
   return std::nullopt;
 }
 
@@ -135,13 +165,12 @@ std::optional<WalkExit> sampleWalk(const WalkParams& p, const Vec3& wi, Rng& rng
     const Vec3 m = p.surface.sampleVisibleNormal(s->w, u1, u2);
     const Scattered sc = scatter(p, *s, m, rng);
     const Vec3 beta = s->beta * sc.weight;
-    const double esc = escape(p, *s, sc);
     if (p.singleScattering) {
+      const double esc = escapeProbability(p, *s, sc.d, sc.side != s->side, rng);
       if (esc <= 0) return std::nullopt;
       return WalkExit{double(sc.side) * sc.d, beta * esc, 1};
     }
-    if (rng.uniform() < esc) return WalkExit{double(sc.side) * sc.d, beta, bounce};
-    *s = State{sc.side, -sc.d, beta};
+    if (escapes(p, *s, sc, rng)) return WalkExit{double(sc.side) * sc.d, beta, bounce};
   }
   return std::nullopt;
 }
@@ -155,13 +184,12 @@ Vec3 estimateExitDensity(const WalkParams& p, const Vec3& wi, const Vec3& wo, Rn
   for (int bounce = 1; bounce <= p.maxBounces; ++bounce) {
     const double u1 = rng.uniform(), u2 = rng.uniform();
     const Vec3 m = p.surface.sampleVisibleNormal(s->w, u1, u2);
-    const Vec3 c = s->beta * exitDensity(p, *s, m, wo);
+    const Vec3 c = s->beta * exitDensity(p, *s, m, wo, rng);
     total += c;
     if (perBounce) perBounce->push_back(c);
     if (p.singleScattering) break;
     const Scattered sc = scatter(p, *s, m, rng);
-    if (rng.uniform() < escape(p, *s, sc)) break;
-    *s = State{sc.side, -sc.d, s->beta * sc.weight};
+    if (escapes(p, *s, sc, rng)) break;
   }
   return total;
 }

@@ -1,5 +1,7 @@
-// The position-free multiple-bounce random walk of seed 004: a Markov chain over microfacet
-// bounces that samples no heights; escapes follow eqs. 3, 12, 17. Pure functions; thread-safe given one Rng per thread.
+// The multiple-bounce random walk of seed 004 over microfacet bounces. Uncorrelated: escapes by
+// G1 (eq. 3), no heights. Correlated: the next vertex's height rides along as a distribution
+// (vertex_height.h), sampled only in part, so the walk's law is that of Heitz et al. 2016's walk
+// with explicit heights. Pure functions; thread-safe given one Rng per thread.
 #pragma once
 
 #include <optional>
