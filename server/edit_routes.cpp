@@ -185,7 +185,10 @@ void HttpServer::submitFrame(SceneSession& session, Frame frame, const std::stri
   if (!waiting.admitted()) return sendBusy(res, "too many edits waiting on this server");
   try {
     session.editQueue().submit(queued, [&](const std::vector<EditScheduler::Ticket*>& batch) {
-      editWorkers_.run([&] { applyFrameBatch(session, batch); });
+      const bool heavy = std::any_of(batch.begin(), batch.end(), [](EditScheduler::Ticket* ticket) {
+        return isHeavyFrame(static_cast<QueuedFrame*>(ticket)->frame);
+      });
+      editWorkers_.run([&] { applyFrameBatch(session, batch); }, heavy);
     });
   } catch (const EditQueueFull&) {
     return sendBusy(res, "too many edits waiting for this scene");

@@ -28,7 +28,9 @@ void lowerOwnPriority(int steps) {
 }  // namespace
 
 EditWorkers::EditWorkers(int threads, int niceness) : niceness_(std::clamp(niceness, 0, 19)) {
-  if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  if (threads <= 0) threads = int(std::thread::hardware_concurrency());
+  threads = std::max(2, threads);
+  threadCount_ = size_t(threads);
   for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { serve(); });
 }
 
@@ -41,23 +43,32 @@ EditWorkers::~EditWorkers() {
   for (std::thread& thread : threads_) thread.join();
 }
 
-void EditWorkers::run(const std::function<void()>& work) {
-  Job job{&work, nullptr, false};
+void EditWorkers::run(const std::function<void()>& work, bool heavy) {
+  Job job{&work, heavy, nullptr, false};
   std::unique_lock lock(mutex_);
   jobs_.push_back(&job);
-  queued_.notify_one();
+  queued_.notify_all();  // the worker that may take it (a light job: the one kept for light work)
   done_.wait(lock, [&] { return job.done; });
   if (job.error) std::rethrow_exception(job.error);
+}
+
+std::deque<EditWorkers::Job*>::iterator EditWorkers::nextRunnable() {
+  const bool heavyAllowed = heavyRunning_ + 1 < threadCount_;
+  return std::find_if(jobs_.begin(), jobs_.end(),
+                      [heavyAllowed](const Job* job) { return heavyAllowed || !job->heavy; });
 }
 
 void EditWorkers::serve() {
   lowerOwnPriority(niceness_);
   std::unique_lock lock(mutex_);
   for (;;) {
-    queued_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });
+    queued_.wait(lock,
+                 [this] { return (stopping_ && jobs_.empty()) || nextRunnable() != jobs_.end(); });
     if (jobs_.empty()) return;  // stopping, nothing left
-    Job* job = jobs_.front();
-    jobs_.pop_front();
+    const auto next = nextRunnable();
+    Job* job = *next;
+    jobs_.erase(next);
+    if (job->heavy) ++heavyRunning_;
     lock.unlock();
     try {
       (*job->work)();
@@ -65,6 +76,10 @@ void EditWorkers::serve() {
       job->error = std::current_exception();
     }
     lock.lock();
+    if (job->heavy) {
+      --heavyRunning_;
+      queued_.notify_all();  // a heavy job waiting for a slot may start
+    }
     job->done = true;
     done_.notify_all();
   }

@@ -17,17 +17,20 @@ namespace penumbra::server {
 
 class EditWorkers {
  public:
-  // `threads` workers (0 or less: one per core), each `niceness` steps (0–19) below the priority of the
-  // thread that makes them. Linux lets any thread lower its own priority (nice values are per
-  // thread); elsewhere the workers keep that priority.
+  // `threads` workers (0 or less: one per core; at least 2, one kept for light work), each
+  // `niceness` steps (0–19) below the priority of the thread that makes them. Linux lets any thread
+  // lower its own priority (nice values are per thread); elsewhere the workers keep that priority.
   EditWorkers(int threads, int niceness);
   ~EditWorkers();  // lets the queued work finish, then joins
   EditWorkers(const EditWorkers&) = delete;
   EditWorkers& operator=(const EditWorkers&) = delete;
 
   // Runs `work` on a worker (in arrival order when all are busy) and returns once it ran;
-  // rethrows what it threw.
-  void run(const std::function<void()>& work);
+  // rethrows what it threw. Heavy work (a frame relighting the whole scene: isHeavyFrame) runs on
+  // at most all workers but one: the last is kept for light work, so that one user's heavy frames
+  // cannot make other scenes' drags wait for them (two frames adding 22 lights each held both
+  // workers and a 15 ms edit waited 44 s).
+  void run(const std::function<void()>& work, bool heavy = false);
 
   int niceness() const { return niceness_; }
   size_t threads() const { return threads_.size(); }
@@ -35,10 +38,12 @@ class EditWorkers {
  private:
   struct Job {
     const std::function<void()>* work;
+    bool heavy = false;
     std::exception_ptr error;
     bool done = false;
   };
   void serve();
+  std::deque<Job*>::iterator nextRunnable();  // the first queued job a worker may take now
 
   const int niceness_;
   std::mutex mutex_;
@@ -46,6 +51,8 @@ class EditWorkers {
   std::condition_variable done_;    // a job finished
   std::deque<Job*> jobs_;
   bool stopping_ = false;
+  size_t heavyRunning_ = 0;
+  size_t threadCount_ = 0;  // set before any thread starts
   std::vector<std::thread> threads_;
 };
 

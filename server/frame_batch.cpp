@@ -24,4 +24,22 @@ std::optional<Frame> combinedFrame(const std::vector<const Frame*>& frames) {
   return combined;
 }
 
+bool isHeavyFrame(const Frame& frame) {
+  for (const Edit& edit : frame.edits) switch (edit.op) {
+      case Edit::Op::AddLight:
+      case Edit::Op::AddVolume:
+      case Edit::Op::SetVolume:
+        return true;
+      case Edit::Op::SetLight:
+        if (edit.polygon) return true;  // a radiance alone re-sums the lights' values
+        break;
+      case Edit::Op::Add:
+        if (edit.object.faces.size() > kHeavyObjectFaces) return true;
+        break;
+      default:
+        break;
+    }
+  return false;
+}
+
 }  // namespace penumbra::server

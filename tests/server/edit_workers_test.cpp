@@ -1,7 +1,8 @@
 // EditWorkers: work runs on a worker below the caller's CPU priority, the caller waits for it
 // and gets its exception, and no more than `threads` jobs run at once however many callers.
-#include <gtest/gtest.h>
+#include "server/edit_workers.h"
 
+#include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -12,8 +13,6 @@
 #include <stdexcept>
 #include <thread>
 #include <vector>
-
-#include "server/edit_workers.h"
 
 namespace penumbra::server {
 namespace {
@@ -77,6 +76,42 @@ TEST(EditWorkers, ManyCallersAllRunAndAtMostThreadsAtOnce) {
   EXPECT_EQ(done.load(), kCallers * kRuns);
   EXPECT_LE(most.load(), kThreads);
   EXPECT_EQ(most.load(), kThreads);  // with 12 callers waiting, both workers were busy at once
+}
+
+// Heavy work (a frame relighting a whole scene) never takes the last worker: while heavy jobs of
+// other scenes fill every slot they may, a light job still starts at once.
+TEST(EditWorkers, HeavyWorkLeavesAWorkerForLightWork) {
+  for (const int threads : {2, 3}) {
+    EditWorkers workers(threads, 0);
+    std::atomic<int> heavyRunning{0}, heavyMost{0};
+    std::atomic<bool> release{false};
+    std::vector<std::thread> heavy;
+    for (int i = 0; i < 4; ++i)
+      heavy.emplace_back([&] {
+        workers.run(
+            [&] {
+              const int now = ++heavyRunning;
+              int seen = heavyMost.load();
+              while (now > seen && !heavyMost.compare_exchange_weak(seen, now)) {
+              }
+              while (!release) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+              --heavyRunning;
+            },
+            true);
+      });
+    for (int i = 0; i < 2000 && heavyRunning < threads - 1; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    // Every slot heavy work may use is held, more heavy work waits: a light job runs now.
+    const auto start = std::chrono::steady_clock::now();
+    bool ran = false;
+    workers.run([&] { ran = true; });
+    EXPECT_TRUE(ran);
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1));
+    release = true;
+    for (std::thread& t : heavy) t.join();
+    EXPECT_EQ(heavyMost.load(), threads - 1) << threads << " workers";
+  }
+  EXPECT_EQ(EditWorkers(1, 0).threads(), 2u);  // one worker is never all there is
 }
 
 }  // namespace
