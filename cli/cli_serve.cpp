@@ -15,6 +15,7 @@
 #include "protocol/scene_json.h"
 #include "server/api_errors.h"
 #include "server/http_server.h"
+#include "server/machine_limits.h"
 
 namespace penumbra::cli {
 
@@ -46,6 +47,8 @@ server::ServerOptions serveOptions(const Args& args) {
   options.port = args.intOption("port", 8080, 0, 65535);
   options.staticDir = args.option("static").value_or(defaultStaticDir());
   options.engine.overlapGrid = args.intOption("grid", 0, 0, 256);
+  options.engine.limits =
+      server::limitsForMachine(options.engine.limits, server::physicalMemoryBytes());
   options.maxScenes = size_t(args.intOption("max-scenes", int(server::kMaxScenes), 1, 100000));
   options.maxBodyBytes =
       size_t(args.intOption("max-body-mib", int(server::kMaxBodyBytes >> 20), 1, 4096)) << 20;

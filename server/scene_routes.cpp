@@ -56,7 +56,9 @@ void HttpServer::registerSceneRoutes() {
                          {"max_scenes", options_.maxScenes},
                          {"max_event_streams", kMaxEventStreams},
                          {"worker_threads", kWorkerThreads},
-                         {"max_image_side", kMaxImageSide}}}});
+                         {"max_image_side", kMaxImageSide},
+                         {"image_memory_bytes", options_.imageMemoryBytes},
+                         {"scene_bytes", options_.engine.limits.bytes}}}});
            }));
 
   http.Get("/api/scenes", guarded([this](const httplib::Request&, httplib::Response& res) {
