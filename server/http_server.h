@@ -154,6 +154,8 @@ class HttpServer {
   // Where uploaded volume files are kept (volume_routes.cpp): the data directory's
   // `volumes/`, or a temporary folder when ephemeral; created on first use.
   std::string volumeUploadDir();
+  // Deletes the volumes uploaded to scene `sceneId` (after the scene left the journal).
+  void removeUploadsOf(const std::string& sceneId);
   void journalRemove(const SceneSession& session);
   // A frame's JSON as the journal keeps it: the volume files it adds under the data directory
   // written relative to it (so the directory may be moved), other files as resolved.

@@ -162,6 +162,7 @@ void HttpServer::registerSceneRoutes() {
                               scenes_.erase(it);
                             }
                             session->close();
+                            removeUploadsOf(session->id());  // the journal no longer names them
                             res.status = 204;
                           })));
 

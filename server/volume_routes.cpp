@@ -4,6 +4,7 @@
 #include <httplib.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -174,6 +175,31 @@ std::string HttpServer::volumeUploadDir() {
     uploadDir_ = std::filesystem::absolute(dir).lexically_normal().string();
   }
   return uploadDir_;
+}
+
+// Whether `name` is one of storeUpload's files for scene `sceneId` (ID-<16 hex digits>.nrrd).
+static bool isUploadOf(const std::string& name, const std::string& sceneId) {
+  const size_t hexAt = sceneId.size() + 1;
+  if (name.size() != hexAt + 16 + 5 || name.compare(0, hexAt, sceneId + "-") != 0 ||
+      name.compare(hexAt + 16, 5, ".nrrd") != 0)
+    return false;
+  return std::all_of(name.begin() + long(hexAt), name.begin() + long(hexAt + 16),
+                     [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); });
+}
+
+void HttpServer::removeUploadsOf(const std::string& sceneId) {
+  std::error_code error;
+  std::string dir;
+  {
+    std::lock_guard lock(uploadDirMutex_);
+    dir = uploadDir_;
+  }
+  if (dir.empty() && !options_.dataDir.empty())
+    dir = (std::filesystem::path(options_.dataDir) / "volumes").string();
+  if (dir.empty()) return;  // no upload was ever stored
+  for (const auto& entry : std::filesystem::directory_iterator(dir, error))
+    if (isUploadOf(entry.path().filename().string(), sceneId))
+      std::filesystem::remove(entry.path(), error);
 }
 
 void HttpServer::registerVolumeRoutes() {

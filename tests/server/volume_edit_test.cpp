@@ -229,6 +229,33 @@ TEST(VolumeEdits, BadUploadsCreateNothing) {
     EXPECT_TRUE(std::filesystem::is_empty(uploads)) << "a refused upload leaves no file";
 }
 
+// Deleting a scene deletes the volumes uploaded to it (the journal no longer names them); another
+// scene's uploads stay, even when its id starts with the deleted one's.
+TEST(VolumeEdits, DeletingASceneDeletesItsUploads) {
+  TempDataDir data;
+  RunningServer running(data.durable());
+  running.addBundled("volume_room");
+  const std::string other = running.server().addScene(
+      protocol::loadSceneFile(scenePath("volume_room")), "volume_room-2", "volume_room-2");
+  auto client = running.client();
+  for (const std::string& id : {std::string("volume_room"), other}) {
+    const auto up = client.Post(("/api/scenes/" + id + "/volumes?id=puff").c_str(), smokeBytes(),
+                                "application/octet-stream");
+    ASSERT_TRUE(up);
+    ASSERT_EQ(up->status, 201) << up->body;
+  }
+  const std::filesystem::path uploads = std::filesystem::path(data.str()) / "volumes";
+  const auto files = [&] {
+    return std::distance(std::filesystem::directory_iterator(uploads),
+                         std::filesystem::directory_iterator());
+  };
+  EXPECT_EQ(files(), 2);
+  EXPECT_EQ(client.Delete(kBase.c_str())->status, 204);
+  EXPECT_EQ(files(), 1);
+  for (const auto& entry : std::filesystem::directory_iterator(uploads))
+    EXPECT_EQ(entry.path().filename().string().rfind(other + "-", 0), 0u);
+}
+
 TEST(VolumeEdits, AnUploadPastTheBodyLimitIs413) {
   ServerOptions options = RunningServer::loopback();
   options.maxBodyBytes = 1024;  // smoke64.nrrd is 32 KB
