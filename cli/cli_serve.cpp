@@ -169,7 +169,9 @@ int runServe(const Args& args) {
 
   server::limitMallocArenas(server::kMallocArenas);  // before the server's threads start
   server::HttpServer server(options);
-  const std::vector<std::string> ids = serveScenes(server, args, options);
+  // Listening first: while the journal's scenes come back (seconds to minutes), health answers
+  // and their requests get 503 restoring instead of a refused connection.
+  server.reserveJournalScenes();
   const int port = server.bind();
   std::thread listener([&server] {
     server.listen();
@@ -177,6 +179,9 @@ int runServe(const Args& args) {
   });
   for (int i = 0; i < 500 && !server.isRunning(); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  std::fprintf(stderr, "penumbra serve: listening on port %d; restoring and building scenes\n",
+               port);
+  const std::vector<std::string> ids = serveScenes(server, args, options);
 
   // Inside a container the server listens on 0.0.0.0; the user opens localhost.
   const std::string shownHost = options.host == "0.0.0.0" ? "localhost" : options.host;

@@ -23,13 +23,15 @@ inline constexpr const char* kTooManyStreams = "too_many_streams";    // 429
 inline constexpr const char* kInternal = "internal_error";            // 500
 inline constexpr const char* kFrameNotApplied = "frame_not_applied";  // 500
 inline constexpr const char* kOutOfMemory = "out_of_memory";          // 507
-inline constexpr const char* kResourceLimit = "resource_limit";  // 507, names the limit
+inline constexpr const char* kResourceLimit = "resource_limit";       // 507, names the limit
 inline constexpr const char* kBusy = "busy";                          // 503, with Retry-After
 inline constexpr const char* kNotImplemented = "not_implemented";     // 501
 inline constexpr const char* kUnauthorized = "unauthorized";          // 401
 inline constexpr const char* kForbiddenOrigin = "forbidden_origin";   // 403: Origin or Host
 inline constexpr const char* kJournalFailed = "journal_failed";       // 503
-inline constexpr const char* kSceneStalled = "scene_stalled";         // 409
+inline constexpr const char* kRestoring =
+    "restoring";  // 503 + Retry-After: back from the journal soon
+inline constexpr const char* kSceneStalled = "scene_stalled";  // 409
 }  // namespace error_code
 
 // Fixed bodies for when building one fails (no memory left, or a throwing error path).

@@ -149,6 +149,9 @@ HttpServer::~HttpServer() {
 std::shared_ptr<SceneSession> HttpServer::findScene(const std::string& id) const {
   std::lock_guard lock(scenesMutex_);
   const auto it = scenes_.find(id);
+  if (it != scenes_.end() && !it->second && restoring_.count(id))
+    throw ApiError(503, error_code::kRestoring, "id",
+                   "scene '" + id + "' is being restored from the journal; retry in a moment");
   if (it == scenes_.end() || !it->second)
     throw ApiError(404, error_code::kNotFound, "id", "no scene with id '" + id + "'");
   return it->second;

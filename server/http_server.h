@@ -9,6 +9,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -103,8 +104,11 @@ class HttpServer {
   // free and well-formed. Returns the id. Throws ApiError (e.g. too many scenes).
   std::string addScene(Scene scene, const std::string& name, const std::string& preferredId = "");
 
+  // Reads the journal and reserves its scenes' ids: until restore() brings one back, requests
+  // for it get 503 restoring. Call before listening (restore() calls it when nobody did).
+  void reserveJournalScenes();
   // Rebuilds every journaled scene and replays its frames (no-op when ephemeral). Call once,
-  // before addScene, so that journaled scenes keep their ids.
+  // before addScene, so that journaled scenes keep their ids; the server may already listen.
   std::vector<RestoredScene> restore();
   bool hasScene(const std::string& id) const;
   // The stall restore left on a served scene, if any (SceneStall).
@@ -183,9 +187,11 @@ class HttpServer {
   std::atomic<int> waitingEdits_{0};  // edits waiting for their scene's turn, all scenes
   mutable std::mutex scenesMutex_;    // guards scenes_, nextId_, journalKeys_
   std::map<std::string, std::shared_ptr<SceneSession>> scenes_;
-  std::unique_ptr<SceneJournal> journal_;                         // null: ephemeral
-  std::map<const SceneSession*, int64_t> journalKeys_;            // guarded by scenesMutex_
-  std::map<const SceneSession*, SceneStall> stalls_;              // guarded by scenesMutex_
+  std::unique_ptr<SceneJournal> journal_;                                 // null: ephemeral
+  std::map<const SceneSession*, int64_t> journalKeys_;                    // guarded by scenesMutex_
+  std::map<const SceneSession*, SceneStall> stalls_;                      // guarded by scenesMutex_
+  std::optional<std::vector<SceneJournal::StoredScene>> pendingRestore_;  // reserved, not restored
+  std::set<std::string> restoring_;  // journal scenes not back yet (503 restoring), scenesMutex_
   std::vector<JournalProblem> journalProblems_;                   // guarded by scenesMutex_
   std::vector<std::pair<std::string, std::string>> staticRoots_;  // URL prefix → canonical dir
   StaticFiles staticFiles_;  // the page, served from those roots

@@ -18,9 +18,9 @@ namespace penumbra::server {
 namespace {
 
 ApiError journalError(const std::string& what, const std::exception& error) {
-  return ApiError(503, error_code::kJournalFailed, "",
-                  "the journal could not record " + what + " (" + error.what() +
-                      "); nothing was acknowledged");
+  return ApiError(
+      503, error_code::kJournalFailed, "",
+      "the journal could not record " + what + " (" + error.what() + "); nothing was acknowledged");
 }
 
 }  // namespace
@@ -251,10 +251,21 @@ std::shared_ptr<SceneSession> restoreScene(const StoredScene& stored, const Scen
 
 }  // namespace
 
+void HttpServer::reserveJournalScenes() {
+  if (!journal_ || pendingRestore_) return;
+  pendingRestore_ = journal_->load();
+  std::lock_guard lock(scenesMutex_);
+  for (const SceneJournal::StoredScene& stored : *pendingRestore_)
+    if (scenes_.emplace(stored.id, nullptr).second) restoring_.insert(stored.id);
+}
+
 std::vector<RestoredScene> HttpServer::restore() {
   std::vector<RestoredScene> restored;
   if (!journal_) return restored;
-  for (SceneJournal::StoredScene& stored : journal_->load()) {
+  if (!pendingRestore_) reserveJournalScenes();
+  std::vector<SceneJournal::StoredScene> journaled = std::move(*pendingRestore_);
+  pendingRestore_.reset();
+  for (SceneJournal::StoredScene& stored : journaled) {
     const auto start = std::chrono::steady_clock::now();
     RestoredScene report;
     report.id = stored.id;
@@ -265,10 +276,16 @@ std::vector<RestoredScene> HttpServer::restore() {
     std::lock_guard lock(scenesMutex_);
     if (!report.problem.empty())
       journalProblems_.push_back({report.id, report.stalledAt, report.problem});
+    if (restoring_.erase(stored.id) == 0) {
+      restored.push_back(std::move(report));  // the id was taken already (a scene served twice)
+      continue;
+    }
     if (session) {
       journalKeys_[session.get()] = stored.key;
       if (report.stalledAt) stalls_[session.get()] = SceneStall{*report.stalledAt, report.problem};
       scenes_[stored.id] = std::move(session);
+    } else {
+      scenes_.erase(stored.id);  // not served: the id is free
     }
     restored.push_back(std::move(report));
   }

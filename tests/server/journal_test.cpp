@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
+#include <atomic>
 #include <map>
 #include <random>
+#include <thread>
 
 #include "server_fixture.h"
 #include "temp_data_dir.h"
@@ -35,8 +37,8 @@ uint64_t drag(httplib::Client& client, const std::string& id, int frames, uint32
     transform["translate"][0] = transform["translate"][0].get<double>() + jitter(rng);
     transform["translate"][2] = transform["translate"][2].get<double>() + jitter(rng);
     const json frame = {{"edits", {{{"op", "move"}, {"id", cube}, {"transform", transform}}}}};
-    const auto res = client.Post(("/api/scenes/" + id + "/edits").c_str(), frame.dump(),
-                                 "application/json");
+    const auto res =
+        client.Post(("/api/scenes/" + id + "/edits").c_str(), frame.dump(), "application/json");
     EXPECT_TRUE(res && res->status == 200) << (res ? res->body : "no answer");
     version = bodyJson(res)["version"];
   }
@@ -54,7 +56,8 @@ TEST(Journal, RestartRestoresEveryScenesLastVersionWithTheSameMeshBytes) {
     EXPECT_EQ(version, 12u);
     served[cubes] = {version, meshBin(client, cubes)};
     // A scene created over HTTP, and one deleted (its rows go with it).
-    const auto created = client.Post("/api/scenes?name=box", sceneText("cornell"), "application/json");
+    const auto created =
+        client.Post("/api/scenes?name=box", sceneText("cornell"), "application/json");
     ASSERT_EQ(created->status, 201) << created->body;
     const std::string box = bodyJson(created)["id"];
     served[box] = {0, meshBin(client, box)};
@@ -78,6 +81,52 @@ TEST(Journal, RestartRestoresEveryScenesLastVersionWithTheSameMeshBytes) {
   EXPECT_EQ(drag(client, "cubes15", 3, 9), 15u);
 }
 
+// The server answers while the journal's scenes come back: a scene not back yet is a 503
+// `restoring` with Retry-After (not a refused connection, nor a 404), health counts it, and no
+// new scene can take its id; once back it is served at its last version.
+TEST(Journal, ScenesBeingRestoredAre503WhileTheServerAnswers) {
+  TempDataDir data;
+  std::string cubes;
+  uint64_t version = 0;
+  {
+    RunningServer first(data.durable());
+    auto client = first.client();
+    cubes = first.addBundled("cubes15");
+    version = drag(client, cubes, 40, 3);
+  }
+  RunningServer second(data.durable());
+  auto client = second.client();
+  second.server().reserveJournalScenes();  // as `serve` does before it listens
+  std::atomic<bool> done{false};
+  std::thread restoring([&] {
+    second.server().restore();
+    done = true;
+  });
+  int restoringAnswers = 0, healthAnswers = 0;
+  while (!done) {
+    const auto res = client.Get(("/api/scenes/" + cubes).c_str());
+    ASSERT_TRUE(res);
+    if (res->status == 503) {
+      EXPECT_EQ(bodyJson(res)["error"]["code"], "restoring");
+      EXPECT_EQ(res->get_header_value("Retry-After"), "1");
+      const json health = bodyJson(client.Get("/api/health"));
+      if (!done) EXPECT_LE(health["restoring"].get<int>(), 1);
+      ++healthAnswers;
+      ++restoringAnswers;
+      const auto taken = client.Post(("/api/scenes?name=" + cubes).c_str(), sceneText("cornell"),
+                                     "application/json");
+      if (taken && taken->status == 201) EXPECT_NE(bodyJson(taken)["id"], cubes);
+    } else {
+      EXPECT_EQ(res->status, 200) << res->body;
+    }
+  }
+  restoring.join();
+  EXPECT_GT(restoringAnswers, 0) << "the restore ended before a request saw it";
+  EXPECT_GT(healthAnswers, 0);
+  EXPECT_EQ(bodyJson(client.Get(("/api/scenes/" + cubes).c_str()))["version"], version);
+  EXPECT_EQ(bodyJson(client.Get("/api/health"))["restoring"], 0);
+}
+
 TEST(Journal, FailedWriteAcknowledgesNothingAndUndoesTheFrame) {
   TempDataDir data;
   std::string mesh;
@@ -98,7 +147,8 @@ TEST(Journal, FailedWriteAcknowledgesNothingAndUndoesTheFrame) {
     json transform = cube0["transform"];
     transform["translate"][0] = transform["translate"][0].get<double>() + 0.03;
     const json frame = {{"edits", {{{"op", "move"}, {"id", "cube_0"}, {"transform", transform}}}}};
-    auto res = client.Post(("/api/scenes/" + id + "/edits").c_str(), frame.dump(), "application/json");
+    auto res =
+        client.Post(("/api/scenes/" + id + "/edits").c_str(), frame.dump(), "application/json");
     ASSERT_TRUE(res);
     EXPECT_EQ(res->status, 503) << res->body;
     EXPECT_EQ(bodyJson(res)["error"]["code"], "journal_failed");
