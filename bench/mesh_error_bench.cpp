@@ -1,5 +1,5 @@
 // `penumbra-mesh-error-bench [--scene FILE,...] [--dense-cubes N,...] [--model NAME --triangles N]
-// [--size N,...] [--threads T] [--tolerance X] [--json OUT]` (docs/BENCHMARKS.md "Direct light
+// [--size N,...: 0 = build only] [--threads T] [--tolerance X] [--min-edge-divisions D] [--json OUT]` (docs/BENCHMARKS.md "Direct light
 // between vertices"): builds each scene's engine and display mesh (timed), then counts the
 // pixels of its camera view whose interpolated direct light is off the exact reference by more
 // than 1 % and 2 % of the scene's bright level (bench/lib/direct_light_error.h), and the same for
@@ -43,6 +43,7 @@ struct Options {
   std::vector<int> sizes{256};
   int threads = 2;
   double tolerance = -1;  // < 0: the engine's default
+  double minEdgeDivisions = 0;  // 0: the engine's default
   std::string jsonOut;
 };
 
@@ -73,6 +74,8 @@ Options parse(int argc, char** argv) {
       o.threads = std::stoi(value);
     } else if (name == "--tolerance") {
       o.tolerance = std::stod(value);
+    } else if (name == "--min-edge-divisions") {
+      o.minEdgeDivisions = std::stod(value);
     } else if (name == "--json") {
       o.jsonOut = value;
     } else {
@@ -123,12 +126,16 @@ int main(int argc, char** argv) try {
     EngineSettings settings;
     settings.threads = o.threads;
     if (o.tolerance >= 0) settings.meshTolerance = o.tolerance;
+    if (o.minEdgeDivisions > 0) settings.meshRefineMinEdgeDivisions = o.minEdgeDivisions;
     const auto start = std::chrono::steady_clock::now();
     Engine engine(scene, settings);
     const Mesh mesh = engine.mesh();
     const double seconds = secondsSince(start);
     const Camera camera = scene.camera().value_or(defaultCamera(scene.bounds()));
+    std::printf("%-28s %9zu %9zu %8.2f  (mesh %.2f s, %zu cells capped)\n", name.c_str(), mesh.vertexCount(),
+                mesh.triangleCount(), seconds, engine.stats().seconds.triangulation, mesh.cappedCells);
     for (int size : o.sizes) {
+      if (size <= 0) continue;  // --size 0: the build alone
       const DirectLightError e = directLightError(scene, mesh, camera, size, size, Parallel(o.threads));
       const json image = imageCounts(scene, mesh, size, o.threads);
       std::printf("%-28s %9zu %9zu %8.2f %6d %9zu %9zu %8.2f %10zu %10zu\n", name.c_str(), mesh.vertexCount(),
@@ -139,6 +146,8 @@ int main(int argc, char** argv) try {
                       {"triangles", mesh.triangleCount()},
                       {"build_seconds", seconds},
                       {"mesh_seconds", engine.stats().seconds.triangulation},
+                      {"tolerance", mesh.tolerance},
+                      {"capped_cells", mesh.cappedCells},
                       {"size", size},
                       {"pixels", e.pixels},
                       {"bright_irradiance", e.brightLevel},

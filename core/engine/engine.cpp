@@ -556,7 +556,7 @@ const ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver, MeshMem
 MeshGrid Engine::meshGrid() const {
   RefineSettings refine;
   refine.tolerance = std::max(0.0, settings_.meshTolerance);
-  refine.minEdge = scene_.bounds().diagonal() / EngineSettings::kRefineMinEdgeDivisions;
+  refine.minEdge = scene_.bounds().diagonal() / settings_.meshRefineMinEdgeDivisions;
   refine.maxPoints = EngineSettings::kRefineMaxPoints;
   return MeshGrid{meshSpacing(), meshChunkSquares_, refine};
 }

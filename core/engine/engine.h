@@ -46,11 +46,11 @@ struct EngineSettings {
   // triangles are refined until linear interpolation between their corners is within this
   // fraction of each light's local unshadowed level at the test points (edge midpoints,
   // centroids); 0: no refinement (a fan per piece). Edges shorter than the scene's diagonal /
-  // kRefineMinEdgeDivisions are not halved, and a piece stops at kRefineMaxPoints points
+  // meshRefineMinEdgeDivisions are not halved, and a piece stops at kRefineMaxPoints points
   // (counted: Mesh::cappedCells).
   double meshTolerance = kDefaultMeshTolerance;
   static constexpr double kDefaultMeshTolerance = 0.005;
-  static constexpr double kRefineMinEdgeDivisions = 4096;
+  double meshRefineMinEdgeDivisions = 1024;
   static constexpr uint32_t kRefineMaxPoints = 1024;
   // Test hook (failure injection, tests/server/frame_failure_property_test.cpp): called at
   // named points of apply() ("removed", "added", "relight", "rebuild": its whole-engine

@@ -176,7 +176,9 @@ void CellLighter::lightsAt(const Vec2& q, const OccluderList& list, const Vec3& 
   const Vec3 normal = source_.frame.normal;
   // A contact corner or lattice point takes the limit from the cell; another lattice
   // point is lit exactly from this cell's list (cases 2 and 3 keep it dark in a light's umbra).
-  const bool limit = corner < polygon.size() || onContact(p);
+  // (A refinement point at the centre itself has no direction to take a limit along: it lies
+  // inside the cell, where the exact value is the limit.)
+  const bool limit = (corner < polygon.size() || onContact(p)) && glm::length(centre - p) > eps_;
   oneCell_.assign(1, &list);
   for (size_t l = 0; l < lights; ++l)
     out.push_back(limit ? illuminateVertexFromCell(scene_, l, p, normal, centre - p, list)
