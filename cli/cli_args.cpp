@@ -65,7 +65,7 @@ void Args::allowOnly(const std::set<std::string>& names) const {
 }
 
 double meshToleranceOption(const Args& args) {
-  const double tolerance = args.doubleOption("mesh-tolerance", EngineSettings::kDefaultMeshTolerance);
+  const double tolerance = args.doubleOption("mesh-tolerance", EngineSettings{}.meshTolerance);
   if (!(tolerance >= 0 && tolerance <= 0.5)) throw UsageError("--mesh-tolerance must be in [0, 0.5] (0: no refinement)");
   return tolerance;
 }

@@ -48,8 +48,9 @@ struct EngineSettings {
   // centroids); 0: no refinement (a fan per piece). Edges shorter than the scene's diagonal /
   // meshRefineMinEdgeDivisions are not halved, and a piece stops at kRefineMaxPoints points
   // (counted: Mesh::cappedCells).
-  double meshTolerance = kDefaultMeshTolerance;
-  static constexpr double kDefaultMeshTolerance = 0.005;
+  // Off by default for now: the green splits can leave slivers that fold (docs/DESIGN.md).
+  double meshTolerance = 0;
+  static constexpr double kRecommendedMeshTolerance = 0.005;
   double meshRefineMinEdgeDivisions = 1024;
   static constexpr uint32_t kRefineMaxPoints = 1024;
   // Test hook (failure injection, tests/server/frame_failure_property_test.cpp): called at

@@ -22,6 +22,20 @@ Vec2 centroid(const Polygon2& polygon) {
   return middle / double(polygon.size());
 }
 
+// Whether the polygon's width (twice its area over its longest side) is below `width`: a
+// sliver of a cell, whose points the mesh builder may merge with its neighbours' (within eps),
+// which would fold triangles refined inside it. It keeps its fan.
+bool narrowerThan(const Polygon2& polygon, double width) {
+  double area = 0, longest = 0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Vec2& a = polygon[i];
+    const Vec2& b = polygon[(i + 1) % polygon.size()];
+    area += cross2(a, b);
+    longest = std::max(longest, glm::length(b - a));
+  }
+  return !(std::abs(area) > width * longest);
+}
+
 }  // namespace
 
 bool darkLights(const OccluderList& list, std::vector<bool>& dark) {
@@ -213,7 +227,7 @@ void CellLighter::pointLights(uint32_t word, std::vector<VertexLight>& out) cons
 // by position with its other pieces, and the triangles are listed.
 CellFan CellLighter::refine(const Polygon2& piece, size_t first, CellFan fan, const OccluderList& list,
                             const Vec3& centre) {
-  if (!(refine_.tolerance > 0)) return fan;
+  if (!(refine_.tolerance > 0) || narrowerThan(piece, refine_.minEdge)) return fan;
   PieceRefinement& r = refinement_;
   r.lights = inputs_.lights;
   r.points.clear(), r.values.clear(), r.levels.clear(), r.triangles.clear();
@@ -221,17 +235,14 @@ CellFan CellLighter::refine(const Polygon2& piece, size_t first, CellFan fan, co
   r.points.assign(piece.begin(), piece.end());
   if (fan.usesCentre()) r.points.push_back(output_.ownAt[output_.points.back() & CellMemo::kIndexMask]);
   for (size_t e = first; e < output_.points.size(); ++e) pointLights(output_.points[e], r.values);
-  for (const Vec2& q : r.points) levelsAt(q, r.levels);
   const uint32_t loop = uint32_t(piece.size());
   for (uint32_t t = 0; t < fan.triangleCount(loop); ++t) r.triangles.push_back(fan.triangle(loop, t));
   RefineSettings settings = refine_;
   settings.maxPoints = std::min(settings.maxPoints, CellMemo::kMaxPiecePoints);
   const size_t before = r.points.size();
-  const bool added = refinePiece(r, settings, [&](const Vec2& q, std::vector<VertexLight>& values,
-                                                  std::vector<double>& levels) {
-    lightsAt(q, list, centre, values);
-    levelsAt(q, levels);
-  });
+  const bool added = refinePiece(
+      r, settings, [&](const Vec2& q, std::vector<VertexLight>& values) { lightsAt(q, list, centre, values); },
+      [&](const Vec2& q, std::vector<double>& levels) { levelsAt(q, levels); });
   output_.capped |= r.capped;
   if (!added) return fan;
   for (size_t i = before; i < r.points.size(); ++i) {

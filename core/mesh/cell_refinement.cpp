@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <span>
+#include <stdexcept>
 #include <utility>
 
 namespace penumbra {
@@ -14,8 +16,9 @@ constexpr int kMaxRounds = 40;
 
 class Refiner {
  public:
-  Refiner(PieceRefinement& piece, const RefineSettings& settings, const PointEvaluator& evaluate)
-      : piece_(piece), settings_(settings), evaluate_(evaluate) {}
+  Refiner(PieceRefinement& piece, const RefineSettings& settings, const PointEvaluator& evaluate,
+          const LevelEvaluator& level)
+      : piece_(piece), settings_(settings), evaluate_(evaluate), level_(level) {}
 
   bool run() {
     const size_t before = piece_.points.size();
@@ -34,8 +37,11 @@ class Refiner {
     std::vector<std::array<uint32_t, 3>> mids(piece_.triangles.size());
     std::vector<uint32_t> centroids(piece_.triangles.size(), kPasses);
     bool any = false;
+    settled_.resize(piece_.triangles.size(), 0);
     for (size_t t = 0; t < piece_.triangles.size(); ++t) {
       const auto& tri = piece_.triangles[t];
+      mids[t] = {kPasses, kPasses, kPasses};
+      if (settled_[t]) continue;  // its edges and centroid passed in an earlier round: they still do
       bool halved = false;
       for (int e = 0; e < 3; ++e) {
         mids[t][e] = decideEdge(tri[e], tri[(e + 1) % 3]);
@@ -51,9 +57,15 @@ class Refiner {
       return false;
     }
     std::vector<std::array<uint32_t, 3>> next;
+    std::vector<uint8_t> settled;
     next.reserve(piece_.triangles.size() * 3);
-    for (size_t t = 0; t < piece_.triangles.size(); ++t) split(piece_.triangles[t], mids[t], centroids[t], next);
+    for (size_t t = 0; t < piece_.triangles.size(); ++t) {
+      const bool kept = mids[t] == std::array<uint32_t, 3>{kPasses, kPasses, kPasses} && centroids[t] == kPasses;
+      split(piece_.triangles[t], mids[t], centroids[t], next);
+      settled.resize(next.size(), kept ? 1 : 0);
+    }
     piece_.triangles = std::move(next);
+    settled_ = std::move(settled);
     return true;
   }
 
@@ -69,26 +81,46 @@ class Refiner {
 
   // Appends the exact values at q; returns its index.
   uint32_t addPoint(const Vec2& q) {
-    values_.clear(), levels_.clear();
-    evaluate_(q, values_, levels_);
+    const size_t before = piece_.values.size();
+    evaluate_(q, piece_.values);
+    if (piece_.values.size() != before + piece_.lights) throw std::logic_error("refinePiece: a value per light");
     piece_.points.push_back(q);
-    piece_.values.insert(piece_.values.end(), values_.begin(), values_.end());
-    piece_.levels.insert(piece_.levels.end(), levels_.begin(), levels_.end());
+    piece_.levels.resize(piece_.values.size(), std::nan(""));
     return uint32_t(piece_.points.size() - 1);
   }
 
-  // Whether the value at point m is off the weighted mean of `from` by more than the
-  // tolerance for some light (relative to the largest unshadowed level among them and m).
-  bool fails(uint32_t m, std::span<const uint32_t> from) const {
+  // Point i's unshadowed level of light l: its factor where the light is wholly seen, else
+  // asked of the evaluator (once per point).
+  double levelOf(uint32_t i, size_t l) {
+    const size_t lights = piece_.lights;
+    const VertexLight& value = piece_.values[i * lights + l];
+    if (value.applies && value.lightClass == LightClass::Lit) return value.factor;
+    if (std::isnan(piece_.levels[i * lights + l])) {
+      levels_.clear();
+      level_(piece_.points[i], levels_);
+      if (levels_.size() != lights) throw std::logic_error("refinePiece: a level per light");
+      std::copy(levels_.begin(), levels_.end(), piece_.levels.begin() + long(i * lights));
+    }
+    return piece_.levels[i * lights + l];
+  }
+
+  // Whether the value at point m is off the mean of `from` by more than the tolerance for some
+  // light, relative to the largest unshadowed level among them and m (a level is at least the
+  // visible factor: below tolerance × the largest factor the test passes without levels).
+  bool fails(uint32_t m, std::span<const uint32_t> from) {
     const size_t lights = piece_.lights;
     for (size_t l = 0; l < lights; ++l) {
-      double mean = 0, level = piece_.levels[m * lights + l];
+      double mean = 0, largest = piece_.values[m * lights + l].factor;
       for (uint32_t i : from) {
         mean += piece_.values[i * lights + l].factor;
-        level = std::max(level, piece_.levels[i * lights + l]);
+        largest = std::max(largest, piece_.values[i * lights + l].factor);
       }
       mean /= double(from.size());
-      if (std::abs(piece_.values[m * lights + l].factor - mean) > settings_.tolerance * level) return true;
+      const double error = std::abs(piece_.values[m * lights + l].factor - mean);
+      if (!(error > settings_.tolerance * largest)) continue;
+      double level = levelOf(m, l);
+      for (uint32_t i : from) level = std::max(level, levelOf(i, l));
+      if (error > settings_.tolerance * level) return true;
     }
     return false;
   }
@@ -115,7 +147,10 @@ class Refiner {
   uint32_t decideCentroid(const std::array<uint32_t, 3>& tri) {
     const Vec2 a = piece_.points[tri[0]], b = piece_.points[tri[1]], c = piece_.points[tri[2]];
     const double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
-    if (!(longest > settings_.minEdge)) return kPasses;
+    // A triangle too short or too thin (its height, twice its area over its longest side) is
+    // not split at its centroid: repeated, that would make slivers.
+    if (!(longest > settings_.minEdge) || !(std::abs(cross2(b - a, c - a)) > settings_.minEdge / 16 * longest))
+      return kPasses;
     const uint32_t g = addPoint((a + b + c) / 3.0);
     if (fails(g, tri)) return g;
     truncate(g);
@@ -162,16 +197,20 @@ class Refiner {
   PieceRefinement& piece_;
   const RefineSettings& settings_;
   const PointEvaluator& evaluate_;
+  const LevelEvaluator& level_;
   std::map<std::pair<uint32_t, uint32_t>, uint32_t> edges_;
-  std::vector<VertexLight> values_;
+  std::vector<uint8_t> settled_;  // per triangle: nothing about it failed (it never will)
   std::vector<double> levels_;
 };
 
 }  // namespace
 
-bool refinePiece(PieceRefinement& piece, const RefineSettings& settings, const PointEvaluator& evaluate) {
+bool refinePiece(PieceRefinement& piece, const RefineSettings& settings, const PointEvaluator& evaluate,
+                 const LevelEvaluator& level) {
   if (!(settings.tolerance > 0) || piece.triangles.empty()) return false;
-  return Refiner(piece, settings, evaluate).run();
+  if (piece.values.size() != piece.points.size() * piece.lights) throw std::invalid_argument("refinePiece: values");
+  piece.levels.assign(piece.values.size(), std::nan(""));
+  return Refiner(piece, settings, evaluate, level).run();
 }
 
 }  // namespace penumbra

@@ -30,19 +30,23 @@ struct PieceRefinement {
   size_t lights = 0;
   std::vector<Vec2> points;
   std::vector<VertexLight> values;  // points × lights
-  std::vector<double> levels;       // points × lights
+  std::vector<double> levels;       // points × lights; NaN: not known yet (asked when needed)
   std::vector<std::array<uint32_t, 3>> triangles;
   bool capped = false;  // maxPoints stopped a refinement the tolerance asked for
 };
 
-// The exact per-light values at a point of the piece as its cell sees it, and each light's
-// unshadowed level there (what it gives with nothing in the way), written to the spans' ends.
-using PointEvaluator = std::function<void(const Vec2& q, std::vector<VertexLight>& values, std::vector<double>& levels)>;
+// The exact per-light values at a point of the piece as its cell sees it, appended to `values`.
+using PointEvaluator = std::function<void(const Vec2& q, std::vector<VertexLight>& values)>;
+// Each light's unshadowed level at q (what it gives with nothing in the way), appended to
+// `levels`. Asked only where a test is not decided without it: the level is at least the
+// visible factor, and equals it where the light is wholly seen (LightClass::Lit).
+using LevelEvaluator = std::function<void(const Vec2& q, std::vector<double>& levels)>;
 
 // Refines `piece` in place: rounds of (decide every edge and, for triangles with no edge
 // halved, the centroid; split the triangles by the pattern of their halved edges) until
 // nothing fails, no edge is long enough, or the next round would pass maxPoints (capped).
 // Returns whether any point was added.
-bool refinePiece(PieceRefinement& piece, const RefineSettings& settings, const PointEvaluator& evaluate);
+bool refinePiece(PieceRefinement& piece, const RefineSettings& settings, const PointEvaluator& evaluate,
+                 const LevelEvaluator& level);
 
 }  // namespace penumbra

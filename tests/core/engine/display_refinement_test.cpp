@@ -63,7 +63,13 @@ BoundCheck checkBound(const Engine& engine, const Mesh& mesh, double tolerance, 
   return out;
 }
 
-constexpr double kTolerance = EngineSettings::kDefaultMeshTolerance;
+constexpr double kTolerance = EngineSettings::kRecommendedMeshTolerance;
+
+EngineSettings refined() {
+  EngineSettings settings;
+  settings.meshTolerance = kTolerance;
+  return settings;
+}
 constexpr double kSlack = 2;  // 1 % of the local level at the default 0.5 %
 
 Scene modelScene(uint64_t seed) {
@@ -78,7 +84,7 @@ Scene modelScene(uint64_t seed) {
 TEST(DisplayRefinement, RandomPointsWithinTheToleranceOnCubeRooms) {
   for (uint64_t seed = 1; seed <= 6; ++seed) {
     SCOPED_TRACE("cubes seed " + std::to_string(seed));
-    Engine engine(makeCubesScene(mixedCubesOptions(seed)));
+    Engine engine(makeCubesScene(mixedCubesOptions(seed)), refined());
     const Mesh mesh = engine.mesh();
     EXPECT_EQ(mesh.tolerance, kTolerance);
     const BoundCheck check = checkBound(engine, mesh, kTolerance, kSlack, seed);
@@ -90,7 +96,7 @@ TEST(DisplayRefinement, RandomPointsWithinTheToleranceOnCubeRooms) {
 TEST(DisplayRefinement, RandomPointsWithinTheToleranceOnModels) {
   for (uint64_t seed = 1; seed <= 3; ++seed) {
     SCOPED_TRACE("model seed " + std::to_string(seed));
-    Engine engine(modelScene(seed));
+    Engine engine(modelScene(seed), refined());
     const Mesh mesh = engine.mesh();
     const BoundCheck check = checkBound(engine, mesh, kTolerance, kSlack, seed);
     EXPECT_EQ(check.over, 0u) << check.first << " (worst " << check.worst << ", capped cells " << mesh.cappedCells
@@ -117,7 +123,7 @@ TEST(DisplayRefinement, WithoutRefinementTheCheckFails) {
 TEST(DisplayRefinement, EditsKeepTheBoundAndEqualAFreshMesh) {
   for (uint64_t seed = 1; seed <= 3; ++seed) {
     SCOPED_TRACE("cubes seed " + std::to_string(seed));
-    Engine engine(makeCubesScene(mixedCubesOptions(seed)));
+    Engine engine(makeCubesScene(mixedCubesOptions(seed)), refined());
     engine.mesh();
     std::mt19937_64 rng(seed * 7919);
     int nextNewId = 0;
