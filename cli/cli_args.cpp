@@ -1,4 +1,6 @@
 #include "cli/cli_args.h"
+#include "cli/commands.h"
+#include "core/engine/engine.h"
 
 #include <charconv>
 #include <cmath>
@@ -60,6 +62,12 @@ double Args::doubleOption(const std::string& name, double fallback) const {
 void Args::allowOnly(const std::set<std::string>& names) const {
   for (const auto& [key, value] : options_)
     if (!names.count(key)) throw UsageError("unknown option --" + key);
+}
+
+double meshToleranceOption(const Args& args) {
+  const double tolerance = args.doubleOption("mesh-tolerance", EngineSettings{}.meshTolerance);
+  if (!(tolerance >= 0 && tolerance <= 0.5)) throw UsageError("--mesh-tolerance must be in [0, 0.5] (0: no refinement)");
+  return tolerance;
 }
 
 }  // namespace penumbra::cli

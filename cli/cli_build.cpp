@@ -45,7 +45,10 @@ nlohmann::json statsJson(const BuildStats& s, const Mesh& mesh) {
                         {"lit", s.litVertices},
                         {"penumbra", s.penumbraVertices},
                         {"umbra", s.umbraVertices}}},
-          {"mesh", {{"vertices", mesh.vertexCount()}, {"triangles", mesh.triangleCount()}}},
+          {"mesh", {{"vertices", mesh.vertexCount()},
+                    {"triangles", mesh.triangleCount()},
+                    {"tolerance", mesh.tolerance},
+                    {"capped_cells", mesh.cappedCells}}},
           {"comparisons_per_vertex", s.comparisonsPerVertex()},
           {"peak_memory_mib", peakMemoryMiB()},
           {"seconds", {{"ordering", t.ordering},
@@ -75,13 +78,14 @@ std::optional<Mesh> bakedIndirect(const Args& args, const Scene& scene, const Me
 }  // namespace
 
 int runBuild(const Args& args) {
-  args.allowOnly({"out", "grid", "color-scale", "threads", "sensor-size", "bounces"});
+  args.allowOnly({"out", "grid", "color-scale", "threads", "sensor-size", "bounces", "mesh-tolerance"});
   const std::string scenePath = args.positional(0, "SCENE");
   const auto out = args.option("out");
   if (!out) throw UsageError("build needs --out MESH");
   EngineSettings settings;
   settings.overlapGrid = args.intOption("grid", 0, 0, 256);
   settings.threads = args.intOption("threads", 0, 0, 1024);
+  settings.meshTolerance = meshToleranceOption(args);
   const Scene scene = protocol::loadSceneFile(scenePath);
 
   ProgressBar casting("casting"), illumination("illumination");
@@ -110,8 +114,9 @@ int runBuild(const Args& args) {
   if (args.flag("stats")) {
     std::printf("%s\n", statsJson(stats, mesh).dump(2).c_str());
   } else {
-    std::printf("wrote %s: %zu receivers, %zu vertices, %zu triangles (%.3f s)\n", out->c_str(),
-                mesh.receivers.size(), mesh.vertexCount(), mesh.triangleCount(), stats.seconds.total());
+    std::printf("wrote %s: %zu receivers, %zu vertices, %zu triangles, interpolation within %g of the local "
+                "unshadowed light (%zu cells capped) (%.3f s)\n", out->c_str(), mesh.receivers.size(),
+                mesh.vertexCount(), mesh.triangleCount(), mesh.tolerance, mesh.cappedCells, stats.seconds.total());
   }
   return 0;
 }

@@ -61,7 +61,7 @@ std::optional<gi::GiSettings> giFromOptions(const Args& args) {
 }  // namespace
 
 int runRender(const Args& args) {
-  args.allowOnly({"out", "width", "height", "camera", "mesh", "gi", "sensor-size", "tile", "threshold", "bounces", "filter", "exposure"});
+  args.allowOnly({"out", "width", "height", "camera", "mesh", "mesh-tolerance", "gi", "sensor-size", "tile", "threshold", "bounces", "filter", "exposure"});
   const std::string scenePath = args.positional(0, "SCENE");
   const auto out = args.option("out");
   if (!out) throw UsageError("render needs --out IMAGE (.png or .exr)");
@@ -89,7 +89,9 @@ int runRender(const Args& args) {
     mesh = protocol::loadMeshFile(*meshPath, scene);
   } else if (!settings.reference) {
     ProgressBar casting("casting"), illumination("illumination");
-    engine = std::make_unique<Engine>(scene, EngineSettings{}, [&](const char* step, size_t done, size_t total) {
+    EngineSettings engineSettings;
+    engineSettings.meshTolerance = meshToleranceOption(args);
+    engine = std::make_unique<Engine>(scene, engineSettings, [&](const char* step, size_t done, size_t total) {
       (std::string(step) == "casting" ? casting : illumination).update(done, total);
     });
     casting.finish();
@@ -118,6 +120,9 @@ int runRender(const Args& args) {
         {"height", image.height},
         {"shading", settings.reference ? "reference" : "mesh"},
         {"mesh_triangles", mesh.triangleCount()},
+        // What the mesh's interpolation is within (0: not refined, or a loaded mesh).
+        {"mesh_tolerance", settings.reference ? nlohmann::json() : nlohmann::json(mesh.tolerance)},
+        {"mesh_capped_cells", mesh.cappedCells},
         {"surface_pixels", image.surfacePixels},
         {"light_pixels", image.lightPixels},
         {"exposure", image.exposure},
@@ -135,6 +140,9 @@ int runRender(const Args& args) {
     std::printf("wrote %s: %dx%d, %s shading (render %.3f s, mesh %.3f s, encode %.3f s)\n", out->c_str(),
                 image.width, image.height, settings.reference ? "reference" : "mesh", image.seconds,
                 meshSeconds, encodeSeconds);
+    if (!settings.reference && engine)
+      std::printf("direct light interpolated within %g of the local unshadowed light (%zu cells capped)\n",
+                  mesh.tolerance, mesh.cappedCells);
     if (image.gi)
       std::printf("gi: %zu sensors (%zu pixels interpolated), %.3f s of the render\n", image.gi->placement.sensors,
                   image.gi->placement.interpolated, image.gi->seconds);

@@ -160,7 +160,7 @@ struct Totals {
 }  // namespace
 
 int runReplay(const Args& args) {
-  args.allowOnly({"verify-every", "report", "out", "threads"});
+  args.allowOnly({"verify-every", "report", "out", "threads", "mesh-tolerance"});
   const std::string scenePath = args.positional(0, "SCENE");
   const std::string scriptPath = args.positional(1, "EDITS.jsonl");
   const bool verify = args.flag("verify") || args.option("verify-every");
@@ -188,6 +188,7 @@ int runReplay(const Args& args) {
   const auto buildStart = Clock::now();
   EngineSettings settings;
   settings.threads = args.intOption("threads", 0, 0, 1024);
+  settings.meshTolerance = meshToleranceOption(args);
   Engine engine(scene, settings,
                 [&](const char*, size_t done, size_t total) { building.update(done, total); });
   const double buildSeconds = secondsSince(buildStart);

@@ -41,7 +41,8 @@ std::string defaultStaticDir() {
 // serve's options, checked: a usage error for what cannot work.
 server::ServerOptions serveOptions(const Args& args) {
   args.allowOnly({"host", "port", "static", "grid", "data", "ephemeral", "token", "allow-origin",
-                  "max-scenes", "max-body-mib", "image-memory-mib", "threads", "edit-nice"});
+                  "max-scenes", "max-body-mib", "image-memory-mib", "threads", "edit-nice",
+                  "mesh-tolerance"});
   server::ServerOptions options;
   options.host = args.option("host").value_or("127.0.0.1");
   options.port = args.intOption("port", 8080, 0, 65535);
@@ -73,6 +74,7 @@ server::ServerOptions serveOptions(const Args& args) {
     throw UsageError("--ephemeral and --data exclude each other");
   if (!args.flag("ephemeral")) options.dataDir = args.option("data").value_or(kDefaultDataDir);
   options.engine.threads = args.intOption("threads", 0, 0, 1024);
+  options.engine.meshTolerance = meshToleranceOption(args);
   options.editNiceness = args.intOption("edit-nice", server::kEditNiceness, 0, 19);
   if (options.staticDir.empty())
     std::fprintf(

@@ -18,4 +18,8 @@ int runRender(const Args& args);
 int runServe(const Args& args);
 int runReplay(const Args& args);
 
+// --mesh-tolerance F (build, render, replay, serve): EngineSettings::meshTolerance, in [0, 0.5]
+// (0: no refinement); the default when absent.
+double meshToleranceOption(const Args& args);
+
 }  // namespace penumbra::cli

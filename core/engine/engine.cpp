@@ -447,8 +447,12 @@ Mesh Engine::mesh(const EngineProgress& progress) {
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
   updateMeshMemos(all, progress);
   Mesh out;
+  out.tolerance = meshGrid().refine.tolerance;
   out.receivers.reserve(receivers_.size());
-  for (const Receiver& receiver : receivers_) out.receivers.push_back(memoMesh(receiver));
+  for (const Receiver& receiver : receivers_) {
+    out.receivers.push_back(memoMesh(receiver));
+    out.cappedCells += meshMemo_.at(receiver.face).cappedCells();
+  }
   pruneMeshMemo();
   stats_.seconds.triangulation = secondsSince(start);
   return out;
@@ -482,7 +486,7 @@ void Engine::updateMeshMemos(const std::vector<size_t>& indices, const EnginePro
   parallel_.forEach(indices.size(), [&](size_t k) {
     const Receiver& receiver = receivers_[indices[k]];
     const MeshSource source{receiver.face, receiver.frame, receiver.tree, receiver.perLight};
-    memos[k]->update(scene_, source, MeshGrid{meshSpacing(), meshChunkSquares_}, counters[k], parallel_);
+    memos[k]->update(scene_, source, meshGrid(), counters[k], parallel_);
     report.add(1);
   });
   report.finish();
@@ -493,8 +497,12 @@ Mesh Engine::mesh(const std::vector<FaceId>& only) {
   const std::vector<size_t> indices = receiverIndices(only);
   updateMeshMemos(indices);
   Mesh out;
+  out.tolerance = meshGrid().refine.tolerance;
   out.receivers.reserve(indices.size());
-  for (size_t i : indices) out.receivers.push_back(memoMesh(receivers_[i]));
+  for (size_t i : indices) {
+    out.receivers.push_back(memoMesh(receivers_[i]));
+    out.cappedCells += meshMemo_.at(receivers_[i].face).cappedCells();
+  }
   pruneMeshMemo();
   return out;
 }
@@ -541,8 +549,16 @@ ReceiverMesh Engine::memoMesh(const Receiver& receiver) const {
 const ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver, MeshMemoCounters& counters) {
   ReceiverMeshMemo& memo = meshMemo_[receiver.face];
   const MeshSource source{receiver.face, receiver.frame, receiver.tree, receiver.perLight};
-  memo.update(scene_, source, MeshGrid{meshSpacing(), meshChunkSquares_}, counters, parallel_);
+  memo.update(scene_, source, meshGrid(), counters, parallel_);
   return memo;
+}
+
+MeshGrid Engine::meshGrid() const {
+  RefineSettings refine;
+  refine.tolerance = std::max(0.0, settings_.meshTolerance);
+  refine.minEdge = scene_.bounds().diagonal() / settings_.meshRefineMinEdgeDivisions;
+  refine.maxPoints = EngineSettings::kRefineMaxPoints;
+  return MeshGrid{meshSpacing(), meshChunkSquares_, refine};
 }
 
 double Engine::meshSpacing() const {

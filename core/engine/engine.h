@@ -42,6 +42,17 @@ struct EngineSettings {
   // construction from the scene's faces per lattice square (4, 2 or 1, so a block
   // holds some hundreds of cells), < 0: one block.
   int meshChunkSquares = 0;
+  // Error-bounded display mesh (core/mesh/cell_refinement.h, docs/DESIGN.md): each piece's
+  // triangles are refined until linear interpolation between their corners is within this
+  // fraction of each light's local unshadowed level at the test points (edge midpoints,
+  // centroids); 0: no refinement (a fan per piece). Edges shorter than the scene's diagonal /
+  // meshRefineMinEdgeDivisions are not halved, and a piece stops at kRefineMaxPoints points
+  // (counted: Mesh::cappedCells).
+  // Off by default for now: the green splits can leave slivers that fold (docs/DESIGN.md).
+  double meshTolerance = 0;
+  static constexpr double kRecommendedMeshTolerance = 0.005;
+  double meshRefineMinEdgeDivisions = 1024;
+  static constexpr uint32_t kRefineMaxPoints = 1024;
   // Test hook (failure injection, tests/server/frame_failure_property_test.cpp): called at
   // named points of apply() ("removed", "added", "relight", "rebuild": its whole-engine
   // fallback) and of a server session's meshing ("meshing"); it may throw to simulate a
@@ -190,6 +201,8 @@ class Engine {
   // lattice squares (0: one chunk per receiver).
   double meshSpacing() const;
   int meshChunkSquares() const { return meshChunkSquares_; }
+  // The lattice, chunks and refinement mesh() uses.
+  MeshGrid meshGrid() const;
 
   // Casts afresh (and lights) the listed receivers' trees when dead slots dominate them:
   // node deletion leaves dead nodes, vertices and cells behind (the tree and its mesh only

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <span>
 
+#include "core/illum/backprojection.h"
 #include "core/illum/face_lookup.h"
 #include "core/illum/light_sum.h"
 #include "core/mesh/cell_triangulation.h"
@@ -19,6 +20,20 @@ Vec2 centroid(const Polygon2& polygon) {
   Vec2 middle{0.0};
   for (const Vec2& q : polygon) middle += q;
   return middle / double(polygon.size());
+}
+
+// Whether the polygon's width (twice its area over its longest side) is below `width`: a
+// sliver of a cell, whose points the mesh builder may merge with its neighbours' (within eps),
+// which would fold triangles refined inside it. It keeps its fan.
+bool narrowerThan(const Polygon2& polygon, double width) {
+  double area = 0, longest = 0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Vec2& a = polygon[i];
+    const Vec2& b = polygon[(i + 1) % polygon.size()];
+    area += cross2(a, b);
+    longest = std::max(longest, glm::length(b - a));
+  }
+  return !(std::abs(area) > width * longest);
 }
 
 }  // namespace
@@ -64,12 +79,13 @@ uint64_t CellLighter::Inputs::fingerprint() const {
 }
 
 CellLighter::CellLighter(const Scene& scene, const MeshSource& source, double spacing,
-                         double chunkSide)
+                         double chunkSide, const RefineSettings& refine)
     : scene_(scene),
       source_(source),
       eps_(scene.tolerance().length()),
       spacing_(spacing),
       chunkSide_(chunkSide),
+      refine_(refine),
       dark_(scene.lights().size()) {}
 
 // A point is on a value discontinuity (D0) when an occluder of a cell around it
@@ -160,24 +176,90 @@ uint64_t CellLighter::gather(CellId c) {
 // The value of a point of the cell's closure, as seen from the cell (centre: its centroid).
 // emit() asks once per point of the cell (ownAt_), although a lattice point is a corner of
 // up to four of its pieces.
-void CellLighter::appendLightsAt(const Vec2& q, const OccluderList& list, const Vec3& centre) {
+void CellLighter::lightsAt(const Vec2& q, const OccluderList& list, const Vec3& centre,
+                           std::vector<VertexLight>& out) {
   const Polygon2& polygon = inputs_.outline;
   const size_t lights = inputs_.lights;
   const size_t corner = size_t(std::find(polygon.begin(), polygon.end(), q) - polygon.begin());
   if (corner < polygon.size() && !inputs_.cornerFromCell[corner]) {
     const auto row = inputs_.cornerLights.begin() + long(corner * lights);
-    output_.ownLights.insert(output_.ownLights.end(), row, row + long(lights));
+    out.insert(out.end(), row, row + long(lights));
     return;
   }
   const Vec3 p = source_.frame.to3D(q);
   const Vec3 normal = source_.frame.normal;
   // A contact corner or lattice point takes the limit from the cell; another lattice
   // point is lit exactly from this cell's list (cases 2 and 3 keep it dark in a light's umbra).
-  const bool limit = corner < polygon.size() || onContact(p);
+  // (A refinement point at the centre itself has no direction to take a limit along: it lies
+  // inside the cell, where the exact value is the limit.)
+  const bool limit = (corner < polygon.size() || onContact(p)) && glm::length(centre - p) > eps_;
   oneCell_.assign(1, &list);
   for (size_t l = 0; l < lights; ++l)
-    output_.ownLights.push_back(limit ? illuminateVertexFromCell(scene_, l, p, normal, centre - p, list)
-                                      : illuminateVertex(scene_, l, p, normal, oneCell_));
+    out.push_back(limit ? illuminateVertexFromCell(scene_, l, p, normal, centre - p, list)
+                        : illuminateVertex(scene_, l, p, normal, oneCell_));
+}
+
+void CellLighter::levelsAt(const Vec2& q, std::vector<double>& out) const {
+  thread_local Backprojection view;
+  const Vec3 p = source_.frame.to3D(q);
+  for (size_t l = 0; l < inputs_.lights; ++l) {
+    view.reset(scene_, l, p, source_.frame.normal);
+    out.push_back(view.applies() ? view.unoccludedFactor() : 0.0);
+  }
+}
+
+void CellLighter::pointLights(uint32_t word, std::vector<VertexLight>& out) const {
+  const size_t lights = inputs_.lights;
+  size_t row = 0;
+  const std::vector<VertexLight>* from = &output_.ownLights;
+  if (word & CellMemo::kOwnValue) {
+    row = word & CellMemo::kIndexMask;
+  } else {
+    const uint32_t index = word & CellMemo::kIndexMask;
+    while (inputs_.corners[row].index != index) ++row;
+    from = &inputs_.cornerLights;
+  }
+  out.insert(out.end(), from->begin() + long(row * lights), from->begin() + long((row + 1) * lights));
+}
+
+// The piece's fan (its points output_.points[first, end)) refined until interpolation is
+// within the tolerance (cell_refinement.h); added points become own points of the cell, shared
+// by position with its other pieces, and the triangles are listed.
+CellFan CellLighter::refine(const Polygon2& piece, size_t first, CellFan fan, const OccluderList& list,
+                            const Vec3& centre) {
+  if (!(refine_.tolerance > 0) || narrowerThan(piece, refine_.minEdge)) return fan;
+  PieceRefinement& r = refinement_;
+  r.lights = inputs_.lights;
+  r.points.clear(), r.values.clear(), r.levels.clear(), r.triangles.clear();
+  r.capped = false;
+  r.points.assign(piece.begin(), piece.end());
+  if (fan.usesCentre()) r.points.push_back(output_.ownAt[output_.points.back() & CellMemo::kIndexMask]);
+  for (size_t e = first; e < output_.points.size(); ++e) pointLights(output_.points[e], r.values);
+  const uint32_t loop = uint32_t(piece.size());
+  for (uint32_t t = 0; t < fan.triangleCount(loop); ++t) r.triangles.push_back(fan.triangle(loop, t));
+  RefineSettings settings = refine_;
+  settings.maxPoints = std::min(settings.maxPoints, CellMemo::kMaxPiecePoints);
+  const size_t before = r.points.size();
+  const bool added = refinePiece(
+      r, settings, [&](const Vec2& q, std::vector<VertexLight>& values) { lightsAt(q, list, centre, values); },
+      [&](const Vec2& q, std::vector<double>& levels) { levelsAt(q, levels); });
+  output_.capped |= r.capped;
+  if (!added) return fan;
+  for (size_t i = before; i < r.points.size(); ++i) {
+    const Vec2 q = r.points[i];
+    const auto known = std::find_if(ownAt_.begin(), ownAt_.end(), [&](const auto& at) { return at.first == q; });
+    if (known != ownAt_.end()) {
+      output_.points.push_back(CellMemo::kOwnValue | known->second);
+      continue;
+    }
+    ownAt_.push_back({q, uint32_t(output_.ownAt.size())});
+    output_.points.push_back(CellMemo::kOwnValue | uint32_t(output_.ownAt.size()));
+    output_.ownAt.push_back(q);
+    const auto row = r.values.begin() + long(i * r.lights);
+    output_.ownLights.insert(output_.ownLights.end(), row, row + long(r.lights));
+  }
+  for (const auto& t : r.triangles) output_.triangles.push_back(CellMemo::packTriangle(t));
+  return CellFan::listedUpTo(uint32_t(output_.triangles.size()));
 }
 
 void CellLighter::emit(CellId c, CellMemo& out) {
@@ -213,6 +295,7 @@ void CellLighter::emit(CellId c, CellMemo& out) {
         addPoint(q);
     }
     // The fan's indices are the piece's points in order: its loop, then the centre if used.
+    const size_t first = output_.points.size() - piece.size();
     const CellFan fan = fanOfConvexCell(piece, eps_);
     if (fan.usesCentre()) {
       const Vec2 middle = centroid(piece);
@@ -222,7 +305,8 @@ void CellLighter::emit(CellId c, CellMemo& out) {
         output_.ownLights.push_back(
             illuminateVertex(scene_, l, source_.frame.to3D(middle), source_.frame.normal, oneCell_));
     }
-    output_.pieces.push_back({chunkOf(piece), uint32_t(output_.points.size()), fan});
+    const CellFan shape = refine(piece, first, fan, list, centre);
+    output_.pieces.push_back({chunkOf(piece), uint32_t(output_.points.size()), shape});
   }
   out = CellMemo(fingerprint_, output_);
 }

@@ -14,6 +14,7 @@
 #include "core/illum/per_light_values.h"
 #include "core/illum/vertex_illumination.h"
 #include "core/mesh/cell_memo.h"
+#include "core/mesh/cell_refinement.h"
 
 namespace penumbra {
 
@@ -34,8 +35,10 @@ VertexIrradiance cornerValue(const Scene& scene, const MeshSource& source, Verte
 
 class CellLighter {
  public:
-  // spacing: the lattice (0: none); chunkSide: a chunk's side (0: one chunk).
-  CellLighter(const Scene& scene, const MeshSource& source, double spacing, double chunkSide);
+  // spacing: the lattice (0: none); chunkSide: a chunk's side (0: one chunk); refine: how far
+  // each piece's triangles are refined (RefineSettings::tolerance 0: a fan each).
+  CellLighter(const Scene& scene, const MeshSource& source, double spacing, double chunkSide,
+              const RefineSettings& refine = {});
 
   // Gathers cell c's inputs and returns their fingerprint.
   uint64_t gather(CellId c);
@@ -51,7 +54,17 @@ class CellLighter {
   bool onContact(const Vec3& p) const;
   // The value from each light of a point of the gathered cell's closure, as seen from the
   // cell (centre: its centroid), appended to output_.ownLights.
-  void appendLightsAt(const Vec2& q, const OccluderList& list, const Vec3& centre);
+  void appendLightsAt(const Vec2& q, const OccluderList& list, const Vec3& centre) {
+    lightsAt(q, list, centre, output_.ownLights);
+  }
+  void lightsAt(const Vec2& q, const OccluderList& list, const Vec3& centre, std::vector<VertexLight>& out);
+  // Each light's unshadowed factor at q (0 where it does not reach): refinement's scale.
+  void levelsAt(const Vec2& q, std::vector<double>& out) const;
+  // Refines the piece whose points are output_.points[first, end) (its fan given) and, if it
+  // added points, stores them and its triangles; returns the piece's fan word.
+  CellFan refine(const Polygon2& piece, size_t first, CellFan fan, const OccluderList& list, const Vec3& centre);
+  // An emitted point's per-light values (a corner's as gathered, or the copy kept).
+  void pointLights(uint32_t word, std::vector<VertexLight>& out) const;
   MeshChunkKey chunkOf(const Polygon2& piece) const;
 
   // What a cell's triangles depend on, gathered for the cell being lit.
@@ -77,6 +90,8 @@ class CellLighter {
   const Scene& scene_;
   const MeshSource& source_;
   const double eps_, spacing_, chunkSide_;
+  const RefineSettings refine_;
+  PieceRefinement refinement_;  // reused from piece to piece
   Inputs inputs_;
   uint64_t fingerprint_ = 0;
   std::vector<bool> dark_;

@@ -37,20 +37,23 @@ void CellMemo::Output::clear() {
   points.clear();
   ownAt.clear();
   ownLights.clear();
+  triangles.clear();
+  capped = false;
 }
 
 CellMemo::CellMemo(uint64_t inputs, const Output& output) : inputs_(inputs) {
   const bool wide = std::any_of(output.pieces.begin(), output.pieces.end(), [](const Piece& p) {
     return !fitsOneWord(p.chunk.x) || !fitsOneWord(p.chunk.y);
   });
-  if (output.pieces.size() >= kWideKeys) throw std::length_error("CellMemo: too many pieces in one cell");
+  if (output.pieces.size() >= kCapped) throw std::length_error("CellMemo: too many pieces in one cell");
   if (output.ownLights.size() != output.ownAt.size() * output.lights)
     throw std::invalid_argument("CellMemo: own values and lights disagree");
   const size_t count = kHeaderWords + (wide ? kWidePieceWords : kPieceWords) * output.pieces.size() +
-                       output.points.size() + (kOwnAtWords + kLightWords * output.lights) * output.ownAt.size();
+                       output.points.size() + (kOwnAtWords + kLightWords * output.lights) * output.ownAt.size() +
+                       output.triangles.size();
   words_ = std::make_unique_for_overwrite<uint32_t[]>(count);
   uint32_t* w = words_.get();
-  *w++ = uint32_t(output.pieces.size()) | (wide ? kWideKeys : 0);
+  *w++ = uint32_t(output.pieces.size()) | (wide ? kWideKeys : 0) | (output.capped ? kCapped : 0);
   *w++ = uint32_t(output.ownAt.size());
   *w++ = uint32_t(output.lights);
   for (const Piece& p : output.pieces) {
@@ -70,6 +73,7 @@ CellMemo::CellMemo(uint64_t inputs, const Output& output) : inputs_(inputs) {
       std::memcpy(w, output.ownLights.data() + i * output.lights, sizeof(VertexLight) * output.lights);
     w += kLightWords * output.lights;
   }
+  std::copy(output.triangles.begin(), output.triangles.end(), w);
 }
 
 CellMemo::CellMemo(const CellMemo& other) : inputs_(other.inputs_) {
@@ -84,7 +88,14 @@ CellMemo& CellMemo::operator=(const CellMemo& other) {
   return *this;
 }
 
-size_t CellMemo::wordCount() const { return pointsBegin() + pointCount() + ownValueWords() * words_[1]; }
+size_t CellMemo::listedCount() const {
+  size_t count = 0;
+  for (size_t i = 0; i < pieceCount(); ++i)
+    if (const CellFan fan = piece(i).fan; fan.listed()) count = fan.listedEnd();
+  return count;
+}
+
+size_t CellMemo::wordCount() const { return trianglesBegin() + listedCount(); }
 
 CellMemo::Piece CellMemo::piece(size_t i) const {
   const uint32_t* w = &words_[kHeaderWords + pieceWords() * i];

@@ -3,6 +3,7 @@
 // exact size, and a fingerprint of the inputs they came from. Plain value.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -41,8 +42,14 @@ class CellMemo {
   // with kDarkCorner set when the value leaves out the cell's dark lights (darkLights).
   static constexpr uint32_t kOwnValue = 0x80000000u, kDarkCorner = 0x40000000u;
   static constexpr uint32_t kIndexMask = 0x3fffffffu;
+  // A listed triangle is one word: its three indices into its piece's points, 10 bits each.
+  static constexpr uint32_t kMaxPiecePoints = 1024;
+  static uint32_t packTriangle(const std::array<uint32_t, 3>& t) { return t[0] | t[1] << 10 | t[2] << 20; }
+  static std::array<uint32_t, 3> unpackTriangle(uint32_t w) { return {w & 1023u, w >> 10 & 1023u, w >> 20 & 1023u}; }
   // A lattice square's part of the cell: its chunk, where its points end, and its fan over
-  // them (the loop, then the centre point if the fan uses one).
+  // them (the loop, then the centre point if the fan uses one), or, refined, where its
+  // listed triangles end (CellFan::listed; its points: the loop, the centre if any, then the
+  // added points).
   struct Piece {
     MeshChunkKey chunk;
     uint32_t pointsEnd = 0;
@@ -55,7 +62,9 @@ class CellMemo {
     std::vector<uint32_t> points;  // builder calls in order, one word each
     std::vector<Vec2> ownAt;
     std::vector<VertexLight> ownLights;
+    std::vector<uint32_t> triangles;  // refined pieces' triangles, packed (packTriangle)
     size_t lights = 0;
+    bool capped = false;  // a piece's refinement stopped at kMaxPiecePoints short of the tolerance
     void clear();
   };
 
@@ -68,11 +77,14 @@ class CellMemo {
 
   bool valid() const { return words_ != nullptr; }
   uint64_t inputs() const { return inputs_; }
-  size_t pieceCount() const { return valid() ? words_[0] & ~kWideKeys : 0; }
+  size_t pieceCount() const { return valid() ? words_[0] & ~(kWideKeys | kCapped) : 0; }
   Piece piece(size_t i) const;
   size_t pointCount() const;
   uint32_t point(size_t e) const { return words_[pointsBegin() + e]; }
   size_t lightCount() const { return valid() ? words_[2] : 0; }
+  bool capped() const { return valid() && (words_[0] & kCapped) != 0; }
+  // Listed triangle k of the cell (pieces in order: CellFan::listedEnd).
+  std::array<uint32_t, 3> listedTriangle(size_t k) const { return unpackTriangle(words_[trianglesBegin() + k]); }
   Vec2 ownAt(uint32_t i) const;
   // Own point i's value from each light into `row` (resized to lightCount()).
   void ownLights(uint32_t i, std::vector<VertexLight>& row) const;
@@ -81,16 +93,19 @@ class CellMemo {
   static constexpr size_t kHeaderWords = 3;  // piece count (| kWideKeys), own value count, lights
   // A piece is its chunk's x and y, one word each (two if any of the cell's pieces needs them:
   // kWideKeys), then points end and fan.
-  static constexpr uint32_t kWideKeys = 0x80000000u;
+  static constexpr uint32_t kWideKeys = 0x80000000u, kCapped = 0x40000000u;
   static constexpr size_t kPieceWords = 4, kWidePieceWords = 6;
   // An own value: its position (4 words), then 3 words a light.
   static constexpr size_t kOwnAtWords = 4, kLightWords = sizeof(VertexLight) / 4;
   size_t ownValueWords() const { return kOwnAtWords + kLightWords * words_[2]; }
   size_t pieceWords() const { return words_[0] & kWideKeys ? kWidePieceWords : kPieceWords; }
   size_t pointsBegin() const { return kHeaderWords + pieceWords() * pieceCount(); }
+  size_t trianglesBegin() const { return pointsBegin() + pointCount() + ownValueWords() * words_[1]; }
+  size_t listedCount() const;
   size_t wordCount() const;
   uint64_t inputs_ = 0;
-  // [piece count] [own value count] [lights] [pieces] [points] [own values]; null: not valid
+  // [piece count] [own value count] [lights] [pieces] [points] [own values] [listed triangles];
+  // null: not valid
   std::unique_ptr<uint32_t[]> words_;
 };
 

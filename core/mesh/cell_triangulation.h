@@ -11,11 +11,16 @@
 namespace penumbra {
 
 // A cell's triangles as one fan, so a word describes them all (the mesh memo keeps it
-// instead of the triangles): from a loop corner, or from an added centre point.
+// instead of the triangles): from a loop corner, or from an added centre point. A piece
+// refined further (core/mesh/cell_refinement.h) lists its triangles instead: the word then
+// says where they end in the memo's list (kListed | end).
 struct CellFan {
-  static constexpr uint32_t kCentre = 0xffffffffu;
-  uint32_t apex = 0;  // the loop index of the fan's corner, or kCentre
+  static constexpr uint32_t kCentre = 0xffffffffu, kListed = 0x80000000u;
+  uint32_t apex = 0;  // the loop index of the fan's corner, kCentre, or kListed | end
   bool usesCentre() const { return apex == kCentre; }
+  bool listed() const { return apex != kCentre && (apex & kListed) != 0; }
+  uint32_t listedEnd() const { return apex & ~kListed; }
+  static CellFan listedUpTo(uint32_t end) { return CellFan{kListed | end}; }
   // The triangle count for a loop of n vertices (none below three).
   uint32_t triangleCount(uint32_t n) const;
   // Triangle k (< triangleCount(n)) as loop indices, counter-clockwise like the loop;

@@ -33,6 +33,11 @@ void appendMesh(ReceiverMesh& into, const ReceiverMesh& part);
 
 struct Mesh {
   std::vector<ReceiverMesh> receivers;
+  // What interpolation inside its triangles is within (EngineSettings::meshTolerance): the
+  // fraction of each light's local unshadowed level at the refinement's test points (0: not
+  // refined, or unknown), and the cells whose refinement stopped at its point cap short of it.
+  double tolerance = 0;
+  size_t cappedCells = 0;
   size_t vertexCount() const;
   size_t triangleCount() const;
 };

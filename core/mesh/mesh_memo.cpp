@@ -98,7 +98,7 @@ class MeshMemoUpdate {
     std::vector<CellMemo> results(touched.size());
     const double spacing = memo_.grid_.spacing;
     parallel.forEach((touched.size() + kBlock - 1) / kBlock, [&](size_t block) {
-      CellLighter lighter(scene_, source_, spacing, chunkSide_);
+      CellLighter lighter(scene_, source_, spacing, chunkSide_, memo_.grid_.refine);
       for (size_t k = block * kBlock; k < std::min(touched.size(), (block + 1) * kBlock); ++k) {
         const CellId c(touched[k]);
         const uint64_t fingerprint = lighter.gather(c);
@@ -150,19 +150,24 @@ class MeshMemoUpdate {
       const CellMemo& m = memo_.cells_[index];
       ids.resize(m.pointCount());
       const bool anyDark = darkLights(halfEdges_.occluders(CellId(index)), dark);
-      uint32_t pointsBegin = 0;
+      uint32_t pointsBegin = 0, listedBegin = 0;
       for (size_t i = 0; i < m.pieceCount(); ++i) {
         const CellMemo::Piece piece = m.piece(i);
         if (piece.chunk == key) {
           for (uint32_t e = pointsBegin; e < piece.pointsEnd; ++e) ids[e] = vertexOf(m, m.point(e), dark, anyDark, builder);
-          const uint32_t loop = piece.pointsEnd - pointsBegin - (piece.fan.usesCentre() ? 1 : 0);
-          for (uint32_t t = 0; t < piece.fan.triangleCount(loop); ++t) {
-            const std::array<uint32_t, 3> corners = piece.fan.triangle(loop, t);
+          const auto add = [&](const std::array<uint32_t, 3>& corners) {
             mesh.triangles.push_back(
                 {ids[pointsBegin + corners[0]], ids[pointsBegin + corners[1]], ids[pointsBegin + corners[2]]});
+          };
+          if (piece.fan.listed()) {
+            for (uint32_t t = listedBegin; t < piece.fan.listedEnd(); ++t) add(m.listedTriangle(t));
+          } else {
+            const uint32_t loop = piece.pointsEnd - pointsBegin - (piece.fan.usesCentre() ? 1 : 0);
+            for (uint32_t t = 0; t < piece.fan.triangleCount(loop); ++t) add(piece.fan.triangle(loop, t));
           }
         }
         pointsBegin = piece.pointsEnd;
+        if (piece.fan.listed()) listedBegin = piece.fan.listedEnd();
       }
     }
   }
@@ -194,13 +199,18 @@ void ReceiverMeshMemo::update(const Scene& scene, const MeshSource& source, Mesh
   // The memo is only valid for the same face frame, lattice, chunks and tolerance.
   const double eps = scene.tolerance().length();
   if (!sameFrame(frame_, source.frame) || grid_.spacing != grid.spacing || eps_ != eps ||
-      grid_.chunkSquares != grid.chunkSquares) {
+      grid_.chunkSquares != grid.chunkSquares || grid_.refine.tolerance != grid.refine.tolerance ||
+      grid_.refine.minEdge != grid.refine.minEdge || grid_.refine.maxPoints != grid.refine.maxPoints) {
     *this = ReceiverMeshMemo{};
     frame_ = source.frame;
     grid_ = grid;
     eps_ = eps;
   }
   MeshMemoUpdate(*this, scene, source, counters).run(parallel);
+}
+
+size_t ReceiverMeshMemo::cappedCells() const {
+  return size_t(std::count_if(cells_.begin(), cells_.end(), [](const CellMemo& m) { return m.capped(); }));
 }
 
 }  // namespace penumbra

@@ -27,10 +27,12 @@ struct MeshMemoCounters {
   }
 };
 
-// The display grid: lattice spacing (0: none) and chunk side in lattice squares (0: one chunk).
+// The display grid: lattice spacing (0: none), chunk side in lattice squares (0: one chunk),
+// and how far each piece's triangles are refined (core/mesh/cell_refinement.h).
 struct MeshGrid {
   double spacing = 0;
   int chunkSquares = 0;
+  RefineSettings refine;
 };
 
 class ReceiverMeshMemo {
@@ -45,6 +47,8 @@ class ReceiverMeshMemo {
               const Parallel& parallel);
   // The non-empty chunks' meshes, in key order; an unchanged chunk keeps its object.
   const std::map<MeshChunkKey, std::shared_ptr<const ReceiverMesh>>& chunks() const { return chunks_; }
+  // Live cells whose refinement stopped at its point cap short of the tolerance.
+  size_t cappedCells() const;
 
  private:
   friend class MeshMemoUpdate;

@@ -1,4 +1,4 @@
-// CellMemo packs a cell's pieces, points, fans and own values into one array: seeded random outputs
+// CellMemo packs a cell's pieces, points, fans (or listed triangles) and own values into one array: seeded random outputs
 // (chunk keys of any sign and size, own values, several pieces) read back exactly. And
 // PerLightValues keeps its rows through resizes.
 #include <gtest/gtest.h>
@@ -44,9 +44,17 @@ CellMemo::Output randomOutput(std::mt19937_64& rng) {
         out.points.push_back(uint32_t(rng() & CellMemo::kIndexMask) | (rng() % 2 ? CellMemo::kDarkCorner : 0));
       }
     }
-    const CellFan fan{rng() % 2 ? CellFan::kCentre : uint32_t(rng() % uint32_t(points))};
+    CellFan fan{rng() % 2 ? CellFan::kCentre : uint32_t(rng() % uint32_t(points))};
+    if (rng() % 3 == 0) {  // a refined piece: its triangles listed
+      for (uint64_t t = rng() % 5; t > 0; --t)
+        out.triangles.push_back(CellMemo::packTriangle(
+            {uint32_t(rng() % CellMemo::kMaxPiecePoints), uint32_t(rng() % CellMemo::kMaxPiecePoints),
+             uint32_t(rng() % CellMemo::kMaxPiecePoints)}));
+      fan = CellFan::listedUpTo(uint32_t(out.triangles.size()));
+    }
     out.pieces.push_back({chunk, uint32_t(out.points.size()), fan});
   }
+  out.capped = rng() % 2;
   return out;
 }
 
@@ -76,7 +84,12 @@ TEST(CellMemo, PackedOutputReadsBackExactly) {
       for (size_t l = 0; l < out.lights; ++l)  // every bit: factor (−0 too), counts, flags
         EXPECT_EQ(std::memcmp(&row[l], &out.ownLights[k * out.lights + l], sizeof(VertexLight)), 0);
     }
+    EXPECT_EQ(memo.capped(), out.capped);
+    for (size_t k = 0; k < out.triangles.size(); ++k)
+      EXPECT_EQ(memo.listedTriangle(k), CellMemo::unpackTriangle(out.triangles[k]));
     const CellMemo copy = memo;  // a copy holds the same words
+    for (size_t k = 0; k < out.triangles.size(); ++k) EXPECT_EQ(copy.listedTriangle(k), memo.listedTriangle(k));
+    EXPECT_EQ(copy.capped(), memo.capped());
     ASSERT_EQ(copy.pointCount(), memo.pointCount());
     for (size_t e = 0; e < out.points.size(); ++e) EXPECT_EQ(copy.point(e), memo.point(e));
     for (uint32_t k = 0; k < out.ownAt.size(); ++k) EXPECT_EQ(copy.ownAt(k), memo.ownAt(k));
