@@ -154,7 +154,7 @@ std::optional<std::string> firstDifference(const Engine& incremental, const Engi
 struct Totals {
   FrameTimings seconds;
   size_t relit = 0, changed = 0, created = 0, rebuilds = 0, fullRebuilds = 0, verified = 0;
-  double rebuildSeconds = 0, editSecondsVerified = 0;
+  double rebuildSeconds = 0, editSecondsVerified = 0, meshSeconds = 0;
 };
 
 }  // namespace
@@ -165,6 +165,7 @@ int runReplay(const Args& args) {
   const std::string scriptPath = args.positional(1, "EDITS.jsonl");
   const bool verify = args.flag("verify") || args.option("verify-every");
   const int verifyEvery = args.intOption("verify-every", 10, 1, 1 << 30);
+  const bool displayMesh = args.flag("display-mesh");  // also time the display mesh, as serve does
   const Scene scene = protocol::loadSceneFile(scenePath);
 
   // Check the whole script before applying anything. add_volume files are relative to the script.
@@ -218,6 +219,13 @@ int runReplay(const Args& args) {
       throw protocol::atLine(frames[i].line, error);  // the dry run should have caught it
     }
     const double wallSeconds = secondsSince(applyStart);
+    double meshSeconds = NAN;
+    if (displayMesh) {
+      const auto meshStart = Clock::now();
+      (void)engine.mesh();
+      meshSeconds = secondsSince(meshStart);
+      totals.meshSeconds += meshSeconds;
+    }
 
     json entry = protocol::frameResultToJson(result, engine.scene());
     entry.erase("changed_receivers");
@@ -226,6 +234,7 @@ int runReplay(const Args& args) {
     entry["line"] = frames[i].line;
     entry["wall_seconds"] = wallSeconds;
     entry["full_rebuild"] = result.fullRebuild;  // a large frame: the engine was rebuilt
+    if (displayMesh) entry["mesh_seconds"] = meshSeconds;
     totals.seconds.remove += result.seconds.remove;
     totals.seconds.add += result.seconds.add;
     totals.seconds.relight += result.seconds.relight;
@@ -276,6 +285,7 @@ int runReplay(const Args& args) {
         {"total", totals.seconds.total()}}},
       {"vertices",
        {{"relit", totals.relit}, {"changed", totals.changed}, {"created", totals.created}}},
+      {"mesh_seconds", displayMesh ? json(totals.meshSeconds) : json(nullptr)},
       {"tree_rebuilds", totals.rebuilds},
       {"full_rebuild_frames", totals.fullRebuilds},
       {"verified_frames", totals.verified},
@@ -291,6 +301,7 @@ int runReplay(const Args& args) {
       report["frames"].size(), totals.seconds.total(), totals.seconds.remove, totals.seconds.add,
       totals.seconds.relight, totals.relit, totals.changed, totals.created, totals.rebuilds,
       totals.fullRebuilds);
+  if (displayMesh) std::printf("; display mesh %.3f s", totals.meshSeconds);
   if (totals.verified)
     std::printf("; %zu frames verified, edit / rebuild = %.3f", totals.verified,
                 totals.editSecondsVerified / totals.rebuildSeconds);

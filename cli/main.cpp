@@ -49,6 +49,7 @@ commands:
            [--spacing S] [--seed S]    voxel spacing (1/(N−1): a 1 m cube), noise seed
   replay SCENE EDITS.jsonl             apply an edit script frame by frame; per-frame times and counts
          [--verify] [--verify-every K] [--report OUT.json] [--out MESH] [--threads N]
+         [--display-mesh]              also time the display mesh after each frame (as serve)
   serve [SCENE...] [--host H]          the HTTP API and web page (docs/API.md) on the scenes;
         [--port P] [--static DIR]      default 127.0.0.1:8080 and ./web_client; prints the URL
         [--grid G] [--threads N]
@@ -75,7 +76,7 @@ int dispatch(int argc, char** argv) {
   if (command == "build") return runBuild(Args(argc, argv, 2, {"stats", "edges", "indirect"}));
   if (command == "import") return runImport(Args(argc, argv, 2, {"no-studio"}));
   if (command == "render") return runRender(Args(argc, argv, 2, {"reference", "stats"}));
-  if (command == "replay") return runReplay(Args(argc, argv, 2, {"verify"}));
+  if (command == "replay") return runReplay(Args(argc, argv, 2, {"verify", "display-mesh"}));
   if (command == "serve") return runServe(Args(argc, argv, 2, {"ephemeral"}));
   if (command == "generate") return runGenerate(Args(argc, argv, 2, {"tilted-light", "two-lights", "dense", "rest"}));
   throw UsageError("unknown command '" + command + "'");

@@ -28,6 +28,14 @@ std::optional<double> lightDistance(const Light& light, const Vec3& p, const Vec
 
 PathTracedIndirect pathTracedIndirect(const Scene& scene, const RayScene& rays, const MeshLookup& direct,
                                       const Vec3& p, const Vec3& n, int samples, std::mt19937_64& rng) {
+  const DirectLight lookup = [&](uint32_t faceIndex, const Vec3& q) {
+    return direct.irradiance(faceIndex, q).value_or(Vec3(0.0));
+  };
+  return pathTracedIndirect(scene, rays, lookup, p, n, samples, rng);
+}
+
+PathTracedIndirect pathTracedIndirect(const Scene& scene, const RayScene& rays, const DirectLight& direct,
+                                      const Vec3& p, const Vec3& n, int samples, std::mt19937_64& rng) {
   // Any orthonormal pair perpendicular to n.
   const Vec3 helper = std::abs(n.x) < 0.5 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
   const Vec3 u = glm::normalize(glm::cross(n, helper));
@@ -49,7 +57,7 @@ PathTracedIndirect pathTracedIndirect(const Scene& scene, const RayScene& rays, 
     for (const Light& light : scene.lights())
       if (const auto t = lightDistance(light, p, d)) lightT = std::min(lightT, *t);
     if (hit && hit->t < lightT)
-      radiance = scene.albedo(hit->face) / M_PI * direct.irradiance(hit->faceIndex, hit->position).value_or(Vec3(0.0));
+      radiance = scene.albedo(hit->face) / M_PI * direct(hit->faceIndex, hit->position);
     // E = ∫ L cosθ dω = π · E_cosine-pdf[L].
     const Vec3 e = M_PI * radiance;
     sum += e;

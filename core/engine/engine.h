@@ -47,11 +47,10 @@ struct EngineSettings {
   // fraction of each light's local unshadowed level at the test points (edge midpoints,
   // centroids); 0: no refinement (a fan per piece). Edges shorter than the scene's diagonal /
   // meshRefineMinEdgeDivisions are not halved, and a piece stops at kRefineMaxPoints points
-  // (counted: Mesh::cappedCells).
-  // Off by default for now: the green splits can leave slivers that fold (docs/DESIGN.md).
-  double meshTolerance = 0;
+  // (counted: Mesh::cappedCells). On by default: what a person sees is within the tolerance.
   static constexpr double kRecommendedMeshTolerance = 0.005;
-  double meshRefineMinEdgeDivisions = 1024;
+  double meshTolerance = kRecommendedMeshTolerance;
+  double meshRefineMinEdgeDivisions = 2048;
   static constexpr uint32_t kRefineMaxPoints = 1024;
   // Test hook (failure injection, tests/server/frame_failure_property_test.cpp): called at
   // named points of apply() ("removed", "added", "relight", "rebuild": its whole-engine

@@ -34,6 +34,7 @@ class Refiner {
     // centroids of triangles with no halved edge; added points are only tentative until the
     // round is known to fit maxPoints.
     const size_t pointsBefore = piece_.points.size();
+    measureInteriorEdges();
     std::vector<std::array<uint32_t, 3>> mids(piece_.triangles.size());
     std::vector<uint32_t> centroids(piece_.triangles.size(), kPasses);
     bool any = false;
@@ -61,7 +62,7 @@ class Refiner {
     next.reserve(piece_.triangles.size() * 3);
     for (size_t t = 0; t < piece_.triangles.size(); ++t) {
       const bool kept = mids[t] == std::array<uint32_t, 3>{kPasses, kPasses, kPasses} && centroids[t] == kPasses;
-      split(piece_.triangles[t], mids[t], centroids[t], next);
+      split(piece_.points, piece_.triangles[t], mids[t], centroids[t], next);
       settled.resize(next.size(), kept ? 1 : 0);
     }
     piece_.triangles = std::move(next);
@@ -125,31 +126,64 @@ class Refiner {
     return false;
   }
 
-  // The midpoint's index if edge (a, b) is halved, else kPasses; decided once per edge.
+  // A triangle's height over its longest side (twice its area over that side's length).
+  double heightOf(const std::array<uint32_t, 3>& tri) const {
+    const Vec2 a = piece_.points[tri[0]], b = piece_.points[tri[1]], c = piece_.points[tri[2]];
+    const double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+    return longest > 0 ? std::abs(cross2(b - a, c - a)) / longest : 0;
+  }
+
+  // For every edge two triangles of the piece share (an inner edge), the smaller of their
+  // heights; edges on the piece's outline are not listed.
+  void measureInteriorEdges() {
+    std::map<std::pair<uint32_t, uint32_t>, std::pair<int, double>> seen;
+    for (const auto& tri : piece_.triangles) {
+      const double height = heightOf(tri);
+      for (int e = 0; e < 3; ++e) {
+        auto& [count, lowest] = seen.try_emplace(keyOf(tri[e], tri[(e + 1) % 3]), 0, height).first->second;
+        ++count, lowest = std::min(lowest, height);
+      }
+    }
+    inner_.clear();
+    for (const auto& [key, entry] : seen)
+      if (entry.first == 2) inner_.emplace(key, entry.second);
+  }
+
+  static std::pair<uint32_t, uint32_t> keyOf(uint32_t a, uint32_t b) { return {std::min(a, b), std::max(a, b)}; }
+
+  // The midpoint's index if edge (a, b) is halved, else kPasses; decided once per edge. An
+  // edge on the piece's outline is decided by its test alone, so the piece or cell beyond it
+  // decides alike. An inner edge whose test fails is still not halved while a triangle on it
+  // is thinner than 2·minHeight(): halving would make it thinner still, and repeated along
+  // one edge that makes slivers the mesh builder's merge within eps can fold.
   uint32_t decideEdge(uint32_t a, uint32_t b) {
-    const std::pair<uint32_t, uint32_t> key{std::min(a, b), std::max(a, b)};
+    const auto key = keyOf(a, b);
     if (const auto found = edges_.find(key); found != edges_.end()) return found->second;
     uint32_t decision = kPasses;
     const Vec2 pa = piece_.points[a], pb = piece_.points[b];
     if (glm::length(pb - pa) > settings_.minEdge) {
       const uint32_t m = addPoint(0.5 * (pa + pb));  // commutative: both sides compute the same point
       const uint32_t ends[2] = {a, b};
-      if (fails(m, ends)) {
+      const auto inner = inner_.find(key);
+      const bool tooThin = inner != inner_.end() && !(inner->second >= 2 * minHeight());
+      if (fails(m, ends) && !tooThin) {
         decision = m;
       } else {
-        truncate(m);  // a passing midpoint is not kept
+        truncate(m);  // a passing (or refused) midpoint is not kept
       }
     }
     edges_[key] = decision;
     return decision;
   }
 
+  double minHeight() const { return settings_.minEdge / 16; }
+
   uint32_t decideCentroid(const std::array<uint32_t, 3>& tri) {
     const Vec2 a = piece_.points[tri[0]], b = piece_.points[tri[1]], c = piece_.points[tri[2]];
     const double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
     // A triangle too short or too thin (its height, twice its area over its longest side) is
     // not split at its centroid: repeated, that would make slivers.
-    if (!(longest > settings_.minEdge) || !(std::abs(cross2(b - a, c - a)) > settings_.minEdge / 16 * longest))
+    if (!(longest > settings_.minEdge) || !(heightOf(tri) > minHeight()))
       return kPasses;
     const uint32_t g = addPoint((a + b + c) / 3.0);
     if (fails(g, tri)) return g;
@@ -159,8 +193,8 @@ class Refiner {
 
   // Triangle (a, b, c) split by its halved edges' midpoints (mids[e] on edge e → e + 1), or
   // into three at its centroid; counter-clockwise kept.
-  static void split(const std::array<uint32_t, 3>& tri, const std::array<uint32_t, 3>& mids, uint32_t centroid,
-                    std::vector<std::array<uint32_t, 3>>& out) {
+  static void split(const std::vector<Vec2>& points, const std::array<uint32_t, 3>& tri,
+                    const std::array<uint32_t, 3>& mids, uint32_t centroid, std::vector<std::array<uint32_t, 3>>& out) {
     int halved = 0;
     for (uint32_t m : mids) halved += m != kPasses ? 1 : 0;
     if (halved == 0) {
@@ -189,9 +223,14 @@ class Refiner {
       return;
     }
     out.push_back({m0, b, m1});
-    // The quad (a, m0, m1, c) by its diagonal from m0 (the rule needs no lengths: deterministic).
-    out.push_back({a, m0, c});
-    out.push_back({m0, m1, c});
+    // The quad (a, m0, m1, c) by its shorter diagonal (the fatter pair; ties: from m0).
+    if (glm::length(points[a] - points[m1]) < glm::length(points[m0] - points[c])) {
+      out.push_back({a, m0, m1});
+      out.push_back({a, m1, c});
+    } else {
+      out.push_back({a, m0, c});
+      out.push_back({m0, m1, c});
+    }
   }
 
   PieceRefinement& piece_;
@@ -199,6 +238,7 @@ class Refiner {
   const PointEvaluator& evaluate_;
   const LevelEvaluator& level_;
   std::map<std::pair<uint32_t, uint32_t>, uint32_t> edges_;
+  std::map<std::pair<uint32_t, uint32_t>, double> inner_;  // this round's inner edges: thinner triangle's height
   std::vector<uint8_t> settled_;  // per triangle: nothing about it failed (it never will)
   std::vector<double> levels_;
 };

@@ -3,9 +3,10 @@
 // Every decision is one edge's or one triangle's: an edge is halved when the exact value at
 // its midpoint is off the mean of its ends, a triangle gets its centroid when the value there
 // is off the mean of its corners, each by more than tolerance × the light's local unshadowed
-// level. An edge's decision depends on the edge alone, so the two pieces (or cells) sharing it
-// split it alike and the mesh stays free of T-junctions. Pure function of its inputs;
-// thread-safe.
+// level. An outline edge's decision depends on the edge alone, so the two pieces (or cells)
+// sharing it split it alike and the mesh stays free of T-junctions; an inner edge is also left
+// whole while a triangle on it is thinner than minEdge / 8 (the shape limit: repeated halving
+// along one edge would make slivers). Pure function of its inputs; thread-safe.
 #pragma once
 
 #include <array>
