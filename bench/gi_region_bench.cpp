@@ -1,5 +1,5 @@
 // `penumbra-gi-region-bench [--scene FILE] [--size N] [--pixels K] [--paths P] [--tolerance T]
-// [--threads T] [--seed S] [--json OUT]` (docs/RENDERING.md "Where sensor GI is biased"): the
+// [--sensor-size N] [--threads T] [--seed S] [--json OUT]` (docs/RENDERING.md "Where sensor GI is biased"): the
 // sensor GI image's indirect irradiance per region of the view (the room's faces by name, the
 // objects' tops, sides and bottoms), against the one-bounce path tracer twice, with the same
 // random directions: once taking the direct light at each hit from the display mesh (what the
@@ -32,7 +32,7 @@ namespace {
 
 struct Options {
   std::string scene = "scenes/cubes15.scene.json";
-  int size = 64, pixels = 40, paths = 20000, threads = 2;
+  int size = 64, pixels = 40, paths = 20000, threads = 2, sensorSize = gi::GiSettings{}.sensorSize;
   double tolerance = -1;  // < 0: the engine's default
   uint64_t seed = 7;
   std::string jsonOut;
@@ -49,6 +49,7 @@ Options parse(int argc, char** argv) {
     else if (name == "--pixels") o.pixels = std::stoi(value);
     else if (name == "--paths") o.paths = std::stoi(value);
     else if (name == "--tolerance") o.tolerance = std::stod(value);
+    else if (name == "--sensor-size") o.sensorSize = std::stoi(value);
     else if (name == "--threads") o.threads = std::stoi(value);
     else if (name == "--seed") o.seed = std::stoull(value);
     else if (name == "--json") o.jsonOut = value;
@@ -90,7 +91,9 @@ int main(int argc, char** argv) try {
   const Parallel parallel(o.threads);
   const Camera camera = scene.camera().value_or(defaultCamera(scene.bounds()));
   const gi::GBuffer view = gi::viewGBuffer(rays, camera, o.size, o.size, parallel);
-  const gi::IndirectImage image = gi::indirectImage(scene, rays, mesh, view, gi::GiSettings{}, parallel);
+  gi::GiSettings gi;
+  gi.sensorSize = o.sensorSize;
+  const gi::IndirectImage image = gi::indirectImage(scene, rays, mesh, view, gi, parallel);
 
   // Up to --pixels random pixels per region.
   std::map<std::string, std::vector<size_t>> regions;
@@ -126,8 +129,8 @@ int main(int argc, char** argv) try {
     s.sensorsOverExact += sensor / e, s.sensorsOverExactSquares += (sensor / e) * (sensor / e);
     s.meshOverExact += traced / e, s.meshOverExactSquares += (traced / e) * (traced / e);
   }
-  std::printf("%s at %d², tolerance %g, %d paths a pixel (bias: mean of per-pixel ratios − 1, ± its standard error)\n",
-              o.scene.c_str(), o.size, engine.settings().meshTolerance, o.paths);
+  std::printf("%s at %d², tolerance %g, sensors %d², %d paths a pixel (bias: mean of per-pixel ratios − 1, ± its "
+              "standard error)\n", o.scene.c_str(), o.size, engine.settings().meshTolerance, o.sensorSize, o.paths);
   std::printf("%-18s %6s %12s %14s %14s %22s %22s\n", "region", "pixels", "sensors", "traced (mesh)",
               "traced (exact)", "sensors vs exact %", "mesh vs exact %");
   json rows = json::array();

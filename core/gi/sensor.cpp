@@ -26,11 +26,11 @@ Vec3 Sensor::incoming(const Vec3& p, const Vec3& dir) const {
 Vec3 Sensor::irradiance(const Vec3& p, const Vec3& n) const {
   const PlaneFrame frame = PlaneFrame::onPlane(Plane::throughPoint(n, p), p);
   Vec3 sum(0.0);
-  for (size_t k = 0; k < map_.texels(); ++k) {
-    const Vec3& d = map_.direction(k);
-    sum += incoming(p, d.x * frame.u + d.y * frame.v + d.z * frame.normal);
+  for (const SensorRay& ray : map_.rays()) {
+    const Vec3& d = ray.direction;
+    sum += ray.weight * incoming(p, d.x * frame.u + d.y * frame.v + d.z * frame.normal);
   }
-  return M_PI * map_.weight() * sum;
+  return M_PI * sum;
 }
 
 OutgoingRadianceFn diffuseOutgoing(const Scene& scene,
