@@ -1,8 +1,11 @@
 #include "interchange/gltf_import.h"
 
+#include "interchange/face_outline.h"
 #include "interchange/gltf_extensions.h"
 #include "interchange/material_mapping.h"
+#include "interchange/penumbra_extras.h"
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +17,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <tiny_gltf.h>
 
+#include "protocol/material_json.h"
 #include "protocol/validation_error.h"
 
 namespace penumbra::interchange {
@@ -146,6 +150,27 @@ void mapMicrofacet(const tinygltf::Material& m, ImportedMaterial& material, Impo
   }
 }
 
+// Penumbra's own export (penumbra_extras.h): the scene's material, or a light's exact radiance
+// (its emissive factor is scaled by the export's exposure). True when the material had them.
+bool restorePenumbraMaterial(const tinygltf::Material& m, const std::string& path, ImportedMaterial& material) {
+  const nlohmann::json extras = penumbraExtras(m.extras);
+  if (!extras.is_object()) return false;
+  if (extras.contains("material")) {
+    material.surface = protocol::materialFromJson(material.name, extras["material"], path + ".extras.penumbra.material");
+    material.albedo = material.surface.albedo;
+    return true;
+  }
+  const auto radiance = extras.find("radiance");
+  if (radiance == extras.end()) return false;
+  if (!radiance->is_array() || radiance->size() != 3 || !std::all_of(radiance->begin(), radiance->end(), [](const auto& v) {
+        return v.is_number();
+      }))
+    throw ValidationError(path + ".extras.penumbra.radiance", "radiance must be three numbers");
+  material.albedo = Vec3(0.0);
+  material.emission = Vec3((*radiance)[0].get<double>(), (*radiance)[1].get<double>(), (*radiance)[2].get<double>());
+  return true;
+}
+
 std::vector<ImportedMaterial> materialsOf(const tinygltf::Model& model, ImportReport& report) {
   std::vector<ImportedMaterial> materials;
   std::set<std::string> names;
@@ -157,6 +182,11 @@ std::vector<ImportedMaterial> materialsOf(const tinygltf::Model& model, ImportRe
       material.name += "." + std::to_string(i);
       names.insert(material.name);
       report.count("material_names_made_unique");
+    }
+    if (restorePenumbraMaterial(m, at("materials", i), material)) {
+      report.count("penumbra_materials_restored");
+      materials.push_back(std::move(material));
+      continue;
     }
     const std::vector<double>& base = m.pbrMetallicRoughness.baseColorFactor;
     if (base.size() >= 3) material.albedo = Vec3(base[0], base[1], base[2]);
@@ -221,6 +251,25 @@ DecodedPrimitive primitiveGeometry(const tinygltf::Model& model, const tinygltf:
   return out;
 }
 
+// Penumbra's export names each vertex's scene face (_FACE): each face is rebuilt whole from its
+// triangles instead of joining coplanar triangles as for any file.
+void restoreSceneFaces(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& path,
+                       ImportedGroup& group, ImportReport& report) {
+  const auto attribute = primitive.attributes.find(kFaceAttribute);
+  if (attribute == primitive.attributes.end() || primitive.extensions.count("KHR_draco_mesh_compression")) return;
+  const AccessorReader faceOf(model, attribute->second, path + ".attributes." + kFaceAttribute);
+  if (faceOf.components() != 1 || faceOf.count() != group.positions.size())
+    throw ValidationError(path + ".attributes." + kFaceAttribute, "must be one number per position");
+  std::vector<double> faces(faceOf.count());
+  for (size_t i = 0; i < faces.size(); ++i) faces[i] = faceOf.component(i, 0);
+  if (auto restored = facesFromTriangles(group.positions, group.polygons, faces)) {
+    report.count("penumbra_faces_restored", restored->size());
+    group.trianglesRead = group.polygons.size();
+    group.polygons = std::move(*restored);
+    group.joinTriangles = false;
+  }
+}
+
 ImportResult importModel(const tinygltf::Model& model, const std::string& warn, const ImportOptions& options,
                          ImportReport report) {
   for (size_t start = 0; start < warn.size();) {
@@ -230,6 +279,13 @@ ImportResult importModel(const tinygltf::Model& model, const std::string& warn, 
   }
   ImportedGeometry geometry;
   geometry.materials = materialsOf(model, report);
+  // Penumbra's own export: its faces and default material come back (penumbra_extras.h).
+  const bool ours = penumbraExtras(model.asset.extras).is_object();
+  std::vector<bool> sceneDefault;
+  for (const tinygltf::Material& m : model.materials) {
+    const nlohmann::json extras = penumbraExtras(m.extras);
+    sceneDefault.push_back(ours && extras.is_object() && extras.value("default_material", false));
+  }
 
   std::vector<int> roots;
   if (!model.scenes.empty()) {
@@ -266,13 +322,14 @@ ImportResult importModel(const tinygltf::Model& model, const std::string& warn, 
         group.name = !node.name.empty() ? node.name : !mesh.name.empty() ? mesh.name : "mesh" + std::to_string(node.mesh);
         if (primitive.material >= int(geometry.materials.size()))
           throw ValidationError(primitivePath + ".material", "no such material");
-        group.material = primitive.material;
+        group.material = primitive.material >= 0 && sceneDefault[size_t(primitive.material)] ? -1 : primitive.material;
         group.joinTriangles = true;
         DecodedPrimitive local = primitiveGeometry(model, primitive, primitivePath, report);
         for (const Vec3& p : local.positions) group.positions.push_back(Vec3(worldFromNode * glm::dvec4(p, 1.0)));
         group.polygons = std::move(local.triangles);
         if (mirrored)  // glTF: a mirroring transform flips the winding back
           for (IndexPolygon& t : group.polygons) std::swap(t[1], t[2]);
+        if (ours) restoreSceneFaces(model, primitive, primitivePath, group, report);
         geometry.groups.push_back(std::move(group));
       }
     }

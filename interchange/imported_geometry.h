@@ -28,6 +28,9 @@ struct ImportedGroup {
   std::vector<IndexPolygon> polygons;
   // glTF: triangles of one surface are joined back into convex polygons.
   bool joinTriangles = false;
+  // The file's triangles when `polygons` are not what it held (Penumbra's faces rebuilt from
+  // their display triangles); unset: Σ (corners − 2) over `polygons` (ImportReport::trianglesRead).
+  std::optional<size_t> trianglesRead;
 };
 
 struct ImportedGeometry {

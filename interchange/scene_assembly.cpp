@@ -278,14 +278,20 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
   // Scene size first: it sets the welding distance.
   Bounds bounds{Vec3(INFINITY), Vec3(-INFINITY)};
   bool anyPosition = false;
-  for (const ImportedGroup& group : geometry.groups)
-    for (const IndexPolygon& polygon : group.polygons)
+  for (const ImportedGroup& group : geometry.groups) {
+    if (group.trianglesRead) report.trianglesRead += *group.trianglesRead;
+    for (const IndexPolygon& polygon : group.polygons) {
+      if (!group.trianglesRead) report.trianglesRead += polygon.size() >= 3 ? polygon.size() - 2 : 0;
       for (int i : polygon) {
         const Vec3 p = group.positions[size_t(i)] * options.scale;
         bounds.min = glm::min(bounds.min, p);
         bounds.max = glm::max(bounds.max, p);
         anyPosition = true;
       }
+    }
+  }
+  report.boundsMin = bounds.min;
+  report.boundsMax = bounds.max;
   if (!anyPosition || !(bounds.diagonal() > 0))
     throw ValidationError("(import)", "the file has no faces with area");
 
