@@ -4,6 +4,7 @@
 #include "interchange/gltf_extensions.h"
 #include "interchange/material_mapping.h"
 #include "interchange/penumbra_extras.h"
+#include "interchange/texture_average.h"
 
 #include <algorithm>
 #include <cstring>
@@ -12,6 +13,7 @@
 #include <functional>
 #include <iterator>
 #include <set>
+#include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -29,8 +31,20 @@ using protocol::ValidationError;
 constexpr size_t kMaxGltfBytes = size_t(256) << 20;
 constexpr int kMaxNodeDepth = 64;
 
-// Images are not needed (only factors are read) and never decoded.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+// Images are decoded (base colour textures are averaged into albedos: texture_average.h) only
+// when their header gives a PNG or JPEG size within what is left of kMaxTexturePixels; any other
+// is left empty (its textures ignored, counted) rather than failing the file.
+bool loadImageWithinBudget(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int width,
+                           int height, const unsigned char* bytes, int size, void* pixelsLeft) {
+  size_t& left = *static_cast<size_t*>(pixelsLeft);
+  const auto dimensions = encodedImageSize(bytes, size_t(std::max(size, 0)));
+  if (!dimensions || dimensions->first <= 0 || dimensions->second <= 0 ||
+      size_t(dimensions->first) * size_t(dimensions->second) > left)
+    return true;
+  left -= size_t(dimensions->first) * size_t(dimensions->second);
+  std::string decodeError;
+  if (!tinygltf::LoadImageData(image, index, &decodeError, warn, width, height, bytes, size, nullptr)) image->image.clear();
+  (void)err;
   return true;
 }
 
@@ -136,7 +150,7 @@ void mapMicrofacet(const tinygltf::Material& m, ImportedMaterial& material, Impo
   if (m.extensions.count("KHR_materials_unlit")) return;  // e.g. Penumbra's own lit-mesh export
   const auto& pbr = m.pbrMetallicRoughness;
   const double alpha = alphaFromPerceptual(pbr.roughnessFactor);
-  if (pbr.metallicRoughnessTexture.index >= 0) report.count("textures_ignored");
+  if (pbr.metallicRoughnessTexture.index >= 0) report.count("textures_ignored");  // roughness: the factor only
   if (extensionNumber(m, "KHR_materials_transmission", "transmissionFactor", 0) >= 0.5) {
     material.surface.type = MaterialType::Dielectric;
     material.surface.roughness = Vec2(alpha);
@@ -190,7 +204,6 @@ std::vector<ImportedMaterial> materialsOf(const tinygltf::Model& model, ImportRe
     }
     const std::vector<double>& base = m.pbrMetallicRoughness.baseColorFactor;
     if (base.size() >= 3) material.albedo = Vec3(base[0], base[1], base[2]);
-    if (m.pbrMetallicRoughness.baseColorTexture.index >= 0) report.count("textures_ignored");
     mapMicrofacet(m, material, report);
     double strength = 1;
     const auto ext = m.extensions.find("KHR_materials_emissive_strength");
@@ -270,6 +283,43 @@ void restoreSceneFaces(const tinygltf::Model& model, const tinygltf::Primitive& 
   }
 }
 
+// A primitive whose material has a base colour texture gets a material of its own: albedo =
+// base colour factor × the texture's average over its triangles (texture_average.h), stated
+// in the report's warnings. Without its TEXCOORD, a decoded image, or with Draco, the texture is
+// ignored (counted).
+void applyBaseColourTexture(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& path,
+                            const std::vector<Vec3>& localPositions, ImportedGeometry& geometry, ImportedGroup& group,
+                            ImportReport& report) {
+  if (primitive.material < 0) return;
+  const tinygltf::TextureInfo& info = model.materials[size_t(primitive.material)].pbrMetallicRoughness.baseColorTexture;
+  if (info.index < 0) return;
+  const int source = size_t(info.index) < model.textures.size() ? model.textures[size_t(info.index)].source : -1;
+  const auto uvAttribute = primitive.attributes.find("TEXCOORD_" + std::to_string(info.texCoord));
+  if (source < 0 || size_t(source) >= model.images.size() || model.images[size_t(source)].image.empty() ||
+      uvAttribute == primitive.attributes.end() || primitive.extensions.count("KHR_draco_mesh_compression")) {
+    report.count("textures_ignored");
+    return;
+  }
+  const AccessorReader uv(model, uvAttribute->second, path + ".attributes." + uvAttribute->first);
+  if (uv.components() != 2 || uv.count() != localPositions.size())
+    throw ValidationError(path + ".attributes." + uvAttribute->first, "must be one VEC2 per position");
+  std::vector<Vec2> uvs;
+  for (size_t i = 0; i < uv.count(); ++i) uvs.push_back(Vec2(uv.component(i, 0), uv.component(i, 1)));
+  const auto average = averageTextureColour(model.images[size_t(source)], uvs, group.positions, group.polygons);
+  if (!average) return report.count("textures_ignored");
+  ImportedMaterial material = geometry.materials[size_t(group.material)];
+  material.albedo *= *average;
+  material.name += "." + group.name;
+  geometry.materials.push_back(material);
+  group.material = int(geometry.materials.size() - 1);
+  report.count("textures_averaged_into_albedo");
+  std::ostringstream line;
+  line.precision(4);
+  line << "'" << group.name << "': base colour texture averaged over its faces: albedo (" << material.albedo.x << ", "
+       << material.albedo.y << ", " << material.albedo.z << ")";
+  report.warnings.push_back(line.str());
+}
+
 ImportResult importModel(const tinygltf::Model& model, const std::string& warn, const ImportOptions& options,
                          ImportReport report) {
   for (size_t start = 0; start < warn.size();) {
@@ -279,6 +329,15 @@ ImportResult importModel(const tinygltf::Model& model, const std::string& warn, 
   }
   ImportedGeometry geometry;
   geometry.materials = materialsOf(model, report);
+  // Shadows are of one pose: the nodes' own transforms (bind pose), nothing moved or morphed.
+  if (!model.skins.empty()) {
+    report.count("skins_ignored", model.skins.size());
+    report.warnings.push_back("skins ignored: skinned meshes are imported as stored (bind pose), joints not applied");
+  }
+  if (!model.animations.empty()) {
+    report.count("animations_ignored", model.animations.size());
+    report.warnings.push_back("animations ignored: the scene is imported with its nodes' own transforms");
+  }
   // Penumbra's own export: its faces and default material come back (penumbra_extras.h).
   const bool ours = penumbraExtras(model.asset.extras).is_object();
   std::vector<bool> sceneDefault;
@@ -324,9 +383,12 @@ ImportResult importModel(const tinygltf::Model& model, const std::string& warn, 
           throw ValidationError(primitivePath + ".material", "no such material");
         group.material = primitive.material >= 0 && sceneDefault[size_t(primitive.material)] ? -1 : primitive.material;
         group.joinTriangles = true;
+        if (!primitive.targets.empty()) report.count("morph_targets_ignored", primitive.targets.size());
         DecodedPrimitive local = primitiveGeometry(model, primitive, primitivePath, report);
         for (const Vec3& p : local.positions) group.positions.push_back(Vec3(worldFromNode * glm::dvec4(p, 1.0)));
         group.polygons = std::move(local.triangles);
+        if (group.material >= 0)
+          applyBaseColourTexture(model, primitive, primitivePath, local.positions, geometry, group, report);
         if (mirrored)  // glTF: a mirroring transform flips the winding back
           for (IndexPolygon& t : group.polygons) std::swap(t[1], t[2]);
         if (ours) restoreSceneFaces(model, primitive, primitivePath, group, report);
@@ -343,7 +405,8 @@ ImportResult importGltf(const std::vector<uint8_t>& bytes, const std::string& ba
                         const ImportOptions& options, const std::string& sourceName) {
   if (bytes.size() > kMaxGltfBytes) throw ValidationError("(gltf)", "the file is over the limit of 256 MiB");
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(skipImage, nullptr);
+  size_t pixelsLeft = kMaxTexturePixels;
+  loader.SetImageLoader(loadImageWithinBudget, &pixelsLeft);
   if (!allowFiles) loader.SetFsCallbacks(tinygltf::FsCallbacks{noFile, samePath, noRead, noWrite, nullptr});
   tinygltf::Model model;
   std::string err, warn;
