@@ -20,7 +20,9 @@ double cross(const Point2& o, const Point2& a, const Point2& b) {
 
 // Andrew's monotone chain, counter-clockwise, exactly collinear points left out.
 std::vector<Point2> hull(std::vector<Point2> points) {
-  std::sort(points.begin(), points.end(), [](const Point2& a, const Point2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  std::sort(points.begin(), points.end(), [](const Point2& a, const Point2& b) {
+    return a.x < b.x || (a.x == b.x && a.y < b.y);
+  });
   if (points.size() < 3) return points;
   std::vector<Point2> out(2 * points.size());
   size_t k = 0;
@@ -38,21 +40,25 @@ std::vector<Point2> hull(std::vector<Point2> points) {
 
 }  // namespace
 
-IndexPolygon convexOutline(const std::vector<Vec3>& positions, const std::vector<IndexPolygon>& triangles, double eps) {
+IndexPolygon convexOutline(const std::vector<Vec3>& positions,
+                           const std::vector<IndexPolygon>& triangles, double eps) {
   Vec3 normal(0.0);
   std::set<int> corners;
   for (const IndexPolygon& t : triangles) {
-    const Vec3 &a = positions[size_t(t[0])], &b = positions[size_t(t[1])], &c = positions[size_t(t[2])];
+    const Vec3 &a = positions[size_t(t[0])], &b = positions[size_t(t[1])],
+               &c = positions[size_t(t[2])];
     normal += glm::cross(b - a, c - a);
     corners.insert(t.begin(), t.end());
   }
   if (!(glm::length(normal) > 0)) return {};
   // (u, v, normal) right-handed: counter-clockwise in (u, v) is counter-clockwise about the normal.
   const Vec3 n = glm::normalize(normal);
-  const Vec3 u = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, Vec3(1, 0, 0)) : glm::cross(n, Vec3(0, 1, 0)));
+  const Vec3 u = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, Vec3(1, 0, 0))
+                                                    : glm::cross(n, Vec3(0, 1, 0)));
   const Vec3 v = glm::cross(n, u);
   std::vector<Point2> points;
-  for (int i : corners) points.push_back({glm::dot(positions[size_t(i)], u), glm::dot(positions[size_t(i)], v), i});
+  for (int i : corners)
+    points.push_back({glm::dot(positions[size_t(i)], u), glm::dot(positions[size_t(i)], v), i});
   std::vector<Point2> outline = hull(points);
   // Drop corners that lie on the edge between their neighbours (within eps), until none do.
   for (bool dropped = true; dropped && outline.size() > 3;) {
@@ -74,9 +80,9 @@ IndexPolygon convexOutline(const std::vector<Vec3>& positions, const std::vector
   return out;
 }
 
-std::optional<std::vector<IndexPolygon>> facesFromTriangles(const std::vector<Vec3>& positions,
-                                                            const std::vector<IndexPolygon>& triangles,
-                                                            const std::vector<double>& faceOf) {
+std::optional<std::vector<IndexPolygon>> facesFromTriangles(
+    const std::vector<Vec3>& positions, const std::vector<IndexPolygon>& triangles,
+    const std::vector<double>& faceOf) {
   std::map<double, std::vector<IndexPolygon>> trianglesOf;
   double largest = 0;
   for (const IndexPolygon& t : triangles) {
@@ -90,7 +96,8 @@ std::optional<std::vector<IndexPolygon>> facesFromTriangles(const std::vector<Ve
   const double eps = 4 * std::ldexp(largest, -23);
   std::vector<IndexPolygon> faces;
   for (const auto& [face, tiles] : trianglesOf)
-    if (IndexPolygon outline = convexOutline(positions, tiles, eps); !outline.empty()) faces.push_back(std::move(outline));
+    if (IndexPolygon outline = convexOutline(positions, tiles, eps); !outline.empty())
+      faces.push_back(std::move(outline));
   return faces;
 }
 

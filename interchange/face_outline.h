@@ -16,14 +16,15 @@ namespace penumbra::interchange {
 // `eps` of the line through their neighbours are left out: the points the lit mesh adds on a
 // face's edges, which float32 storage moves off the edge by an ulp or so. Empty when the
 // triangles have no area.
-IndexPolygon convexOutline(const std::vector<Vec3>& positions, const std::vector<IndexPolygon>& triangles, double eps);
+IndexPolygon convexOutline(const std::vector<Vec3>& positions,
+                           const std::vector<IndexPolygon>& triangles, double eps);
 
 // The faces a primitive's triangles tile, one per face number (`faceOf`: each vertex's face,
 // the _FACE attribute), in face order, each its convexOutline() with eps = 4 float ulps of the
 // largest coordinate. nullopt when a triangle's corners name different faces (not a Penumbra
 // export: its triangles are joined as any file's).
-std::optional<std::vector<IndexPolygon>> facesFromTriangles(const std::vector<Vec3>& positions,
-                                                            const std::vector<IndexPolygon>& triangles,
-                                                            const std::vector<double>& faceOf);
+std::optional<std::vector<IndexPolygon>> facesFromTriangles(
+    const std::vector<Vec3>& positions, const std::vector<IndexPolygon>& triangles,
+    const std::vector<double>& faceOf);
 
 }  // namespace penumbra::interchange

@@ -4,11 +4,15 @@ namespace penumbra::interchange {
 
 tinygltf::Value toGltfValue(const nlohmann::json& json) {
   switch (json.type()) {
-    case nlohmann::json::value_t::boolean: return tinygltf::Value(json.get<bool>());
+    case nlohmann::json::value_t::boolean:
+      return tinygltf::Value(json.get<bool>());
     case nlohmann::json::value_t::number_integer:
-    case nlohmann::json::value_t::number_unsigned: return tinygltf::Value(json.get<int>());
-    case nlohmann::json::value_t::number_float: return tinygltf::Value(json.get<double>());
-    case nlohmann::json::value_t::string: return tinygltf::Value(json.get<std::string>());
+    case nlohmann::json::value_t::number_unsigned:
+      return tinygltf::Value(json.get<int>());
+    case nlohmann::json::value_t::number_float:
+      return tinygltf::Value(json.get<double>());
+    case nlohmann::json::value_t::string:
+      return tinygltf::Value(json.get<std::string>());
     case nlohmann::json::value_t::array: {
       tinygltf::Value::Array array;
       for (const nlohmann::json& item : json) array.push_back(toGltfValue(item));
@@ -19,7 +23,8 @@ tinygltf::Value toGltfValue(const nlohmann::json& json) {
       for (const auto& [key, item] : json.items()) object[key] = toGltfValue(item);
       return tinygltf::Value(std::move(object));
     }
-    default: return tinygltf::Value();
+    default:
+      return tinygltf::Value();
   }
 }
 

@@ -2,11 +2,13 @@
 // glb_export.cpp, read back by gltf_import.cpp, docs/SCENE_FORMAT.md "GLB round trip"): under the
 // key "penumbra" of asset.extras (marks the file as ours), of each object's material ("material":
 // the scene's material as scene v1 writes it, or "default_material": true) and of each light's
-// material ("radiance"). Conversions between JSON and tinygltf's values. Free functions; thread-safe.
+// material ("radiance"). Conversions between JSON and tinygltf's values. Free functions;
+// thread-safe.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
+
+#include <nlohmann/json.hpp>
 
 namespace penumbra::interchange {
 

@@ -8,12 +8,15 @@ namespace penumbra::interchange {
 
 namespace {
 
-double linearFromSrgb(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+double linearFromSrgb(double c) {
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
 
 // The texel's colour in [0, 1], still sRGB-encoded; grey images give grey.
 Vec3 texel(const tinygltf::Image& image, int x, int y) {
   const size_t channels = size_t(image.component), bytes = image.bits == 16 ? 2 : 1;
-  const unsigned char* p = image.image.data() + (size_t(y) * size_t(image.width) + size_t(x)) * channels * bytes;
+  const unsigned char* p =
+      image.image.data() + (size_t(y) * size_t(image.width) + size_t(x)) * channels * bytes;
   auto channel = [&](size_t c) {
     if (bytes == 1) return p[c] / 255.0;
     uint16_t v;
@@ -26,10 +29,12 @@ Vec3 texel(const tinygltf::Image& image, int x, int y) {
 }  // namespace
 
 std::optional<Vec3> averageTextureColour(const tinygltf::Image& image, const std::vector<Vec2>& uvs,
-                                         const std::vector<Vec3>& positions, const std::vector<IndexPolygon>& triangles) {
+                                         const std::vector<Vec3>& positions,
+                                         const std::vector<IndexPolygon>& triangles) {
   const size_t bytes = image.bits == 16 ? 2 : 1;
   if (image.width <= 0 || image.height <= 0 || image.component <= 0 ||
-      image.image.size() < size_t(image.width) * size_t(image.height) * size_t(image.component) * bytes)
+      image.image.size() <
+          size_t(image.width) * size_t(image.height) * size_t(image.component) * bytes)
     return std::nullopt;
   const Vec2 texels(image.width, image.height);
   auto sample = [&](const Vec2& uv) {
@@ -42,12 +47,14 @@ std::optional<Vec3> averageTextureColour(const tinygltf::Image& image, const std
   Vec3 sum(0.0);
   double totalArea = 0;
   for (const IndexPolygon& t : triangles) {
-    const Vec3 &a = positions[size_t(t[0])], &b = positions[size_t(t[1])], &c = positions[size_t(t[2])];
+    const Vec3 &a = positions[size_t(t[0])], &b = positions[size_t(t[1])],
+               &c = positions[size_t(t[2])];
     const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
     if (!(area > 0)) continue;
     const Vec2 &ua = uvs[size_t(t[0])], &ub = uvs[size_t(t[1])], &uc = uvs[size_t(t[2])];
-    const double longest = std::max({glm::length((ub - ua) * texels), glm::length((uc - ub) * texels),
-                                     glm::length((ua - uc) * texels)});
+    const double longest =
+        std::max({glm::length((ub - ua) * texels), glm::length((uc - ub) * texels),
+                  glm::length((ua - uc) * texels)});
     const int n = std::clamp(int(std::ceil(longest)), 1, 32);
     // The centroids of the n² sub-triangles of a regular subdivision (all of one area).
     Vec3 colour(0.0);

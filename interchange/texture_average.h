@@ -4,10 +4,10 @@
 // textures from untrusted files. Free functions; thread-safe.
 #pragma once
 
+#include <tiny_gltf.h>
+
 #include <optional>
 #include <vector>
-
-#include <tiny_gltf.h>
 
 #include "core/geom/vec.h"
 #include "interchange/polygon_repair.h"
@@ -19,7 +19,8 @@ namespace penumbra::interchange {
 // texel, UVs wrapped (glTF's default sampler). nullopt when the image has no pixels or the
 // triangles no area.
 std::optional<Vec3> averageTextureColour(const tinygltf::Image& image, const std::vector<Vec2>& uvs,
-                                         const std::vector<Vec3>& positions, const std::vector<IndexPolygon>& triangles);
+                                         const std::vector<Vec3>& positions,
+                                         const std::vector<IndexPolygon>& triangles);
 
 // Pixels the importer decodes per file, all images together (a 256 MiB file could otherwise
 // hold images that decode to many GiB): 64 Mi, e.g. four 4096² textures.

@@ -1,12 +1,12 @@
 // A convex face rebuilt from the triangles that tile it (interchange/face_outline.h): the
 // corners only, in the triangles' winding, the points on its edges left out even when float32
 // storage moved them off the edge.
+#include "interchange/face_outline.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-
-#include "interchange/face_outline.h"
 
 namespace penumbra::interchange {
 namespace {
@@ -14,9 +14,11 @@ namespace {
 // The unit square at height 2 tiled around its centre (index 4) and an edge midpoint (5), the
 // midpoint rounded off the edge by an ulp as a float would put it.
 std::vector<Vec3> squarePoints() {
-  return {{0, 2, 0}, {0, 2, 1}, {1, 2, 1}, {1, 2, 0}, {0.5, 2, 0.5}, {0.5, 2, std::nextafter(1.0, 2.0)}};
+  return {{0, 2, 0}, {0, 2, 1},     {1, 2, 1},
+          {1, 2, 0}, {0.5, 2, 0.5}, {0.5, 2, std::nextafter(1.0, 2.0)}};
 }
-const std::vector<IndexPolygon> kSquareTiles = {{0, 1, 4}, {1, 5, 4}, {5, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+const std::vector<IndexPolygon> kSquareTiles = {
+    {0, 1, 4}, {1, 5, 4}, {5, 2, 4}, {2, 3, 4}, {3, 0, 4}};
 
 TEST(FaceOutline, TheCornersInTheTrianglesWinding) {
   const IndexPolygon outline = convexOutline(squarePoints(), kSquareTiles, 1e-9);
@@ -30,7 +32,8 @@ TEST(FaceOutline, TheCornersInTheTrianglesWinding) {
 
 TEST(FaceOutline, FacesByNumberInOrderAndMixedTrianglesRefused) {
   std::vector<Vec3> points = squarePoints();
-  for (const Vec3& p : squarePoints()) points.push_back(p + Vec3(0, 1, 0));  // a second square above
+  for (const Vec3& p : squarePoints())
+    points.push_back(p + Vec3(0, 1, 0));  // a second square above
   std::vector<IndexPolygon> triangles;
   for (const IndexPolygon& t : kSquareTiles) triangles.push_back({t[0] + 6, t[1] + 6, t[2] + 6});
   for (const IndexPolygon& t : kSquareTiles) triangles.push_back(t);

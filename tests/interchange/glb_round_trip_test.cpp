@@ -7,10 +7,10 @@
 // generated models.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <random>
-#include <array>
 #include <set>
 #include <sstream>
 
@@ -35,7 +35,8 @@ ImportResult roundTrip(const Scene& scene) {
 double floatTolerance(const Scene& scene) {
   double largest = 0;
   auto add = [&](const Polygon3& polygon) {
-    for (const Vec3& p : polygon) largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    for (const Vec3& p : polygon)
+      largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
   };
   for (const Face& face : scene.faces()) add(face.polygon);
   for (const Light& light : scene.lights()) add(light.polygon);
@@ -43,7 +44,8 @@ double floatTolerance(const Scene& scene) {
 }
 
 bool near(const Vec3& a, const Vec3& b, double tolerance) {
-  return std::abs(a.x - b.x) <= tolerance && std::abs(a.y - b.y) <= tolerance && std::abs(a.z - b.z) <= tolerance;
+  return std::abs(a.x - b.x) <= tolerance && std::abs(a.y - b.y) <= tolerance &&
+         std::abs(a.z - b.z) <= tolerance;
 }
 
 // The same corners in the same cyclic order (any first corner).
@@ -92,20 +94,23 @@ std::vector<std::string> differences(const Scene& original, const Scene& importe
     const std::span<const Face> faces = original.facesOfObject(a), back = imported.facesOfObject(b);
     const std::string name = "'" + ids[i] + "'";
     if (faces.size() != back.size()) {
-      out.push_back(name + ": " + std::to_string(faces.size()) + " faces, " + std::to_string(back.size()) + " back");
+      out.push_back(name + ": " + std::to_string(faces.size()) + " faces, " +
+                    std::to_string(back.size()) + " back");
       continue;
     }
     for (size_t f = 0; f < faces.size(); ++f)
       if (!sameCycle(faces[f].polygon, back[f].polygon, tolerance))
-        out.push_back(name + " face " + std::to_string(f) + ": " + text(faces[f].polygon) + " came back as " +
-                      text(back[f].polygon));
+        out.push_back(name + " face " + std::to_string(f) + ": " + text(faces[f].polygon) +
+                      " came back as " + text(back[f].polygon));
     if (weldedVertices(original, a) != weldedVertices(imported, b))
-      out.push_back(name + ": " + std::to_string(weldedVertices(original, a)) + " welded vertices, " +
-                    std::to_string(weldedVertices(imported, b)) + " back");
-    if (!(materialOf(original, original.objects()[i]) == materialOf(imported, imported.objects()[i])))
+      out.push_back(name + ": " + std::to_string(weldedVertices(original, a)) +
+                    " welded vertices, " + std::to_string(weldedVertices(imported, b)) + " back");
+    if (!(materialOf(original, original.objects()[i]) ==
+          materialOf(imported, imported.objects()[i])))
       out.push_back(name + ": material differs");
   }
-  if (original.lights().size() != imported.lights().size()) return out.push_back("light count differs"), out;
+  if (original.lights().size() != imported.lights().size())
+    return out.push_back("light count differs"), out;
   for (size_t l = 0; l < original.lights().size(); ++l) {
     const Light &a = original.lights()[l], &b = imported.lights()[l];
     if (a.id != b.id) out.push_back("light " + a.id + " came back as " + b.id);
@@ -124,7 +129,8 @@ std::string joined(const std::vector<std::string>& lines) {
 }
 
 TEST(GlbRoundTrip, TheComparisonCanFail) {
-  const Scene scene = protocol::loadSceneFile(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/cornell.scene.json");
+  const Scene scene =
+      protocol::loadSceneFile(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/cornell.scene.json");
   EXPECT_EQ(joined(differences(scene, scene)), "");
   const double tolerance = floatTolerance(scene);
   std::vector<Object> objects = scene.objects();
@@ -133,7 +139,8 @@ TEST(GlbRoundTrip, TheComparisonCanFail) {
   materials[0].albedo.y += 0.01;
   std::vector<Light> lights = scene.lights();
   lights[0].radiance.z *= 1 + 1e-12;
-  const std::vector<std::string> found = differences(scene, Scene(lights, materials, objects, scene.camera()));
+  const std::vector<std::string> found =
+      differences(scene, Scene(lights, materials, objects, scene.camera()));
   EXPECT_FALSE(found.empty());
   const std::string all = joined(found);
   EXPECT_NE(all.find("'" + objects[0].id + "' face 0"), std::string::npos) << all;
@@ -142,7 +149,8 @@ TEST(GlbRoundTrip, TheComparisonCanFail) {
 }
 
 TEST(GlbRoundTrip, BundledScenes) {
-  for (const auto& entry : std::filesystem::directory_iterator(std::string(PENUMBRA_SOURCE_DIR) + "/scenes")) {
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(PENUMBRA_SOURCE_DIR) + "/scenes")) {
     if (!entry.path().filename().string().ends_with(".scene.json")) continue;
     SCOPED_TRACE(entry.path().filename().string());
     const Scene scene = protocol::loadSceneFile(entry.path().string());
@@ -156,14 +164,16 @@ TEST(GlbRoundTrip, BundledScenes) {
 // --model` makes them.
 TEST(GlbRoundTrip, GeneratedModels) {
   std::mt19937_64 random(40);
-  const ModelKind kinds[] = {ModelKind::Teapot, ModelKind::TorusKnot, ModelKind::Blob, ModelKind::Bowl, ModelKind::Scan};
+  const ModelKind kinds[] = {ModelKind::Teapot, ModelKind::TorusKnot, ModelKind::Blob,
+                             ModelKind::Bowl, ModelKind::Scan};
   for (int run = 0; run < 6; ++run) {
     ModelSceneOptions options;
     options.kind = kinds[random() % 5];
     options.triangles = minModelTriangles(options.kind) * int(1 + random() % 2);
     options.seed = random();
     options.rest = random() % 2;
-    SCOPED_TRACE(std::string(modelKindName(options.kind)) + " " + std::to_string(options.triangles) + " triangles, seed " +
+    SCOPED_TRACE(std::string(modelKindName(options.kind)) + " " +
+                 std::to_string(options.triangles) + " triangles, seed " +
                  std::to_string(options.seed) + (options.rest ? ", resting" : ", floating"));
     const Scene scene = makeModelScene(options);
     const ImportResult back = roundTrip(scene);

@@ -27,7 +27,8 @@ inline TriangleMesh torus(int rings, int sides) {
   auto at = [&](int i, int j) { return uint32_t((i % rings) * sides + (j % sides)); };
   for (int i = 0; i < rings; ++i)
     for (int j = 0; j < sides; ++j)
-      m.indices.insert(m.indices.end(), {at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+      m.indices.insert(m.indices.end(), {at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i, j),
+                                         at(i + 1, j + 1), at(i + 1, j)});
   return m;
 }
 
@@ -37,7 +38,8 @@ inline ModelWriter roomWriter() {
   const int grey = w.material("grey", {0.5, 0.6, 0.7}, {0, 0, 0}, 1);
   const int lamp = w.material("lamp", {1, 1, 1}, {1, 1, 1}, 8);
   w.quad("floor", {{{-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}}}, grey, {0, 0, 0});
-  w.quad("lamp", {{{-0.5, 0, -0.5}, {0.5, 0, -0.5}, {0.5, 0, 0.5}, {-0.5, 0, 0.5}}}, lamp, {0, 3, 0});
+  w.quad("lamp", {{{-0.5, 0, -0.5}, {0.5, 0, -0.5}, {0.5, 0, 0.5}, {-0.5, 0, 0.5}}}, lamp,
+         {0, 3, 0});
   return w;
 }
 
@@ -46,18 +48,20 @@ inline tinygltf::Primitive plainPrimitive(ModelWriter& w, const TriangleMesh& m)
   for (const Vec3& p : m.positions) xyz.insert(xyz.end(), {float(p.x), float(p.y), float(p.z)});
   tinygltf::Primitive p;
   p.mode = TINYGLTF_MODE_TRIANGLES;
-  p.attributes["POSITION"] = w.accessor(xyz.data(), xyz.size() * 4, m.positions.size(), TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                        TINYGLTF_TYPE_VEC3);
-  p.indices = w.accessor(m.indices.data(), m.indices.size() * 4, m.indices.size(), TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                         TINYGLTF_TYPE_SCALAR);
+  p.attributes["POSITION"] = w.accessor(xyz.data(), xyz.size() * 4, m.positions.size(),
+                                        TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3);
+  p.indices = w.accessor(m.indices.data(), m.indices.size() * 4, m.indices.size(),
+                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR);
   return p;
 }
 
 // Positions as integers of `componentType` (normalized or not) with the scale that undoes
 // the quantization returned for the node: KHR_mesh_quantization as gltfpack writes it.
-inline tinygltf::Primitive quantizedPrimitive(ModelWriter& w, const TriangleMesh& m, int componentType, bool normalized,
-                                       Vec3& nodeScale) {
-  const double range = componentType == TINYGLTF_COMPONENT_TYPE_BYTE ? 127 : componentType == TINYGLTF_COMPONENT_TYPE_SHORT ? 32767 : 65535;
+inline tinygltf::Primitive quantizedPrimitive(ModelWriter& w, const TriangleMesh& m,
+                                              int componentType, bool normalized, Vec3& nodeScale) {
+  const double range = componentType == TINYGLTF_COMPONENT_TYPE_BYTE    ? 127
+                       : componentType == TINYGLTF_COMPONENT_TYPE_SHORT ? 32767
+                                                                        : 65535;
   // Every coordinate lies in [−1.2, 1.2]; unsigned, shifted by +0.4 into [0, 1.6].
   const bool isSigned = componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
   const double extent = isSigned ? 1.2 : 1.6;
@@ -77,16 +81,19 @@ inline tinygltf::Primitive quantizedPrimitive(ModelWriter& w, const TriangleMesh
     }
   const size_t size = componentType == TINYGLTF_COMPONENT_TYPE_BYTE ? 1 : 2;
   std::vector<uint8_t> padded;
-  for (size_t i = 0; i < m.positions.size(); ++i) {  // vertex attributes are 4-byte aligned: stride 4 or 8
-    padded.insert(padded.end(), bytes.begin() + long(3 * size * i), bytes.begin() + long(3 * size * (i + 1)));
+  for (size_t i = 0; i < m.positions.size();
+       ++i) {  // vertex attributes are 4-byte aligned: stride 4 or 8
+    padded.insert(padded.end(), bytes.begin() + long(3 * size * i),
+                  bytes.begin() + long(3 * size * (i + 1)));
     while (padded.size() % 4) padded.push_back(0);
   }
   tinygltf::Primitive p;
   p.mode = TINYGLTF_MODE_TRIANGLES;
-  p.attributes["POSITION"] = w.accessor(padded.data(), padded.size(), m.positions.size(), componentType, TINYGLTF_TYPE_VEC3, normalized);
+  p.attributes["POSITION"] = w.accessor(padded.data(), padded.size(), m.positions.size(),
+                                        componentType, TINYGLTF_TYPE_VEC3, normalized);
   w.model().bufferViews.back().byteStride = size == 1 ? 4 : 8;
-  p.indices = w.accessor(m.indices.data(), m.indices.size() * 4, m.indices.size(), TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                         TINYGLTF_TYPE_SCALAR);
+  p.indices = w.accessor(m.indices.data(), m.indices.size() * 4, m.indices.size(),
+                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR);
   if (!isSigned) w.model().accessors[size_t(p.attributes["POSITION"])].minValues = {0, 0, 0};
   return p;
 }

@@ -5,18 +5,17 @@
 // agree within float precision: assimp holds coordinates as float32 (ai_real), as a GLB does,
 // so each may be off by 4 float ulps of the largest coordinate (rounding, and assimp's node
 // transforms applied in float).
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
 #include <gtest/gtest.h>
 
+#include <assimp/Importer.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 
 #include "../gltf_test_models.h"
 #include "../interchange_fixtures.h"
@@ -48,7 +47,8 @@ Shape assimpShape(const std::string& path) {
     ADD_FAILURE() << "assimp cannot read " << path << ": " << importer.GetErrorString();
     return shape;
   }
-  std::vector<std::pair<const aiNode*, aiMatrix4x4>> stack{{scene->mRootNode, scene->mRootNode->mTransformation}};
+  std::vector<std::pair<const aiNode*, aiMatrix4x4>> stack{
+      {scene->mRootNode, scene->mRootNode->mTransformation}};
   while (!stack.empty()) {
     const auto [node, worldFromNode] = stack.back();
     stack.pop_back();
@@ -75,16 +75,20 @@ Shape assimpShape(const std::string& path) {
 std::vector<std::string> disagreements(const Shape& ours, const Shape& theirs) {
   std::vector<std::string> out;
   if (ours.triangles != theirs.triangles)
-    out.push_back("triangles: ours " + std::to_string(ours.triangles) + ", assimp " + std::to_string(theirs.triangles));
+    out.push_back("triangles: ours " + std::to_string(ours.triangles) + ", assimp " +
+                  std::to_string(theirs.triangles));
   double largest = 0;
-  for (int c = 0; c < 3; ++c) largest = std::max({largest, std::abs(ours.low[c]), std::abs(ours.high[c])});
+  for (int c = 0; c < 3; ++c)
+    largest = std::max({largest, std::abs(ours.low[c]), std::abs(ours.high[c])});
   const double tolerance = 4 * std::ldexp(largest, -23);
   for (int c = 0; c < 3; ++c)
-    for (const auto& [name, a, b] : {std::tuple{"min", ours.low[c], theirs.low[c]}, std::tuple{"max", ours.high[c], theirs.high[c]}})
+    for (const auto& [name, a, b] : {std::tuple{"min", ours.low[c], theirs.low[c]},
+                                     std::tuple{"max", ours.high[c], theirs.high[c]}})
       if (!(std::abs(a - b) <= tolerance)) {
         std::ostringstream line;
         line.precision(9);
-        line << name << "[" << c << "]: ours " << a << ", assimp " << b << " (tolerance " << tolerance << ")";
+        line << name << "[" << c << "]: ours " << a << ", assimp " << b << " (tolerance "
+             << tolerance << ")";
         out.push_back(line.str());
       }
   return out;
@@ -120,13 +124,15 @@ Shape importedShape(const ImportReport& report) {
 }
 
 void writeBytes(const std::filesystem::path& path, const std::vector<uint8_t>& bytes) {
-  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
 // Exports `scene` as `penumbra build --out X.glb` does (plain, and with the discontinuity lines),
 // and checks assimp reads the exporter's triangles within the scene's bounds; then imports the
 // GLB and checks assimp agrees with the import report too.
-void crossCheckExport(const Scene& scene, const std::filesystem::path& dir, const std::string& name) {
+void crossCheckExport(const Scene& scene, const std::filesystem::path& dir,
+                      const std::string& name) {
   Engine engine(scene);
   const Mesh mesh = engine.mesh();
   Shape expected = sceneShape(engine.scene());
@@ -137,13 +143,15 @@ void crossCheckExport(const Scene& scene, const std::filesystem::path& dir, cons
     const GlbFile glb = saveMeshGlb(engine.scene(), mesh, path.string(), options);
     // The exporter's object triangles (the lit mesh) plus each light's fan.
     expected.triangles = glb.triangles;
-    for (const Light& light : engine.scene().lights()) expected.triangles += light.polygon.size() - 2;
+    for (const Light& light : engine.scene().lights())
+      expected.triangles += light.polygon.size() - 2;
     EXPECT_EQ(joined(disagreements(expected, assimpShape(path.string()))), "") << path;
     if (edges) continue;
     ImportOptions plain;
     plain.studio = false;
     const ImportResult imported = importSceneFile(path.string(), plain);
-    EXPECT_EQ(joined(disagreements(importedShape(imported.report), assimpShape(path.string()))), "") << path << " imported";
+    EXPECT_EQ(joined(disagreements(importedShape(imported.report), assimpShape(path.string()))), "")
+        << path << " imported";
   }
 }
 
@@ -178,7 +186,9 @@ TEST(AssimpCrossCheck, ObjFixtures) {
   for (const auto& entry : std::filesystem::directory_iterator(testing::kData)) {
     if (entry.path().extension() != ".obj") continue;
     const ImportResult imported = importSceneFile(entry.path().string(), {});
-    EXPECT_EQ(joined(disagreements(importedShape(imported.report), assimpShape(entry.path().string()))), "")
+    EXPECT_EQ(
+        joined(disagreements(importedShape(imported.report), assimpShape(entry.path().string()))),
+        "")
         << entry.path().filename();
   }
 }
@@ -195,9 +205,11 @@ TEST(AssimpCrossCheck, GltfModels) {
   writeBytes(dir / "plain.glb", plain.write(true));
   ModelWriter quantized = roomWriter();
   Vec3 scale(1.0);
-  const tinygltf::Primitive primitive = quantizedPrimitive(quantized, mesh, TINYGLTF_COMPONENT_TYPE_SHORT, true, scale);
+  const tinygltf::Primitive primitive =
+      quantizedPrimitive(quantized, mesh, TINYGLTF_COMPONENT_TYPE_SHORT, true, scale);
   quantized.node("torus", primitive, scale);
-  quantized.model().extensionsRequired = quantized.model().extensionsUsed = {"KHR_mesh_quantization"};
+  quantized.model().extensionsRequired =
+      quantized.model().extensionsUsed = {"KHR_mesh_quantization"};
   writeBytes(dir / "quantized.glb", quantized.write(true));
   for (const char* name : {"plain.glb", "quantized.glb"}) {
     const std::string path = (dir / name).string();
@@ -206,7 +218,8 @@ TEST(AssimpCrossCheck, GltfModels) {
     const Shape theirs = assimpShape(path);
     if (std::string(name) == "quantized.glb") {
       EXPECT_EQ(imported.report.trianglesRead, theirs.triangles);
-      EXPECT_GT(theirs.high.x, 1e6) << "assimp reads quantized positions now: compare its bounds too";
+      EXPECT_GT(theirs.high.x, 1e6)
+          << "assimp reads quantized positions now: compare its bounds too";
       continue;
     }
     EXPECT_EQ(joined(disagreements(importedShape(imported.report), theirs)), "") << name;
@@ -217,11 +230,13 @@ TEST(AssimpCrossCheck, GltfModels) {
 // export differs only in its colours and _RADIANCE, not in its geometry).
 TEST(AssimpCrossCheck, BundledSceneExports) {
   const std::filesystem::path dir = scratchDir();
-  for (const auto& entry : std::filesystem::directory_iterator(std::string(PENUMBRA_SOURCE_DIR) + "/scenes")) {
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(PENUMBRA_SOURCE_DIR) + "/scenes")) {
     const std::string file = entry.path().filename().string();
     if (!file.ends_with(".scene.json")) continue;
     SCOPED_TRACE(file);
-    crossCheckExport(protocol::loadSceneFile(entry.path().string()), dir, file.substr(0, file.find('.')));
+    crossCheckExport(protocol::loadSceneFile(entry.path().string()), dir,
+                     file.substr(0, file.find('.')));
   }
 }
 
