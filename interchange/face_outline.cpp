@@ -63,14 +63,15 @@ IndexPolygon convexOutline(const std::vector<Vec3>& positions,
   // Drop corners that lie on the edge between their neighbours (within eps), until none do.
   for (bool dropped = true; dropped && outline.size() > 3;) {
     dropped = false;
-    for (size_t i = 0; i < outline.size() && outline.size() > 3; ++i) {
+    for (size_t i = 0; i < outline.size() && outline.size() > 3;) {
       const Point2& prev = outline[(i + outline.size() - 1) % outline.size()];
       const Point2& next = outline[(i + 1) % outline.size()];
       const double chord = std::hypot(next.x - prev.x, next.y - prev.y);
       if (std::abs(cross(prev, next, outline[i])) <= eps * chord) {
         outline.erase(outline.begin() + long(i));
         dropped = true;
-        --i;
+      } else {
+        ++i;
       }
     }
   }

@@ -304,7 +304,10 @@ void applyBaseColourTexture(const tinygltf::Model& model, const tinygltf::Primit
   if (uv.components() != 2 || uv.count() != localPositions.size())
     throw ValidationError(path + ".attributes." + uvAttribute->first, "must be one VEC2 per position");
   std::vector<Vec2> uvs;
-  for (size_t i = 0; i < uv.count(); ++i) uvs.push_back(Vec2(uv.component(i, 0), uv.component(i, 1)));
+  for (size_t i = 0; i < uv.count(); ++i) {
+    const Vec2 p(uv.component(i, 0), uv.component(i, 1));
+    uvs.push_back(std::isfinite(p.x) && std::isfinite(p.y) ? p : Vec2(0.0));  // a broken UV samples a corner
+  }
   const auto average = averageTextureColour(model.images[size_t(source)], uvs, group.positions, group.polygons);
   if (!average) return report.count("textures_ignored");
   ImportedMaterial material = geometry.materials[size_t(group.material)];

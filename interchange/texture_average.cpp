@@ -55,7 +55,7 @@ std::optional<Vec3> averageTextureColour(const tinygltf::Image& image, const std
     const double longest =
         std::max({glm::length((ub - ua) * texels), glm::length((uc - ub) * texels),
                   glm::length((ua - uc) * texels)});
-    const int n = std::clamp(int(std::ceil(longest)), 1, 32);
+    const int n = std::isfinite(longest) ? int(std::clamp(std::ceil(longest), 1.0, 32.0)) : 32;
     // The centroids of the n² sub-triangles of a regular subdivision (all of one area).
     Vec3 colour(0.0);
     for (int i = 0; i < n; ++i)

@@ -16,7 +16,7 @@ namespace penumbra::interchange {
 
 // The texture's colour (sRGB-decoded to linear, alpha ignored) averaged over the triangles:
 // each sampled at n² equal sub-triangles (n: its longest edge in texels, 1 to 32), nearest
-// texel, UVs wrapped (glTF's default sampler). nullopt when the image has no pixels or the
+// texel, UVs (finite) wrapped (glTF's default sampler). nullopt when the image has no pixels or the
 // triangles no area.
 std::optional<Vec3> averageTextureColour(const tinygltf::Image& image, const std::vector<Vec2>& uvs,
                                          const std::vector<Vec3>& positions,
