@@ -193,10 +193,11 @@ TEST(AssimpCrossCheck, ObjFixtures) {
   }
 }
 
-// The torus the compression test imports, plainly and quantized (KHR_mesh_quantization). Debian's
-// assimp 5.2.5 reads a quantized file's triangles but not its positions (it takes the normalized
-// shorts for floats: coordinates of 1e31), so there only the counts are compared. Draco is not
-// compared: Debian's assimp 5.2.5 is built without it.
+// The torus the compression test imports, plainly, quantized (KHR_mesh_quantization) and under
+// a rotated, scaled and moved parent node. Debian's assimp 5.2.5 reads a quantized file's
+// triangles but not its positions (it takes the normalized shorts for floats: coordinates of
+// 1e31), so there only the counts are compared. Draco is not compared: Debian's assimp 5.2.5 is
+// built without it.
 TEST(AssimpCrossCheck, GltfModels) {
   const std::filesystem::path dir = scratchDir();
   const TriangleMesh mesh = torus(24, 12);
@@ -211,7 +212,20 @@ TEST(AssimpCrossCheck, GltfModels) {
   quantized.model().extensionsRequired =
       quantized.model().extensionsUsed = {"KHR_mesh_quantization"};
   writeBytes(dir / "quantized.glb", quantized.write(true));
-  for (const char* name : {"plain.glb", "quantized.glb"}) {
+  // The torus under a parent: both readers compose the node transforms.
+  ModelWriter nested = roomWriter();
+  nested.node("torus", plainPrimitive(nested, mesh));
+  tinygltf::Model& model = nested.model();
+  model.nodes.back().rotation = {0, 0, std::sin(0.3), std::cos(0.3)};
+  tinygltf::Node parent;
+  parent.translation = {0.5, 0.25, -1};
+  parent.rotation = {std::sin(0.4), 0, 0, std::cos(0.4)};
+  parent.scale = {2, 1, 3};
+  parent.children = {int(model.nodes.size() - 1)};
+  model.nodes.push_back(parent);
+  model.scenes[0].nodes.back() = int(model.nodes.size() - 1);
+  writeBytes(dir / "nested.glb", nested.write(true));
+  for (const char* name : {"plain.glb", "quantized.glb", "nested.glb"}) {
     const std::string path = (dir / name).string();
     const ImportResult imported = importSceneFile(path, {});
     EXPECT_EQ(imported.report.trianglesRead, 2 + 2 + mesh.indices.size() / 3) << name;
