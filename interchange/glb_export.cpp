@@ -14,6 +14,7 @@
 #include "core/illum/ambient_fill.h"
 #include "core/render/camera_projection.h"
 #include "interchange/penumbra_extras.h"
+#include "protocol/camera_json.h"
 #include "protocol/material_json.h"
 
 namespace penumbra::interchange {
@@ -86,7 +87,8 @@ class GltfBuilder {
 
   // A camera node at `camera` (glTF cameras look down their −Z with +Y up). No aspect ratio:
   // the viewer's (an orthographic view is square: xmag = ymag).
-  void addCamera(const Camera& camera) {
+  // `extras`: the scene's own camera for the importer (penumbra_extras.h); null for none.
+  void addCamera(const Camera& camera, const nlohmann::json& extras) {
     tinygltf::Camera out;
     out.name = "camera";
     if (camera.projection == Camera::Projection::Orthographic) {
@@ -108,6 +110,7 @@ class GltfBuilder {
     tinygltf::Node node;
     node.name = "camera";
     node.camera = int(model_.cameras.size() - 1);
+    if (!extras.is_null()) node.extras = toGltfValue({{kPenumbraExtras, extras}});
     node.translation = {camera.position.x, camera.position.y, camera.position.z};
     node.rotation = {rotation.x, rotation.y, rotation.z, rotation.w};
     model_.nodes.push_back(node);
@@ -308,7 +311,8 @@ GlbFile meshToGlb(const Scene& scene, const Mesh& mesh, const GlbOptions& option
                     TINYGLTF_MODE_LINE);
     ++file.meshes;
   }
-  builder.addCamera(scene.camera() ? *scene.camera() : defaultCamera(scene.bounds()));
+  builder.addCamera(scene.camera() ? *scene.camera() : defaultCamera(scene.bounds()),
+                    scene.camera() ? nlohmann::json{{"camera", protocol::cameraToJson(*scene.camera())}} : nullptr);
   auto rgb = [](const Vec3& v) {
     return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(v.x), tinygltf::Value(v.y), tinygltf::Value(v.z)});
   };

@@ -366,6 +366,8 @@ ImportResult importModel(const tinygltf::Model& model, const std::string& warn, 
     if (index < 0 || size_t(index) >= model.nodes.size()) throw ValidationError(path, "no such node");
     if (depth > kMaxNodeDepth) throw ValidationError(path, "nodes nest deeper than 64 (a cycle?)");
     const tinygltf::Node& node = model.nodes[size_t(index)];
+    if (const nlohmann::json extras = penumbraExtras(node.extras); ours && extras.is_object() && extras.contains("camera"))
+      geometry.camera = extras["camera"];
     const Mat4 worldFromNode = parent * localMatrix(node);
     if (node.mesh >= 0) {
       if (size_t(node.mesh) >= model.meshes.size()) throw ValidationError(path + ".mesh", "no such mesh");

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/geom/vec.h"
 #include "core/scene/scene.h"
 #include "interchange/polygon_repair.h"
@@ -36,6 +38,8 @@ struct ImportedGroup {
 struct ImportedGeometry {
   std::vector<ImportedMaterial> materials;
   std::vector<ImportedGroup> groups;
+  // Penumbra's own GLB: its scene's camera as scene v1 writes it (file units); null otherwise.
+  nlohmann::json camera;
 };
 
 struct ImportOptions {

@@ -252,6 +252,18 @@ void warnNonManifold(const std::vector<RepairedGroup>& groups, const std::vector
                               " more objects with non-manifold edges (see the counts)");
 }
 
+// A camera in file units (Penumbra's GLB) scaled as the geometry is; what is not a number is
+// left for sceneFromJson to refuse with its path.
+Json scaledCamera(Json camera, double scale) {
+  for (const char* key : {"position", "target"})
+    if (camera.contains(key) && camera[key].is_array())
+      for (Json& c : camera[key])
+        if (c.is_number()) c = c.get<double>() * scale;
+  for (const char* key : {"height", "near", "far"})
+    if (camera.contains(key) && camera[key].is_number()) camera[key] = camera[key].get<double>() * scale;
+  return camera;
+}
+
 }  // namespace
 
 ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions& options, ImportReport report) {
@@ -436,7 +448,11 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
                           "(without --no-studio, or studio=0 over HTTP, such a file goes into the default studio)");
 
   Json scene = {{"format", "penumbra.scene"}, {"version", 1}, {"lights", lights}, {"objects", objects}};
-  if (report.studio) scene["camera"] = studioCamera(placed);
+  if (report.studio) {
+    scene["camera"] = studioCamera(placed);
+  } else if (geometry.camera.is_object()) {
+    scene["camera"] = scaledCamera(geometry.camera, options.scale);
+  }
   if (!materials.empty()) scene["materials"] = materials;
   report.objects = objects.size();
   report.lights = lights.size();

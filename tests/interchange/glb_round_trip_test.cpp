@@ -2,9 +2,9 @@
 // import gives the scene back (docs/SCENE_FORMAT.md "GLB round trip"): per object, by id (node
 // name = object id) and in order, the same faces in order, each with the same corners from the
 // same first corner (the same winding), the same welded vertices and the same material; the same
-// lights (ids, radiance exactly, polygons). Positions within float32 precision, as the GLB stores
-// them: 4 float ulps of the scene's largest coordinate. Over the bundled scenes and seeded
-// generated models.
+// lights (ids, radiance exactly, polygons) and camera (exactly). Positions within float32
+// precision, as the GLB stores them: 4 float ulps of the scene's largest coordinate. Over the
+// bundled scenes and seeded generated models.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -109,6 +109,15 @@ std::vector<std::string> differences(const Scene& original, const Scene& importe
           materialOf(imported, imported.objects()[i])))
       out.push_back(name + ": material differs");
   }
+  if (original.camera().has_value() != imported.camera().has_value()) {
+    out.push_back("camera present in one only");
+  } else if (original.camera()) {
+    const Camera &a = *original.camera(), &b = *imported.camera();
+    if (a.position != b.position || a.target != b.target || a.up != b.up ||
+        a.projection != b.projection || a.fovYDeg != b.fovYDeg || a.height != b.height ||
+        a.near != b.near || a.far != b.far)
+      out.push_back("camera differs");
+  }
   if (original.lights().size() != imported.lights().size())
     return out.push_back("light count differs"), out;
   for (size_t l = 0; l < original.lights().size(); ++l) {
@@ -139,13 +148,16 @@ TEST(GlbRoundTrip, TheComparisonCanFail) {
   materials[0].albedo.y += 0.01;
   std::vector<Light> lights = scene.lights();
   lights[0].radiance.z *= 1 + 1e-12;
+  Camera camera = *scene.camera();
+  camera.fovYDeg += 1e-9;
   const std::vector<std::string> found =
-      differences(scene, Scene(lights, materials, objects, scene.camera()));
+      differences(scene, Scene(lights, materials, objects, camera));
   EXPECT_FALSE(found.empty());
   const std::string all = joined(found);
   EXPECT_NE(all.find("'" + objects[0].id + "' face 0"), std::string::npos) << all;
   EXPECT_NE(all.find("material differs"), std::string::npos) << all;
   EXPECT_NE(all.find("radiance differs"), std::string::npos) << all;
+  EXPECT_NE(all.find("camera differs"), std::string::npos) << all;
 }
 
 TEST(GlbRoundTrip, BundledScenes) {
@@ -158,6 +170,19 @@ TEST(GlbRoundTrip, BundledScenes) {
     EXPECT_EQ(joined(differences(scene, back.scene)), "") << back.report.summary();
     EXPECT_EQ(back.report.repaired("coplanar_triangles_joined"), 0u);
   }
+}
+
+// --scale (or the upload's scale) scales the camera with the geometry.
+TEST(GlbRoundTrip, TheCameraScalesWithTheGeometry) {
+  const Scene scene = protocol::loadSceneFile(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/cornell.scene.json");
+  Engine engine(scene);
+  ImportOptions options;
+  options.scale = 2;
+  const ImportResult back = importSceneBytes(meshToGlb(engine.scene(), engine.mesh()).bytes, "c.glb", {}, options);
+  ASSERT_TRUE(back.scene.camera());
+  EXPECT_EQ(back.scene.camera()->position, 2.0 * scene.camera()->position);
+  EXPECT_EQ(back.scene.camera()->target, 2.0 * scene.camera()->target);
+  EXPECT_EQ(back.scene.camera()->fovYDeg, scene.camera()->fovYDeg);
 }
 
 // Seeded: model kind, triangle count, shape seed and resting or floating, as `penumbra generate
