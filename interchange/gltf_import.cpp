@@ -34,7 +34,7 @@ constexpr int kMaxNodeDepth = 64;
 // Images are decoded (base colour textures are averaged into albedos: texture_average.h) only
 // when their header gives a PNG or JPEG size within what is left of kMaxTexturePixels; any other
 // is left empty (its textures ignored, counted) rather than failing the file.
-bool loadImageWithinBudget(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int width,
+bool loadImageWithinBudget(tinygltf::Image* image, const int index, std::string* /*err*/, std::string* warn, int width,
                            int height, const unsigned char* bytes, int size, void* pixelsLeft) {
   size_t& left = *static_cast<size_t*>(pixelsLeft);
   const auto dimensions = encodedImageSize(bytes, size_t(std::max(size, 0)));
@@ -44,7 +44,6 @@ bool loadImageWithinBudget(tinygltf::Image* image, const int index, std::string*
   left -= size_t(dimensions->first) * size_t(dimensions->second);
   std::string decodeError;
   if (!tinygltf::LoadImageData(image, index, &decodeError, warn, width, height, bytes, size, nullptr)) image->image.clear();
-  (void)err;
   return true;
 }
 
@@ -185,7 +184,8 @@ bool restorePenumbraMaterial(const tinygltf::Material& m, const std::string& pat
   return true;
 }
 
-std::vector<ImportedMaterial> materialsOf(const tinygltf::Model& model, ImportReport& report) {
+// ours: the file is Penumbra's own export (asset.extras.penumbra), whose materials carry the scene's.
+std::vector<ImportedMaterial> materialsOf(const tinygltf::Model& model, bool ours, ImportReport& report) {
   std::vector<ImportedMaterial> materials;
   std::set<std::string> names;
   for (size_t i = 0; i < model.materials.size(); ++i) {
@@ -197,7 +197,7 @@ std::vector<ImportedMaterial> materialsOf(const tinygltf::Model& model, ImportRe
       names.insert(material.name);
       report.count("material_names_made_unique");
     }
-    if (restorePenumbraMaterial(m, at("materials", i), material)) {
+    if (ours && restorePenumbraMaterial(m, at("materials", i), material)) {
       report.count("penumbra_materials_restored");
       materials.push_back(std::move(material));
       continue;
@@ -288,8 +288,7 @@ void restoreSceneFaces(const tinygltf::Model& model, const tinygltf::Primitive& 
 // in the report's warnings. Without its TEXCOORD, a decoded image, or with Draco, the texture is
 // ignored (counted).
 void applyBaseColourTexture(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& path,
-                            const std::vector<Vec3>& localPositions, ImportedGeometry& geometry, ImportedGroup& group,
-                            ImportReport& report) {
+                            ImportedGeometry& geometry, ImportedGroup& group, ImportReport& report) {
   if (primitive.material < 0) return;
   const tinygltf::TextureInfo& info = model.materials[size_t(primitive.material)].pbrMetallicRoughness.baseColorTexture;
   if (info.index < 0) return;
@@ -301,7 +300,7 @@ void applyBaseColourTexture(const tinygltf::Model& model, const tinygltf::Primit
     return;
   }
   const AccessorReader uv(model, uvAttribute->second, path + ".attributes." + uvAttribute->first);
-  if (uv.components() != 2 || uv.count() != localPositions.size())
+  if (uv.components() != 2 || uv.count() != group.positions.size())
     throw ValidationError(path + ".attributes." + uvAttribute->first, "must be one VEC2 per position");
   std::vector<Vec2> uvs;
   for (size_t i = 0; i < uv.count(); ++i) {
@@ -330,8 +329,10 @@ ImportResult importModel(const tinygltf::Model& model, const std::string& warn, 
     if (end > start) report.warnings.push_back(warn.substr(start, end - start));
     start = end + 1;
   }
+  // Penumbra's own export: its faces, materials and camera come back (penumbra_extras.h).
+  const bool ours = penumbraExtras(model.asset.extras).is_object();
   ImportedGeometry geometry;
-  geometry.materials = materialsOf(model, report);
+  geometry.materials = materialsOf(model, ours, report);
   // Shadows are of one pose: the nodes' own transforms (bind pose), nothing moved or morphed.
   if (!model.skins.empty()) {
     report.count("skins_ignored", model.skins.size());
@@ -341,9 +342,7 @@ ImportResult importModel(const tinygltf::Model& model, const std::string& warn, 
     report.count("animations_ignored", model.animations.size());
     report.warnings.push_back("animations ignored: the scene is imported with its nodes' own transforms");
   }
-  // Penumbra's own export: its faces and default material come back (penumbra_extras.h).
-  const bool ours = penumbraExtras(model.asset.extras).is_object();
-  std::vector<bool> sceneDefault;
+  std::vector<bool> sceneDefault;  // Penumbra's default material: no material in the scene
   for (const tinygltf::Material& m : model.materials) {
     const nlohmann::json extras = penumbraExtras(m.extras);
     sceneDefault.push_back(ours && extras.is_object() && extras.value("default_material", false));
@@ -393,7 +392,7 @@ ImportResult importModel(const tinygltf::Model& model, const std::string& warn, 
         for (const Vec3& p : local.positions) group.positions.push_back(Vec3(worldFromNode * glm::dvec4(p, 1.0)));
         group.polygons = std::move(local.triangles);
         if (group.material >= 0)
-          applyBaseColourTexture(model, primitive, primitivePath, local.positions, geometry, group, report);
+          applyBaseColourTexture(model, primitive, primitivePath, geometry, group, report);
         if (mirrored)  // glTF: a mirroring transform flips the winding back
           for (IndexPolygon& t : group.polygons) std::swap(t[1], t[2]);
         if (ours) restoreSceneFaces(model, primitive, primitivePath, group, report);
