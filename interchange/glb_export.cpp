@@ -13,6 +13,9 @@
 
 #include "core/illum/ambient_fill.h"
 #include "core/render/camera_projection.h"
+#include "interchange/penumbra_extras.h"
+#include "protocol/camera_json.h"
+#include "protocol/material_json.h"
 
 namespace penumbra::interchange {
 
@@ -21,16 +24,18 @@ namespace {
 void append(std::vector<float>& out, const Vec3& v) { out.insert(out.end(), {float(v.x), float(v.y), float(v.z)}); }
 
 // One primitive's worth of vertex data before it goes into the buffer: positions, and for an
-// object's faces the display colour and the exact values (empty otherwise).
+// object's faces the display colour, the exact values and the scene face (empty otherwise).
 struct PrimitiveData {
   std::vector<float> positions, colors, radiance, irradiance;  // xyz / rgb
+  std::vector<float> faces;  // the vertex's face index within its object (exact up to 2^24)
   std::vector<uint32_t> indices;
   void add(const Vec3& p) { append(positions, p); }
-  void add(const Vec3& p, const Vec3& color, const Vec3& exactRadiance, const Vec3& exactIrradiance) {
+  void add(const Vec3& p, const Vec3& color, const Vec3& exactRadiance, const Vec3& exactIrradiance, uint32_t face) {
     append(positions, p);
     append(colors, color);
     append(radiance, exactRadiance);
     append(irradiance, exactIrradiance);
+    faces.push_back(float(face));
   }
   size_t vertexCount() const { return positions.size() / 3; }
 };
@@ -45,9 +50,11 @@ class GltfBuilder {
     model_.defaultScene = 0;
   }
 
-  int unlitMaterial(const std::string& name, const Vec3& color) {
+  // `extras`: what the importer reads back (penumbra_extras.h); null for none.
+  int unlitMaterial(const std::string& name, const Vec3& color, const nlohmann::json& extras = nullptr) {
     tinygltf::Material material;
     material.name = name;
+    if (!extras.is_null()) material.extras = toGltfValue({{kPenumbraExtras, extras}});
     material.pbrMetallicRoughness.baseColorFactor = {color.x, color.y, color.z, 1.0};
     material.pbrMetallicRoughness.metallicFactor = 0;
     material.pbrMetallicRoughness.roughnessFactor = 1;
@@ -59,9 +66,10 @@ class GltfBuilder {
 
   // A black surface that emits `emitted` (linear, any size): emissiveFactor in [0, 1] and the
   // rest as KHR_materials_emissive_strength.
-  int emissiveMaterial(const std::string& name, const Vec3& emitted) {
+  int emissiveMaterial(const std::string& name, const Vec3& emitted, const nlohmann::json& extras) {
     tinygltf::Material material;
     material.name = name;
+    material.extras = toGltfValue({{kPenumbraExtras, extras}});
     material.pbrMetallicRoughness.baseColorFactor = {0, 0, 0, 1};
     material.pbrMetallicRoughness.metallicFactor = 0;
     material.pbrMetallicRoughness.roughnessFactor = 1;
@@ -79,7 +87,8 @@ class GltfBuilder {
 
   // A camera node at `camera` (glTF cameras look down their −Z with +Y up). No aspect ratio:
   // the viewer's (an orthographic view is square: xmag = ymag).
-  void addCamera(const Camera& camera) {
+  // `extras`: the scene's own camera for the importer (penumbra_extras.h); null for none.
+  void addCamera(const Camera& camera, const nlohmann::json& extras) {
     tinygltf::Camera out;
     out.name = "camera";
     if (camera.projection == Camera::Projection::Orthographic) {
@@ -101,6 +110,7 @@ class GltfBuilder {
     tinygltf::Node node;
     node.name = "camera";
     node.camera = int(model_.cameras.size() - 1);
+    if (!extras.is_null()) node.extras = toGltfValue({{kPenumbraExtras, extras}});
     node.translation = {camera.position.x, camera.position.y, camera.position.z};
     node.rotation = {rotation.x, rotation.y, rotation.z, rotation.w};
     model_.nodes.push_back(node);
@@ -118,6 +128,7 @@ class GltfBuilder {
       primitive.attributes["_RADIANCE"] = accessor(data.radiance, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
       primitive.attributes["_IRRADIANCE"] =
           accessor(data.irradiance, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+      primitive.attributes[kFaceAttribute] = accessor(data.faces, TINYGLTF_TYPE_SCALAR, TINYGLTF_TARGET_ARRAY_BUFFER, false);
     }
     primitive.indices = accessor(data.indices, TINYGLTF_TYPE_SCALAR, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER, false);
     tinygltf::Mesh mesh;
@@ -230,7 +241,20 @@ GlbFile meshToGlb(const Scene& scene, const Mesh& mesh, const GlbOptions& option
   }
 
   GltfBuilder builder;
-  const int unlit = builder.unlitMaterial("penumbra-lit-mesh", Vec3(1.0));
+  // Every object shows its COLOR_0 through a white unlit material; each scene material has its
+  // own, carrying the material for the importer (the scene's default: "penumbra-lit-mesh").
+  int unlit = -1;
+  std::map<size_t, int> glbMaterialOf;  // scene material index → glTF material
+  auto materialOf = [&](const Object& object) {
+    const std::optional<size_t> m = scene.findMaterial(object.material);
+    if (!m && unlit < 0) unlit = builder.unlitMaterial("penumbra-lit-mesh", Vec3(1.0), {{"default_material", true}});
+    if (!m) return unlit;
+    if (!glbMaterialOf.count(*m)) {
+      const Material& material = scene.materials()[*m];
+      glbMaterialOf[*m] = builder.unlitMaterial(material.id, Vec3(1.0), {{"material", protocol::materialToJson(material)}});
+    }
+    return glbMaterialOf[*m];
+  };
   std::map<uint32_t, std::vector<const ReceiverMesh*>> receiversOf;
   std::map<FaceId, bool> received;
   for (const ReceiverMesh& receiver : mesh.receivers) {
@@ -250,19 +274,20 @@ GlbFile meshToGlb(const Scene& scene, const Mesh& mesh, const GlbOptions& option
       for (size_t v = 0; v < receiver->positions.size(); ++v)
         data.add(receiver->positions[v],
                  clampedColour(displayRadiance(scene, *receiver, indirect, v, file.ambient), file.colorScale),
-                 exactRadiance(scene, *receiver, indirect, v), receiver->irradiance[v]);
+                 exactRadiance(scene, *receiver, indirect, v), receiver->irradiance[v], receiver->face.face);
       for (const auto& t : receiver->triangles) data.indices.insert(data.indices.end(), {first + t[0], first + t[1], first + t[2]});
     }
     for (const Face* face : darkFacesOf[handle]) {  // lit by no light: the fill only, as a fan (faces are convex)
       const uint32_t first = uint32_t(data.vertexCount());
       const Vec3 fill = options.indirect ? Vec3(0.0) : scene.albedo(face->id) / M_PI * file.ambient;
-      for (const Vec3& p : face->polygon) data.add(p, clampedColour(fill, file.colorScale), Vec3(0.0), Vec3(0.0));
+      for (const Vec3& p : face->polygon)
+        data.add(p, clampedColour(fill, file.colorScale), Vec3(0.0), Vec3(0.0), face->id.face);
       for (uint32_t k = 1; k + 1 < face->polygon.size(); ++k) data.indices.insert(data.indices.end(), {first, first + k, first + k + 1});
     }
     if (data.indices.empty()) continue;
     file.vertices += data.vertexCount();
     file.triangles += data.indices.size() / 3;
-    builder.addMesh(scene.objects()[i].id, data, unlit, TINYGLTF_MODE_TRIANGLES);
+    builder.addMesh(scene.objects()[i].id, data, materialOf(scene.objects()[i]), TINYGLTF_MODE_TRIANGLES);
     ++file.meshes;
   }
   if (options.lights)
@@ -270,7 +295,8 @@ GlbFile meshToGlb(const Scene& scene, const Mesh& mesh, const GlbOptions& option
       PrimitiveData data;
       for (const Vec3& p : light.polygon) data.add(p);
       for (uint32_t k = 1; k + 1 < light.polygon.size(); ++k) data.indices.insert(data.indices.end(), {0, k, k + 1});
-      builder.addMesh(light.id, data, builder.emissiveMaterial("light " + light.id, light.radiance * file.colorScale),
+      const nlohmann::json radiance = {{"radiance", {light.radiance.x, light.radiance.y, light.radiance.z}}};
+      builder.addMesh(light.id, data, builder.emissiveMaterial("light " + light.id, light.radiance * file.colorScale, radiance),
                       TINYGLTF_MODE_TRIANGLES);
       ++file.meshes;
     }
@@ -285,7 +311,8 @@ GlbFile meshToGlb(const Scene& scene, const Mesh& mesh, const GlbOptions& option
                     TINYGLTF_MODE_LINE);
     ++file.meshes;
   }
-  builder.addCamera(scene.camera() ? *scene.camera() : defaultCamera(scene.bounds()));
+  builder.addCamera(scene.camera() ? *scene.camera() : defaultCamera(scene.bounds()),
+                    scene.camera() ? nlohmann::json{{"camera", protocol::cameraToJson(*scene.camera())}} : nullptr);
   auto rgb = [](const Vec3& v) {
     return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(v.x), tinygltf::Value(v.y), tinygltf::Value(v.z)});
   };
@@ -296,7 +323,9 @@ GlbFile meshToGlb(const Scene& scene, const Mesh& mesh, const GlbOptions& option
        {"color", tinygltf::Value(std::string("COLOR_0 = min(1, color_scale x albedo/pi x (E + fill)), fill = the "
                                              "indirect irradiance if indirect, else ambient (W m^-2)"))},
        {"radiance", tinygltf::Value(std::string("_RADIANCE = albedo/pi x (E + indirect) (W m^-2 sr^-1)"))},
-       {"irradiance", tinygltf::Value(std::string("_IRRADIANCE = E, the exact direct irradiance (W m^-2)"))}});
+       {"irradiance", tinygltf::Value(std::string("_IRRADIANCE = E, the exact direct irradiance (W m^-2)"))},
+       {"faces", tinygltf::Value(std::string("_FACE = the vertex's face index within its object (node name = object "
+                                             "id); materials' extras.penumbra = the scene's material"))}});
   file.bytes = builder.glb();
   return file;
 }

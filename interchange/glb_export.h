@@ -8,7 +8,9 @@
 // named by its id with an emissive material: emissiveFactor = its radiance over its largest
 // channel, KHR_materials_emissive_strength = that channel × color_scale (the colour it would
 // have in COLOR_0, unclamped). The scene's camera (or the default view of its bounds) is a
-// camera node. Free functions; thread-safe.
+// camera node. For the round trip (docs/SCENE_FORMAT.md "GLB round trip", penumbra_extras.h):
+// _FACE = each vertex's face index within its object, and each scene material its own (white,
+// unlit) glTF material carrying the material in extras.penumbra. Free functions; thread-safe.
 #pragma once
 
 #include <array>

@@ -1,19 +1,25 @@
 #include "interchange/gltf_import.h"
 
+#include "interchange/face_outline.h"
 #include "interchange/gltf_extensions.h"
 #include "interchange/material_mapping.h"
+#include "interchange/penumbra_extras.h"
+#include "interchange/texture_average.h"
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iterator>
 #include <set>
+#include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <tiny_gltf.h>
 
+#include "protocol/material_json.h"
 #include "protocol/validation_error.h"
 
 namespace penumbra::interchange {
@@ -25,8 +31,19 @@ using protocol::ValidationError;
 constexpr size_t kMaxGltfBytes = size_t(256) << 20;
 constexpr int kMaxNodeDepth = 64;
 
-// Images are not needed (only factors are read) and never decoded.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+// Images are decoded (base colour textures are averaged into albedos: texture_average.h) only
+// when their header gives a PNG or JPEG size within what is left of kMaxTexturePixels; any other
+// is left empty (its textures ignored, counted) rather than failing the file.
+bool loadImageWithinBudget(tinygltf::Image* image, const int index, std::string* /*err*/, std::string* warn, int width,
+                           int height, const unsigned char* bytes, int size, void* pixelsLeft) {
+  size_t& left = *static_cast<size_t*>(pixelsLeft);
+  const auto dimensions = encodedImageSize(bytes, size_t(std::max(size, 0)));
+  if (!dimensions || dimensions->first <= 0 || dimensions->second <= 0 ||
+      size_t(dimensions->first) * size_t(dimensions->second) > left)
+    return true;
+  left -= size_t(dimensions->first) * size_t(dimensions->second);
+  std::string decodeError;
+  if (!tinygltf::LoadImageData(image, index, &decodeError, warn, width, height, bytes, size, nullptr)) image->image.clear();
   return true;
 }
 
@@ -132,7 +149,7 @@ void mapMicrofacet(const tinygltf::Material& m, ImportedMaterial& material, Impo
   if (m.extensions.count("KHR_materials_unlit")) return;  // e.g. Penumbra's own lit-mesh export
   const auto& pbr = m.pbrMetallicRoughness;
   const double alpha = alphaFromPerceptual(pbr.roughnessFactor);
-  if (pbr.metallicRoughnessTexture.index >= 0) report.count("textures_ignored");
+  if (pbr.metallicRoughnessTexture.index >= 0) report.count("textures_ignored");  // roughness: the factor only
   if (extensionNumber(m, "KHR_materials_transmission", "transmissionFactor", 0) >= 0.5) {
     material.surface.type = MaterialType::Dielectric;
     material.surface.roughness = Vec2(alpha);
@@ -146,7 +163,29 @@ void mapMicrofacet(const tinygltf::Material& m, ImportedMaterial& material, Impo
   }
 }
 
-std::vector<ImportedMaterial> materialsOf(const tinygltf::Model& model, ImportReport& report) {
+// Penumbra's own export (penumbra_extras.h): the scene's material, or a light's exact radiance
+// (its emissive factor is scaled by the export's exposure). True when the material had them.
+bool restorePenumbraMaterial(const tinygltf::Material& m, const std::string& path, ImportedMaterial& material) {
+  const nlohmann::json extras = penumbraExtras(m.extras);
+  if (!extras.is_object()) return false;
+  if (extras.contains("material")) {
+    material.surface = protocol::materialFromJson(material.name, extras["material"], path + ".extras.penumbra.material");
+    material.albedo = material.surface.albedo;
+    return true;
+  }
+  const auto radiance = extras.find("radiance");
+  if (radiance == extras.end()) return false;
+  if (!radiance->is_array() || radiance->size() != 3 || !std::all_of(radiance->begin(), radiance->end(), [](const auto& v) {
+        return v.is_number();
+      }))
+    throw ValidationError(path + ".extras.penumbra.radiance", "radiance must be three numbers");
+  material.albedo = Vec3(0.0);
+  material.emission = Vec3((*radiance)[0].get<double>(), (*radiance)[1].get<double>(), (*radiance)[2].get<double>());
+  return true;
+}
+
+// ours: the file is Penumbra's own export (asset.extras.penumbra), whose materials carry the scene's.
+std::vector<ImportedMaterial> materialsOf(const tinygltf::Model& model, bool ours, ImportReport& report) {
   std::vector<ImportedMaterial> materials;
   std::set<std::string> names;
   for (size_t i = 0; i < model.materials.size(); ++i) {
@@ -158,9 +197,13 @@ std::vector<ImportedMaterial> materialsOf(const tinygltf::Model& model, ImportRe
       names.insert(material.name);
       report.count("material_names_made_unique");
     }
+    if (ours && restorePenumbraMaterial(m, at("materials", i), material)) {
+      report.count("penumbra_materials_restored");
+      materials.push_back(std::move(material));
+      continue;
+    }
     const std::vector<double>& base = m.pbrMetallicRoughness.baseColorFactor;
     if (base.size() >= 3) material.albedo = Vec3(base[0], base[1], base[2]);
-    if (m.pbrMetallicRoughness.baseColorTexture.index >= 0) report.count("textures_ignored");
     mapMicrofacet(m, material, report);
     double strength = 1;
     const auto ext = m.extensions.find("KHR_materials_emissive_strength");
@@ -221,6 +264,64 @@ DecodedPrimitive primitiveGeometry(const tinygltf::Model& model, const tinygltf:
   return out;
 }
 
+// Penumbra's export names each vertex's scene face (_FACE): each face is rebuilt whole from its
+// triangles instead of joining coplanar triangles as for any file.
+void restoreSceneFaces(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& path,
+                       ImportedGroup& group, ImportReport& report) {
+  const auto attribute = primitive.attributes.find(kFaceAttribute);
+  if (attribute == primitive.attributes.end() || primitive.extensions.count("KHR_draco_mesh_compression")) return;
+  const AccessorReader faceOf(model, attribute->second, path + ".attributes." + kFaceAttribute);
+  if (faceOf.components() != 1 || faceOf.count() != group.positions.size())
+    throw ValidationError(path + ".attributes." + kFaceAttribute, "must be one number per position");
+  std::vector<double> faces(faceOf.count());
+  for (size_t i = 0; i < faces.size(); ++i) faces[i] = faceOf.component(i, 0);
+  if (auto restored = facesFromTriangles(group.positions, group.polygons, faces)) {
+    report.count("penumbra_faces_restored", restored->size());
+    group.trianglesRead = group.polygons.size();
+    group.polygons = std::move(*restored);
+    group.joinTriangles = false;
+  }
+}
+
+// A primitive whose material has a base colour texture gets a material of its own: albedo =
+// base colour factor × the texture's average over its triangles (texture_average.h), stated
+// in the report's warnings. Without its TEXCOORD, a decoded image, or with Draco, the texture is
+// ignored (counted).
+void applyBaseColourTexture(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& path,
+                            ImportedGeometry& geometry, ImportedGroup& group, ImportReport& report) {
+  if (primitive.material < 0) return;
+  const tinygltf::TextureInfo& info = model.materials[size_t(primitive.material)].pbrMetallicRoughness.baseColorTexture;
+  if (info.index < 0) return;
+  const int source = size_t(info.index) < model.textures.size() ? model.textures[size_t(info.index)].source : -1;
+  const auto uvAttribute = primitive.attributes.find("TEXCOORD_" + std::to_string(info.texCoord));
+  if (source < 0 || size_t(source) >= model.images.size() || model.images[size_t(source)].image.empty() ||
+      uvAttribute == primitive.attributes.end() || primitive.extensions.count("KHR_draco_mesh_compression")) {
+    report.count("textures_ignored");
+    return;
+  }
+  const AccessorReader uv(model, uvAttribute->second, path + ".attributes." + uvAttribute->first);
+  if (uv.components() != 2 || uv.count() != group.positions.size())
+    throw ValidationError(path + ".attributes." + uvAttribute->first, "must be one VEC2 per position");
+  std::vector<Vec2> uvs;
+  for (size_t i = 0; i < uv.count(); ++i) {
+    const Vec2 p(uv.component(i, 0), uv.component(i, 1));
+    uvs.push_back(std::isfinite(p.x) && std::isfinite(p.y) ? p : Vec2(0.0));  // a broken UV samples a corner
+  }
+  const auto average = averageTextureColour(model.images[size_t(source)], uvs, group.positions, group.polygons);
+  if (!average) return report.count("textures_ignored");
+  ImportedMaterial material = geometry.materials[size_t(group.material)];
+  material.albedo *= *average;
+  material.name += "." + group.name;
+  geometry.materials.push_back(material);
+  group.material = int(geometry.materials.size() - 1);
+  report.count("textures_averaged_into_albedo");
+  std::ostringstream line;
+  line.precision(4);
+  line << "'" << group.name << "': base colour texture averaged over its faces: albedo (" << material.albedo.x << ", "
+       << material.albedo.y << ", " << material.albedo.z << ")";
+  report.warnings.push_back(line.str());
+}
+
 ImportResult importModel(const tinygltf::Model& model, const std::string& warn, const ImportOptions& options,
                          ImportReport report) {
   for (size_t start = 0; start < warn.size();) {
@@ -228,8 +329,24 @@ ImportResult importModel(const tinygltf::Model& model, const std::string& warn, 
     if (end > start) report.warnings.push_back(warn.substr(start, end - start));
     start = end + 1;
   }
+  // Penumbra's own export: its faces, materials and camera come back (penumbra_extras.h).
+  const bool ours = penumbraExtras(model.asset.extras).is_object();
   ImportedGeometry geometry;
-  geometry.materials = materialsOf(model, report);
+  geometry.materials = materialsOf(model, ours, report);
+  // Shadows are of one pose: the nodes' own transforms (bind pose), nothing moved or morphed.
+  if (!model.skins.empty()) {
+    report.count("skins_ignored", model.skins.size());
+    report.warnings.push_back("skins ignored: skinned meshes are imported as stored (bind pose), joints not applied");
+  }
+  if (!model.animations.empty()) {
+    report.count("animations_ignored", model.animations.size());
+    report.warnings.push_back("animations ignored: the scene is imported with its nodes' own transforms");
+  }
+  std::vector<bool> sceneDefault;  // Penumbra's default material: no material in the scene
+  for (const tinygltf::Material& m : model.materials) {
+    const nlohmann::json extras = penumbraExtras(m.extras);
+    sceneDefault.push_back(ours && extras.is_object() && extras.value("default_material", false));
+  }
 
   std::vector<int> roots;
   if (!model.scenes.empty()) {
@@ -248,6 +365,8 @@ ImportResult importModel(const tinygltf::Model& model, const std::string& warn, 
     if (index < 0 || size_t(index) >= model.nodes.size()) throw ValidationError(path, "no such node");
     if (depth > kMaxNodeDepth) throw ValidationError(path, "nodes nest deeper than 64 (a cycle?)");
     const tinygltf::Node& node = model.nodes[size_t(index)];
+    if (const nlohmann::json extras = penumbraExtras(node.extras); ours && extras.is_object() && extras.contains("camera"))
+      geometry.camera = extras["camera"];
     const Mat4 worldFromNode = parent * localMatrix(node);
     if (node.mesh >= 0) {
       if (size_t(node.mesh) >= model.meshes.size()) throw ValidationError(path + ".mesh", "no such mesh");
@@ -266,13 +385,17 @@ ImportResult importModel(const tinygltf::Model& model, const std::string& warn, 
         group.name = !node.name.empty() ? node.name : !mesh.name.empty() ? mesh.name : "mesh" + std::to_string(node.mesh);
         if (primitive.material >= int(geometry.materials.size()))
           throw ValidationError(primitivePath + ".material", "no such material");
-        group.material = primitive.material;
+        group.material = primitive.material >= 0 && sceneDefault[size_t(primitive.material)] ? -1 : primitive.material;
         group.joinTriangles = true;
+        if (!primitive.targets.empty()) report.count("morph_targets_ignored", primitive.targets.size());
         DecodedPrimitive local = primitiveGeometry(model, primitive, primitivePath, report);
         for (const Vec3& p : local.positions) group.positions.push_back(Vec3(worldFromNode * glm::dvec4(p, 1.0)));
         group.polygons = std::move(local.triangles);
+        if (group.material >= 0)
+          applyBaseColourTexture(model, primitive, primitivePath, geometry, group, report);
         if (mirrored)  // glTF: a mirroring transform flips the winding back
           for (IndexPolygon& t : group.polygons) std::swap(t[1], t[2]);
+        if (ours) restoreSceneFaces(model, primitive, primitivePath, group, report);
         geometry.groups.push_back(std::move(group));
       }
     }
@@ -286,7 +409,8 @@ ImportResult importGltf(const std::vector<uint8_t>& bytes, const std::string& ba
                         const ImportOptions& options, const std::string& sourceName) {
   if (bytes.size() > kMaxGltfBytes) throw ValidationError("(gltf)", "the file is over the limit of 256 MiB");
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(skipImage, nullptr);
+  size_t pixelsLeft = kMaxTexturePixels;
+  loader.SetImageLoader(loadImageWithinBudget, &pixelsLeft);
   if (!allowFiles) loader.SetFsCallbacks(tinygltf::FsCallbacks{noFile, samePath, noRead, noWrite, nullptr});
   tinygltf::Model model;
   std::string err, warn;

@@ -26,6 +26,9 @@ nlohmann::json ImportReport::toJson() const {
                         {"faces", faces},
                         {"lights", lights},
                         {"materials", materials},
+                        {"triangles_read", trianglesRead},
+                        {"bounds", {{"min", {boundsMin.x, boundsMin.y, boundsMin.z}},
+                                    {"max", {boundsMax.x, boundsMax.y, boundsMax.z}}}},
                         {"repairs", repairs},
                         {"warnings", validWarnings},
                         {"meshes", meshJson}};

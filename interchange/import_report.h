@@ -44,6 +44,11 @@ struct ImportReport {
   // The loader's, verbatim, and the importer's (missing files, coplanar overlaps), one per line.
   std::vector<std::string> warnings;
   size_t objects = 0, faces = 0, lights = 0, materials = 0;
+  // What the reader read, before any repair: triangles = Σ (corners − 2) over the file's
+  // polygons (a triangle list counts its triangles), and the bounds of the corners they use
+  // (after --scale, before the studio). Another reader's counts compare with these (issue 40).
+  size_t trianglesRead = 0;
+  Vec3 boundsMin{0.0}, boundsMax{0.0};
   // The model's objects (not the studio's), in scene order.
   std::vector<ObjectMeshFacts> meshes;
   std::optional<StudioFacts> studio;  // set when the file had no lights and went into the studio
@@ -57,6 +62,7 @@ struct ImportReport {
   }
 
   // {"source", "format", "objects", "faces", "lights", "materials", "repairs": {...}, "warnings": [...],
+  //  "triangles_read", "bounds": {"min", "max"},
   //  "meshes": [{"object", "faces", "vertices_welded", "components", "closed_components", "faces_flipped",
   //              "non_manifold_edges", "boundary_edges"}, ...], and "studio": {"scale", "offset", "sentence"}
   //  when it was used}

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/geom/vec.h"
 #include "core/scene/scene.h"
 #include "interchange/polygon_repair.h"
@@ -28,11 +30,16 @@ struct ImportedGroup {
   std::vector<IndexPolygon> polygons;
   // glTF: triangles of one surface are joined back into convex polygons.
   bool joinTriangles = false;
+  // The file's triangles when `polygons` are not what it held (Penumbra's faces rebuilt from
+  // their display triangles); unset: Σ (corners − 2) over `polygons` (ImportReport::trianglesRead).
+  std::optional<size_t> trianglesRead;
 };
 
 struct ImportedGeometry {
   std::vector<ImportedMaterial> materials;
   std::vector<ImportedGroup> groups;
+  // Penumbra's own GLB: its scene's camera as scene v1 writes it (file units); null otherwise.
+  nlohmann::json camera;
 };
 
 struct ImportOptions {

@@ -252,6 +252,18 @@ void warnNonManifold(const std::vector<RepairedGroup>& groups, const std::vector
                               " more objects with non-manifold edges (see the counts)");
 }
 
+// A camera in file units (Penumbra's GLB) scaled as the geometry is; what is not a number is
+// left for sceneFromJson to refuse with its path.
+Json scaledCamera(Json camera, double scale) {
+  for (const char* key : {"position", "target"})
+    if (camera.contains(key) && camera[key].is_array())
+      for (Json& c : camera[key])
+        if (c.is_number()) c = c.get<double>() * scale;
+  for (const char* key : {"height", "near", "far"})
+    if (camera.contains(key) && camera[key].is_number()) camera[key] = camera[key].get<double>() * scale;
+  return camera;
+}
+
 }  // namespace
 
 ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions& options, ImportReport report) {
@@ -278,14 +290,20 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
   // Scene size first: it sets the welding distance.
   Bounds bounds{Vec3(INFINITY), Vec3(-INFINITY)};
   bool anyPosition = false;
-  for (const ImportedGroup& group : geometry.groups)
-    for (const IndexPolygon& polygon : group.polygons)
+  for (const ImportedGroup& group : geometry.groups) {
+    if (group.trianglesRead) report.trianglesRead += *group.trianglesRead;
+    for (const IndexPolygon& polygon : group.polygons) {
+      if (!group.trianglesRead) report.trianglesRead += polygon.size() >= 3 ? polygon.size() - 2 : 0;
       for (int i : polygon) {
         const Vec3 p = group.positions[size_t(i)] * options.scale;
         bounds.min = glm::min(bounds.min, p);
         bounds.max = glm::max(bounds.max, p);
         anyPosition = true;
       }
+    }
+  }
+  report.boundsMin = bounds.min;
+  report.boundsMax = bounds.max;
   if (!anyPosition || !(bounds.diagonal() > 0))
     throw ValidationError("(import)", "the file has no faces with area");
 
@@ -430,7 +448,11 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
                           "(without --no-studio, or studio=0 over HTTP, such a file goes into the default studio)");
 
   Json scene = {{"format", "penumbra.scene"}, {"version", 1}, {"lights", lights}, {"objects", objects}};
-  if (report.studio) scene["camera"] = studioCamera(placed);
+  if (report.studio) {
+    scene["camera"] = studioCamera(placed);
+  } else if (geometry.camera.is_object()) {
+    scene["camera"] = scaledCamera(geometry.camera, options.scale);
+  }
   if (!materials.empty()) scene["materials"] = materials;
   report.objects = objects.size();
   report.lights = lights.size();

@@ -9,6 +9,7 @@
 #include "core/geom/polygon.h"
 #include "core/geom/tolerance.h"
 #include "core/scene/camera_limits.h"
+#include "protocol/camera_json.h"
 #include "protocol/json_reader.h"
 #include "protocol/json_text.h"
 #include "protocol/material_json.h"
@@ -333,17 +334,7 @@ Json sceneToJson(const Scene& scene) {
   for (const VolumeObject& volume : scene.volumes()) objects.push_back(volumeToJson(volume));
   out["objects"] = std::move(objects);
 
-  if (const auto& camera = scene.camera()) {
-    out["camera"] = Json{
-        {"position", toJson(camera->position)},
-        {"target", toJson(camera->target)},
-        {"up", toJson(camera->up)},
-        {"projection", camera->projection == Camera::Projection::Perspective ? "perspective" : "orthographic"},
-        {"fov_y_deg", camera->fovYDeg},
-        {"height", camera->height},
-        {"near", camera->near},
-        {"far", camera->far}};
-  }
+  if (const auto& camera = scene.camera()) out["camera"] = cameraToJson(*camera);
   return out;
 }
 

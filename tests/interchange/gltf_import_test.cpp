@@ -253,5 +253,43 @@ TEST(GltfImport, PbrMappingEdges) {
   EXPECT_EQ(result.report.repaired("materials_mapped_to_conductor"), 1u);
 }
 
+// Node transforms compose down the hierarchy (parent × child: translation, rotation, scale), and
+// of several scenes only the default one is imported.
+TEST(GltfImport, NodeHierarchyIsAppliedAndTheDefaultSceneChosen) {
+  ModelWriter w;
+  const int grey = w.material("grey", {0.5, 0.6, 0.7}, {0, 0, 0}, 1);
+  const int lamp = w.material("lamp", {1, 1, 1}, {1, 1, 1}, 8);
+  w.quad("floor", {{{-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}}}, grey, {0, 0, 0});
+  w.quad("lamp", {{{-0.5, 0, -0.5}, {0.5, 0, -0.5}, {0.5, 0, 0.5}, {-0.5, 0, 0.5}}}, lamp, {0, 3, 0});
+  w.quad("card", {{{-0.5, 0, -0.5}, {-0.5, 0, 0.5}, {0.5, 0, 0.5}, {0.5, 0, -0.5}}}, grey, {0, 0, 0});
+  w.quad("decoy", {{{-0.5, 0, -0.5}, {-0.5, 0, 0.5}, {0.5, 0, 0.5}, {0.5, 0, -0.5}}}, grey, {0, 1, 0});
+  tinygltf::Model& model = w.model();
+  // The card turned 90° about z (into the plane x = 0) under a parent that scales by 2 and
+  // moves by (1, 1, 0): x = 1, y in [0, 2], z in [-1, 1].
+  model.nodes[2].translation.clear();
+  model.nodes[2].rotation = {0, 0, std::sin(M_PI / 4), std::cos(M_PI / 4)};
+  tinygltf::Node parent;
+  parent.name = "parent";
+  parent.translation = {1, 1, 0};
+  parent.scale = {2, 2, 2};
+  parent.children = {2};
+  model.nodes.push_back(parent);
+  model.scenes[0].nodes = {0, 1, 3};  // floor, lamp, decoy
+  model.scenes.emplace_back();
+  model.scenes[1].nodes = {0, 1, 4};  // floor, lamp, parent → card
+  model.defaultScene = 1;
+  const ImportResult result = importSceneBytes(w.write(true), "hierarchy.glb", {}, {});
+  EXPECT_FALSE(result.scene.findObject("decoy"));
+  const auto card = result.scene.findObject("card");
+  ASSERT_TRUE(card);
+  Vec3 low(INFINITY), high(-INFINITY);
+  for (const Vec3& v : result.scene.objects()[*card].vertices) low = glm::min(low, v), high = glm::max(high, v);
+  const Vec3 expectedLow(1, 0, -1), expectedHigh(1, 2, 1);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(low[c], expectedLow[c], 1e-6) << c;
+    EXPECT_NEAR(high[c], expectedHigh[c], 1e-6) << c;
+  }
+}
+
 }  // namespace
 }  // namespace penumbra::interchange
