@@ -36,7 +36,11 @@ Scene sceneFromJournaledText(const std::string& text, const std::string& dataDir
 }
 
 Scene journaledScene(const Scene& scene, const std::string& dataDir) {
-  return sceneFromJournaledText(journaledSceneText(scene, dataDir), dataDir);
+  Scene copy = sceneFromJournaledText(journaledSceneText(scene, dataDir), dataDir);
+  std::vector<uint32_t> handles;
+  for (size_t o = 0; o < scene.objects().size(); ++o) handles.push_back(scene.handleOf(o));
+  copy.setHandles(std::move(handles), scene.nextHandle());
+  return copy;
 }
 
 }  // namespace penumbra::server

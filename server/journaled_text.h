@@ -20,8 +20,9 @@ void relativeToDataDir(nlohmann::json& file, const std::string& dataDir);
 std::string journaledSceneText(const Scene& scene, const std::string& dataDir);
 // The scene a journaled text holds; throws (protocol's errors) when it does not load.
 Scene sceneFromJournaledText(const std::string& text, const std::string& dataDir);
-// `scene` read back from its journaled text: what a snapshot of it restores, so what the server
-// builds when it takes one (SceneSession::rebase) and a replay where the server did.
+// `scene` read back from its journaled text, with its object handles: what a snapshot of it
+// restores, so what the server builds when it takes one (SceneSession::rebase) and a replay
+// where the server did.
 Scene journaledScene(const Scene& scene, const std::string& dataDir);
 
 }  // namespace penumbra::server

@@ -207,8 +207,9 @@ std::shared_ptr<SceneSession> startSession(const StoredScene& stored, const Stor
         stored.id, stored.name, sceneFromJournaledText(stored.source, journal.directory()),
         settings);
   StoredParts parts = decodeStoredParts(from->parts);  // cheap checks before the build
-  auto session = std::make_shared<SceneSession>(
-      stored.id, stored.name, sceneFromJournaledText(from->source, journal.directory()), settings);
+  Scene scene = sceneFromJournaledText(from->source, journal.directory());
+  scene.setHandles(std::move(parts.handles), parts.nextHandle);
+  auto session = std::make_shared<SceneSession>(stored.id, stored.name, std::move(scene), settings);
   session->adoptSnapshot(from->version, std::move(parts));
   return session;
 }

@@ -1,5 +1,6 @@
 // SceneSession's fresh builds at snapshot points (docs/SERVER.md "Snapshots"): rebase() while
 // serving, adoptSnapshot() at a restart, and the base they and restoreEngine share.
+#include <set>
 #include <stdexcept>
 
 #include "server/scene_session.h"
@@ -31,12 +32,16 @@ uint64_t SceneSession::engineBase() {
 void SceneSession::adoptSnapshot(uint64_t version, StoredParts stored) {
   std::lock_guard edit(editMutex_);
   const std::shared_ptr<const SceneSnapshot> built = snapshot();
-  // The stored parts must be the built scene's, in its order (their bytes may differ by the
-  // last bits: those are the served ones).
-  bool same = stored.parts.size() == built->parts.size();
-  for (size_t i = 0; same && i < stored.parts.size(); ++i)
-    same = stored.parts[i].key == built->parts[i].key && stored.parts[i].version <= version;
-  if (!same) throw std::runtime_error("its mesh parts are not those of its scene's receivers");
+  // The stored parts must be the built scene's (their bytes may differ in the last bits: the
+  // stored ones are those served; their order too is the one served).
+  std::set<PartKey> builtKeys, storedKeys;
+  for (const MeshPart& part : built->parts) builtKeys.insert(part.key);
+  for (const MeshPart& part : stored.parts) {
+    if (part.version > version) throw std::runtime_error("a part is newer than the snapshot");
+    storedKeys.insert(part.key);
+  }
+  if (storedKeys != builtKeys || storedKeys.size() != stored.parts.size())
+    throw std::runtime_error("its mesh parts are not those of its scene's receivers");
   auto next = std::make_shared<SceneSnapshot>();
   next->id = built->id;
   next->name = built->name;

@@ -110,6 +110,11 @@ std::string encodeStoredParts(const SceneSnapshot& snapshot) {
     out.put(version);
   }
   out.put(snapshot.removedFloor);
+  std::vector<uint32_t> handles;
+  for (size_t o = 0; o < snapshot.scene.objects().size(); ++o)
+    handles.push_back(snapshot.scene.handleOf(o));
+  out.putArray(handles);
+  out.put(snapshot.scene.nextHandle());
   return std::move(out.bytes());
 }
 
@@ -140,6 +145,8 @@ StoredParts decodeStoredParts(const std::string& bytes) {
     stored.removed.emplace_back(std::move(key), in.get<uint64_t>());
   }
   stored.removedFloor = in.get<uint64_t>();
+  stored.handles = in.getArray<uint32_t>();
+  stored.nextHandle = in.get<uint32_t>();
   if (!in.atEnd()) Reader::fail();
   return stored;
 }

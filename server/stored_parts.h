@@ -9,11 +9,14 @@
 
 namespace penumbra::server {
 
-// What a snapshot restores besides the scene: SceneSnapshot's parts, removed and removedFloor.
+// What a snapshot restores besides the scene JSON: SceneSnapshot's parts, removed and
+// removedFloor, and the scene's object handles (JSON holds none; the parts' meshes name them).
 struct StoredParts {
   std::vector<MeshPart> parts;
   std::vector<std::pair<PartKey, uint64_t>> removed;
   uint64_t removedFloor = 0;
+  std::vector<uint32_t> handles;  // Scene::handleOf of each object
+  uint32_t nextHandle = 0;
 };
 
 // Little-endian bytes of the raw values (doubles as their bits: the restored mesh is the served
