@@ -2,7 +2,7 @@
 """Restart time of a journaled scene (README "Durability"): serves SCENE with --data TMP and
 --snapshot-every S, drags one cube FRAMES steps back and forth (POST /edits), keeps its binary
 mesh, stops the server, then restarts it on copies of the journal and measures, for each:
-  - listening: from the start of the process to its "serving ... at" line;
+  - listening: from the start of the process to its "listening on port" line;
   - back: from the start until GET /api/scenes/ID answers 200 (503 "restoring" before), and that
     the binary mesh is byte-identical to the one served before the restart;
   - the seconds of the restore line the server prints.
@@ -28,20 +28,21 @@ import time
 
 
 def start(penumbra, scene, data, every):
-    """Starts a server; returns it, its port and the seconds until it listened."""
+    """Starts a server; returns it, its port, the seconds until it listened (its "listening on
+    port" line: bound, answering /api/health and 503 restoring) and when it was started."""
     began = time.perf_counter()
     proc = subprocess.Popen([penumbra, "serve", scene, "--data", data, "--port", "0",
                              "--snapshot-every", str(every)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    for line in proc.stdout:
-        match = re.search(r"serving .* at http://[^:]+:(\d+)/", line)
+    for line in proc.stderr:
+        match = re.search(r"listening on port (\d+)", line)
         if match:
             return proc, int(match.group(1)), time.perf_counter() - began, began
-    sys.exit("restore_time: the server did not start: " + proc.stderr.read())
+    sys.exit("restore_time: the server did not start: " + proc.stdout.read())
 
 
 def stop(proc):
-    """Stops the server; returns its stderr (the restore lines)."""
+    """Stops the server; returns its stderr after the listening line (the restore lines)."""
     proc.terminate()
     _, err = proc.communicate(timeout=600)
     return err
@@ -57,11 +58,27 @@ def get(port, path):
         conn.close()
 
 
+def wait_back(port, scene_id):
+    while True:  # 503 restoring (or building) until it is back
+        status = get(port, f"/api/scenes/{scene_id}")[0]
+        if status == 200:
+            return
+        if status not in (503, 404):
+            sys.exit(f"restore_time: GET /api/scenes/{scene_id} answered {status} during restore")
+        time.sleep(0.005)
+
+
+def started(penumbra, scene, data, every, scene_id):
+    """A server with the scene served; returns it and its port."""
+    proc, port, _, _ = start(penumbra, scene, data, every)
+    wait_back(port, scene_id)
+    return proc, port
+
+
 def restart(penumbra, scene, data, every, scene_id, mesh):
     """(listening s, back s, restore-line s, the line) of one restart; checks the mesh."""
     proc, port, listening, began = start(penumbra, scene, data, every)
-    while get(port, f"/api/scenes/{scene_id}")[0] != 200:
-        time.sleep(0.005)
+    wait_back(port, scene_id)
     back = time.perf_counter() - began
     status, body = get(port, f"/api/scenes/{scene_id}/mesh?format=bin")
     if status != 200 or body != mesh:
@@ -122,13 +139,12 @@ def main():
     every = args.snapshot_every
     with tempfile.TemporaryDirectory(prefix="penumbra-restore-") as tmp:
         fresh = os.path.join(tmp, "fresh")
-        stop(start(penumbra, scene, fresh, every)[0])  # journals the scene
-        proc, port, _, _ = start(penumbra, scene, fresh, every)
+        proc, port = started(penumbra, scene, fresh, every, scene_id)  # journals the scene
         first_mesh = get(port, f"/api/scenes/{scene_id}/mesh?format=bin")[1]
         stop(proc)
         rows = [("first build (no frames)",
                  restart(penumbra, scene, fresh, every, scene_id, first_mesh))]
-        proc, port, _, _ = start(penumbra, scene, fresh, every)
+        proc, port = started(penumbra, scene, fresh, every, scene_id)
         drag(port, scene_id, args.frames)
         mesh = get(port, f"/api/scenes/{scene_id}/mesh?format=bin")[1]
         stop(proc)
