@@ -42,7 +42,7 @@ std::string defaultStaticDir() {
 server::ServerOptions serveOptions(const Args& args) {
   args.allowOnly({"host", "port", "static", "grid", "data", "ephemeral", "token", "allow-origin",
                   "max-scenes", "max-body-mib", "image-memory-mib", "threads", "edit-nice",
-                  "mesh-tolerance"});
+                  "mesh-tolerance", "snapshot-every"});
   server::ServerOptions options;
   options.host = args.option("host").value_or("127.0.0.1");
   options.port = args.intOption("port", 8080, 0, 65535);
@@ -73,6 +73,8 @@ server::ServerOptions serveOptions(const Args& args) {
   if (args.flag("ephemeral") && args.option("data"))
     throw UsageError("--ephemeral and --data exclude each other");
   if (!args.flag("ephemeral")) options.dataDir = args.option("data").value_or(kDefaultDataDir);
+  options.snapshotEvery =
+      uint64_t(args.intOption("snapshot-every", int(server::kSnapshotEvery), 0, 1000000000));
   options.engine.threads = args.intOption("threads", 0, 0, 1024);
   options.engine.meshTolerance = meshToleranceOption(args);
   options.editNiceness = args.intOption("edit-nice", server::kEditNiceness, 0, 19);
@@ -92,9 +94,11 @@ std::vector<std::string> serveScenes(server::HttpServer& server, const Args& arg
     if (restored.served) ids.push_back(restored.id);
     std::fprintf(
         stderr,
-        "penumbra serve: restored scene '%s' at version %llu (%zu frames%s) in %.2f s%s%s\n",
-        restored.id.c_str(), static_cast<unsigned long long>(restored.version), restored.frames,
-        restored.meshedOnce ? ", meshed once" : "", restored.seconds,
+        "penumbra serve: restored scene '%s' at version %llu (%s%zu frames%s) in %.2f s%s%s\n",
+        restored.id.c_str(), static_cast<unsigned long long>(restored.version),
+        restored.snapshot ? ("snapshot at " + std::to_string(*restored.snapshot) + " + ").c_str()
+                          : "",
+        restored.frames, restored.meshedOnce ? ", meshed once" : "", restored.seconds,
         restored.problem.empty() ? "" : ": ", restored.problem.c_str());
   }
   for (const std::string& path : args.positionals()) {

@@ -54,6 +54,8 @@ commands:
         [--port P] [--static DIR]      default 127.0.0.1:8080 and ./web_client; prints the URL
         [--grid G] [--threads N]
         [--data DIR | --ephemeral]     journal of scenes and edits (default ./penumbra-data)
+        [--snapshot-every N]           journal a snapshot every N versions of a scene, so a
+                                       restart replays at most N frames (default 200; 0: never)
         [--token T] [--max-scenes N]   token for mutating requests (needed off loopback; or
         [--max-body-mib M]             PENUMBRA_TOKEN); limits (default 32 scenes, 16 MiB)
         [--image-memory-mib M]         images rendering at once (default 512 MiB; then 503)

@@ -141,6 +141,7 @@ void HttpServer::applyFrameAlone(SceneSession& session, EditScheduler::Ticket& t
     return;
   }
   sendFrameApplied(res, applied, 1);
+  snapshotIfDue(session, applied.snapshot->version);  // still this scene's turn
 }
 
 void HttpServer::applyFrameBatch(SceneSession& session,
@@ -167,6 +168,7 @@ void HttpServer::applyFrameBatch(SceneSession& session,
   }
   for (EditScheduler::Ticket* ticket : batch)
     sendFrameApplied(*static_cast<QueuedFrame*>(ticket)->res, applied, batch.size());
+  snapshotIfDue(session, applied.snapshot->version);  // still this scene's turn
 }
 
 void HttpServer::submitFrame(SceneSession& session, Frame frame, const std::string& journaled,

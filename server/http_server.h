@@ -57,6 +57,9 @@ struct ServerOptions {
   // Edit batches apply on one thread per core, this many nice steps below the request
   // threads (server/edit_workers.h).
   int editNiceness = kEditNiceness;
+  // Every this many versions a journaled scene is snapshotted (docs/SERVER.md "Snapshots"), so
+  // a restart replays at most that many frames; 0: never.
+  uint64_t snapshotEvery = kSnapshotEvery;
 };
 
 // The id a scene named `name` asks for ("cubes15.scene.json" → "cubes15").
@@ -77,6 +80,10 @@ struct RestoredScene {
   // no longer applies): the version it is served at. The later frames stay in the journal.
   std::optional<uint64_t> stalledAt;
   std::string problem;  // not empty: why not served, or where and why it stalled
+  std::optional<uint64_t> snapshot;  // the journal snapshot it started from (`frames` after it)
+  // Not empty: damage passed over (a snapshot that fails its checksum or does not load, a frame
+  // a snapshot covers), and what the restore did instead; the scene itself came back whole.
+  std::string snapshotProblem;
 };
 
 // A scene restore stopped short of its journal: served read-only at `version` (edits answer 409,
@@ -151,6 +158,10 @@ class HttpServer {
   // touch different objects, else (or when that fails) one by one; answers in the tickets.
   void applyFrameBatch(SceneSession& session, const std::vector<EditScheduler::Ticket*>& batch);
   void applyFrameAlone(SceneSession& session, EditScheduler::Ticket& ticket);
+  // After `version` was published: at every snapshotEvery-th version, the session is rebased
+  // and the journal records the snapshot (journal_snapshots.cpp). A failure only costs the
+  // snapshot (said on stderr): the next one is taken snapshotEvery versions later.
+  void snapshotIfDue(SceneSession& session, uint64_t version);
   // Queues a checked frame for its scene (round-robin, bounded) and answers `res` with what
   // applying it did; `journaled` is the frame's JSON as the journal keeps it.
   void submitFrame(SceneSession& session, Frame frame, const std::string& journaled,
@@ -193,6 +204,8 @@ class HttpServer {
   std::optional<std::vector<SceneJournal::StoredScene>> pendingRestore_;  // reserved, not restored
   std::set<std::string> restoring_;  // journal scenes not back yet (503 restoring), scenesMutex_
   std::vector<JournalProblem> journalProblems_;                   // guarded by scenesMutex_
+  // Snapshot damage restore passed over (RestoredScene::snapshotProblem): id → what; scenesMutex_
+  std::vector<std::pair<std::string, std::string>> snapshotProblems_;
   std::vector<std::pair<std::string, std::string>> staticRoots_;  // URL prefix → canonical dir
   StaticFiles staticFiles_;  // the page, served from those roots
   size_t nextId_ = 1;

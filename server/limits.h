@@ -30,6 +30,9 @@ inline constexpr int kMaxWaitingEdits = kRequestWorkers * 3 / 4;
 // 0: in the 10-minute load of README "Load", one edit thread per core already brought GET p99
 // from 65 to 27 ms; 5 steps gave 22 ms but 18% fewer edits/s and edit p99 806 instead of 621 ms.
 inline constexpr int kEditNiceness = 0;
+// A journal snapshot every this many versions of a scene (serve --snapshot-every): a restart
+// replays at most this many frames after a build (docs/SERVER.md "Snapshots").
+inline constexpr uint64_t kSnapshotEvery = 200;
 // How often freed heap memory is given back to the system while requests come (malloc_trim),
 // and the malloc arenas `penumbra serve` allows (glibc's default is 8 per core).
 inline constexpr std::chrono::milliseconds kTrimInterval{1000};

@@ -15,8 +15,9 @@ namespace penumbra::server {
 namespace {
 
 // Frames are keyed by (scene, version); deleting a scene deletes its frames (foreign key).
-// `parts` (PartChanges, part_changes.h) and the checksums `crc` (version and frame), `parts_crc`
-// and `source_crc` came later: NULL in older journals' rows (read as intact).
+// `parts` (PartChanges, part_changes.h), `base` (StoredFrame::base), snapshots and the checksums
+// `crc` (version and frame), `parts_crc` and `source_crc` came later: NULL in older journals' rows
+// (read as intact).
 constexpr const char* kSchema = R"(
 CREATE TABLE IF NOT EXISTS scenes (
   key INTEGER PRIMARY KEY AUTOINCREMENT,
@@ -32,6 +33,14 @@ CREATE TABLE IF NOT EXISTS frames (
   parts BLOB,
   crc INTEGER,
   parts_crc INTEGER,
+  base INTEGER,
+  PRIMARY KEY (scene, version)) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS snapshots (
+  scene INTEGER NOT NULL REFERENCES scenes(key) ON DELETE CASCADE,
+  version INTEGER NOT NULL,
+  source BLOB NOT NULL,
+  parts BLOB NOT NULL,
+  crc INTEGER NOT NULL,
   PRIMARY KEY (scene, version)) WITHOUT ROWID;
 )";
 
@@ -56,6 +65,11 @@ bool matches(const SqliteStatement& row, int column, uint32_t computed) {
 
 uint32_t SceneJournal::frameChecksum(uint64_t version, const std::string& frame) {
   return crcOf(crcOf(0, std::to_string(version)), frame);
+}
+
+uint32_t SceneJournal::snapshotChecksum(uint64_t version, const std::string& source,
+                                        const std::string& parts) {
+  return crcOf(crcOf(crcOf(0, std::to_string(version)), source), parts);
 }
 
 SceneJournal::SceneJournal(const std::string& dir) : dir_(std::make_unique<DataDirectory>(dir)) {
@@ -108,6 +122,7 @@ void SceneJournal::open() {
   addColumnIfMissing(*db_, "frames", "crc", "INTEGER");
   addColumnIfMissing(*db_, "frames", "parts_crc", "INTEGER");
   addColumnIfMissing(*db_, "scenes", "source_crc", "INTEGER");
+  addColumnIfMissing(*db_, "frames", "base", "INTEGER");
 }
 
 SceneJournal::~SceneJournal() = default;
@@ -142,7 +157,8 @@ std::vector<SceneJournal::StoredScene> SceneJournal::load() {
       scenes.push_back(std::move(scene));
     }
     SqliteStatement frameRows = db_->prepare(
-        "SELECT scene, version, frame, parts, crc, parts_crc FROM frames ORDER BY scene, version");
+        "SELECT scene, version, frame, parts, crc, parts_crc, base FROM frames ORDER BY scene, "
+        "version");
     while (frameRows.step()) {
       const auto it = index.find(frameRows.columnInt(0));
       if (it == index.end()) continue;
@@ -153,8 +169,21 @@ std::vector<SceneJournal::StoredScene> SceneJournal::load() {
       frame.intact = matches(frameRows, 4, frameChecksum(frame.version, frame.frame));
       // Damaged part changes only cost speed: that scene replays frame by frame.
       if (!matches(frameRows, 5, crcOf(0, frame.parts))) frame.parts.clear();
+      if (!frameRows.columnIsNull(6)) frame.base = uint64_t(frameRows.columnInt(6));
       lastVersion_[scene.key] = frame.version;
       scene.frames.push_back(std::move(frame));
+    }
+    SqliteStatement snapshotRows = db_->prepare(
+        "SELECT scene, version, source, parts, crc FROM snapshots ORDER BY scene, version");
+    while (snapshotRows.step()) {
+      const auto it = index.find(snapshotRows.columnInt(0));
+      if (it == index.end()) continue;
+      StoredScene::StoredSnapshot snapshot{uint64_t(snapshotRows.columnInt(1)),
+                                           snapshotRows.columnBytes(2),
+                                           snapshotRows.columnBytes(3)};
+      snapshot.intact = uint32_t(snapshotRows.columnInt(4)) ==
+                        snapshotChecksum(snapshot.version, snapshot.source, snapshot.parts);
+      scenes[it->second].snapshots.push_back(std::move(snapshot));
     }
   } catch (const std::exception& error) {
     // A damaged file: keep what was read, say so; the scenes from the one being read on may be
@@ -186,7 +215,7 @@ int64_t SceneJournal::addScene(const std::string& id, const std::string& name,
 }
 
 void SceneJournal::addFrame(int64_t key, uint64_t version, const std::string& frame,
-                            const std::string& parts) {
+                            const std::string& parts, uint64_t base) {
   std::lock_guard lock(mutex_);
   const auto last = lastVersion_.find(key);
   if (last == lastVersion_.end()) throw std::runtime_error("the scene is no longer journaled");
@@ -197,17 +226,44 @@ void SceneJournal::addFrame(int64_t key, uint64_t version, const std::string& fr
   requireDurable();
   SqliteTransaction transaction(*db_);
   db_->prepare(
-         "INSERT INTO frames (scene, version, frame, parts, crc, parts_crc) VALUES (?, ?, ?, ?, ?, "
-         "?)")
+         "INSERT INTO frames (scene, version, frame, parts, crc, parts_crc, base) VALUES (?, ?, ?, "
+         "?, ?, ?, ?)")
       .bind(1, key)
       .bind(2, int64_t(version))
       .bindBlob(3, frame)
       .bindBlob(4, parts)
       .bind(5, int64_t(frameChecksum(version, frame)))
       .bind(6, int64_t(crcOf(0, parts)))
+      .bind(7, int64_t(base))
       .run();
   transaction.commit();
   last->second = version;
+}
+
+void SceneJournal::addSnapshot(int64_t key, uint64_t version, const std::string& source,
+                               const std::string& parts) {
+  std::lock_guard lock(mutex_);
+  if (!lastVersion_.count(key)) throw std::runtime_error("the scene is no longer journaled");
+  requireDurable();
+  SqliteTransaction transaction(*db_);
+  db_->prepare(
+         "INSERT OR REPLACE INTO snapshots (scene, version, source, parts, crc) VALUES (?, ?, "
+         "?, ?, ?)")
+      .bind(1, key)
+      .bind(2, int64_t(version))
+      .bindBlob(3, source)
+      .bindBlob(4, parts)
+      .bind(5, int64_t(snapshotChecksum(version, source, parts)))
+      .run();
+  // Older snapshots only cost space: a restart starts from the newest that verifies.
+  db_->prepare(
+         "DELETE FROM snapshots WHERE scene = ? AND version NOT IN (SELECT version FROM "
+         "snapshots WHERE scene = ? ORDER BY version DESC LIMIT ?)")
+      .bind(1, key)
+      .bind(2, key)
+      .bind(3, int64_t(kSnapshotsKept))
+      .run();
+  transaction.commit();
 }
 
 void SceneJournal::removeScene(int64_t key) {

@@ -1,5 +1,6 @@
 // The durable record of served scenes (README "Durability"): each scene's source JSON and every
-// acknowledged frame, in SQLite (WAL, synchronous=FULL), committed before the server answers.
+// acknowledged frame, in SQLite (WAL, synchronous=FULL), committed before the server answers;
+// and periodic snapshots (a scene and its mesh at one version) that bound what a restart replays.
 // Thread-safe (one mutex around the connection).
 #pragma once
 
@@ -7,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,9 +34,23 @@ class SceneJournal {
       std::string parts;  // what it did to the served mesh (part_changes.h); empty: not recorded
                           // (or its checksum failed)
       bool intact = true;  // the frame's checksum matches (or it has none)
+      // The version whose fresh build the engine that applied it came from (SceneSession's
+      // base: the scene's creation, a rebuilding light edit, a snapshot); none in older rows.
+      std::optional<uint64_t> base;
     };
     std::vector<StoredFrame> frames;  // in version order
+    // The scene at a version, as a restart may start from it instead of `source`: the scene
+    // JSON (files as the journal names them) and its mesh parts (stored_parts.h).
+    struct StoredSnapshot {
+      uint64_t version = 0;
+      std::string source, parts;
+      bool intact = true;  // its checksum matches
+    };
+    std::vector<StoredSnapshot> snapshots;  // in version order (the newest kSnapshotsKept)
   };
+
+  // Snapshots kept per scene: the newest, and one to fall back on should it be damaged.
+  static constexpr size_t kSnapshotsKept = 2;
 
   // Locks DIR (one server per data directory: DataDirectoryLocked) and opens
   // DIR/journal.sqlite3, creating DIR and the schema, then runs SQLite's quick_check (what it
@@ -67,12 +83,21 @@ class SceneJournal {
   // `version` must follow the scene's last journaled version by exactly one: a gap means an
   // earlier frame was applied but never journaled, and the scene takes no more frames.
   // `parts`: the frame's PartChanges as text, which lets a restart mesh once (scene_restore.cpp).
-  void addFrame(int64_t key, uint64_t version, const std::string& frame, const std::string& parts);
+  // `base`: StoredFrame::base.
+  void addFrame(int64_t key, uint64_t version, const std::string& frame, const std::string& parts,
+                uint64_t base);
+  // Records the scene at `version` (StoredSnapshot) and drops its snapshots older than the
+  // newest kSnapshotsKept; frames are never dropped (docs/SERVER.md "Snapshots").
+  void addSnapshot(int64_t key, uint64_t version, const std::string& source,
+                   const std::string& parts);
   void removeScene(int64_t key);
 
   // The checksum journaled with a frame: zlib's CRC-32 over its version and JSON. (Its part
   // changes have their own; a mismatch there only drops them: the scene replays frame by frame.)
   static uint32_t frameChecksum(uint64_t version, const std::string& frame);
+  // A snapshot's: CRC-32 over its version, source and parts.
+  static uint32_t snapshotChecksum(uint64_t version, const std::string& source,
+                                   const std::string& parts);
 
  private:
   void requireDurable() const;  // throws std::runtime_error naming durabilityProblem()

@@ -1,5 +1,6 @@
 // The server's side of the journal (README "Durability"): frames and deletions recorded before
 // they are acknowledged, and every journaled scene brought back at start.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -11,7 +12,9 @@
 #include "protocol/volume_json.h"
 #include "server/api_errors.h"
 #include "server/http_server.h"
+#include "server/journaled_text.h"
 #include "server/part_changes.h"
+#include "server/stored_parts.h"
 
 namespace penumbra::server {
 
@@ -37,7 +40,8 @@ void HttpServer::journalFrame(const SceneSession& session, const SceneSnapshot& 
     key = it->second;
   }
   try {
-    journal_->addFrame(key, next.version, frame, partChangesText(partChangesOf(next)));
+    journal_->addFrame(key, next.version, frame, partChangesText(partChangesOf(next)),
+                       next.frameBase);
   } catch (const std::exception& error) {
     // Nothing is published and SceneSession::apply undoes the frame in the engine (atomic
     // frames): the scene stays at its last acknowledged version and the frame may be sent again.
@@ -48,14 +52,9 @@ void HttpServer::journalFrame(const SceneSession& session, const SceneSnapshot& 
 std::string HttpServer::journaledFrameText(const Frame& frame) const {
   nlohmann::json text = protocol::frameToJson(frame);
   if (!journal_) return text.dump();
-  const std::filesystem::path dir(journal_->directory());
-  for (nlohmann::json& edit : text["edits"]) {
-    if (edit.value("op", "") != "add_volume") continue;
-    nlohmann::json& file = edit["volume"]["file"];
-    const std::filesystem::path relative =
-        std::filesystem::path(file.get<std::string>()).lexically_relative(dir);
-    if (!relative.empty() && *relative.begin() != "..") file = relative.string();
-  }
+  for (nlohmann::json& edit : text["edits"])
+    if (edit.value("op", "") == "add_volume")
+      relativeToDataDir(edit["volume"]["file"], journal_->directory());
   return text.dump();
 }
 
@@ -77,6 +76,7 @@ void HttpServer::refuseIfNotDurable() const {
 nlohmann::json HttpServer::journalHealthJson() const {
   if (!journal_) return nullptr;
   nlohmann::json problems = nlohmann::json::array();
+  nlohmann::json snapshotProblems = nlohmann::json::array();
   {
     std::lock_guard lock(scenesMutex_);
     for (const JournalProblem& problem : journalProblems_)
@@ -85,13 +85,17 @@ nlohmann::json HttpServer::journalHealthJson() const {
            {"stalled_at", problem.stalledAt ? nlohmann::json(*problem.stalledAt) : nullptr},
            {"served", problem.stalledAt.has_value()},
            {"problem", problem.problem}});
+    for (const auto& [id, problem] : snapshotProblems_)
+      snapshotProblems.push_back({{"id", id}, {"problem", problem}});
   }
   const std::string durability = journal_->durabilityProblem();
   return {{"path", journal_->path()},
           {"integrity", journal_->integrity()},
           {"read", journal_->loadProblem().empty() ? "ok" : journal_->loadProblem()},
           {"durability", durability.empty() ? "ok" : durability},
-          {"scene_problems", std::move(problems)}};
+          {"scene_problems", std::move(problems)},
+          {"snapshot_every", options_.snapshotEvery},
+          {"snapshot_problems", std::move(snapshotProblems)}};
 }
 
 void HttpServer::journalRemove(const SceneSession& session) {
@@ -119,41 +123,22 @@ namespace {
 using StoredScene = SceneJournal::StoredScene;
 using StoredFrame = SceneJournal::StoredScene::StoredFrame;
 
-// Files the journal names: uploads as paths relative to the data directory (so the directory
-// may move), older journals' absolute paths as they are.
-protocol::VolumeFiles journaledFiles(const SceneJournal& journal) {
-  protocol::VolumeFiles files;
-  files.baseDirectory = journal.directory();
-  return files;
-}
-
-std::shared_ptr<SceneSession> freshSession(const StoredScene& stored, const SceneJournal& journal,
-                                           const EngineSettings& settings) {
-  // Only scene files loaded by the operator and the server's own uploads can hold volumes:
-  // reading them again is safe.
-  const protocol::VolumeFiles volumeFiles = journaledFiles(journal);
-  return std::make_shared<SceneSession>(
-      stored.id, stored.name,
-      protocol::sceneFromJson(
-          protocol::parseJsonText(stored.source, stored.source.size(), protocol::kMaxJsonDepth),
-          &volumeFiles),
-      settings);
-}
-
 Frame storedFrame(const SceneSession& session, const SceneJournal& journal,
                   const std::string& text) {
   const auto materials = session.snapshot()->scene.materials();  // edits change no material
-  const protocol::VolumeFiles volumeFiles = journaledFiles(journal);
+  const protocol::VolumeFiles volumeFiles = journaledFiles(journal.directory());
   return protocol::frameFromJson(
       protocol::parseJsonText(text, text.size(), protocol::kMaxJsonDepth), &materials,
       &volumeFiles);
 }
 
-// The frames before the first one whose checksum fails (all of them when none fails);
-// `problem` says which failed.
-std::vector<StoredFrame> intactPrefix(const StoredScene& stored, std::string& problem) {
+// The frames after version `after` up to the first one whose checksum fails (all of them when
+// none fails); `problem` says which failed.
+std::vector<StoredFrame> intactTail(const StoredScene& stored, uint64_t after,
+                                    std::string& problem) {
   std::vector<StoredFrame> frames;
   for (const StoredFrame& frame : stored.frames) {
+    if (frame.version <= after) continue;
     if (!frame.intact) {
       problem =
           "frame " + std::to_string(frame.version) + " fails its checksum (damaged in the journal)";
@@ -172,9 +157,10 @@ bool replayAtOnce(SceneSession& session, const SceneJournal& journal,
   for (const StoredFrame& frame : stored) {
     if (frame.parts.empty()) return false;
     frames.push_back({storedFrame(session, journal, frame.frame), frame.version,
-                      partChangesFromText(frame.parts)});
+                      partChangesFromText(frame.parts), frame.base});
   }
-  session.replayJournaled(frames);
+  session.replayJournaled(
+      frames, [&](const Scene& scene) { return journaledScene(scene, journal.directory()); });
   report.version = session.snapshot()->version;
   report.frames = frames.size();
   report.meshedOnce = !frames.empty();
@@ -188,6 +174,13 @@ void replayOneByOne(SceneSession& session, const SceneJournal& journal,
                     std::string& problem) {
   for (const StoredFrame& frame : stored) {
     try {
+      if (frame.base && *frame.base > session.engineBase()) {  // served on a fresh build here
+        if (*frame.base != report.version)
+          throw std::runtime_error("it was applied on a build of version " +
+                                   std::to_string(*frame.base));
+        session.rebase(
+            [&](const Scene& scene) { return journaledScene(scene, journal.directory()); });
+      }
       const uint64_t reached =
           session.apply(storedFrame(session, journal, frame.frame)).snapshot->version;
       if (reached != frame.version)
@@ -202,35 +195,93 @@ void replayOneByOne(SceneSession& session, const SceneJournal& journal,
   }
 }
 
-// Brings one journaled scene back as far as its frames allow; null when its source does not
-// build (kept in the journal, not served). Sets report.stalledAt when it stops short.
+using StoredSnapshot = SceneJournal::StoredScene::StoredSnapshot;
+
+// The session a restore starts from: a build of the snapshot's scene serving its stored parts,
+// or (no snapshot) of the scene's source at its first version. Throws when it does not load.
+std::shared_ptr<SceneSession> startSession(const StoredScene& stored, const StoredSnapshot* from,
+                                           const SceneJournal& journal,
+                                           const EngineSettings& settings) {
+  if (!from)
+    return std::make_shared<SceneSession>(
+        stored.id, stored.name, sceneFromJournaledText(stored.source, journal.directory()),
+        settings);
+  StoredParts parts = decodeStoredParts(from->parts);  // cheap checks before the build
+  Scene scene = sceneFromJournaledText(from->source, journal.directory());
+  scene.setHandles(std::move(parts.handles), parts.nextHandle);
+  auto session = std::make_shared<SceneSession>(stored.id, stored.name, std::move(scene), settings);
+  session->adoptSnapshot(from->version, std::move(parts));
+  return session;
+}
+
+// The newest snapshot that verifies and loads, its session in `session`; null (and `session`
+// untouched) when none does. What was passed over is said in report.snapshotProblem.
+const StoredSnapshot* newestSnapshot(const StoredScene& stored, const SceneJournal& journal,
+                                     const EngineSettings& settings,
+                                     std::shared_ptr<SceneSession>& session,
+                                     RestoredScene& report) {
+  auto note = [&](const std::string& what) {
+    report.snapshotProblem += (report.snapshotProblem.empty() ? "" : "; ") + what;
+  };
+  for (auto it = stored.snapshots.rbegin(); it != stored.snapshots.rend(); ++it) {
+    const std::string name = "the snapshot at version " + std::to_string(it->version);
+    if (!it->intact) {
+      note(name + " fails its checksum (damaged in the journal)");
+      continue;
+    }
+    try {
+      session = startSession(stored, &*it, journal, settings);
+    } catch (const std::exception& error) {
+      note(name + " does not load (" + error.what() + ")");
+      continue;
+    }
+    for (const StoredFrame& frame : stored.frames)  // covered, yet damage is said
+      if (frame.version <= it->version && !frame.intact)
+        note("frame " + std::to_string(frame.version) + " fails its checksum (" + name +
+             " covers it)");
+    if (!report.snapshotProblem.empty()) note("restored from " + name);
+    return &*it;
+  }
+  if (!report.snapshotProblem.empty()) note("restored by replaying every frame");
+  return nullptr;
+}
+
+// Brings one journaled scene back as far as its frames allow: from its newest snapshot that
+// verifies and loads, else from its source, then the frames after it. Null when neither builds
+// (kept in the journal, not served). Sets report.stalledAt when it stops short.
 std::shared_ptr<SceneSession> restoreScene(const StoredScene& stored, const SceneJournal& journal,
                                            const EngineSettings& settings, RestoredScene& report) {
-  if (!stored.sourceIntact) {
+  std::shared_ptr<SceneSession> session;
+  const StoredSnapshot* from = newestSnapshot(stored, journal, settings, session, report);
+  if (from) {
+    report.snapshot = from->version;
+  } else if (!stored.sourceIntact) {
     report.served = false;
     report.problem = "not restored: the scene's source fails its checksum (damaged in the journal)";
     return nullptr;
-  }
-  std::shared_ptr<SceneSession> session;
-  try {
-    session = freshSession(stored, journal, settings);
-  } catch (const std::exception& error) {  // kept in the journal, not served
-    report.served = false;
-    report.problem = std::string("not restored: the scene no longer builds (") + error.what() + ")";
-    return nullptr;
+  } else {
+    try {
+      session = startSession(stored, nullptr, journal, settings);
+    } catch (const std::exception& error) {  // kept in the journal, not served
+      report.served = false;
+      report.problem =
+          std::string("not restored: the scene no longer builds (") + error.what() + ")";
+      return nullptr;
+    }
   }
   report.version = session->snapshot()->version;
   std::string problem;
-  const std::vector<StoredFrame> frames = intactPrefix(stored, problem);
-  // Frames replay through the same incremental engine path that served them: incremental
-  // results match a rebuild only to 1e-9, so replaying is what gives back the served bytes.
+  const std::vector<StoredFrame> frames = intactTail(stored, report.version, problem);
+  // Frames replay through the same incremental engine path that served them, on the same fresh
+  // builds: incremental results match a rebuild only to 1e-9, so this is what gives back the
+  // served bytes.
   bool done = false;
   try {
     done = replayAtOnce(*session, journal, frames, report);
   } catch (const std::exception& error) {  // e.g. a frame that no longer applies: one by one
     std::fprintf(stderr, "penumbra serve: scene '%s': %s; replaying frame by frame\n",
                  stored.id.c_str(), error.what());
-    session = freshSession(stored, journal, settings);
+    session = startSession(stored, from, journal, settings);
     report.version = session->snapshot()->version;
     report.frames = 0;
     report.meshedOnce = false;
@@ -241,7 +292,9 @@ std::shared_ptr<SceneSession> restoreScene(const StoredScene& stored, const Scen
     problem = "the journal lost committed frames (" + journal.logDamage() + ")";
   if (!problem.empty()) {
     report.stalledAt = report.version;
-    const size_t kept = stored.frames.size() - report.frames;
+    const size_t kept = size_t(
+        std::count_if(stored.frames.begin(), stored.frames.end(),
+                      [&](const StoredFrame& frame) { return frame.version > report.version; }));
     report.problem = problem + "; stalled at version " + std::to_string(report.version) + ", " +
                      std::to_string(kept) + " later frame" + (kept == 1 ? "" : "s") +
                      " kept in the journal; edits are refused until it is repaired";
@@ -276,6 +329,11 @@ std::vector<RestoredScene> HttpServer::restore() {
     std::lock_guard lock(scenesMutex_);
     if (!report.problem.empty())
       journalProblems_.push_back({report.id, report.stalledAt, report.problem});
+    if (!report.snapshotProblem.empty()) {  // loud, though the scene came back whole
+      std::fprintf(stderr, "penumbra serve: scene '%s': %s\n", report.id.c_str(),
+                   report.snapshotProblem.c_str());
+      snapshotProblems_.push_back({report.id, report.snapshotProblem});
+    }
     if (restoring_.erase(stored.id) == 0) {
       restored.push_back(std::move(report));  // the id was taken already (a scene served twice)
       continue;

@@ -41,8 +41,9 @@ void HttpServer::registerSceneRoutes() {
              json journal = journalHealthJson();
              const bool durable = journal_ && journal["durability"] == "ok";
              const bool degraded =
-                 journal_ && (!durable || journal["integrity"] != "ok" || journal["read"] != "ok" ||
-                              !journal["scene_problems"].empty());
+                 journal_ &&
+                 (!durable || journal["integrity"] != "ok" || journal["read"] != "ok" ||
+                  !journal["scene_problems"].empty() || !journal["snapshot_problems"].empty());
              sendJson(res, 200,
                       {{"status", degraded ? "degraded" : "ok"},
                        {"scenes", scenes},

@@ -158,6 +158,7 @@ SceneSession::Applied SceneSession::applyToEngine(
   next->occluders = std::make_shared<const OccluderIndexes>(std::move(frozen.indexes));
 
   next->lastFrame = result;
+  next->frameBase = baseVersion_;
   std::shared_ptr<const SceneSnapshot> published = std::move(next);
   if (beforePublish) beforePublish(*published);  // the journal: a throw undoes the frame
   noteApplied(frame, result, published->scene);
@@ -165,17 +166,38 @@ SceneSession::Applied SceneSession::applyToEngine(
   return {std::move(result), std::move(published), meshSeconds, remesh.size(), cells, frozen.seconds, frozen.frozen};
 }
 
-void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames) {
+void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames,
+                                   const SceneToBuild& sceneToBuild) {
   std::lock_guard edit(editMutex_);
   const std::shared_ptr<const SceneSnapshot> start = snapshot();
   if (frames.empty()) return;
   std::map<PartKey, uint64_t> versions;  // every live part's version, as the frames leave them
-  for (const MeshPart& part : start->parts) versions[part.key] = part.version;
+  // The bytes of the parts as of `keptAt` (the start, then each fresh build): a part unchanged
+  // since keeps them, as it did when served.
+  std::map<PartKey, std::shared_ptr<const ReceiverMesh>> kept;
+  uint64_t keptAt = start->version;
+  for (const MeshPart& part : start->parts) {
+    versions[part.key] = part.version;
+    kept[part.key] = part.mesh;
+  }
   auto next = std::make_shared<SceneSnapshot>();
   next->removed = start->removed;
   next->removedFloor = start->removedFloor;
   FrameResult last;
   for (const JournaledFrame& journaled : frames) {
+    if (journaled.base && *journaled.base > baseVersion_) {  // served on a fresh build here
+      if (*journaled.base != engine_->version())
+        throw std::runtime_error("frame " + std::to_string(journaled.version) +
+                                 " was applied on a build of version " +
+                                 std::to_string(*journaled.base) + ", the replay is at " +
+                                 std::to_string(engine_->version()));
+      const Scene scene = engine_->scene();
+      std::map<PartKey, std::shared_ptr<const ReceiverMesh>> now;
+      for (MeshPart& part : meshedParts(versions, kept, keptAt, scene)) now[part.key] = part.mesh;
+      kept = std::move(now);
+      keptAt = engine_->version();
+      buildBase(sceneToBuild(scene), keptAt);
+    }
     last = engine_->apply(journaled.frame);
     engine_->compactTrees(last.changedReceivers);  // as applyToEngine: the same trees after
     if (last.version != journaled.version)
@@ -197,22 +219,42 @@ void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames) {
   next->version = last.version;
   next->buildStats = start->buildStats;
   next->scene = engine_->scene();
+  next->parts = meshedParts(versions, kept, keptAt, next->scene);
+  next->occluders =
+      std::make_shared<const OccluderIndexes>(freezeOccluders(*engine_, {}, {}).indexes);
+  next->lastFrame = last;
+  next->frameBase = frames.back().base.value_or(0);
+  publish(std::move(next));
+}
+
+std::vector<MeshPart> SceneSession::meshedParts(
+    const std::map<PartKey, uint64_t>& versions,
+    const std::map<PartKey, std::shared_ptr<const ReceiverMesh>>& kept, uint64_t keptAt,
+    const Scene& scene) {
+  std::vector<MeshPart> parts;
+  size_t found = 0;
   for (const Engine::ReceiverChunks& r : engine_->meshChunks(engine_->receiverFaces()))
-    for (MeshPart& part : partsOf(next->scene, r, 0)) {
+    for (MeshPart& part : partsOf(scene, r, 0)) {
       const auto it = versions.find(part.key);
       if (it == versions.end())
         throw std::runtime_error("a part of receiver '" + part.key.receiver.object +
                                  "' has no journaled version");
       part.version = it->second;
-      versions.erase(it);
-      next->parts.push_back(std::move(part));
+      if (part.version <= keptAt) {
+        const auto same = kept.find(part.key);
+        if (same == kept.end())
+          throw std::runtime_error("a part of receiver '" + part.key.receiver.object +
+                                   "' is not among those kept at version " +
+                                   std::to_string(keptAt));
+        part.mesh = same->second;
+      }
+      ++found;
+      parts.push_back(std::move(part));
     }
-  if (!versions.empty())
-    throw std::runtime_error(std::to_string(versions.size()) +
+  if (found != versions.size())
+    throw std::runtime_error(std::to_string(versions.size() - found) +
                              " journaled parts are not in the mesh");
-  next->occluders = std::make_shared<const OccluderIndexes>(freezeOccluders(*engine_, {}, {}).indexes);
-  next->lastFrame = last;
-  publish(std::move(next));
+  return parts;
 }
 
 void SceneSession::publish(std::shared_ptr<const SceneSnapshot> next) {

@@ -6,6 +6,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -18,6 +19,7 @@
 #include "server/limits.h"
 #include "server/part_changes.h"
 #include "server/scene_snapshot.h"
+#include "server/stored_parts.h"
 
 namespace penumbra::server {
 
@@ -68,12 +70,31 @@ class SceneSession {
   // by one published (same bytes, versions and `since` deltas) at a fraction of the cost: meshing
   // is most of a frame. Throws if a frame does not apply or the changes do not fit the mesh; the
   // session is then unusable (the caller starts again from a fresh one).
+  // A frame whose `base` is newer than the engine's is applied, as it was served, on a fresh
+  // build at that version (rebase(); `sceneToBuild` as given there), and the parts kept from
+  // before the build keep their bytes (the fresh engine's agree only to 1e-9).
   struct JournaledFrame {
     Frame frame;
     uint64_t version = 0;
     PartChanges changes;
+    std::optional<uint64_t> base;  // SceneJournal's StoredFrame::base
   };
-  void replayJournaled(const std::vector<JournaledFrame>& frames);
+  using SceneToBuild = std::function<Scene(const Scene&)>;
+  void replayJournaled(const std::vector<JournaledFrame>& frames, const SceneToBuild& sceneToBuild);
+
+  // Snapshots (docs/SERVER.md "Snapshots"; scene_session_rebase.cpp). rebase() replaces the
+  // engine by a fresh build of `sceneToBuild(published scene)` at the published version — the
+  // scene as a journal snapshot records it — publishing nothing: the served parts keep their
+  // bytes, the frames after it are applied on the new build (so a restart from the snapshot,
+  // the same build then the same frames, gives them back byte for byte). Returns the version
+  // rebased at. On failure (no memory) the engine is left as it was.
+  std::shared_ptr<const SceneSnapshot> rebase(const SceneToBuild& sceneToBuild);
+  // The version whose fresh build the engine came from (SceneSnapshot::frameBase).
+  uint64_t engineBase();
+  // On a session just built from a snapshot's scene: publishes the snapshot's version with its
+  // stored parts (the engine numbered to match). Throws std::runtime_error, changing nothing,
+  // when the parts do not match the scene's receivers.
+  void adoptSnapshot(uint64_t version, StoredParts stored);
 
   // A full rebuild of the current version, timed. Serialised with other rebuilds,
   // not with edits (it works on a snapshot's scene).
@@ -104,6 +125,15 @@ class SceneSession {
   // by one equal to the engine that made `published` (or leaves it null and throws).
   void restoreEngine(const SceneSnapshot& published);
   void noteApplied(const Frame& frame, const FrameResult& result, const Scene& scene);
+  // With editMutex_ held: engine_ becomes a fresh build of `scene` numbered `version`, the new
+  // base (rebase(), restoreEngine's fallback).
+  void buildBase(Scene scene, uint64_t version);
+  // With editMutex_ held: the engine's mesh as parts, each at its version in `versions` (every
+  // part must be there, and only those); a part at or before `keptAt` has the bytes in `kept`.
+  std::vector<MeshPart> meshedParts(
+      const std::map<PartKey, uint64_t>& versions,
+      const std::map<PartKey, std::shared_ptr<const ReceiverMesh>>& kept, uint64_t keptAt,
+      const Scene& scene);
 
   const std::string id_;
   const EngineSettings settings_;

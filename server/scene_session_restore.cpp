@@ -53,14 +53,7 @@ void SceneSession::restoreEngine(const SceneSnapshot& published) {
     }
   }
   // No exact replay: a fresh build of what is published, which becomes the new base.
-  auto engine = std::make_unique<Engine>(published.scene, settings_);
-  engine->setVersion(published.version);
-  Scene base = published.scene;
-  baseScene_ = std::move(base);
-  baseVersion_ = published.version;
-  sinceBase_.clear();
-  replayable_ = true;
-  engine_ = std::move(engine);
+  buildBase(published.scene, published.version);
 }
 
 }  // namespace penumbra::server

@@ -69,6 +69,10 @@ struct SceneSnapshot {
   std::shared_ptr<const OccluderIndexes> occluders = std::make_shared<const OccluderIndexes>();
   BuildStats buildStats;                 // of the initial build
   std::optional<FrameResult> lastFrame;  // the frame that made this version
+  // The version whose fresh build the engine that applied that frame came from (its base:
+  // creation, a rebuilding light edit, a snapshot's rebase). Journaled with the frame, so a
+  // restart builds afresh where the server did (scene_session.h, rebase()).
+  uint64_t frameBase = 0;
 
   // Everything (since empty) or only what changed after `since`; the whole mesh too when
   // `since` is older than removedFloor (the selection's `since` is then empty).

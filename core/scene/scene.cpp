@@ -152,6 +152,18 @@ void Scene::deriveFaces() {
   }
 }
 
+void Scene::setHandles(std::vector<uint32_t> handles, uint32_t nextHandle) {
+  if (handles.size() != objects_.size())
+    throw std::invalid_argument(std::to_string(handles.size()) + " handles for " +
+                                std::to_string(objects_.size()) + " objects");
+  for (size_t o = 0; o < handles.size(); ++o)
+    if ((o > 0 && handles[o] <= handles[o - 1]) || handles[o] >= nextHandle)
+      throw std::invalid_argument("handles must increase and stay below the next one");
+  handles_ = std::move(handles);
+  nextHandle_ = nextHandle;
+  deriveFaces();  // the faces' ids (and what is derived from them) name the handles
+}
+
 std::optional<size_t> Scene::indexOfHandle(uint32_t handle) const {
   const auto it = std::lower_bound(handles_.begin(), handles_.end(), handle);
   if (it == handles_.end() || *it != handle) return std::nullopt;

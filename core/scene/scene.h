@@ -142,6 +142,11 @@ class Scene {
   // Stable handles: objects() is ordered by handle; a loaded scene's handles are
   // 0..n-1, objects added later get new ones.
   uint32_t handleOf(size_t objectIndex) const { return handles_[objectIndex]; }
+  uint32_t nextHandle() const { return nextHandle_; }  // the handle the next added object gets
+  // Gives the objects the handles of the scene this one copies (a scene read back from JSON,
+  // which holds no handles, numbers its objects 0..n-1): one per object, increasing, each below
+  // `nextHandle`; else throws std::invalid_argument and changes nothing.
+  void setHandles(std::vector<uint32_t> handles, uint32_t nextHandle);
   std::optional<size_t> indexOfHandle(uint32_t handle) const;
   const Object& object(uint32_t handle) const;
   const std::optional<Camera>& camera() const { return camera_; }
