@@ -64,8 +64,8 @@ void Args::allowOnly(const std::set<std::string>& names) const {
     if (!names.count(key)) throw UsageError("unknown option --" + key);
 }
 
-double meshToleranceOption(const Args& args) {
-  const double tolerance = args.doubleOption("mesh-tolerance", EngineSettings{}.meshTolerance);
+double meshToleranceOption(const Args& args, double fallback) {
+  const double tolerance = args.doubleOption("mesh-tolerance", fallback);
   if (!(tolerance >= 0 && tolerance <= 0.5)) throw UsageError("--mesh-tolerance must be in [0, 0.5] (0: no refinement)");
   return tolerance;
 }

@@ -76,7 +76,7 @@ server::ServerOptions serveOptions(const Args& args) {
   options.snapshotEvery =
       uint64_t(args.intOption("snapshot-every", int(server::kSnapshotEvery), 0, 1000000000));
   options.engine.threads = args.intOption("threads", 0, 0, 1024);
-  options.engine.meshTolerance = meshToleranceOption(args);
+  options.engine.meshTolerance = meshToleranceOption(args, kServeMeshTolerance);
   options.editNiceness = args.intOption("edit-nice", server::kEditNiceness, 0, 19);
   if (options.staticDir.empty())
     std::fprintf(

@@ -23,6 +23,9 @@ commands:
            [--indirect [--sensor-size N] [--bounces B]]  .glb: the indirect light instead of the fill (sensors of N², 8)
            [--grid G]                  overlap-cube tiles per side (default: from the face count)
            [--threads N]               build threads (also replay, serve); default: every core
+           [--mesh-tolerance F]        display mesh refined until interpolation is within F of the
+                                       local unshadowed light (also render, replay, serve); default
+                                       0.005, serve 0; 0: a fan per cell piece
   render SCENE --out IMG.png|IMG.exr   an image shaded by the DM mesh (built, or --mesh MESH);
          [--width W] [--height H]      default 512×512, at most 8192 per side
          [--camera JSON|FILE]          default: the scene's camera, else a view of its bounds
