@@ -242,11 +242,11 @@ TEST(JournalSnapshots, RestoreFromASnapshotOrAnOlderOneOrNoneServesTheSameBytes)
 
 TEST(JournalSnapshots, ALongJournalReplaysOnlyTheTailAndKeepsEveryFrame) {
   TempDataDir data;
-  constexpr int kFrames = 1050;
+  constexpr int kFrames = 430;  // snapshots every 40: 40 … 400, a tail of 30
   std::string id;
   Answers before;
   {
-    RunningServer first(snapshotting(data, 100));
+    RunningServer first(snapshotting(data, 40));
     auto client = first.client();
     const auto res = postJson(client, "/api/scenes?name=tiny", tinyScene());
     ASSERT_EQ(res->status, 201) << res->body;
@@ -261,16 +261,16 @@ TEST(JournalSnapshots, ALongJournalReplaysOnlyTheTailAndKeepsEveryFrame) {
     before = served(client, id, kFrames);
   }
   // Snapshots are dropped past the newest two; frames never.
-  EXPECT_EQ(sqlText(data, "SELECT group_concat(version) FROM snapshots"), "900,1000");
+  EXPECT_EQ(sqlText(data, "SELECT group_concat(version) FROM snapshots"), "360,400");
   EXPECT_EQ(
       sqlText(data, "SELECT COUNT(*) || ' ' || MIN(version) || ' ' || MAX(version) FROM frames"),
       std::to_string(kFrames) + " 1 " + std::to_string(kFrames));
-  Restart r = expectRestored(data, id, kFrames, before, 100);
-  EXPECT_EQ(r.snapshot, std::optional<uint64_t>(1000));
-  EXPECT_EQ(r.frames, 50u);
+  Restart r = expectRestored(data, id, kFrames, before, 40);
+  EXPECT_EQ(r.snapshot, std::optional<uint64_t>(400));
+  EXPECT_EQ(r.frames, 30u);
   // Every acknowledged version stays restorable from the frames alone.
   sql(data, "DELETE FROM snapshots");
-  r = expectRestored(data, id, kFrames, before, 100);
+  r = expectRestored(data, id, kFrames, before, 40);
   EXPECT_EQ(r.snapshot, std::nullopt);
   EXPECT_EQ(r.frames, size_t(kFrames));
 }
