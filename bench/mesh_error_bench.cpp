@@ -120,8 +120,8 @@ json imageCounts(const Scene& scene, const Mesh& mesh, int size, int threads) {
 int main(int argc, char** argv) try {
   const Options o = parse(argc, argv);
   json rows = json::array();
-  std::printf("%-28s %9s %9s %8s %6s %9s %9s %8s %10s %10s\n", "scene", "vertices", "triangles", "build s",
-              "size", ">1% irr", ">2% irr", "worst %", ">1% image", ">2% image");
+  std::printf("%-28s %9s %9s %8s %6s %9s %9s %8s %10s %10s %12s\n", "scene", "vertices", "triangles", "build s",
+              "size", ">1% irr", ">2% irr", "worst %", ">1% image", ">2% image", ">1% > bright");
   for (const auto& [name, scene] : o.scenes) {
     EngineSettings settings;
     settings.threads = o.threads;
@@ -138,9 +138,9 @@ int main(int argc, char** argv) try {
       if (size <= 0) continue;  // --size 0: the build alone
       const DirectLightError e = directLightError(scene, mesh, camera, size, size, Parallel(o.threads));
       const json image = imageCounts(scene, mesh, size, o.threads);
-      std::printf("%-28s %9zu %9zu %8.2f %6d %9zu %9zu %8.2f %10zu %10zu\n", name.c_str(), mesh.vertexCount(),
+      std::printf("%-28s %9zu %9zu %8.2f %6d %9zu %9zu %8.2f %10zu %10zu %12zu\n", name.c_str(), mesh.vertexCount(),
                   mesh.triangleCount(), seconds, size, e.overOnePercent, e.overTwoPercent, 100 * e.worstRelative,
-                  image["over_1pct"].get<size_t>(), image["over_2pct"].get<size_t>());
+                  image["over_1pct"].get<size_t>(), image["over_2pct"].get<size_t>(), e.overOnePercentAboveBright);
       rows.push_back({{"scene", name},
                       {"vertices", mesh.vertexCount()},
                       {"triangles", mesh.triangleCount()},
@@ -153,6 +153,7 @@ int main(int argc, char** argv) try {
                       {"bright_irradiance", e.brightLevel},
                       {"over_1pct", e.overOnePercent},
                       {"over_2pct", e.overTwoPercent},
+                      {"over_1pct_above_bright", e.overOnePercentAboveBright},
                       {"worst", {{"relative", e.worstRelative}, {"x", e.worstX}, {"y", e.worstY},
                                  {"mesh", e.worstMesh}, {"exact", e.worstExact}}},
                       {"image", image}});

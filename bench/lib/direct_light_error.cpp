@@ -51,6 +51,7 @@ DirectLightError directLightError(const Scene& scene, const Mesh& mesh, const Ca
     if (exact[p] < 0) continue;
     const double relative = error[p] / out.brightLevel;
     out.overOnePercent += relative > 0.01 ? 1 : 0;
+    out.overOnePercentAboveBright += relative > 0.01 && exact[p] > out.brightLevel ? 1 : 0;
     out.overTwoPercent += relative > 0.02 ? 1 : 0;
     if (relative > out.worstRelative) {
       out.worstRelative = relative;

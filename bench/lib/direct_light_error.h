@@ -19,6 +19,9 @@ struct DirectLightError {
   double brightLevel = 0;   // 99th percentile of the exact irradiance's largest channel there
   // Pixels whose |mesh − exact| (largest channel) exceeds 1 %, 2 % of the bright level.
   size_t overOnePercent = 0, overTwoPercent = 0;
+  // Of those over 1 %, the pixels brighter than the bright level itself (the top 1 %, clipped
+  // white at the page's and the renderer's automatic exposure).
+  size_t overOnePercentAboveBright = 0;
   double worstRelative = 0;  // the largest |mesh − exact| / brightLevel
   int worstX = -1, worstY = -1;
   double worstMesh = 0, worstExact = 0;  // largest channel at the worst pixel
