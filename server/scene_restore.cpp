@@ -13,6 +13,7 @@
 #include "server/api_errors.h"
 #include "server/http_server.h"
 #include "server/journaled_text.h"
+#include "server/orphan_uploads.h"
 #include "server/part_changes.h"
 #include "server/stored_parts.h"
 
@@ -307,6 +308,14 @@ std::shared_ptr<SceneSession> restoreScene(const StoredScene& stored, const Scen
 void HttpServer::reserveJournalScenes() {
   if (!journal_ || pendingRestore_) return;
   pendingRestore_ = journal_->load();
+  if (!options_.dataDir.empty()) {
+    const std::string uploads = (std::filesystem::path(options_.dataDir) / "volumes").string();
+    if (const size_t removed = removeOrphanUploads(uploads, *pendingRestore_))
+      std::fprintf(stderr,
+                   "penumbra serve: removed %zu uploaded volume file(s) no journaled frame names (stored, then the "
+                   "server stopped before their frame was acknowledged)\n",
+                   removed);
+  }
   std::lock_guard lock(scenesMutex_);
   for (const SceneJournal::StoredScene& stored : *pendingRestore_)
     if (scenes_.emplace(stored.id, nullptr).second) restoring_.insert(stored.id);

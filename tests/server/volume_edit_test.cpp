@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "protocol/json_text.h"
 #include "server_fixture.h"
@@ -254,6 +255,36 @@ TEST(VolumeEdits, DeletingASceneDeletesItsUploads) {
   EXPECT_EQ(files(), 1);
   for (const auto& entry : std::filesystem::directory_iterator(uploads))
     EXPECT_EQ(entry.path().filename().string().rfind(other + "-", 0), 0u);
+}
+
+// A kill between storing an upload and committing its frame leaves a file no acknowledged
+// version names; the next start removes it (and only it: the journaled upload restores).
+TEST(VolumeEdits, AnUploadNoFrameNamesIsRemovedAtStart) {
+  TempDataDir data;
+  const std::filesystem::path uploads = std::filesystem::path(data.str()) / "volumes";
+  {
+    RunningServer running(data.durable());
+    running.addBundled("volume_room");
+    auto client = running.client();
+    const auto up = client.Post((kBase + "/volumes?id=puff").c_str(), smokeBytes(), "application/octet-stream");
+    ASSERT_TRUE(up);
+    ASSERT_EQ(up->status, 201) << up->body;
+  }
+  ASSERT_EQ(std::distance(std::filesystem::directory_iterator(uploads), std::filesystem::directory_iterator()), 1);
+  const std::filesystem::path kept = std::filesystem::directory_iterator(uploads)->path();
+  const std::filesystem::path orphan = uploads / "volume_room-00000000deadbeef.nrrd";
+  const std::filesystem::path foreign = uploads / "notes.txt";  // not an upload's name: left alone
+  std::filesystem::copy_file(kept, orphan);
+  std::ofstream(foreign) << "mine";
+  RunningServer restarted(data.durable());
+  restarted.server().restore();
+  EXPECT_FALSE(std::filesystem::exists(orphan));
+  EXPECT_TRUE(std::filesystem::exists(kept));
+  EXPECT_TRUE(std::filesystem::exists(foreign));
+  auto client = restarted.client();
+  const auto scene = bodyJson(client.Get(kBase.c_str()));
+  EXPECT_EQ(scene["version"], 1);
+  EXPECT_EQ(scene["volumes"].size(), 2u) << scene.dump().substr(0, 300);
 }
 
 TEST(VolumeEdits, AnUploadPastTheBodyLimitIs413) {
