@@ -5,7 +5,7 @@
 // stand-ins from the server's scene (the object list changed).
 import { addEdits, addLightEdits, boxObject, duplicateObject, freshId, lightCopy, removeEdits, removeLightEdits,
   resetEdits } from './object_edits.js';
-import { besideOffset } from './light_shape.js';
+import { floorSpot, freeOffset, lightOffset } from './placement.js';
 import { SceneList, download, forgetSource, rememberSource, sourceOf } from './scene_library.js';
 import { sameTransform, transformOf } from './scene_transform.js';
 import * as THREE from 'three';
@@ -61,16 +61,15 @@ export class EditorActions {
     const scene = this.scene();
     const bounds = this.app.objects.bounds;
     const size = Math.max(0.05, 0.1 * bounds.getSize(new THREE.Vector3()).length() / Math.sqrt(3));
-    // On the floor (the bounds' bottom) under the view's target.
-    const target = this.app.view.controls.target;
-    const at = [target.x, bounds.min.y + size / 2 + 1e-3, target.z];
+    // On the floor, in view, where no other object is (placement.js).
+    const at = floorSpot(this.app.objects, this.app.view, new THREE.Vector3(size, size, size));
     const material = scene.materials ? Object.keys(scene.materials)[0] : undefined;
     const box = boxObject(freshId(scene, 'box'), at, [size, size, size], material);
     return this.change(addEdits(box), `add ${box.id}`, box.id);
   }
 
-  // A copy of the selected light (else the first) beside it, inside the scene's bounds, with a
-  // fresh id: one add_light (a full rebuild on the server), selected afterwards.
+  // A copy of the selected light (else the first) beside it, inside the scene's bounds, where the
+  // view sees it if it can, with a fresh id: one add_light (a full rebuild on the server), selected afterwards.
   addLight() {
     const { objects } = this.app;
     const selected = this.app.gizmo.selected;
@@ -78,7 +77,8 @@ export class EditorActions {
       || objects.lightJson.values().next().value;
     if (!source) return null;
     const box = { min: objects.bounds.min.toArray(), max: objects.bounds.max.toArray() };
-    const offset = besideOffset(source.polygon, box);
+    const lights = [...objects.lightJson.values()].map((l) => l.polygon);
+    const offset = lightOffset(source.polygon, box, lights, this.app.view.camera);
     if (!offset) {
       this.app.fail(new Error(`no room beside light ${source.id} for a copy inside the scene`));
       return null;
@@ -98,8 +98,11 @@ export class EditorActions {
     const object = id && this.app.objects.json.get(id);
     if (!object) return null;
     const current = { ...object, transform: transformOf(this.app.objects.byId.get(id)) };
-    const size = this.app.objects.objectBounds(id).getSize(new THREE.Vector3());
-    const copy = duplicateObject(current, freshId(this.scene(), `${id}_copy`), [0.25 * size.x + 0.05, 0, 0.25 * size.z + 0.05]);
+    // Beside the original where nothing else is (else, in a full room, a quarter of its size off).
+    const box = this.app.objects.objectBounds(id);
+    const size = box.getSize(new THREE.Vector3());
+    const offset = freeOffset(this.app.objects, box) || [0.25 * size.x + 0.05, 0, 0.25 * size.z + 0.05];
+    const copy = duplicateObject(current, freshId(this.scene(), `${id}_copy`), offset);
     return this.change(addEdits(copy), `duplicate ${id}`, copy.id, id);
   }
 
@@ -214,7 +217,8 @@ export class EditorActions {
     if (!id) return this.frameAll();
     const box = id.startsWith('light:') ? new THREE.Box3().setFromObject(this.app.objects.lights.getObjectByName(id))
       : this.app.objects.objectBounds(id);
-    this.app.view.frame(box);
+    // From inside the room (the scene's bounds): a ceiling light is seen from below, not from above the ceiling.
+    this.app.view.frame(box, this.app.objects.bounds);
   }
 
   frameAll() {
