@@ -8,6 +8,20 @@ import { centroid, intensityOf, movedTo, quadAxes, resized, resizedQuad, sizeOf,
 
 const ROWS = [['translate', 'move (m)'], ['rotate_deg', 'rotate (°)'], ['scale', 'scale']];
 
+// Each field's tooltip: what it is, per component (Enter or leaving the field applies it).
+const XYZ = ['x', 'y', 'z'];
+const RGB = ['red', 'green', 'blue'];
+const TIPS = {
+  translate: (k) => `Position along ${XYZ[k]} in metres (y is up): where the object's pivot, its centre, stands`,
+  rotate_deg: (k) => `Turn about the ${XYZ[k]} axis in degrees (Euler angles, three.js 'XYZ' order)`,
+  scale: (k) => `Size factor along the object's own ${XYZ[k]} axis (1: as in the file)`,
+  centre: (k) => `The light's centre along ${XYZ[k]} in metres (y is up)`,
+  quad: (k) => `The light's ${k ? 'depth (along its last edge)' : 'width (along its first edge)'} in metres: a bigger light gives softer shadows`,
+  size: () => 'The light\'s size in metres (twice its farthest corner\'s distance from its centre): a bigger light gives softer shadows',
+  radiance: (k) => `Emitted radiance, ${RGB[k]} channel (W/(m² sr)): its colour and brightness`,
+  intensity: () => 'The radiance\'s largest channel: typing it scales all three, keeping the colour',
+};
+
 export class Inspector {
   // onTransform(id, transform): a typed transform to apply; onLight(lightId, {polygon, radiance}):
   // a typed light.
@@ -94,6 +108,8 @@ export class Inspector {
     name.textContent = label;
     row.append(name);
     const fields = Array.from({ length: count }, (_, k) => new ExactField(`${key}.${k}`, onChange));
+    for (const [k, field] of fields.entries()) field.input.title = TIPS[key] ? TIPS[key](k) : label;
+    name.title = fields[0].input.title;
     row.append(...fields.map((field) => field.input));
     this.root.append(row);
     return fields;

@@ -1,0 +1,99 @@
+#!/usr/bin/env node
+// Habits (issue 37 item 6), in Debian's chromium: the "?" sheet lists the mouse (orbit, pan, zoom)
+// and the keys; every inspector field of an object and of a light has a tooltip; the benchmark
+// tables are folded into a "Stats" section, closed by default; the volume demo scene
+// (scenes/volume_room.scene.json) opens from the page when its .nrrd is picked with it, and picked
+// alone it is refused with the key path, nothing loaded.
+//
+// usage: node tests/web/habits_e2e.mjs --penumbra build/penumbra [--scene scenes/cubes15.scene.json]
+import fs from 'node:fs';
+import path from 'node:path';
+
+import { check, repo, runWithServerAndBrowser, sleep, until, usageOnHelp } from './harness.mjs';
+import { clickObject, openPage, serverScene } from './page_actions.mjs';
+
+const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'cubes15.scene.json'), startupSeconds: 120 };
+const state = (page) => page.evaluate(() => window.penumbra.state());
+
+async function helpSheet(page) {
+  await page.keyboard.press('?');
+  await sleep(100);
+  const sheet = await page.evaluate(() => ({
+    shown: !document.getElementById('help').hidden,
+    mouse: [...document.querySelectorAll('#help table[data-sheet="mouse"] tr')].map((r) => r.textContent),
+    keys: document.querySelectorAll('#help table[data-sheet="keys"] tr').length,
+  }));
+  const says = (word) => sheet.mouse.some((row) => row.toLowerCase().includes(word));
+  check(sheet.shown && says('orbit') && says('pan') && says('zoom') && says('wheel') && sheet.keys >= 8,
+    'the ? sheet shows the mouse (orbit, pan, zoom by the wheel) and the keys', JSON.stringify(sheet));
+  await page.keyboard.press('Escape');
+}
+
+// Every field of the inspector has a tooltip, and the tooltips differ (each says what its field is).
+async function tooltips(page) {
+  const titles = () => page.evaluate(() => [...document.querySelectorAll('#inspector input')].map((i) => i.title));
+  check((await clickObject(page, 'cube_3')) === 'cube_3', 'a click selects cube_3');
+  const object = await titles();
+  check(object.length === 9 && object.every((t) => t.length > 10) && new Set(object).size === 9,
+    'each of an object\'s 9 inspector fields has its own tooltip', JSON.stringify(object));
+  await page.evaluate(() => window.penumbra.select('light:light'));
+  const light = await titles();
+  check(light.length >= 7 && light.every((t) => t.length > 10), 'each of a light\'s inspector fields has a tooltip', JSON.stringify(light));
+  await page.keyboard.press('Escape');
+}
+
+async function stats(page) {
+  const closed = await page.evaluate(() => ({ open: document.getElementById('stats').open,
+    plotShown: document.getElementById('edit-plot').checkVisibility(), timingsShown: document.getElementById('timings').checkVisibility() }));
+  check(!closed.open && !closed.plotShown && !closed.timingsShown, 'the benchmark plot and tables are in a "Stats" section, closed at first', JSON.stringify(closed));
+  await page.click('#stats summary');
+  const opened = await page.evaluate(() => document.getElementById('edit-plot').checkVisibility());
+  check(opened, 'a click on "Stats" opens it');
+  await page.click('#stats summary');
+}
+
+const sceneIds = async (base) => (await (await fetch(`${base}/api/scenes`)).json()).scenes.map((s) => s.id);
+
+async function volumeDemo(page, base) {
+  const demo = path.join(repo, 'scenes', 'volume_room.scene.json');
+  const before = await sceneIds(base);
+  await page.setInputFiles('#scene-file', [demo]);
+  const refused = await until(async () => (await state(page)).errors.find((e) => e.includes('objects[7].file')), 10);
+  check(!!refused && JSON.stringify(await sceneIds(base)) === JSON.stringify(before),
+    'the volume demo picked without its .nrrd is refused with the key path, nothing loaded', JSON.stringify({ refused, before }));
+  await Promise.all([
+    page.waitForURL((url) => url.searchParams.get('scene') && !before.includes(url.searchParams.get('scene')), { timeout: 120000 }),
+    page.setInputFiles('#scene-file', [demo, path.join(repo, 'scenes', 'volumes', 'smoke64.nrrd')]),
+  ]);
+  await page.waitForFunction(() => window.penumbra && (window.penumbra.state().ready || window.penumbra.state().bannerVisible), null, { timeout: 120000 });
+  const sceneId = new URL(page.url()).searchParams.get('scene');
+  const file = JSON.parse(fs.readFileSync(demo, 'utf8'));
+  const want = file.objects.find((o) => o.id === 'smoke');
+  const served = (await serverScene(base, sceneId)).scene;
+  const smoke = served.objects.find((o) => o.id === 'smoke');
+  const volumes = await page.evaluate(() => window.penumbra.volumes().map((v) => v.id));
+  check((await state(page)).ready && !(await state(page)).bannerVisible && smoke && smoke.isovalue === want.isovalue
+    && JSON.stringify(smoke.transform.translate) === JSON.stringify(want.transform.translate)
+    && JSON.stringify(smoke.transform.scale) === JSON.stringify(want.transform.scale)
+    && served.objects.length === file.objects.length && volumes.includes('smoke'),
+  'the volume demo picked with its .nrrd opens: its volume at the file\'s place, size and isovalue, shown in the page',
+  JSON.stringify({ smoke: smoke && { transform: smoke.transform, isovalue: smoke.isovalue }, volumes, errors: (await state(page)).errors }));
+}
+
+async function main() {
+  const args = usageOnHelp(process.argv, defaults,
+    'node tests/web/habits_e2e.mjs --penumbra build/penumbra [--scene scenes/cubes15.scene.json]');
+  await runWithServerAndBrowser(args, async ({ browser, url, base }) => {
+    const { page, pageErrors } = await openPage(browser, url);
+    check((await state(page)).ready, 'the page is ready');
+    await helpSheet(page);
+    await tooltips(page);
+    await stats(page);
+    await volumeDemo(page, base);
+    // The refusal above is the page's own banner, not a page error; anything else is.
+    const others = pageErrors.filter((e) => !e.includes('objects[7].file'));
+    check(others.length === 0, 'no page errors', others.join('\n'));
+  });
+}
+
+main();
