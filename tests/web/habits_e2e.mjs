@@ -1,7 +1,8 @@
 #!/usr/bin/env node
 // Habits (issue 37 item 6), in Debian's chromium: the "?" sheet lists the mouse (orbit, pan, zoom)
 // and the keys; every inspector field of an object and of a light has a tooltip; the benchmark
-// tables are folded into a "Stats" section, closed by default; the volume demo scene
+// tables are folded into a "Stats" section, closed by default; sphere, cylinder, cone and plane
+// added from the "+ Add" row; the volume demo scene
 // (scenes/volume_room.scene.json) opens from the page when its .nrrd is picked with it, and picked
 // alone it is refused with the key path, nothing loaded.
 //
@@ -52,6 +53,25 @@ async function stats(page) {
   await page.click('#stats summary');
 }
 
+// Each primitive from the "+ Add" row: on the server as one object with its faces, selected, in view.
+async function primitives(page, base, sceneId) {
+  const faces = { sphere: 72, cylinder: 18, cone: 17, plane: 1 };
+  for (const [kind, count] of Object.entries(faces)) {
+    const before = (await serverScene(base, sceneId)).version;
+    await page.selectOption('#primitive', kind);
+    await page.click('#add-primitive');
+    await sleep(80);
+    await page.evaluate(() => window.penumbra.idle());
+    const served = await serverScene(base, sceneId);
+    const object = served.scene.objects.find((o) => o.id === kind);
+    const centre = object ? await page.evaluate((id) => window.penumbra.objectCentre(id), kind) : null;
+    check(object && object.faces.length === count && served.version === before + 1 && (await state(page)).selected === kind
+      && await page.evaluate((p) => window.penumbra.inView(p), centre) && !(await state(page)).bannerVisible,
+    `+ Add ${kind}: one object of ${count} faces on the server (one version), selected, in view`,
+    JSON.stringify({ faces: object && object.faces.length, version: served.version, before, errors: (await state(page)).errors }));
+  }
+}
+
 const sceneIds = async (base) => (await (await fetch(`${base}/api/scenes`)).json()).scenes.map((s) => s.id);
 
 async function volumeDemo(page, base) {
@@ -83,12 +103,13 @@ async function volumeDemo(page, base) {
 async function main() {
   const args = usageOnHelp(process.argv, defaults,
     'node tests/web/habits_e2e.mjs --penumbra build/penumbra [--scene scenes/cubes15.scene.json]');
-  await runWithServerAndBrowser(args, async ({ browser, url, base }) => {
+  await runWithServerAndBrowser(args, async ({ browser, url, base, sceneId }) => {
     const { page, pageErrors } = await openPage(browser, url);
     check((await state(page)).ready, 'the page is ready');
     await helpSheet(page);
     await tooltips(page);
     await stats(page);
+    await primitives(page, base, sceneId);
     await volumeDemo(page, base);
     // The refusal above is the page's own banner, not a page error; anything else is.
     const others = pageErrors.filter((e) => !e.includes('objects[7].file'));

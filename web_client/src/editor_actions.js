@@ -1,9 +1,10 @@
-// The editor's commands beyond dragging: add a box, add a light, duplicate, delete (objects and
+// The editor's commands beyond dragging: add a box or another primitive, add a light, duplicate, delete (objects and
 // lights; each one frame, undoable),
 // typed transforms and lights, reset to the file, downloads, the scene list, and the camera (focus on the
 // selection, frame all, back home). Structural frames wait for pending moves, then reload the
 // stand-ins from the server's scene (the object list changed).
-import { addEdits, addLightEdits, boxObject, duplicateObject, freshId, lightCopy, removeEdits, removeLightEdits,
+import { primitiveObject, primitiveSize } from './primitives.js';
+import { addEdits, addLightEdits, duplicateObject, freshId, lightCopy, removeEdits, removeLightEdits,
   resetEdits } from './object_edits.js';
 import { floorSpot, freeOffset, lightOffset } from './placement.js';
 import { SceneList, download, forgetSource, rememberSource, sourceOf } from './scene_library.js';
@@ -58,14 +59,21 @@ export class EditorActions {
   }
 
   addBox() {
+    return this.addPrimitive('box');
+  }
+
+  // A primitive (primitives.js) a tenth of the scene's size, on the floor, in view, where no other
+  // object is (placement.js), in the scene's first material: one add, selected afterwards.
+  addPrimitive(kind) {
     const scene = this.scene();
     const bounds = this.app.objects.bounds;
     const size = Math.max(0.05, 0.1 * bounds.getSize(new THREE.Vector3()).length() / Math.sqrt(3));
-    // On the floor, in view, where no other object is (placement.js).
-    const at = floorSpot(this.app.objects, this.app.view, new THREE.Vector3(size, size, size));
+    const extent = new THREE.Vector3(...primitiveSize(kind, size));
+    const at = floorSpot(this.app.objects, this.app.view, extent);
+    if (kind === 'plane') at[1] += size / 2; // a sheet at a box's middle height: it casts a shadow
     const material = scene.materials ? Object.keys(scene.materials)[0] : undefined;
-    const box = boxObject(freshId(scene, 'box'), at, [size, size, size], material);
-    return this.change(addEdits(box), `add ${box.id}`, box.id);
+    const object = primitiveObject(kind, freshId(scene, kind), at, size, material);
+    return this.change(addEdits(object), `add ${object.id}`, object.id);
   }
 
   // A copy of the selected light (else the first) beside it, inside the scene's bounds, where the
