@@ -4,8 +4,8 @@
 // selection, frame all, back home). Structural frames wait for pending moves, then reload the
 // stand-ins from the server's scene (the object list changed).
 import { primitiveObject, primitiveSize } from './primitives.js';
-import { addEdits, addLightEdits, duplicateObject, freshId, lightCopy, removeEdits, removeLightEdits,
-  resetEdits } from './object_edits.js';
+import { addEdits, addLightEdits, duplicateObject, freshId, lightCopy, materialEdits, removeEdits, removeLightEdits,
+  renameEdits, renameLightEdits, resetEdits } from './object_edits.js';
 import { floorSpot, freeOffset, lightOffset } from './placement.js';
 import { SceneList, download, forgetSource, rememberSource, sourceOf } from './scene_library.js';
 import { sameTransform, transformOf } from './scene_transform.js';
@@ -125,6 +125,40 @@ export class EditorActions {
     if (!object) return null;
     const current = { ...object, transform: transformOf(this.app.objects.byId.get(id)) };
     return this.change(removeEdits(current), `delete ${id}`, null, id);
+  }
+
+  // A name typed in the inspector: the object or light under a new id (one frame, one undo step).
+  // A name that is not letters, digits, _ . - (at most 64) or that is taken is refused here, naming it.
+  rename(id, name) {
+    const isLightId = id.startsWith('light:');
+    const list = isLightId ? 'lights' : 'objects';
+    const old = isLightId ? id.slice(6) : id;
+    const problem = !/^[A-Za-z0-9_.-]{1,64}$/.test(name) ? 'use letters, digits, _ . or - (at most 64)'
+      : (this.scene()[list] || []).some((o) => o.id === name) ? `the scene has ${isLightId ? 'a light' : 'an object'} named '${name}'` : null;
+    if (problem) {
+      this.app.fail(new Error(`cannot rename '${old}' to '${name}': ${problem}`));
+      this.app.selected(id); // the field shows the name it has
+      return null;
+    }
+    if (isLightId) {
+      const light = this.app.objects.lightJson.get(old);
+      return light ? this.change(renameLightEdits(light, name), `rename ${id}`, `light:${name}`, id) : null;
+    }
+    const current = this.current(id);
+    return current ? this.change(renameEdits(current, name), `rename ${id}`, name, id) : null;
+  }
+
+  // Another of the scene's materials chosen in the inspector: one frame, one undo step.
+  setMaterial(id, material) {
+    const current = this.current(id);
+    if (!current || current.material === material) return null;
+    return this.change(materialEdits(current, material), `material of ${id}`, id, id);
+  }
+
+  // An object's JSON with the transform it has now (after drags not yet reloaded).
+  current(id) {
+    const object = this.app.objects.json.get(id);
+    return object ? { ...object, transform: transformOf(this.app.objects.byId.get(id)) } : null;
   }
 
   // A transform typed in the inspector: one move, undoable.
