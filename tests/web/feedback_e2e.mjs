@@ -61,6 +61,10 @@ async function refusedDrag(page, base, sceneId) {
 }
 
 async function plot(page) {
+  // The benchmark tables are folded into "Stats", closed by default.
+  const closed = await page.evaluate(() => !document.getElementById('stats').open && !document.getElementById('rebuild').checkVisibility());
+  check(closed, 'the Stats section (plot, timings, rebuild) is closed when the page opens');
+  await page.click('#stats summary');
   await page.click('#rebuild');
   await page.waitForFunction(() => /rebuild of v\d+/.test(document.getElementById('edit-ratio').textContent), null, { timeout: 30000 });
   const r = await page.evaluate(() => {
@@ -92,6 +96,7 @@ async function disconnect(args, page, server, url) {
   const lost = await page.evaluate(() => ({ text: document.getElementById('connection').textContent, state: window.penumbra.state().connection }));
   check(/Server disconnected — reconnecting/.test(lost.text) && lost.state === 'reconnecting', 'a stopped server shows "disconnected — reconnecting"', JSON.stringify(lost));
   // A request the server cannot answer still reaches the banner (only leaving the page drops one).
+  await page.evaluate(() => { document.getElementById('stats').open = true; });
   await page.click('#rebuild');
   const failed = await page.waitForFunction(() => window.penumbra.state().errors.some((e) => /network_error/.test(e)), null, { timeout: 5000 })
     .then(() => true, () => false);

@@ -6,7 +6,7 @@
 import assert from 'node:assert/strict';
 import test from 'node:test';
 
-import { boxObject, duplicateObject, freshId, resetEdits } from '../../web_client/src/object_edits.js';
+import { boxObject, duplicateObject, freshId, materialEdits, renameEdits, resetEdits } from '../../web_client/src/object_edits.js';
 
 // Applies a frame to scene JSON as the server does (objects only; order of the list aside).
 function apply(scene, edits) {
@@ -25,6 +25,19 @@ function rng(seed) {
   let s = seed >>> 0;
   return () => ((s = (s * 1664525 + 1013904223) >>> 0) / 2 ** 32);
 }
+
+test('a rename and a material change are one frame each whose undo gives the scene back exactly', () => {
+  const scene = { objects: [boxObject('a', [0, 0, 0], [1, 1, 1], 'white'), boxObject('b', [2, 0, 0], [1, 1, 1], 'white')] };
+  const renamed = renameEdits(scene.objects[0], 'crate');
+  const after = apply(scene, renamed.redo);
+  assert.deepEqual(after.objects.map((o) => o.id).sort(), ['b', 'crate']);
+  assert.deepEqual({ ...after.objects.find((o) => o.id === 'crate'), id: 'a' }, scene.objects[0]);
+  assert.equal(sorted(apply(after, renamed.undo)), sorted(scene));
+  const recoloured = materialEdits(scene.objects[1], 'clay');
+  const clay = apply(scene, recoloured.redo);
+  assert.equal(clay.objects.find((o) => o.id === 'b').material, 'clay');
+  assert.equal(sorted(apply(clay, recoloured.undo)), sorted(scene));
+});
 
 test('box faces point outwards (counter-clockwise seen from outside)', () => {
   const box = boxObject('b', [1, 2, 3], [2, 1, 0.5]);

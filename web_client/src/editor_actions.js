@@ -1,11 +1,12 @@
-// The editor's commands beyond dragging: add a box, add a light, duplicate, delete (objects and
+// The editor's commands beyond dragging: add a box or another primitive, add a light, duplicate, delete (objects and
 // lights; each one frame, undoable),
 // typed transforms and lights, reset to the file, downloads, the scene list, and the camera (focus on the
 // selection, frame all, back home). Structural frames wait for pending moves, then reload the
 // stand-ins from the server's scene (the object list changed).
-import { addEdits, addLightEdits, boxObject, duplicateObject, freshId, lightCopy, removeEdits, removeLightEdits,
-  resetEdits } from './object_edits.js';
-import { besideOffset } from './light_shape.js';
+import { primitiveObject, primitiveSize } from './primitives.js';
+import { addEdits, addLightEdits, duplicateObject, freshId, lightCopy, materialEdits, removeEdits, removeLightEdits,
+  renameEdits, renameLightEdits, resetEdits } from './object_edits.js';
+import { floorSpot, freeOffset, lightOffset } from './placement.js';
 import { SceneList, download, forgetSource, rememberSource, sourceOf } from './scene_library.js';
 import { sameTransform, transformOf } from './scene_transform.js';
 import * as THREE from 'three';
@@ -58,19 +59,25 @@ export class EditorActions {
   }
 
   addBox() {
+    return this.addPrimitive('box');
+  }
+
+  // A primitive (primitives.js) a tenth of the scene's size, on the floor, in view, where no other
+  // object is (placement.js), in the scene's first material: one add, selected afterwards.
+  addPrimitive(kind) {
     const scene = this.scene();
     const bounds = this.app.objects.bounds;
     const size = Math.max(0.05, 0.1 * bounds.getSize(new THREE.Vector3()).length() / Math.sqrt(3));
-    // On the floor (the bounds' bottom) under the view's target.
-    const target = this.app.view.controls.target;
-    const at = [target.x, bounds.min.y + size / 2 + 1e-3, target.z];
+    const extent = new THREE.Vector3(...primitiveSize(kind, size));
+    const at = floorSpot(this.app.objects, this.app.view, extent);
+    if (kind === 'plane') at[1] += size / 2; // a sheet at a box's middle height: it casts a shadow
     const material = scene.materials ? Object.keys(scene.materials)[0] : undefined;
-    const box = boxObject(freshId(scene, 'box'), at, [size, size, size], material);
-    return this.change(addEdits(box), `add ${box.id}`, box.id);
+    const object = primitiveObject(kind, freshId(scene, kind), at, size, material);
+    return this.change(addEdits(object), `add ${object.id}`, object.id);
   }
 
-  // A copy of the selected light (else the first) beside it, inside the scene's bounds, with a
-  // fresh id: one add_light (a full rebuild on the server), selected afterwards.
+  // A copy of the selected light (else the first) beside it, inside the scene's bounds, where the
+  // view sees it if it can, with a fresh id: one add_light (a full rebuild on the server), selected afterwards.
   addLight() {
     const { objects } = this.app;
     const selected = this.app.gizmo.selected;
@@ -78,7 +85,8 @@ export class EditorActions {
       || objects.lightJson.values().next().value;
     if (!source) return null;
     const box = { min: objects.bounds.min.toArray(), max: objects.bounds.max.toArray() };
-    const offset = besideOffset(source.polygon, box);
+    const lights = [...objects.lightJson.values()].map((l) => l.polygon);
+    const offset = lightOffset(source.polygon, box, lights, this.app.view.camera);
     if (!offset) {
       this.app.fail(new Error(`no room beside light ${source.id} for a copy inside the scene`));
       return null;
@@ -98,8 +106,11 @@ export class EditorActions {
     const object = id && this.app.objects.json.get(id);
     if (!object) return null;
     const current = { ...object, transform: transformOf(this.app.objects.byId.get(id)) };
-    const size = this.app.objects.objectBounds(id).getSize(new THREE.Vector3());
-    const copy = duplicateObject(current, freshId(this.scene(), `${id}_copy`), [0.25 * size.x + 0.05, 0, 0.25 * size.z + 0.05]);
+    // Beside the original where nothing else is (else, in a full room, a quarter of its size off).
+    const box = this.app.objects.objectBounds(id);
+    const size = box.getSize(new THREE.Vector3());
+    const offset = freeOffset(this.app.objects, box) || [0.25 * size.x + 0.05, 0, 0.25 * size.z + 0.05];
+    const copy = duplicateObject(current, freshId(this.scene(), `${id}_copy`), offset);
     return this.change(addEdits(copy), `duplicate ${id}`, copy.id, id);
   }
 
@@ -114,6 +125,40 @@ export class EditorActions {
     if (!object) return null;
     const current = { ...object, transform: transformOf(this.app.objects.byId.get(id)) };
     return this.change(removeEdits(current), `delete ${id}`, null, id);
+  }
+
+  // A name typed in the inspector: the object or light under a new id (one frame, one undo step).
+  // A name that is not letters, digits, _ . - (at most 64) or that is taken is refused here, naming it.
+  rename(id, name) {
+    const isLightId = id.startsWith('light:');
+    const list = isLightId ? 'lights' : 'objects';
+    const old = isLightId ? id.slice(6) : id;
+    const problem = !/^[A-Za-z0-9_.-]{1,64}$/.test(name) ? 'use letters, digits, _ . or - (at most 64)'
+      : (this.scene()[list] || []).some((o) => o.id === name) ? `the scene has ${isLightId ? 'a light' : 'an object'} named '${name}'` : null;
+    if (problem) {
+      this.app.fail(new Error(`cannot rename '${old}' to '${name}': ${problem}`));
+      this.app.selected(id); // the field shows the name it has
+      return null;
+    }
+    if (isLightId) {
+      const light = this.app.objects.lightJson.get(old);
+      return light ? this.change(renameLightEdits(light, name), `rename ${id}`, `light:${name}`, id) : null;
+    }
+    const current = this.current(id);
+    return current ? this.change(renameEdits(current, name), `rename ${id}`, name, id) : null;
+  }
+
+  // Another of the scene's materials chosen in the inspector: one frame, one undo step.
+  setMaterial(id, material) {
+    const current = this.current(id);
+    if (!current || current.material === material) return null;
+    return this.change(materialEdits(current, material), `material of ${id}`, id, id);
+  }
+
+  // An object's JSON with the transform it has now (after drags not yet reloaded).
+  current(id) {
+    const object = this.app.objects.json.get(id);
+    return object ? { ...object, transform: transformOf(this.app.objects.byId.get(id)) } : null;
   }
 
   // A transform typed in the inspector: one move, undoable.
@@ -214,7 +259,8 @@ export class EditorActions {
     if (!id) return this.frameAll();
     const box = id.startsWith('light:') ? new THREE.Box3().setFromObject(this.app.objects.lights.getObjectByName(id))
       : this.app.objects.objectBounds(id);
-    this.app.view.frame(box);
+    // From inside the room (the scene's bounds): a ceiling light is seen from below, not from above the ceiling.
+    this.app.view.frame(box, this.app.objects.bounds);
   }
 
   frameAll() {

@@ -8,13 +8,29 @@ import { centroid, intensityOf, movedTo, quadAxes, resized, resizedQuad, sizeOf,
 
 const ROWS = [['translate', 'move (m)'], ['rotate_deg', 'rotate (°)'], ['scale', 'scale']];
 
+// Each field's tooltip: what it is, per component (Enter or leaving the field applies it).
+const XYZ = ['x', 'y', 'z'];
+const RGB = ['red', 'green', 'blue'];
+const TIPS = {
+  translate: (k) => `Position along ${XYZ[k]} in metres (y is up): where the object's pivot, its centre, stands`,
+  rotate_deg: (k) => `Turn about the ${XYZ[k]} axis in degrees (Euler angles, three.js 'XYZ' order)`,
+  scale: (k) => `Size factor along the object's own ${XYZ[k]} axis (1: as in the file)`,
+  centre: (k) => `The light's centre along ${XYZ[k]} in metres (y is up)`,
+  quad: (k) => `The light's ${k ? 'depth (along its last edge)' : 'width (along its first edge)'} in metres: a bigger light gives softer shadows`,
+  size: () => 'The light\'s size in metres (twice its farthest corner\'s distance from its centre): a bigger light gives softer shadows',
+  radiance: (k) => `Emitted radiance, ${RGB[k]} channel (W/(m² sr)): its colour and brightness`,
+  intensity: () => 'The radiance\'s largest channel: typing it scales all three, keeping the colour',
+};
+
 export class Inspector {
   // onTransform(id, transform): a typed transform to apply; onLight(lightId, {polygon, radiance}):
   // a typed light.
-  constructor(root, onTransform, onLight) {
+  // more: {onRename(id, newName), onMaterial(id, material), materials() → [[name, JSON]], materialOf(id)}.
+  constructor(root, onTransform, onLight, more = {}) {
     this.root = root;
     this.onTransform = onTransform;
     this.onLight = onLight;
+    this.more = more;
     this.id = null;
     this.inputs = null;
   }
@@ -30,13 +46,58 @@ export class Inspector {
       return;
     }
     if (id.startsWith('light:')) return this.showLight(id.slice(6), data);
-    const title = document.createElement('div');
-    title.textContent = id;
-    title.className = 'inspector-title';
-    this.root.append(title);
+    this.nameRow(id, id);
     this.inputs = {};
     for (const [key, label] of ROWS) this.inputs[key] = this.row(key, label, 3, () => this.typed());
+    if (this.more.materials && this.more.materials().length) this.materialRow(id);
     this.update(data);
+  }
+
+  // The selection's name (its id): typed and entered, a rename (one undo step).
+  nameRow(id, name) {
+    const row = document.createElement('div');
+    row.className = 'row inspector-row inspector-title';
+    const label = document.createElement('span');
+    label.textContent = id.startsWith('light:') ? 'light' : 'name';
+    const input = document.createElement('input');
+    Object.assign(input, { type: 'text', value: name, size: 16 });
+    input.dataset.key = 'name';
+    input.title = 'The name (id) in the scene: type a new one (letters, digits, _ . -) and press Enter to rename it (one undo step)';
+    label.title = input.title;
+    input.addEventListener('change', () => {
+      const next = input.value.trim();
+      if (next && next !== name && this.more.onRename) this.more.onRename(id, next);
+      else input.value = name;
+    });
+    row.append(label, input);
+    this.root.append(row);
+  }
+
+  // The object's material, one of the scene's (its type and colour in the list): a choice
+  // replaces the object in that material (one undo step).
+  materialRow(id) {
+    const row = document.createElement('div');
+    row.className = 'row inspector-row';
+    const label = document.createElement('span');
+    label.textContent = 'material';
+    const select = document.createElement('select');
+    select.dataset.key = 'material';
+    select.title = 'The object\'s material, one of the scene\'s (type and colour): a choice is one edit, one undo step';
+    label.title = select.title;
+    const current = this.more.materialOf(id);
+    for (const [name, material] of this.more.materials()) {
+      const option = document.createElement('option');
+      const rgb = (material.albedo || [0.8, 0.8, 0.8]).map((x) => Math.round(255 * Math.min(Math.max(x, 0), 1)));
+      option.value = name;
+      option.textContent = `${name} (${material.type || 'diffuse'})`;
+      option.style.background = `rgb(${rgb.join(',')})`;
+      option.style.color = rgb[0] * 0.3 + rgb[1] * 0.6 + rgb[2] * 0.1 > 128 ? '#000' : '#fff';
+      select.append(option);
+    }
+    select.value = current || '';
+    select.addEventListener('change', () => this.more.onMaterial(id, select.value));
+    row.append(label, select);
+    this.root.append(row);
   }
 
   // The fields follow the object (after a drag or another client's edit) unless one is being typed
@@ -69,10 +130,7 @@ export class Inspector {
   // size of any polygon: scaled about its centre), radiance and intensity (its largest channel:
   // typing it scales the radiance). A change becomes one set_light (onLight(id, {polygon, radiance})).
   showLight(lightId, light) {
-    const title = document.createElement('div');
-    title.textContent = `light ${lightId}`;
-    title.className = 'inspector-title';
-    this.root.append(title);
+    this.nameRow(`light:${lightId}`, lightId);
     this.light = light;
     const quad = light && quadAxes(light.polygon);
     const rows = [['centre', 'centre (m)', 3], quad ? ['quad', 'width × depth (m)', 2] : ['size', 'size (m)', 1],
@@ -94,6 +152,8 @@ export class Inspector {
     name.textContent = label;
     row.append(name);
     const fields = Array.from({ length: count }, (_, k) => new ExactField(`${key}.${k}`, onChange));
+    for (const [k, field] of fields.entries()) field.input.title = TIPS[key] ? TIPS[key](k) : label;
+    name.title = fields[0].input.title;
     row.append(...fields.map((field) => field.input));
     this.root.append(row);
     return fields;

@@ -74,16 +74,19 @@ export function setLightEdit(id, from, to) {
 }
 
 // An offset moving the polygon beside itself — along its first edge or its last, either way, by
-// 1.25 × its extent that way — with every corner inside `box` ({min, max}: [x, y, z]); null if
-// none fits. A copy there neither overlaps its source nor leaves the scene's bounds.
-export function besideOffset(polygon, box) {
+// 1.25 × its extent that way, then twice and three times that — with every corner inside `box`
+// ({min, max}: [x, y, z]) and accept(offset) true; null if none fits. A copy there neither
+// overlaps its source nor leaves the scene's bounds.
+export function besideOffset(polygon, box, accept = () => true) {
   const directions = [sub(polygon[1], polygon[0]), sub(polygon[polygon.length - 1], polygon[0])];
-  for (const d of directions.flatMap((d) => [d, mul(d, -1)])) {
-    const unit = mul(d, 1 / norm(d));
-    const along = polygon.map((p) => dot(p, unit));
-    const offset = mul(unit, 1.25 * (Math.max(...along) - Math.min(...along)));
-    const inside = polygon.every((p) => add(p, offset).every((x, k) => x >= box.min[k] && x <= box.max[k]));
-    if (inside) return offset;
+  for (let steps = 1; steps <= 3; ++steps) {
+    for (const d of directions.flatMap((d) => [d, mul(d, -1)])) {
+      const unit = mul(d, 1 / norm(d));
+      const along = polygon.map((p) => dot(p, unit));
+      const offset = mul(unit, steps * 1.25 * (Math.max(...along) - Math.min(...along)));
+      const inside = polygon.every((p) => add(p, offset).every((x, k) => x >= box.min[k] && x <= box.max[k]));
+      if (inside && accept(offset)) return offset;
+    }
   }
   return null;
 }

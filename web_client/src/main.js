@@ -76,7 +76,12 @@ class App {
     this.history = new UndoHistory();
     this.editor = new EditorActions(this);
     this.inspector = new Inspector($('inspector'), (id, transform) => this.editor.typedTransform(id, transform),
-      (lightId, light) => this.editor.typedLight(lightId, light));
+      (lightId, light) => this.editor.typedLight(lightId, light), {
+        onRename: (id, name) => this.editor.rename(id, name),
+        onMaterial: (id, material) => this.editor.setMaterial(id, material),
+        materials: () => Object.entries((this.sceneJson && this.sceneJson.materials) || {}),
+        materialOf: (id) => (this.objects.json.get(id) || {}).material,
+      });
     this.outliner = new Outliner($('outliner'), (id) => this.gizmo && this.gizmo.select(id));
     this.ownVersions = new Set();
     this.dragStart = null;

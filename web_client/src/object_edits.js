@@ -43,6 +43,22 @@ const lightOf = ({ id, polygon, radiance }) => ({ id, polygon, radiance });
 export const addLightEdits = (light) => ({ redo: [{ op: 'add_light', light: lightOf(light) }], undo: [{ op: 'remove_light', id: light.id }] });
 export const removeLightEdits = (light) => ({ redo: [{ op: 'remove_light', id: light.id }], undo: [{ op: 'add_light', light: lightOf(light) }] });
 
+// A rename: the object added under its new id, then the old one removed (one frame; the engine
+// has no rename, and the new id's object shadows exactly as the old one did).
+export const renameEdits = (object, id) => ({
+  redo: [addOp({ ...object, id }), { op: 'remove', id: object.id }],
+  undo: [addOp(object), { op: 'remove', id }],
+});
+export const renameLightEdits = (light, id) => ({
+  redo: [{ op: 'add_light', light: lightOf({ ...light, id }) }, { op: 'remove_light', id: light.id }],
+  undo: [{ op: 'add_light', light: lightOf(light) }, { op: 'remove_light', id }],
+});
+// Another of the scene's materials for an object: it is replaced (removed and added) in one frame.
+export const materialEdits = (object, material) => ({
+  redo: [{ op: 'remove', id: object.id }, addOp({ ...object, material })],
+  undo: [{ op: 'remove', id: object.id }, addOp(object)],
+});
+
 // A copy of `light` under a new id, its polygon moved by `offset` metres.
 export function lightCopy(light, id, offset) {
   return { id, polygon: light.polygon.map((p) => p.map((x, k) => x + offset[k])), radiance: [...light.radiance] };

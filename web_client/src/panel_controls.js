@@ -12,6 +12,7 @@ export function installPanelControls(app, editor) {
   click('undo', () => app.undo());
   click('redo', () => app.redo());
   click('add-box', () => editor.addBox());
+  click('add-primitive', () => editor.addPrimitive($('primitive').value));
   click('add-light', () => editor.addLight());
   click('duplicate', () => editor.duplicate());
   click('delete', () => editor.deleteSelected());

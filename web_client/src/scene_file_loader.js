@@ -1,10 +1,12 @@
 // "Load a scene": the files chosen in the file input become a new served scene, then the page
-// switches to it (?scene=ID). A .scene.json is posted as is (POST /api/scenes); an .obj (with the
+// switches to it (?scene=ID). A .scene.json is posted as is (POST /api/scenes; its volumes, picked
+// with it, uploaded after: scene_volumes.js); an .obj (with the
 // .mtl files picked together), .gltf or .glb is posted as a form to POST /api/scenes?format=...
 // (docs/API.md), with the page's scale and light-radiance options. The server names the key path
 // of any problem; the import report (what was repaired) is kept for the next page in
 // sessionStorage and shown there by import_report_panel.js.
 import { storeImportReport } from './import_report_panel.js';
+import { addVolumes, splitVolumes } from './scene_volumes.js';
 
 const kinds = [
   [/\.json$/i, 'scene'],
@@ -12,6 +14,7 @@ const kinds = [
   [/\.mtl$/i, 'mtl'],
   [/\.gltf$/i, 'gltf'],
   [/\.glb$/i, 'glb'],
+  [/\.nrrd$/i, 'nrrd'],
 ];
 
 function kindOf(file) {
@@ -19,14 +22,16 @@ function kindOf(file) {
   return match ? match[1] : null;
 }
 
-// The files picked → {main, mtl[]}; throws with a message the banner shows.
+// The files picked → {main, mtl[], nrrd[]}; throws with a message the banner shows.
 export function classifyFiles(files) {
   const main = [];
   const mtl = [];
+  const nrrd = [];
   for (const file of files) {
     const kind = kindOf(file);
-    if (!kind) throw new Error(`cannot load '${file.name}': choose a .scene.json, .obj (+ .mtl), .gltf or .glb file`);
+    if (!kind) throw new Error(`cannot load '${file.name}': choose a .scene.json (+ its .nrrd volumes), .obj (+ .mtl), .gltf or .glb file`);
     if (kind === 'mtl') mtl.push(file);
+    else if (kind === 'nrrd') nrrd.push(file);
     else main.push({ file, kind });
   }
   if (main.length !== 1) {
@@ -34,7 +39,8 @@ export function classifyFiles(files) {
       : 'the .mtl files need their .obj: pick them together');
   }
   if (mtl.length && main[0].kind !== 'obj') throw new Error('.mtl files go with an .obj only');
-  return { main: main[0], mtl };
+  if (nrrd.length && main[0].kind !== 'scene') throw new Error('.nrrd files go with a .scene.json only');
+  return { main: main[0], mtl, nrrd };
 }
 
 // The import options typed in the page → query parameters (empty fields: the file's own values).
@@ -73,12 +79,15 @@ export function installSceneFileLoader(input, api, onError, options, loading) {
     const files = input.files ? [...input.files] : [];
     if (!files.length) return;
     try {
-      const { main, mtl } = classifyFiles(files);
+      const { main, mtl, nrrd } = classifyFiles(files);
       const progress = uploadProgress(loading, main.file.name);
       let created;
       if (main.kind === 'scene') {
         const name = main.file.name.replace(/\.scene\.json$|\.json$/i, '');
-        created = await api.createScene(await main.file.text(), name, progress);
+        const { text, volumes } = splitVolumes(await main.file.text(), nrrd);
+        created = await api.createScene(text, name, progress);
+        if (volumes.length) loading.step(`Adding ${volumes.length} volume(s)…`);
+        await addVolumes(api, created.id, volumes);
       } else {
         created = await importFile(api, main, mtl, options, progress);
         storeImportReport(created.id, created.name, created.import);

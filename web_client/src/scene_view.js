@@ -5,6 +5,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { defaultCamera } from './default_camera.js';
+import { focusEye } from './placement.js';
 
 export class SceneView {
   // antialias: 'auto' (on unless the GL is software), 'on' or 'off'. dragScale: the pixel
@@ -62,8 +63,16 @@ export class SceneView {
     if (this.controls) this.controls.dispose();
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.controls.target.fromArray(c.target);
+    this.floorY = bounds && !bounds.isEmpty() ? bounds.min.y : -Infinity;
+    // Not quite straight down: the server refuses a view direction parallel to `up` (the page's /image).
+    this.controls.minPolarAngle = 0.01;
+    this.limitOrbit();
     this.controls.update();
-    this.controls.addEventListener('change', () => this.listeners.forEach((f) => f()));
+    this.controls.addEventListener('change', () => {
+      this.keepAboveFloor();
+      this.limitOrbit();
+      this.listeners.forEach((f) => f());
+    });
     this.controls.addEventListener('start', () => this.setInteracting('orbit', true));
     this.controls.addEventListener('end', () => this.setInteracting('orbit', false));
     this.resize();
@@ -77,21 +86,41 @@ export class SceneView {
     this.controls.target.fromArray(c.target);
     this.camera.zoom = 1;
     this.camera.updateProjectionMatrix();
+    this.limitOrbit();
     this.controls.update();
     this.listeners.forEach((f) => f());
   }
 
+  // Orbiting stops where the camera would go under the floor (the room is never seen from below):
+  // the largest polar angle (from straight up) at which the eye, at its distance, is above the floor.
+  limitOrbit() {
+    const r = this.camera.position.distanceTo(this.controls.target);
+    const c = (this.floorY + 1e-3 - this.controls.target.y) / Math.max(r, 1e-9);
+    this.controls.maxPolarAngle = c <= -1 ? Math.PI : c >= 1 ? this.controls.minPolarAngle : Math.max(Math.acos(c), this.controls.minPolarAngle);
+  }
+
+  // A pan or dolly that took the camera under the floor: camera and target lifted together.
+  keepAboveFloor() {
+    const below = this.floorY + 1e-3 - this.camera.position.y;
+    if (!(below > 0)) return;
+    this.camera.position.y += below;
+    this.controls.target.y += below;
+  }
+
   // Turns to `box` (THREE.Box3) and backs off along the current view direction until its bounding
-  // sphere fits the view (F: the selection, frame all: the scene).
-  frame(box) {
+  // sphere fits the view (F: the selection, frame all: the scene). With `room` (a Box3) the
+  // camera stays inside it, on the side of the selection the room is (placement.js focusEye).
+  frame(box, room = null) {
     if (!box || box.isEmpty()) return;
     const centre = box.getCenter(new THREE.Vector3());
     const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 1e-3);
     const direction = this.camera.position.clone().sub(this.controls.target).normalize();
+    if (!room && direction.y < 0) direction.y = -direction.y; // the whole scene from above, not from under its floor
     if (this.camera.isPerspectiveCamera) {
       const halfFov = Math.min(this.camera.fov, this.camera.fov * this.aspect()) * Math.PI / 360;
       this.camera.zoom = 1;
-      this.camera.position.copy(centre).addScaledVector(direction, 1.1 * radius / Math.sin(halfFov));
+      const distance = 1.1 * radius / Math.sin(halfFov);
+      this.camera.position.copy(room ? focusEye(centre, direction, distance, room) : centre.clone().addScaledVector(direction, distance));
       this.camera.far = Math.max(this.camera.far, 4 * radius + this.camera.position.distanceTo(centre));
     } else {
       this.camera.zoom = Math.min(this.camera.top - this.camera.bottom, this.camera.right - this.camera.left) / (2.2 * radius);
@@ -99,6 +128,7 @@ export class SceneView {
     }
     this.controls.target.copy(centre);
     this.camera.updateProjectionMatrix();
+    this.limitOrbit();
     this.controls.update();
     this.listeners.forEach((f) => f());
   }

@@ -1,6 +1,13 @@
 // The editor's keyboard shortcuts (keys typed into a text field are text, not commands) and the
-// "?" sheet that lists them. W / E / R and Esc belong to the gizmo (selection_gizmo.js); they are
+// "?" sheet that lists the mouse's gestures (three.js OrbitControls and the gizmo) and the keys. W / E / R and Esc belong to the gizmo (selection_gizmo.js); they are
 // listed here too.
+
+export const MOUSE = [
+  ['Click', 'select an object or a light (walls and floors once unlocked); drag its gizmo to move it'],
+  ['Left drag on empty space, a wall or the floor', 'orbit around the view\'s centre (never under the floor)'],
+  ['Right drag, or Shift + left drag', 'pan'],
+  ['Wheel', 'zoom (move the camera nearer or farther)'],
+];
 
 export const SHORTCUTS = [
   ['W / E / R', 'move / rotate / scale the selection (an object or a light)'],
@@ -21,15 +28,18 @@ const isTyping = (target) => target instanceof HTMLInputElement && !['checkbox',
 // actions: {undo, redo, focus, frameAll, home, addBox, duplicate, remove, ready()}
 export function installShortcuts(actions, help) {
   help.replaceChildren();
-  const title = document.createElement('h2');
-  title.textContent = 'Shortcuts';
-  const table = document.createElement('table');
-  for (const [keys, what] of SHORTCUTS) {
-    const row = table.insertRow();
-    row.insertCell().textContent = keys;
-    row.insertCell().textContent = what;
+  for (const [heading, rows] of [['Mouse', MOUSE], ['Keys', SHORTCUTS]]) {
+    const title = document.createElement('h2');
+    title.textContent = heading;
+    const table = document.createElement('table');
+    table.dataset.sheet = heading.toLowerCase();
+    for (const [keys, what] of rows) {
+      const row = table.insertRow();
+      row.insertCell().textContent = keys;
+      row.insertCell().textContent = what;
+    }
+    help.append(title, table);
   }
-  help.append(title, table);
   help.addEventListener('click', () => { help.hidden = true; });
   const toggleHelp = () => { help.hidden = !help.hidden; };
 

@@ -4,6 +4,7 @@
 import * as THREE from 'three';
 import { CLASS_PENUMBRA, receiverKey } from './mesh_binary.js';
 import { blockingShellFaces } from './default_camera.js';
+import { inView } from './placement.js';
 import { transformOf } from './scene_transform.js';
 
 // Barycentric interpolation of a receiver's irradiance at a point on its plane; null outside.
@@ -183,6 +184,21 @@ export function installTestHook(app) {
     },
     cameraQuery() {
       return app.view.cameraQuery();
+    },
+    // Puts the camera at `position` looking at `target` (as an orbit would).
+    lookFrom(position, target) {
+      app.view.camera.position.fromArray(position);
+      app.view.controls.target.fromArray(target);
+      app.view.controls.update();
+    },
+    // Whether a world point is in front of the camera and inside the view (placement.js inView).
+    inView(point, margin = 1) {
+      return inView(app.view.camera, point, margin);
+    },
+    // An object's world bounds {min, max} as drawn.
+    objectBox(id) {
+      const box = app.objects.objectBounds(id);
+      return box ? { min: box.min.toArray(), max: box.max.toArray() } : null;
     },
     idle() {
       return app.idle();

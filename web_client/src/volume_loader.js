@@ -4,8 +4,9 @@
 // it back by add_volume naming the file the server kept).
 import * as THREE from 'three';
 import { addEdits } from './object_edits.js';
+import { floorSpot } from './placement.js';
 
-// The new volume's place: its grid box's centre under the view's target, its bottom on the floor.
+// The new volume's place: its grid box on the floor, in view, where no other object is (placement.js).
 function placement(app, info) {
   const box = new THREE.Box3();
   for (let c = 0; c < 8; ++c) {
@@ -14,9 +15,9 @@ function placement(app, info) {
     box.expandByPoint(p);
   }
   const centre = box.getCenter(new THREE.Vector3());
-  const target = app.view.controls.target;
-  const floor = app.objects.bounds.isEmpty() ? 0 : app.objects.bounds.min.y;
-  return [target.x - centre.x, floor + 1e-3 - box.min.y, target.z - centre.z];
+  if (app.objects.bounds.isEmpty()) return [-centre.x, 1e-3 - box.min.y, -centre.z];
+  const spot = floorSpot(app.objects, app.view, box.getSize(new THREE.Vector3()));
+  return [spot[0] - centre.x, spot[1] - centre.y, spot[2] - centre.z];
 }
 
 export function installVolumeLoader(input, app, editor) {
