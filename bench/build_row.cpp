@@ -21,6 +21,7 @@
 #include "core/reference/exact_irradiance.h"
 #include "core/reference/grid_mesh.h"
 #include "core/reference/monte_carlo.h"
+#include "protocol/build_stats_json.h"
 
 namespace penumbra::bench {
 
@@ -186,19 +187,21 @@ nlohmann::json meshQualityJson(const Scene& scene, const Mesh& mesh, const Bench
           {"grid_dark_points_lit", onGrid.darkLeak}};
 }
 
-nlohmann::json countersJson(const BuildStats& stats, size_t meshVertices) {
-  return {{"faces", stats.faces},
-          {"candidate_pairs", stats.candidatePairs},
-          {"pairs_with_shadow", stats.pairsWithShadow},
-          {"tiles", stats.tiles},
-          {"tree_nodes", stats.treeNodes},
-          {"cells", stats.cells},
-          {"vertices", stats.vertices},
-          {"mesh_vertices", meshVertices},
-          {"lit_vertices", stats.litVertices},
-          {"penumbra_vertices", stats.penumbraVertices},
-          {"umbra_vertices", stats.umbraVertices},
-          {"comparisons_per_vertex", stats.comparisonsPerVertex()}};
+// The row's counters: the build stats (protocol/build_stats_json.h) one level flat, as the
+// table and the report read them: "vertices": {"total", "lit", …} becomes "vertices",
+// "lit_vertices", …; the row's "seconds" are its own.
+nlohmann::json flatCounters(const nlohmann::json& stats) {
+  nlohmann::json out;
+  for (const auto& [key, value] : stats.items()) {
+    if (key == "seconds") continue;
+    if (!value.is_object()) {
+      out[key] = value;
+      continue;
+    }
+    for (const auto& [part, number] : value.items())
+      out[part == "total" ? key : part + "_" + key] = number;
+  }
+  return out;
 }
 
 }  // namespace
@@ -256,25 +259,22 @@ nlohmann::json runBuildRow(const BenchArgs& args) {
   // One flat copy of it on top, as Engine::mesh() returns and `penumbra build` writes.
   const Mesh mesh = engine.mesh();
   const double flatPeakMiB = peakMemoryMiB();
-  const BuildStats& stats = engine.stats();
-  BuildTimings t = stats.seconds;
-  t.triangulation = triangulationSeconds;  // mesh() above timed only its copy
+  BuildStats stats = engine.stats();
+  stats.seconds.triangulation = triangulationSeconds;  // mesh() above timed only its copy
+  const nlohmann::json statsJson = protocol::buildStatsToJson(stats);
 
   const bool fixedLight = args.dense || !args.models.empty();
   nlohmann::json row = {{"scene", sceneName},
                         {"cubes", cubes},
                         {"threads", threads},
                         {"light_scale", fixedLight ? 1.0 : args.lightScale}};
-  row.update(countersJson(stats, meshVertices));
+  row.update(flatCounters(statsJson));
+  row["mesh_vertices"] = meshVertices;
   row["display_triangles"] = meshTriangles;
   row["object_faces"] = modelFaces;
-  row["seconds"] = {{"ordering", t.ordering},
-                    {"cube", t.cube},
-                    {"casting_and_merging", t.castingAndMerging},
-                    {"illumination", t.illumination},
-                    {"triangulation", t.triangulation},
-                    {"build_and_mesh", buildSeconds},
-                    {"build_and_mesh_cpu", buildCpuSeconds}};
+  row["seconds"] = statsJson["seconds"];  // the steps, and the whole build as measured here:
+  row["seconds"]["build_and_mesh"] = buildSeconds;
+  row["seconds"]["build_and_mesh_cpu"] = buildCpuSeconds;
   row["peak_memory_mib"] = peakMiB;
   row["peak_with_flat_mesh_mib"] = flatPeakMiB;
   row["kb_per_face"] = stats.faces ? peakMiB * 1024.0 / double(stats.faces) : 0.0;

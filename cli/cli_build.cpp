@@ -12,6 +12,7 @@
 #include "core/render/ray_scene.h"
 #include "interchange/dm_edges.h"
 #include "interchange/glb_export.h"
+#include "protocol/build_stats_json.h"
 #include "protocol/mesh_json.h"
 #include "protocol/scene_json.h"
 #include "cli/commands.h"
@@ -28,35 +29,15 @@ double peakMemoryMiB() {
   return double(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
+// The build stats (protocol/build_stats_json.h) with the written mesh and this process's peak.
 nlohmann::json statsJson(const BuildStats& s, const Mesh& mesh) {
-  const BuildTimings& t = s.seconds;
-  return {{"faces", s.faces},
-          {"receivers", s.receivers},
-          {"lights", s.lights},
-          {"candidate_pairs", s.candidatePairs},
-          {"closed_convex_pairs", s.closedConvexPairs},
-          {"cast_attempts", s.castAttempts},
-          {"pairs_with_shadow", s.pairsWithShadow},
-          {"tiles", s.tiles},
-          {"order_fragments", s.orderFragments},
-          {"tree_nodes", s.treeNodes},
-          {"cells", s.cells},
-          {"vertices", {{"total", s.vertices},
-                        {"lit", s.litVertices},
-                        {"penumbra", s.penumbraVertices},
-                        {"umbra", s.umbraVertices}}},
-          {"mesh", {{"vertices", mesh.vertexCount()},
-                    {"triangles", mesh.triangleCount()},
-                    {"tolerance", mesh.tolerance},
-                    {"capped_cells", mesh.cappedCells}}},
-          {"comparisons_per_vertex", s.comparisonsPerVertex()},
-          {"peak_memory_mib", peakMemoryMiB()},
-          {"seconds", {{"ordering", t.ordering},
-                       {"cube", t.cube},
-                       {"casting_and_merging", t.castingAndMerging},
-                       {"illumination", t.illumination},
-                       {"triangulation", t.triangulation},
-                       {"total", t.total()}}}};
+  nlohmann::json out = protocol::buildStatsToJson(s);
+  out["mesh"] = {{"vertices", mesh.vertexCount()},
+                 {"triangles", mesh.triangleCount()},
+                 {"tolerance", mesh.tolerance},
+                 {"capped_cells", mesh.cappedCells}};
+  out["peak_memory_mib"] = peakMemoryMiB();
+  return out;
 }
 
 // --indirect: every vertex's indirect irradiance (sensors of --sensor-size², core/gi), timed.

@@ -5,7 +5,8 @@
 // The whole script is checked before anything is applied: every line is parsed
 // (key paths), then every frame is played on a copy of the scene model (unknown
 // ids, duplicate ids, degenerate faces). A bad script exits 2 naming the line and
-// the key path, and no frame is applied, no file written.
+// the key path, and no frame is applied, no file written. --report writes the replay report
+// (schema: protocol/replay_report_json.h).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -22,9 +23,9 @@
 #include "core/engine/volume_edits.h"
 #include "core/illum/vertex_illumination.h"
 #include "protocol/edits_json.h"
-#include "protocol/frame_result_json.h"
 #include "protocol/json_text.h"
 #include "protocol/mesh_json.h"
+#include "protocol/replay_report_json.h"
 #include "protocol/scene_json.h"
 
 namespace penumbra::cli {
@@ -151,173 +152,146 @@ std::optional<std::string> firstDifference(const Engine& incremental, const Engi
   return std::nullopt;
 }
 
-struct Totals {
-  FrameTimings seconds;
-  size_t relit = 0, changed = 0, created = 0, rebuilds = 0, fullRebuilds = 0, verified = 0;
-  double rebuildSeconds = 0, editSecondsVerified = 0, meshSeconds = 0;
+// The whole script checked before anything is applied: every line parsed, then every frame
+// played on a copy of the scene model. add_volume files are relative to the script.
+std::vector<protocol::ScriptFrame> checkedScript(const Scene& scene, const std::string& scriptPath) {
+  protocol::VolumeFiles scriptVolumeFiles;
+  scriptVolumeFiles.baseDirectory = std::filesystem::path(scriptPath).parent_path().string();
+  const std::string text = protocol::readTextFile(scriptPath, protocol::kMaxJsonFileBytes);
+  std::vector<protocol::ScriptFrame> frames =
+      protocol::readEditScriptFrames(text, &scene.materials(), &scriptVolumeFiles);
+  Scene model = scene;
+  for (const auto& f : frames) {
+    try {
+      playOnScene(model, f.frame);
+    } catch (const EditError& error) {
+      throw protocol::atLine(f.line, error);
+    }
+  }
+  return frames;
+}
+
+struct ReplayOptions {
+  EngineSettings settings;
+  bool verify = false;
+  int verifyEvery = 10;
+  bool displayMesh = false;  // also time the display mesh, as serve does
 };
+
+void printFrameHeader() {
+  std::printf("%6s %5s %9s %9s %9s %9s %9s %9s %8s %9s %8s %11s %7s\n", "frame", "line", "version",
+              "remove_ms", "add_ms", "relight_ms", "total_ms", "relit", "changed", "created",
+              "recv", "rebuild_ms", "ratio");
+}
+
+void printFrameRow(const protocol::ReplayFrame& f, size_t number) {
+  const FrameResult& result = f.result;
+  std::printf("%6zu %5zu %9llu %9.3f %9.3f %9.3f %9.3f %9zu %8zu %9zu %8zu", number, f.line,
+              (unsigned long long)result.version, 1e3 * result.seconds.remove,
+              1e3 * result.seconds.add, 1e3 * result.seconds.relight, 1e3 * result.seconds.total(),
+              result.verticesRelit, result.verticesChanged, result.verticesCreated,
+              result.changedReceivers.size());
+  if (f.verified)
+    std::printf(" %11.3f %7.3f\n", 1e3 * f.rebuildSeconds, result.seconds.total() / f.rebuildSeconds);
+  else
+    std::printf(" %11s %7s\n", "-", "-");
+}
+
+// Applies frame `i` of the script to the engine, timed, and with --verify (every frame of a
+// small scene, else every K-th and the last) compares it with a full rebuild; `failure` says
+// where the first comparison failed.
+protocol::ReplayFrame replayFrame(Engine& engine, const std::vector<protocol::ScriptFrame>& frames,
+                                  size_t i, const ReplayOptions& options,
+                                  std::optional<std::string>& failure) {
+  protocol::ReplayFrame out;
+  out.line = frames[i].line;
+  const auto applyStart = Clock::now();
+  try {
+    out.result = engine.apply(frames[i].frame);
+  } catch (const EditError& error) {
+    throw protocol::atLine(frames[i].line, error);  // the dry run should have caught it
+  }
+  out.wallSeconds = secondsSince(applyStart);
+  if (options.displayMesh) {
+    const auto meshStart = Clock::now();
+    (void)engine.mesh();
+    out.meshSeconds = secondsSince(meshStart);
+  }
+  out.verified = options.verify && (engine.scene().faces().size() <= kVerifyAllMaxFaces ||
+                                    (i + 1) % size_t(options.verifyEvery) == 0 ||
+                                    i + 1 == frames.size());
+  if (out.verified) {
+    const auto rebuildStart = Clock::now();
+    const Engine rebuilt(engine.scene(), options.settings);
+    out.rebuildSeconds = secondsSince(rebuildStart);
+    if (auto difference = firstDifference(engine, rebuilt))
+      failure = "frame " + std::to_string(i + 1) + " (line " + std::to_string(frames[i].line) +
+                "): incremental result differs from a full rebuild: " + *difference;
+  }
+  return out;
+}
+
+void printTotals(const protocol::ReplayReport& report) {
+  const protocol::ReplayTotals totals = protocol::replayTotals(report);
+  std::printf(
+      "total: %zu frames, %.3f s (remove %.3f, add %.3f, relight %.3f); %zu relit, %zu changed, "
+      "%zu created; %zu tree rebuilds (fallback), %zu frames fully rebuilt",
+      report.frames.size(), totals.seconds.total(), totals.seconds.remove, totals.seconds.add,
+      totals.seconds.relight, totals.relit, totals.changed, totals.created, totals.rebuilds,
+      totals.fullRebuilds);
+  if (report.displayMesh) std::printf("; display mesh %.3f s", totals.meshSeconds);
+  if (totals.verified)
+    std::printf("; %zu frames verified, edit / rebuild = %.3f", totals.verified,
+                totals.editSecondsVerified / totals.rebuildSeconds);
+  std::printf("\n");
+}
 
 }  // namespace
 
 int runReplay(const Args& args) {
   args.allowOnly({"verify-every", "report", "out", "threads", "mesh-tolerance"});
-  const std::string scenePath = args.positional(0, "SCENE");
-  const std::string scriptPath = args.positional(1, "EDITS.jsonl");
-  const bool verify = args.flag("verify") || args.option("verify-every");
-  const int verifyEvery = args.intOption("verify-every", 10, 1, 1 << 30);
-  const bool displayMesh = args.flag("display-mesh");  // also time the display mesh, as serve does
-  const Scene scene = protocol::loadSceneFile(scenePath);
-
-  // Check the whole script before applying anything. add_volume files are relative to the script.
-  protocol::VolumeFiles scriptVolumeFiles;
-  scriptVolumeFiles.baseDirectory = std::filesystem::path(scriptPath).parent_path().string();
-  const std::string text = protocol::readTextFile(scriptPath, protocol::kMaxJsonFileBytes);
-  const std::vector<protocol::ScriptFrame> frames =
-      protocol::readEditScriptFrames(text, &scene.materials(), &scriptVolumeFiles);
-  {
-    Scene model = scene;
-    for (const auto& f : frames) {
-      try {
-        playOnScene(model, f.frame);
-      } catch (const EditError& error) {
-        throw protocol::atLine(f.line, error);
-      }
-    }
-  }
+  protocol::ReplayReport report;
+  report.scene = args.positional(0, "SCENE");
+  report.script = args.positional(1, "EDITS.jsonl");
+  ReplayOptions options;
+  options.verify = args.flag("verify") || args.option("verify-every");
+  options.verifyEvery = args.intOption("verify-every", 10, 1, 1 << 30);
+  options.displayMesh = report.displayMesh = args.flag("display-mesh");
+  const Scene scene = protocol::loadSceneFile(report.scene);
+  const std::vector<protocol::ScriptFrame> frames = checkedScript(scene, report.script);
 
   ProgressBar building("building");
   const auto buildStart = Clock::now();
-  EngineSettings settings;
-  settings.threads = args.intOption("threads", 0, 0, 1024);
-  settings.meshTolerance = meshToleranceOption(args);
-  Engine engine(scene, settings,
+  options.settings.threads = args.intOption("threads", 0, 0, 1024);
+  options.settings.meshTolerance = meshToleranceOption(args);
+  Engine engine(scene, options.settings,
                 [&](const char*, size_t done, size_t total) { building.update(done, total); });
-  const double buildSeconds = secondsSince(buildStart);
+  report.buildSeconds = secondsSince(buildStart);
   building.finish();
   std::printf("built %zu faces, %zu receivers in %.3f s; replaying %zu frames%s\n",
-              engine.scene().faces().size(), engine.receivers().size(), buildSeconds, frames.size(),
-              verify ? " with --verify" : "");
-  std::printf("%6s %5s %9s %9s %9s %9s %9s %9s %8s %9s %8s %11s %7s\n", "frame", "line", "version",
-              "remove_ms", "add_ms", "relight_ms", "total_ms", "relit", "changed", "created",
-              "recv", "rebuild_ms", "ratio");
-
-  json report = {{"format", "penumbra.replay-report"},
-                 {"version", 1},
-                 {"scene", scenePath},
-                 {"script", scriptPath},
-                 {"build_seconds", buildSeconds},
-                 {"frames", json::array()}};
-  Totals totals;
-  std::optional<std::string> failure;
+              engine.scene().faces().size(), engine.receivers().size(), report.buildSeconds,
+              frames.size(), options.verify ? " with --verify" : "");
+  printFrameHeader();
   ProgressBar progress("replay");
-  for (size_t i = 0; i < frames.size() && !failure; ++i) {
-    FrameResult result;
-    const auto applyStart = Clock::now();
-    try {
-      result = engine.apply(frames[i].frame);
-    } catch (const EditError& error) {
-      throw protocol::atLine(frames[i].line, error);  // the dry run should have caught it
-    }
-    const double wallSeconds = secondsSince(applyStart);
-    double meshSeconds = NAN;
-    if (displayMesh) {
-      const auto meshStart = Clock::now();
-      (void)engine.mesh();
-      meshSeconds = secondsSince(meshStart);
-      totals.meshSeconds += meshSeconds;
-    }
-
-    json entry = protocol::frameResultToJson(result, engine.scene());
-    entry.erase("changed_receivers");
-    entry.erase("removed_receivers");
-    entry["frame"] = i + 1;
-    entry["line"] = frames[i].line;
-    entry["wall_seconds"] = wallSeconds;
-    entry["full_rebuild"] = result.fullRebuild;  // a large frame: the engine was rebuilt
-    if (displayMesh) entry["mesh_seconds"] = meshSeconds;
-    totals.seconds.remove += result.seconds.remove;
-    totals.seconds.add += result.seconds.add;
-    totals.seconds.relight += result.seconds.relight;
-    totals.relit += result.verticesRelit;
-    totals.changed += result.verticesChanged;
-    totals.created += result.verticesCreated;
-    totals.rebuilds += result.treeRebuilds;
-    totals.fullRebuilds += result.fullRebuild ? 1 : 0;
-
-    const bool verifyThis =
-        verify && (engine.scene().faces().size() <= kVerifyAllMaxFaces ||
-                   (i + 1) % size_t(verifyEvery) == 0 || i + 1 == frames.size());
-    entry["verified"] = verifyThis;
-    double rebuildSeconds = NAN;
-    if (verifyThis) {
-      const auto rebuildStart = Clock::now();
-      const Engine rebuilt(engine.scene(), settings);
-      rebuildSeconds = secondsSince(rebuildStart);
-      entry["rebuild_seconds"] = rebuildSeconds;
-      entry["edit_over_rebuild"] = result.seconds.total() / rebuildSeconds;
-      ++totals.verified;
-      totals.rebuildSeconds += rebuildSeconds;
-      totals.editSecondsVerified += result.seconds.total();
-      if (auto difference = firstDifference(engine, rebuilt))
-        failure = "frame " + std::to_string(i + 1) + " (line " + std::to_string(frames[i].line) +
-                  "): incremental result differs from a full rebuild: " + *difference;
-    }
-    std::printf("%6zu %5zu %9llu %9.3f %9.3f %9.3f %9.3f %9zu %8zu %9zu %8zu", i + 1,
-                frames[i].line, (unsigned long long)result.version, 1e3 * result.seconds.remove,
-                1e3 * result.seconds.add, 1e3 * result.seconds.relight,
-                1e3 * result.seconds.total(), result.verticesRelit, result.verticesChanged,
-                result.verticesCreated, result.changedReceivers.size());
-    if (verifyThis)
-      std::printf(" %11.3f %7.3f\n", 1e3 * rebuildSeconds, result.seconds.total() / rebuildSeconds);
-    else
-      std::printf(" %11s %7s\n", "-", "-");
-    report["frames"].push_back(std::move(entry));
+  for (size_t i = 0; i < frames.size() && !report.verifyFailure; ++i) {
+    report.frames.push_back(replayFrame(engine, frames, i, options, report.verifyFailure));
+    printFrameRow(report.frames.back(), i + 1);
     progress.update(i + 1, frames.size());
   }
   progress.finish();
-
-  report["totals"] = {
-      {"frames", report["frames"].size()},
-      {"seconds",
-       {{"remove", totals.seconds.remove},
-        {"add", totals.seconds.add},
-        {"relight", totals.seconds.relight},
-        {"total", totals.seconds.total()}}},
-      {"vertices",
-       {{"relit", totals.relit}, {"changed", totals.changed}, {"created", totals.created}}},
-      {"mesh_seconds", displayMesh ? json(totals.meshSeconds) : json(nullptr)},
-      {"tree_rebuilds", totals.rebuilds},
-      {"full_rebuild_frames", totals.fullRebuilds},
-      {"verified_frames", totals.verified},
-      {"rebuild_seconds_verified", totals.rebuildSeconds},
-      {"edit_seconds_verified", totals.editSecondsVerified},
-      {"edit_over_rebuild", totals.rebuildSeconds > 0
-                                ? json(totals.editSecondsVerified / totals.rebuildSeconds)
-                                : json(nullptr)}};
-  report["verify_failure"] = failure ? json(*failure) : json(nullptr);
-  std::printf(
-      "total: %zu frames, %.3f s (remove %.3f, add %.3f, relight %.3f); %zu relit, %zu changed, "
-      "%zu created; %zu tree rebuilds (fallback), %zu frames fully rebuilt",
-      report["frames"].size(), totals.seconds.total(), totals.seconds.remove, totals.seconds.add,
-      totals.seconds.relight, totals.relit, totals.changed, totals.created, totals.rebuilds,
-      totals.fullRebuilds);
-  if (displayMesh) std::printf("; display mesh %.3f s", totals.meshSeconds);
-  if (totals.verified)
-    std::printf("; %zu frames verified, edit / rebuild = %.3f", totals.verified,
-                totals.editSecondsVerified / totals.rebuildSeconds);
-  std::printf("\n");
+  printTotals(report);
 
   if (const auto out = args.option("report")) {
-    protocol::writeTextFile(*out, report.dump(2) + "\n");
+    protocol::writeTextFile(*out, protocol::replayReportToJson(report).dump(2) + "\n");
     std::printf("wrote %s\n", out->c_str());
   }
-  if (failure) {
-    std::fprintf(stderr, "penumbra: verify failed: %s\n", failure->c_str());
+  if (report.verifyFailure) {
+    std::fprintf(stderr, "penumbra: verify failed: %s\n", report.verifyFailure->c_str());
     return 1;
   }
   if (const auto out = args.option("out")) {
     protocol::saveMeshFile(engine.scene(), engine.mesh(),
-                           std::filesystem::path(scenePath).filename().string(), *out);
+                           std::filesystem::path(report.scene).filename().string(), *out);
     std::printf("wrote %s\n", out->c_str());
   }
   return 0;

@@ -133,11 +133,7 @@ EditScriptError::EditScriptError(size_t line, std::string path, std::string prob
 }
 
 EditScriptError atLine(size_t line, const EditError& error) {
-  const std::string path =
-      indexPath("edits", error.editIndex()) + (error.path().empty() ? "" : "." + error.path());
-  std::string problem = error.what();
-  if (problem.rfind(path + ": ", 0) == 0) problem = problem.substr(path.size() + 2);
-  return EditScriptError(line, path, problem);
+  return EditScriptError(line, error.keyPath(), error.problem());
 }
 
 std::vector<ScriptFrame> readEditScriptFrames(std::string_view text,

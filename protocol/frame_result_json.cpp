@@ -12,10 +12,7 @@ nlohmann::json faceJson(const Scene& scene, FaceId face) {
 
 }  // namespace
 
-nlohmann::json frameResultToJson(const FrameResult& result, const Scene& scene) {
-  nlohmann::json changed = nlohmann::json::array(), removed = nlohmann::json::array();
-  for (FaceId face : result.changedReceivers) changed.push_back(faceJson(scene, face));
-  for (FaceId face : result.removedReceivers) removed.push_back(faceJson(scene, face));
+nlohmann::json frameResultCountsToJson(const FrameResult& result) {
   return {{"version", result.version},
           {"seconds",
            {{"remove", result.seconds.remove},
@@ -28,12 +25,20 @@ nlohmann::json frameResultToJson(const FrameResult& result, const Scene& scene) 
             {"created", result.verticesCreated}}},
           {"changed_receivers_count", result.changedReceivers.size()},
           {"removed_receivers_count", result.removedReceivers.size()},
-          {"changed_receivers", std::move(changed)},
-          {"removed_receivers", std::move(removed)},
           {"nodes_deleted", result.nodesDeleted},
           {"tree_rebuilds", result.treeRebuilds},
           {"full_rebuild", result.fullRebuild},
           {"radiance_changed", result.radianceChanged}};
+}
+
+nlohmann::json frameResultToJson(const FrameResult& result, const Scene& scene) {
+  nlohmann::json changed = nlohmann::json::array(), removed = nlohmann::json::array();
+  for (FaceId face : result.changedReceivers) changed.push_back(faceJson(scene, face));
+  for (FaceId face : result.removedReceivers) removed.push_back(faceJson(scene, face));
+  nlohmann::json out = frameResultCountsToJson(result);
+  out["changed_receivers"] = std::move(changed);
+  out["removed_receivers"] = std::move(removed);
+  return out;
 }
 
 }  // namespace penumbra::protocol

@@ -14,5 +14,8 @@ namespace penumbra::protocol {
 // object's id there. Removed receivers whose object left the scene are named by
 // handle ({"handle": h, "face": f}), the others by id. Also gives counts.
 nlohmann::json frameResultToJson(const FrameResult& result, const Scene& scene);
+// The same without the receiver lists ("changed_receivers", "removed_receivers"): the counters
+// only, as the replay report keeps per frame.
+nlohmann::json frameResultCountsToJson(const FrameResult& result);
 
 }  // namespace penumbra::protocol

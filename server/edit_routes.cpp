@@ -110,12 +110,7 @@ void HttpServer::applyFrameAlone(SceneSession& session, EditScheduler::Ticket& t
     applied = session.apply(
         queued.frame, [&](const SceneSnapshot& next) { journalFrame(session, next, queued.body); });
   } catch (const EditError& error) {
-    const std::string path = "edits[" + std::to_string(error.editIndex()) + "]" +
-                             (error.path().empty() ? "" : "." + error.path());
-    std::string problem = error.what();
-    if (const size_t colon = problem.find(": "); colon != std::string::npos)
-      problem = problem.substr(colon + 2);
-    sendError(res, ApiError(422, error_code::kInvalidFrame, path, problem),
+    sendError(res, ApiError(422, error_code::kInvalidFrame, error.keyPath(), error.problem()),
               {{"edit", error.editIndex()}});
     return;
   }

@@ -181,7 +181,7 @@ class HttpServer {
   // unwritable): checked before work that writes files, such as a volume upload.
   void refuseIfNotDurable() const;
   // /api/health's "journal" member: path, integrity, durability, stalled scenes
-  // (scene_restore.cpp).
+  // (journal_write_restore.cpp).
   nlohmann::json journalHealthJson() const;
   std::shared_ptr<SceneSession> findScene(const std::string& id) const;
   std::string freshId(const std::string& preferred);  // call with scenesMutex_ held

@@ -1,7 +1,7 @@
 // Taking journal snapshots while serving (docs/SERVER.md "Snapshots"): at every
 // snapshotEvery-th version the scene's engine becomes a fresh build of the scene as the snapshot
 // records it, and the journal keeps that scene and the served parts. A restart then builds the
-// same scene and replays only the frames after it (scene_restore.cpp).
+// same scene and replays only the frames after it (journal_write_restore.cpp).
 #include <cstdio>
 
 #include "server/http_server.h"

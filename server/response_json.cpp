@@ -1,32 +1,10 @@
 #include "server/response_json.h"
 
+#include "protocol/build_stats_json.h"
 
 namespace penumbra::server {
 
 using nlohmann::json;
-
-json buildStatsJson(const BuildStats& s) {
-  const BuildTimings& t = s.seconds;
-  return {{"faces", s.faces},
-          {"receivers", s.receivers},
-          {"lights", s.lights},
-          {"candidate_pairs", s.candidatePairs},
-          {"pairs_with_shadow", s.pairsWithShadow},
-          {"tree_nodes", s.treeNodes},
-          {"cells", s.cells},
-          {"vertices",
-           {{"total", s.vertices},
-            {"lit", s.litVertices},
-            {"penumbra", s.penumbraVertices},
-            {"umbra", s.umbraVertices}}},
-          {"seconds",
-           {{"ordering", t.ordering},
-            {"cube", t.cube},
-            {"casting_and_merging", t.castingAndMerging},
-            {"illumination", t.illumination},
-            {"triangulation", t.triangulation},
-            {"total", t.total()}}}};
-}
 
 json rebuildJson(const RebuildReport& r) {
   return {{"version", r.version},
@@ -36,7 +14,7 @@ json rebuildJson(const RebuildReport& r) {
             {"total", r.buildSeconds + r.meshSeconds}}},
           {"mesh", {{"vertices", r.meshVertices}, {"triangles", r.meshTriangles}}},
           {"served_mesh", {{"vertices", r.servedVertices}, {"triangles", r.servedTriangles}}},
-          {"stats", buildStatsJson(r.stats)}};
+          {"stats", protocol::buildStatsToJson(r.stats)}};
 }
 
 json sceneSummaryJson(const SceneSnapshot& s) {

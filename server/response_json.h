@@ -1,5 +1,5 @@
-// JSON bodies of the server's answers built from engine and session values: build statistics,
-// rebuild reports, scene summaries, and which receivers a version changed. Pure; thread-safe.
+// JSON bodies of the server's answers built from engine and session values: rebuild reports
+// (build statistics: protocol/build_stats_json.h), scene summaries, and which receivers a version changed. Pure; thread-safe.
 #pragma once
 
 #include <cstdint>
@@ -12,7 +12,6 @@
 
 namespace penumbra::server {
 
-nlohmann::json buildStatsJson(const BuildStats& s);
 nlohmann::json rebuildJson(const RebuildReport& r);
 // {"id", "name", "version", "objects", "faces", "receivers", "url"}.
 nlohmann::json sceneSummaryJson(const SceneSnapshot& s);

@@ -82,7 +82,8 @@ class SceneJournal {
                    uint64_t baseVersion);
   // `version` must follow the scene's last journaled version by exactly one: a gap means an
   // earlier frame was applied but never journaled, and the scene takes no more frames.
-  // `parts`: the frame's PartChanges as text, which lets a restart mesh once (scene_restore.cpp).
+  // `parts`: the frame's PartChanges as text, which lets a restart mesh once
+  // (journal_write_restore.cpp).
   // `base`: StoredFrame::base.
   void addFrame(int64_t key, uint64_t version, const std::string& frame, const std::string& parts,
                 uint64_t base);

@@ -6,6 +6,7 @@
 
 #include "core/geom/resource_limit.h"
 #include "interchange/scene_import.h"
+#include "protocol/build_stats_json.h"
 #include "protocol/frame_result_json.h"
 #include "protocol/scene_json.h"
 #include "server/body_reader.h"
@@ -185,7 +186,7 @@ void HttpServer::registerSceneRoutes() {
                  {{"id", snapshot->id},
                   {"name", snapshot->name},
                   {"version", snapshot->version},
-                  {"build", buildStatsJson(snapshot->buildStats)},
+                  {"build", protocol::buildStatsToJson(snapshot->buildStats)},
                   {"mesh",
                    {{"receivers", snapshot->receiverCount()},
                     {"parts", snapshot->parts.size()},

@@ -58,7 +58,7 @@ SceneSession::Applied SceneSession::apply(
     const Frame& frame, const std::function<void(const SceneSnapshot&)>& beforePublish) {
   std::lock_guard edit(editMutex_);
   const std::shared_ptr<const SceneSnapshot> previous = snapshot();
-  if (!engine_) restoreEngine(*previous);  // an earlier restore failed (no memory?): retry
+  if (!engine_) rollBackEngine(*previous);  // an earlier rollback failed (no memory?): retry
   try {
     return applyToEngine(frame, previous, beforePublish);
   } catch (const EditError&) {
@@ -67,7 +67,7 @@ SceneSession::Applied SceneSession::apply(
     // Mid-apply or mid-meshing: the engine is half-edited; nothing was published.
     engine_.reset();  // its memory first
     try {
-      restoreEngine(*previous);
+      rollBackEngine(*previous);
     } catch (...) {
       // engine_ stays null; the next frame tries again. Readers keep `previous`.
     }

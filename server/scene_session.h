@@ -64,12 +64,12 @@ class SceneSession {
   Applied apply(const Frame& frame,
                 const std::function<void(const SceneSnapshot&)>& beforePublish = nullptr);
 
-  // At a restart (scene_restore.cpp), on a fresh session: applies journaled frames in order to
-  // the engine alone, then meshes every receiver once and publishes the last version, each part's
-  // version and the removals taken from what the frames journaled. That is what applying them one
-  // by one published (same bytes, versions and `since` deltas) at a fraction of the cost: meshing
-  // is most of a frame. Throws if a frame does not apply or the changes do not fit the mesh; the
-  // session is then unusable (the caller starts again from a fresh one).
+  // At a restart (journal_write_restore.cpp), on a fresh session: applies journaled frames in
+  // order to the engine alone, then meshes every receiver once and publishes the last version,
+  // each part's version and the removals taken from what the frames journaled. That is what
+  // applying them one by one published (same bytes, versions and `since` deltas) at a fraction
+  // of the cost: meshing is most of a frame. Throws if a frame does not apply or the changes do
+  // not fit the mesh; the session is then unusable (the caller starts again from a fresh one).
   // A frame whose `base` is newer than the engine's is applied, as it was served, on a fresh
   // build at that version (rebase(); `sceneToBuild` as given there), and the parts kept from
   // before the build keep their bytes (the fresh engine's agree only to 1e-9).
@@ -121,12 +121,13 @@ class SceneSession {
   void publish(std::shared_ptr<const SceneSnapshot> next);
   Applied applyToEngine(const Frame& frame, const std::shared_ptr<const SceneSnapshot>& previous,
                         const std::function<void(const SceneSnapshot&)>& beforePublish);
-  // Failure path of apply (scene_session_restore.cpp), with editMutex_ held: replaces engine_
-  // by one equal to the engine that made `published` (or leaves it null and throws).
-  void restoreEngine(const SceneSnapshot& published);
+  // Failure path of apply, the engine rollback (scene_session_rollback.cpp), with editMutex_
+  // held: replaces engine_ by one equal to the engine that made `published` (or leaves it null
+  // and throws).
+  void rollBackEngine(const SceneSnapshot& published);
   void noteApplied(const Frame& frame, const FrameResult& result, const Scene& scene);
   // With editMutex_ held: engine_ becomes a fresh build of `scene` numbered `version`, the new
-  // base (rebase(), restoreEngine's fallback).
+  // base (rebase(), rollBackEngine's fallback).
   void buildBase(Scene scene, uint64_t version);
   // With editMutex_ held: the engine's mesh as parts, each at its version in `versions` (every
   // part must be there, and only those); a part at or before `keptAt` has the bytes in `kept`.

@@ -1,5 +1,5 @@
 // SceneSession's fresh builds at snapshot points (docs/SERVER.md "Snapshots"): rebase() while
-// serving, adoptSnapshot() at a restart, and the base they and restoreEngine share.
+// serving, adoptSnapshot() at a restart, and the base they and rollBackEngine share.
 #include <set>
 #include <stdexcept>
 

@@ -151,12 +151,9 @@ Edit addVolumeEdit(const httplib::Request& req, const Scene& scene, VolumeObject
     VolumeEditCheck(scene).check(
         edit, 0, [&](const std::string& id) { return scene.findObject(id).has_value(); });
   } catch (const EditError& error) {
-    std::string problem = error.what();
-    if (const size_t colon = problem.find(": "); colon != std::string::npos)
-      problem = problem.substr(colon + 2);
     const std::string key = error.path().rfind("volume.", 0) == 0 ? error.path().substr(7) : "id";
     throw ApiError(400, error_code::kBadParameter,
-                   "query." + (key == "transform" ? "translate" : key), problem);
+                   "query." + (key == "transform" ? "translate" : key), error.problem());
   }
   return edit;
 }

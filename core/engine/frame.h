@@ -61,20 +61,29 @@ struct FrameResult {
 };
 
 // A frame refused before anything changed: which edit, the key path inside it
-// (e.g. "transform.scale"), and the problem.
+// (e.g. "transform.scale"), and the problem; what() reads "<keyPath()>: <problem()>".
 class EditError : public std::invalid_argument {
  public:
-  EditError(size_t editIndex, std::string path, const std::string& problem)
-      : std::invalid_argument("edits[" + std::to_string(editIndex) + "]" +
-                              (path.empty() ? "" : "." + path) + ": " + problem),
+  EditError(size_t editIndex, std::string path, std::string problem)
+      : std::invalid_argument(keyPathOf(editIndex, path) + ": " + problem),
         editIndex_(editIndex),
-        path_(std::move(path)) {}
+        path_(std::move(path)),
+        problem_(std::move(problem)) {}
   size_t editIndex() const { return editIndex_; }
+  // The key path inside the edit ("" for the edit itself).
   const std::string& path() const { return path_; }
+  // The key path inside the frame: "edits[2].transform.scale".
+  std::string keyPath() const { return keyPathOf(editIndex_, path_); }
+  const std::string& problem() const { return problem_; }
 
  private:
+  static std::string keyPathOf(size_t editIndex, const std::string& path) {
+    return "edits[" + std::to_string(editIndex) + "]" + (path.empty() ? "" : "." + path);
+  }
+
   size_t editIndex_;
   std::string path_;
+  std::string problem_;
 };
 
 }  // namespace penumbra

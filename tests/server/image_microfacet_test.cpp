@@ -78,7 +78,8 @@ TEST(ImageMicrofacet, UsesTheDmOccluderListsBeforeAndAfterAnEdit) {
   const json answer = bodyJson(edit);
   EXPECT_GT(answer["occluder_receivers_count"].get<int>(),
             0);  // the floor's lists were frozen again
-  EXPECT_GE(answer["occluder_seconds"].get<double>(), 0);
+  // Freezing them was timed: a frame that froze lists spent time on it.
+  EXPECT_GT(answer["occluder_seconds"].get<double>(), 0);
   const auto after = client.Get(url.c_str());
   ASSERT_EQ(after->status, 200) << after->body;
   EXPECT_EQ(after->get_header_value("X-Penumbra-Version"), "1");

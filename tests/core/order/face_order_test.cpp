@@ -2,7 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cstdio>
 #include <functional>
 #include <random>
@@ -332,29 +331,6 @@ TEST(FaceOrder, RemoveAndInsertKeepTheOrder) {
       }
       expectMembership(scene, light, order);
     }
-  }
-}
-
-// By hand: ./test_order --gtest_also_run_disabled_tests --gtest_filter=*Measure*
-TEST(FaceOrder, DISABLED_MeasureBuild) {
-  for (int cubes : {15, 150, 1500}) {
-    CubesSceneOptions options;
-    options.cubes = cubes;
-    const Scene scene = makeCubesScene(options);
-    const auto start = std::chrono::steady_clock::now();
-    const FaceOrder order(scene, 0);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const auto& c = order.counters();
-    std::printf("%d cubes: %zu faces (%zu front, %zu offending), %zu fragments (%.2f per face), "
-                "%zu nodes, %zu cells sorted, %zu cycle splits, %zu broken, build %.2f ms\n",
-                cubes, scene.faces().size(), c.frontFaces, c.offendingFaces, c.fragments,
-                double(c.fragments) / double(c.frontFaces + c.offendingFaces), c.nodes,
-                c.offendingCellsSorted, c.cycleSplits, c.cyclesBroken, 1e3 * seconds);
-    const auto vstart = std::chrono::steady_clock::now();
-    order.validate();
-    std::printf("  validate %.2f ms\n", 1e3 *
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - vstart).count());
   }
 }
 

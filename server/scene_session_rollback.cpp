@@ -1,5 +1,6 @@
-// SceneSession's failure path: the log that lets it rebuild its engine exactly as it was
-// before a frame that failed mid-apply, and the rebuild itself.
+// SceneSession's engine rollback: the log that lets it rebuild its engine exactly as it was
+// before a frame that failed mid-apply, and that rebuild (not the journal's restore at start,
+// journal_write_restore.cpp).
 #include <cstdio>
 
 #include "server/scene_session.h"
@@ -8,8 +9,8 @@ namespace penumbra::server {
 
 namespace {
 
-// Frames kept for an exact restore. A drag frame replays in ~2 ms (README "Incremental
-// edits"), so a restore costs a build plus at most a few seconds; past this a restore
+// Frames kept for an exact rollback. A drag frame replays in ~2 ms (README "Incremental
+// edits"), so a rollback costs a build plus at most a few seconds; past this a rollback
 // rebuilds the published scene instead (same scene and version, fresh DM-trees).
 constexpr size_t kMaxReplayFrames = 1000;
 
@@ -30,7 +31,7 @@ void SceneSession::noteApplied(const Frame& frame, const FrameResult& result, co
   }
 }
 
-void SceneSession::restoreEngine(const SceneSnapshot& published) {
+void SceneSession::rollBackEngine(const SceneSnapshot& published) {
   engine_.reset();
   if (replayable_) {
     try {

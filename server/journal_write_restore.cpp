@@ -1,5 +1,6 @@
 // The server's side of the journal (README "Durability"): frames and deletions recorded before
-// they are acknowledged, and every journaled scene brought back at start.
+// they are acknowledged, and every journaled scene brought back at start. (A frame that fails
+// mid-apply is undone by the engine rollback, scene_session_rollback.cpp, not here.)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
