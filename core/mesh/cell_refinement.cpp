@@ -34,7 +34,7 @@ class Refiner {
     // centroids of triangles with no halved edge; added points are only tentative until the
     // round is known to fit maxPoints.
     const size_t pointsBefore = piece_.points.size();
-    measureInteriorEdges();
+    innerMeasured_ = false;  // measured once this round if a failing edge asks
     std::vector<std::array<uint32_t, 3>> mids(piece_.triangles.size());
     std::vector<uint32_t> centroids(piece_.triangles.size(), kPasses);
     bool any = false;
@@ -164,9 +164,7 @@ class Refiner {
     if (glm::length(pb - pa) > settings_.minEdge) {
       const uint32_t m = addPoint(0.5 * (pa + pb));  // commutative: both sides compute the same point
       const uint32_t ends[2] = {a, b};
-      const auto inner = inner_.find(key);
-      const bool tooThin = inner != inner_.end() && !(inner->second >= 2 * minHeight());
-      if (fails(m, ends) && !tooThin) {
+      if (fails(m, ends) && !tooThin(key)) {
         decision = m;
       } else {
         truncate(m);  // a passing (or refused) midpoint is not kept
@@ -177,6 +175,13 @@ class Refiner {
   }
 
   double minHeight() const { return settings_.minEdge / 16; }
+
+  // Whether `key` is an inner edge with a triangle on it thinner than 2·minHeight().
+  bool tooThin(const std::pair<uint32_t, uint32_t>& key) {
+    if (!innerMeasured_) measureInteriorEdges(), innerMeasured_ = true;
+    const auto inner = inner_.find(key);
+    return inner != inner_.end() && !(inner->second >= 2 * minHeight());
+  }
 
   uint32_t decideCentroid(const std::array<uint32_t, 3>& tri) {
     const Vec2 a = piece_.points[tri[0]], b = piece_.points[tri[1]], c = piece_.points[tri[2]];
@@ -239,6 +244,7 @@ class Refiner {
   const LevelEvaluator& level_;
   std::map<std::pair<uint32_t, uint32_t>, uint32_t> edges_;
   std::map<std::pair<uint32_t, uint32_t>, double> inner_;  // this round's inner edges: thinner triangle's height
+  bool innerMeasured_ = false;
   std::vector<uint8_t> settled_;  // per triangle: nothing about it failed (it never will)
   std::vector<double> levels_;
 };

@@ -10,13 +10,13 @@
 #include <map>
 #include <string>
 
+#include "journal_answers.h"
 #include "server_fixture.h"
 #include "temp_data_dir.h"
 
 namespace penumbra::server::test {
 namespace {
 
-using Answers = std::map<std::string, std::string>;  // query → body
 
 // A frame of each kind the restore must replay (unit cubes standing on the floor, clear of the
 // others); returns the last acknowledged version.
@@ -49,29 +49,6 @@ uint64_t play(httplib::Client& client, const std::string& id) {
   return version;
 }
 
-Answers served(httplib::Client& client, const std::string& id, uint64_t last) {
-  Answers out;
-  std::vector<std::string> queries = {"?format=bin"};
-  for (uint64_t since = 0; since <= last; ++since) {
-    queries.push_back("?format=bin&since=" + std::to_string(since));
-    queries.push_back("?since=" + std::to_string(since));
-  }
-  for (const std::string& query : queries) {
-    const auto res = client.Get(("/api/scenes/" + id + "/mesh" + query).c_str());
-    EXPECT_TRUE(res && res->status == 200) << query;
-    out[query] = res ? res->body : "";
-  }
-  return out;
-}
-
-void sql(const TempDataDir& data, const std::string& statement) {
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open((data.str() + "/journal.sqlite3").c_str(), &db), SQLITE_OK);
-  EXPECT_EQ(sqlite3_exec(db, statement.c_str(), nullptr, nullptr, nullptr), SQLITE_OK)
-      << statement << ": " << sqlite3_errmsg(db);
-  sqlite3_close(db);
-}
-
 // Restarts on `data`; checks the scene came back at `last`, replayed as `meshedOnce` says, and
 // serves `before`.
 void expectRestored(const TempDataDir& data, const std::string& id, uint64_t last,
@@ -84,7 +61,7 @@ void expectRestored(const TempDataDir& data, const std::string& id, uint64_t las
   EXPECT_EQ(restored[0].frames, last);
   EXPECT_EQ(restored[0].meshedOnce, meshedOnce);
   auto client = server.client();
-  const Answers after = served(client, id, last);
+  const Answers after = served(client, id, last, false);
   ASSERT_EQ(after.size(), before.size());
   for (const auto& [query, body] : before)
     EXPECT_TRUE(after.at(query) == body) << query << " differs after the restart";
@@ -101,7 +78,7 @@ TEST(JournalReplay, MeshedOnceServesTheSameMeshAndDeltasAsBeforeTheRestart) {
     auto client = first.client();
     last = play(client, id);
     ASSERT_EQ(last, 10u);
-    before = served(client, id, last);
+    before = served(client, id, last, false);
   }
   expectRestored(data, id, last, true, before);
 

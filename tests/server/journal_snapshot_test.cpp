@@ -13,6 +13,7 @@
 #include <string>
 
 #include "server/scene_journal.h"
+#include "journal_answers.h"
 #include "server_fixture.h"
 #include "temp_data_dir.h"
 #include "tiny_scene.h"
@@ -20,7 +21,6 @@
 namespace penumbra::server::test {
 namespace {
 
-using Answers = std::map<std::string, std::string>;  // query → body
 
 ServerOptions snapshotting(const TempDataDir& data, uint64_t every) {
   ServerOptions options = data.durable();
@@ -108,29 +108,6 @@ uint64_t playRandom(httplib::Client& client, const std::string& id, int frames, 
   return version;
 }
 
-Answers served(httplib::Client& client, const std::string& id, uint64_t last) {
-  Answers out;
-  std::vector<std::string> queries = {"?format=bin", ""};
-  for (uint64_t since = 0; since <= last; ++since) {
-    queries.push_back("?format=bin&since=" + std::to_string(since));
-    queries.push_back("?since=" + std::to_string(since));
-  }
-  for (const std::string& query : queries) {
-    const auto res = client.Get(("/api/scenes/" + id + "/mesh" + query).c_str());
-    EXPECT_TRUE(res && res->status == 200) << query;
-    out[query] = res ? res->body : "";
-  }
-  return out;
-}
-
-void sql(const TempDataDir& data, const std::string& statement) {
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open((data.str() + "/journal.sqlite3").c_str(), &db), SQLITE_OK);
-  EXPECT_EQ(sqlite3_exec(db, statement.c_str(), nullptr, nullptr, nullptr), SQLITE_OK)
-      << statement << ": " << sqlite3_errmsg(db);
-  sqlite3_close(db);
-}
-
 std::string sqlText(const TempDataDir& data, const std::string& query) {
   sqlite3* db = nullptr;
   EXPECT_EQ(sqlite3_open((data.str() + "/journal.sqlite3").c_str(), &db), SQLITE_OK);
@@ -162,7 +139,7 @@ Restart expectRestored(const TempDataDir& data, const std::string& id, uint64_t 
   EXPECT_TRUE(restored[0].problem.empty()) << restored[0].problem;
   EXPECT_EQ(restored[0].version, last);
   auto client = server.client();
-  const Answers after = served(client, id, last);
+  const Answers after = served(client, id, last, true);
   EXPECT_EQ(after.size(), before.size());
   for (const auto& [query, body] : before)
     EXPECT_TRUE(after.at(query) == body) << query << " differs after the restart";
@@ -182,7 +159,7 @@ TEST(JournalSnapshots, RestoreFromASnapshotOrAnOlderOneOrNoneServesTheSameBytes)
     ASSERT_EQ(playMixed(client, id), 11u);
     last = playRandom(client, id, 32, 36);
     ASSERT_GT(last, 25u);
-    before = served(client, id, last);
+    before = served(client, id, last, true);
   }
   const uint64_t newest = last / 5 * 5, older = newest - 5;
   // The newest two snapshots kept; each frame names the build it was applied on: the snapshots
@@ -258,7 +235,7 @@ TEST(JournalSnapshots, ALongJournalReplaysOnlyTheTailAndKeepsEveryFrame) {
                                  moveFrame("box", where(rng), 0.5, where(rng)));
       ASSERT_TRUE(edit && edit->status == 200) << (edit ? edit->body : "no answer");
     }
-    before = served(client, id, kFrames);
+    before = served(client, id, kFrames, true);
   }
   // Snapshots are dropped past the newest two; frames never.
   EXPECT_EQ(sqlText(data, "SELECT group_concat(version) FROM snapshots"), "360,400");
