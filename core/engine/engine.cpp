@@ -12,6 +12,7 @@
 #include <string>
 #include <tuple>
 
+#include "core/engine/seconds_since.h"
 #include "core/geom/clip.h"
 #include "core/illum/face_lookup.h"
 #include "core/illum/light_sum.h"
@@ -23,10 +24,6 @@ namespace penumbra {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // A step's progress counted from several threads: the callback runs on one thread at a time,
 // with `done` rising, about every `every` items (and at the start and the end). Steps that run

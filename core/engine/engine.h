@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "core/dmtree/dm_tree.h"
-#include "core/engine/dirty_set.h"
 #include "core/engine/build_stats.h"
 #include "core/engine/frame.h"
+#include "core/engine/frame_plan.h"
 #include "core/engine/parallel.h"
 #include "core/engine/resource_budget.h"
 #include "core/geom/plane_frame.h"
@@ -244,6 +244,31 @@ class Engine {
   void relightVertex(Receiver& receiver, VertexId v) const;
   // relightVertex's value alone: writes v's slots only, touches no cell.
   void computeVertex(Receiver& receiver, VertexId v) const;
+  // apply()'s phases (paper §3), in order. Each leaves its part of `work` for the next and
+  // counts its work in `result`; an exception from any of them makes apply() rebuild.
+  // Plans the frame and edits scene_ (apply_frame.cpp).
+  FramePlan planFrame(const Frame& frame);
+  // REMOVE (§3.1, frame_remove.cpp): the leaving faces quit the orders, cubes and every tree
+  // they shadowed; their own trees go.
+  void removeLeaving(const FramePlan& plan, FrameWork& work, FrameResult& result);
+  // Deletes one leaving occluder's nodes from `target`'s tree (each light); a geometric
+  // failure marks `target` for casting afresh.
+  void deleteOccluderNodes(FaceId occluder, FaceId target, FrameWork& work, FrameResult& result);
+  // ADD (§3.2, frame_add.cpp): the entering faces join the orders and cubes, get trees if
+  // they receive light, and cast both ways with the faces sharing their tiles.
+  void addEntering(const FramePlan& plan, FrameWork& work, FrameResult& result);
+  void placeReceiver(const Face& face, FrameWork& work);  // a fresh tree, in a free slot if any
+  void castEntering(size_t light, const std::vector<const Face*>& entering, FrameWork& work);
+  void recastFailed(FrameWork& work, FrameResult& result);  // receivers marked for rebuild
+  // RELIGHT (§3.3, frame_relight.cpp): every vertex of the relight set once, and any live
+  // vertex whose slot holds no value.
+  void relightDirty(const FrameWork& work, FrameResult& result);
+  // The whole engine built afresh for scene_, every receiver reported rebuilt.
+  FrameResult rebuildWhole();
+  // EngineSettings::failurePoint, when set (tests).
+  void reach(const char* point) const {
+    if (settings_.failurePoint) settings_.failurePoint(point);
+  }
   // Adds to `dirty` what one occluder's node deletion on `receiver` must have relit:
   // the vertices of its changed cells and its new vertices inside the removed
   // penumbra. Outside it the scene did not change for this receiver: a surviving
