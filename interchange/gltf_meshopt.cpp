@@ -2,6 +2,7 @@
 
 #include <meshoptimizer.h>
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -24,7 +25,7 @@ bool isFallbackWithoutData(const nlohmann::json& buffer) {
   if (extensions == buffer.end() || !extensions->is_object() || !extensions->contains(kExtension))
     return false;
   const nlohmann::json& meshopt = (*extensions)[kExtension];
-  return meshopt.is_object() && meshopt.value("fallback", false) == true;
+  return meshopt.is_object() && meshopt.contains("fallback") && meshopt["fallback"] == true;
 }
 
 // A non-negative integer member of the extension's object, or `fallback` when absent.
@@ -35,10 +36,10 @@ size_t sizeMember(const tinygltf::Value& meshopt, const char* key, const std::st
     return *fallback;
   }
   const tinygltf::Value& v = meshopt.Get(key);
-  if (!v.IsNumber() || v.GetNumberAsDouble() < 0 ||
-      v.GetNumberAsDouble() != double(int64_t(v.GetNumberAsDouble())))
+  const double x = v.IsNumber() ? v.GetNumberAsDouble() : -1;
+  if (!(x >= 0 && x <= 1e15 && x == std::floor(x)))  // 1e15: far past any size, exact as a double
     throw ValidationError(where + "." + key, "must be a non-negative integer");
-  return size_t(v.GetNumberAsDouble());
+  return size_t(x);
 }
 
 std::string stringMember(const tinygltf::Value& meshopt, const char* key, const std::string& where,

@@ -231,6 +231,12 @@ tinygltf::Value::Object extensionOf(size_t length, size_t stride, size_t count,
           {"filter", tinygltf::Value(filter)}};
 }
 
+tinygltf::Value::Object withMember(tinygltf::Value::Object extension, const std::string& key,
+                                   double value) {
+  extension[key] = tinygltf::Value(value);
+  return extension;
+}
+
 // Seeded unit vectors (normals) and unit quaternions.
 std::vector<float> unitVectors(size_t count, int components, uint32_t seed) {
   std::vector<float> out;
@@ -320,6 +326,12 @@ TEST(GltfMeshopt, ABrokenStreamOrExtensionIsAnErrorAtItsPath) {
       {"filter", stream, extensionOf(stream.size(), 4, 6, "ATTRIBUTES", "QUATERNION"),
        at + ".filter"},
       {"huge", stream, extensionOf(stream.size(), 256, 1 << 21, "ATTRIBUTES", "NONE"),
+       at + ".count"},
+      {"count 1e30", stream,
+       withMember(extensionOf(stream.size(), 4, 6, "TRIANGLES", "NONE"), "count", 1e30),
+       at + ".count"},
+      {"count 6.5", stream,
+       withMember(extensionOf(stream.size(), 4, 6, "TRIANGLES", "NONE"), "count", 6.5),
        at + ".count"},
   };
   for (const Case& c : cases) {
