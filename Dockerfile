@@ -15,7 +15,7 @@ FROM debian:12-slim
 RUN apt-get update -qq \
  && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
       libembree3-3 libtbb12 libtinyobjloader2rc10 libtinygltf2d libcpp-httplib0.11 libsqlite3-0 \
-      libopenimageio2.4 libteem2 libjemalloc2 libdraco7 \
+      libopenimageio2.4 libteem2 libjemalloc2 libdraco7 libmeshoptimizer2d \
  && rm -rf /var/lib/apt/lists/* \
  && useradd --system --create-home --home-dir /var/lib/penumbra --shell /usr/sbin/nologin penumbra
 # The layout `penumbra serve` looks for: the image module beside the executable, web_client/

@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <array>
-#include <cstring>
 
 #include <nlohmann/json.hpp>
 
 #include <draco/compression/decode.h>
 
+#include "interchange/gltf_json_edit.h"
+#include "interchange/gltf_meshopt.h"
 #include "protocol/validation_error.h"
 
 namespace penumbra::interchange {
@@ -19,7 +20,7 @@ namespace {
 // Required extensions the importer reads: geometry storage it decodes, and what only concerns
 // what is not imported (textures are never decoded; unlit and emissive strength are factors).
 constexpr std::array kReadable = {
-    "KHR_draco_mesh_compression", "KHR_mesh_quantization", "KHR_materials_unlit",
+    "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_mesh_quantization", "KHR_materials_unlit",
     "KHR_materials_emissive_strength", "KHR_texture_transform", "KHR_texture_basisu",
     "EXT_texture_webp", "EXT_texture_avif",
 };
@@ -32,22 +33,12 @@ void checkRequiredExtensions(const tinygltf::Model& model) {
     if (std::find(kReadable.begin(), kReadable.end(), name) == kReadable.end())
       throw ValidationError("extensionsRequired[" + std::to_string(i) + "]",
                             "the file requires the glTF extension " + name +
-                                ", which Penumbra does not read (it reads KHR_draco_mesh_compression and "
-                                "KHR_mesh_quantization)");
+                                ", which Penumbra does not read (it reads KHR_draco_mesh_compression, "
+                                "EXT_meshopt_compression and KHR_mesh_quantization)");
   }
 }
 
 namespace {
-
-uint32_t u32At(const std::vector<uint8_t>& bytes, size_t at) {
-  uint32_t v;
-  std::memcpy(&v, bytes.data() + at, 4);
-  return v;
-}
-void putU32(std::vector<uint8_t>& bytes, uint32_t v) {
-  const auto* p = reinterpret_cast<const uint8_t*>(&v);
-  bytes.insert(bytes.end(), p, p + 4);
-}
 
 // Drops `indices` from every Draco primitive of the glTF JSON; whether any was dropped.
 bool dropDracoIndices(nlohmann::json& gltf) {
@@ -65,38 +56,21 @@ bool dropDracoIndices(nlohmann::json& gltf) {
   return changed;
 }
 
+bool mentions(const std::vector<uint8_t>& bytes, const std::string& name) {
+  return std::search(bytes.begin(), bytes.end(), name.begin(), name.end()) != bytes.end();
+}
+
 }  // namespace
 
-std::vector<uint8_t> withoutDracoIndices(const std::vector<uint8_t>& bytes) {
-  static const std::string kName = "KHR_draco_mesh_compression";
-  if (std::search(bytes.begin(), bytes.end(), kName.begin(), kName.end()) == bytes.end()) return bytes;
-  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-  if (!binary) {
-    nlohmann::json gltf = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
-    if (gltf.is_discarded()) throw ValidationError("(gltf)", "the glTF JSON does not parse");
-    if (!dropDracoIndices(gltf)) return bytes;
-    const std::string text = gltf.dump();
-    return std::vector<uint8_t>(text.begin(), text.end());
-  }
-  // GLB: a 12-byte header, a JSON chunk, then any other chunks (the BIN chunk), kept as they are.
-  if (bytes.size() < 20) throw ValidationError("(gltf)", "the GLB is shorter than its header");
-  const uint32_t jsonLength = u32At(bytes, 12);
-  if (u32At(bytes, 16) != 0x4E4F534Au || 20 + size_t(jsonLength) > bytes.size())
-    throw ValidationError("(gltf)", "the GLB's first chunk is not its JSON");
-  nlohmann::json gltf =
-      nlohmann::json::parse(bytes.begin() + 20, bytes.begin() + 20 + long(jsonLength), nullptr, false);
-  if (gltf.is_discarded()) throw ValidationError("(gltf)", "the GLB's JSON does not parse");
-  if (!dropDracoIndices(gltf)) return bytes;
-  std::string text = gltf.dump();
-  while (text.size() % 4) text.push_back(' ');
-  std::vector<uint8_t> out(bytes.begin(), bytes.begin() + 12);
-  putU32(out, uint32_t(text.size()));
-  putU32(out, 0x4E4F534Au);
-  out.insert(out.end(), text.begin(), text.end());
-  out.insert(out.end(), bytes.begin() + 20 + long(jsonLength), bytes.end());
-  const uint32_t total = uint32_t(out.size());
-  std::memcpy(out.data() + 8, &total, 4);
-  return out;
+std::vector<uint8_t> readableByTinygltf(const std::vector<uint8_t>& bytes) {
+  const bool draco = mentions(bytes, "KHR_draco_mesh_compression");
+  const bool meshopt = mentions(bytes, "EXT_meshopt_compression");
+  if (!draco && !meshopt) return bytes;
+  return editGltfJson(bytes, [&](nlohmann::json& gltf) {
+    const bool dropped = draco && dropDracoIndices(gltf);
+    const bool placeheld = meshopt && placeholdMeshoptFallbacks(gltf);
+    return dropped || placeheld;
+  });
 }
 
 std::optional<DecodedPrimitive> decodeDracoPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,

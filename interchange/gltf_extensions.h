@@ -1,7 +1,9 @@
 // The glTF extensions that change how geometry is stored (issue 40): which required ones the
-// importer reads, and Draco-compressed primitives decoded (KHR_draco_mesh_compression, Debian's
-// libdraco). KHR_mesh_quantization needs no decoding here: its integer, possibly normalized
-// accessors are read as any accessor (gltf_import.cpp) and the node transforms scale them back.
+// importer reads, the file made loadable by tinygltf, and Draco-compressed primitives decoded
+// (KHR_draco_mesh_compression, Debian's libdraco). EXT_meshopt_compression's buffer views are
+// decoded in gltf_meshopt.h. KHR_mesh_quantization needs no decoding here: its integer, possibly
+// normalized accessors are read as any accessor (gltf_import.cpp) and the node transforms scale
+// them back.
 // Free functions; thread-safe.
 #pragma once
 
@@ -22,11 +24,13 @@ namespace penumbra::interchange {
 // read wrongly (compressed buffers as garbage) or not at all.
 void checkRequiredExtensions(const tinygltf::Model& model);
 
-// The file with the `indices` of every KHR_draco_mesh_compression primitive left out (GLB or
-// glTF text, as given): Draco files give that accessor no buffer view, which tinygltf 2.7
-// refuses, and the triangles come from the Draco stream anyway. Files without the extension
-// come back unchanged. Throws protocol::ValidationError on a GLB container or JSON it cannot read.
-std::vector<uint8_t> withoutDracoIndices(const std::vector<uint8_t>& bytes);
+// The file (GLB or glTF text, as given) as tinygltf 2.7 can load it: the `indices` of every
+// KHR_draco_mesh_compression primitive left out (Draco files give that accessor no buffer view,
+// which tinygltf refuses, and the triangles come from the Draco stream anyway), and
+// EXT_meshopt_compression fallback buffers without data given a placeholder
+// (placeholdMeshoptFallbacks). Files without either extension come back unchanged. Throws
+// protocol::ValidationError on a GLB container or JSON it cannot read.
+std::vector<uint8_t> readableByTinygltf(const std::vector<uint8_t>& bytes);
 
 // A primitive's geometry as decoded: positions (the primitive's own space) and triangles.
 struct DecodedPrimitive {

@@ -2,6 +2,7 @@
 
 #include "interchange/face_outline.h"
 #include "interchange/gltf_extensions.h"
+#include "interchange/gltf_meshopt.h"
 #include "interchange/material_mapping.h"
 #include "interchange/penumbra_extras.h"
 #include "interchange/texture_average.h"
@@ -418,12 +419,13 @@ ImportResult importGltf(const std::vector<uint8_t>& bytes, const std::string& ba
   report.source = sourceName;
   const bool binary = isBinary(bytes);
   report.format = binary ? "glb" : "gltf";
-  const std::vector<uint8_t> readable = withoutDracoIndices(bytes);
+  const std::vector<uint8_t> readable = readableByTinygltf(bytes);
   const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, readable.data(), unsigned(readable.size()), baseDir)
                          : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(readable.data()),
                                                       unsigned(readable.size()), baseDir);
   if (!ok) throw ValidationError("(gltf)", err.empty() ? "tinygltf could not read the file" : err);
   checkRequiredExtensions(model);
+  report.count("meshopt_compressed_buffer_views", decodeMeshoptViews(model));
   return importModel(model, warn, options, std::move(report));
 }
 

@@ -63,16 +63,21 @@ class ModelWriter {
     model_.nodes.push_back(node);
     model_.scenes[0].nodes.push_back(int(model_.nodes.size() - 1));
   }
-  // A buffer view over `bytes` appended to the buffer (4-byte aligned); its index.
+  // `bytes` appended to a buffer (4-byte aligned); their offset in it.
+  size_t append(const void* data, size_t bytes, size_t buffer = 0) {
+    std::vector<unsigned char>& to = model_.buffers[buffer].data;
+    while (to.size() % 4) to.push_back(0);
+    const size_t offset = to.size();
+    to.resize(offset + bytes);
+    std::memcpy(to.data() + offset, data, bytes);
+    return offset;
+  }
+  // A buffer view over `bytes` appended to the buffer; its index.
   int view(const void* data, size_t bytes) {
-    std::vector<unsigned char>& buffer = model_.buffers[0].data;
-    while (buffer.size() % 4) buffer.push_back(0);
     tinygltf::BufferView view;
     view.buffer = 0;
-    view.byteOffset = buffer.size();
+    view.byteOffset = append(data, bytes);
     view.byteLength = bytes;
-    buffer.resize(buffer.size() + bytes);
-    std::memcpy(buffer.data() + view.byteOffset, data, bytes);
     model_.bufferViews.push_back(view);
     return int(model_.bufferViews.size() - 1);
   }

@@ -1,13 +1,15 @@
 // Test helper: the glTF test models the compression and cross-check tests share: a tessellated
-// torus, the room around it (a floor and a lamp), and its primitive written plainly or quantized
-// (KHR_mesh_quantization). Header-only; test use.
+// torus, the room around it (a floor and a lamp), its primitive written plainly or quantized
+// (KHR_mesh_quantization), and the imported torus's shape to compare. Header-only; test use.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "gltf_model_writer.h"
+#include "interchange/scene_import.h"
 
 namespace penumbra::interchange {
 
@@ -96,6 +98,39 @@ inline tinygltf::Primitive quantizedPrimitive(ModelWriter& w, const TriangleMesh
                          TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR);
   if (!isSigned) w.model().accessors[size_t(p.attributes["POSITION"])].minValues = {0, 0, 0};
   return p;
+}
+
+// The model object's faces, total area and bounds.
+struct Shape {
+  size_t faces = 0;
+  double area = 0;
+  Vec3 low{INFINITY}, high{-INFINITY};
+};
+inline Shape shapeOf(const ImportResult& result) {
+  Shape s;
+  const auto index = result.scene.findObject("torus");
+  EXPECT_TRUE(index);
+  if (!index) return s;
+  for (const Face& face : result.scene.faces()) {
+    if (face.id.object != result.scene.handleOf(*index)) continue;
+    ++s.faces;
+    s.area += face.area;
+    for (const Vec3& p : face.polygon) s.low = glm::min(s.low, p), s.high = glm::max(s.high, p);
+  }
+  return s;
+}
+
+// Same surface within the quantization step: coplanar triangle pairs the plain file joins into
+// one face may stay two once quantized, so the face count may only grow, up to the triangles.
+inline void expectSameShape(const Shape& a, const Shape& b, double tolerance, size_t triangles,
+                            const std::string& label) {
+  EXPECT_GE(b.faces, a.faces) << label;
+  EXPECT_LE(b.faces, triangles) << label;
+  EXPECT_NEAR(a.area, b.area, 20 * tolerance * a.area) << label;
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(a.low[c], b.low[c], tolerance) << label;
+    EXPECT_NEAR(a.high[c], b.high[c], tolerance) << label;
+  }
 }
 
 }  // namespace penumbra::interchange

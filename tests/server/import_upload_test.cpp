@@ -225,6 +225,17 @@ TEST(ServerImport, BadFilesAre422WithTheImportersPathAndCreateNothing) {
     EXPECT_FALSE(error["message"].get<std::string>().empty());
     EXPECT_EQ(sceneCount(client), 1u) << "a refused upload creates no scene";
   }
+  // A file requiring an extension the importer does not read: refused naming it.
+  const auto instanced = client.Post(
+      "/api/scenes?format=gltf",
+      R"({"asset": {"version": "2.0"}, "extensionsUsed": ["EXT_mesh_gpu_instancing"],
+          "extensionsRequired": ["EXT_mesh_gpu_instancing"]})",
+      "application/octet-stream");
+  ASSERT_TRUE(instanced);
+  EXPECT_EQ(instanced->status, 422) << instanced->body;
+  EXPECT_EQ(bodyJson(instanced)["error"]["path"], "extensionsRequired[0]") << instanced->body;
+  EXPECT_NE(instanced->body.find("EXT_mesh_gpu_instancing"), std::string::npos) << instanced->body;
+  EXPECT_EQ(sceneCount(client), 1u);
   // An MTL that breaks nothing but the OBJ's faces: still refused whole.
   const auto res = client.Post(
       "/api/scenes",

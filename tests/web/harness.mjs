@@ -1,5 +1,5 @@
-// What the browser end-to-end tests share: option parsing, pass/fail checks, starting
-// `penumbra serve SCENE --port 0` and Debian's chromium (playwright-core), and a run
+// What the browser end-to-end tests share: option parsing, pass/fail checks and their tally,
+// starting `penumbra serve SCENE --port 0` and Debian's chromium (playwright-core), and a run
 // wrapper that stops both, prints "N passed, M failed" and exits with the verdict.
 import { spawn } from 'node:child_process';
 import { createRequire } from 'node:module';
@@ -125,6 +125,11 @@ export async function runWithServerAndBrowser({ penumbra, scene, startupSeconds 
     if (server) server.kill('SIGTERM');
     clearTimeout(deadline);
   }
+  process.exit(tally() ? 1 : 0);
+}
+
+// Prints "N passed, M failed" for the checks so far; the number failed.
+export function tally() {
   console.log(`${passes} passed, ${failures} failed`);
-  process.exit(failures ? 1 : 0);
+  return failures;
 }
