@@ -263,6 +263,9 @@ class Engine {
   // RELIGHT (§3.3, frame_relight.cpp): every vertex of the relight set once, and any live
   // vertex whose slot holds no value.
   void relightDirty(const FrameWork& work, FrameResult& result);
+  // The (occluder → receiver) pairs castOn_ holds; those a planned frame undoes.
+  size_t castPairs() const;
+  size_t castPairsUndone(const FramePlan& plan) const;
   // The whole engine built afresh for scene_, every receiver reported rebuilt.
   FrameResult rebuildWhole();
   // EngineSettings::failurePoint, when set (tests).

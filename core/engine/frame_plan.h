@@ -23,8 +23,8 @@ struct FramePlan {
   std::vector<FaceId> leavingReceivers;  // those of them that had a DM-tree
   std::vector<Vec3> radianceBefore;      // each light's, when the frame changes a radiance
   std::vector<FaceId> receiversBefore;   // every receiver's face, when the frame moves a light
-  // A frame moving a large share of the faces costs more than a rebuild (their shadows on
-  // each other go twice); one reshaping the lights changes every cube, order and shadow.
+  // A frame undoing a large share of the cast pairs costs more than a rebuild (they are
+  // undone, then redone); one reshaping the lights changes every cube, order and shadow.
   bool largeFrame = false, lightMoved = false;
   bool incremental() const { return !largeFrame && !lightMoved; }
 };

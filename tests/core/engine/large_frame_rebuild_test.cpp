@@ -1,13 +1,15 @@
-// The large-frame switch of Engine::apply: a frame editing more than a set share of
-// a large scene's faces rebuilds the engine and says so (FrameResult::fullRebuild,
-// every receiver counted in treeRebuilds); small frames and small scenes stay
-// incremental. Either way the state equals a fresh build of the new scene.
+// The large-frame switch of Engine::apply: a frame undoing more than a set share of a large
+// scene's cast pairs (its work, not its faces) rebuilds the engine and says so
+// (FrameResult::fullRebuild, every receiver counted in treeRebuilds); small frames, frames of
+// many faces that shadow little, and small scenes stay incremental. Either way the state
+// equals a fresh build of the new scene.
 #include <gtest/gtest.h>
 
 #include "bench/lib/cubes_scene.h"
 #include "bench/lib/edit_scripts.h"
 #include "core/engine/engine.h"
 #include "tests/core/engine/incremental_compare.h"
+#include "tests/core/illum/random_meshes.h"
 
 namespace penumbra {
 namespace {
@@ -61,6 +63,48 @@ TEST(LargeFrameRebuild, SmallScenesStayIncrementalWhateverTheShare) {
   EXPECT_FALSE(result.fullRebuild);
   ASSERT_NO_THROW(engine.validate());
   expectEqualsRebuild(engine, "after a 30% move of a small scene");
+}
+
+// The large scene with a tessellated model of 528 faces (more than the room's 486), bumped
+// (non-convex: its faces shadow each other) or not.
+Scene largeSceneWith(Vec3 centre, double radius, double bump) {
+  Scene scene = largeScene();
+  scene.addObject(test::bumpySphere("model", centre, radius, 12, bump, 4));
+  return scene;
+}
+
+Frame moveModel(Vec3 by) {
+  Edit move;
+  move.op = Edit::Op::Move;
+  move.id = "model";
+  move.transform.translate = by;
+  return Frame{{move}};
+}
+
+// The switch counts work, not faces: a convex model (it casts whole, its faces shadow no other
+// of its own) in a corner shadows little, so dragging it edits more than half the faces and
+// still stays incremental.
+TEST(LargeFrameRebuild, AManyFacedModelThatShadowsLittleMovesIncrementally) {
+  const double corner = cubesRoom(CubesSceneOptions{.cubes = 80, .seed = 3}).side / 2 - 0.3;
+  Engine engine(largeSceneWith(Vec3(corner, 0.2, corner), 0.12, 0.0));
+  for (int f = 1; f <= 3; ++f) {
+    const FrameResult result = engine.apply(moveModel(Vec3(-0.03 * f, 0, -0.02 * f)));
+    EXPECT_FALSE(result.fullRebuild) << "frame " << f;
+    ASSERT_NO_THROW(engine.validate());
+  }
+  expectEqualsRebuild(engine, "after dragging the model in the corner");
+}
+
+// A bumped one, its faces shadowing each other, holds most of the scene's cast pairs: a move
+// rebuilds.
+TEST(LargeFrameRebuild, AModelHoldingMostShadowsRebuildsWhenMoved) {
+  const double corner = cubesRoom(CubesSceneOptions{.cubes = 80, .seed = 3}).side / 2 - 0.3;
+  Engine engine(largeSceneWith(Vec3(corner, 0.2, corner), 0.12, 0.3));
+  const FrameResult result = engine.apply(moveModel(Vec3(-0.03, 0, -0.02)));
+  EXPECT_TRUE(result.fullRebuild);
+  EXPECT_EQ(result.treeRebuilds, engine.receivers().size());
+  ASSERT_NO_THROW(engine.validate());
+  expectEqualsRebuild(engine, "after moving the large model");
 }
 
 }  // namespace
