@@ -40,9 +40,9 @@ std::string defaultStaticDir() {
 
 // serve's options, checked: a usage error for what cannot work.
 server::ServerOptions serveOptions(const Args& args) {
-  args.allowOnly({"host", "port", "static", "grid", "data", "journal", "ephemeral", "token", "allow-origin",
-                  "max-scenes", "max-body-mib", "image-memory-mib", "threads", "edit-nice",
-                  "mesh-tolerance", "snapshot-every"});
+  args.allowOnly({"host", "port", "static", "grid", "data", "journal", "ephemeral", "token",
+                  "allow-origin", "max-scenes", "max-body-mib", "image-memory-mib", "threads",
+                  "edit-nice", "mesh-tolerance", "snapshot-every"});
   server::ServerOptions options;
   options.host = args.option("host").value_or("127.0.0.1");
   options.port = args.intOption("port", 8080, 0, 65535);
@@ -207,8 +207,9 @@ int runServe(const Args& args) {
   const std::string keptIn = options.journalDatabase.empty()
                                  ? options.dataDir
                                  : "the PostgreSQL journal, uploads in " + options.dataDir;
-  std::printf("  (scenes and edits %s)\n",
-              options.dataDir.empty() ? "are not kept: --ephemeral" : ("are kept in " + keptIn).c_str());
+  std::printf("  (scenes and edits %s)\n", options.dataDir.empty()
+                                               ? "are not kept: --ephemeral"
+                                               : ("are kept in " + keptIn).c_str());
   std::printf("  (API: %sapi/health; stop with Ctrl-C)\n", url.c_str());
   std::fflush(stdout);
 

@@ -51,9 +51,7 @@ class Params {
     const uint64_t big = htobe64(uint64_t(value));
     return push(std::string(reinterpret_cast<const char*>(&big), 8), kInt8, false);
   }
-  Params& add(std::optional<int64_t> value) {
-    return value ? add(*value) : push("", kInt8, true);
-  }
+  Params& add(std::optional<int64_t> value) { return value ? add(*value) : push("", kInt8, true); }
   Params& text(const std::string& value) { return push(value, kText, false); }
   Params& bytes(const std::string& value) { return push(value, kBytea, false); }
 
@@ -170,7 +168,8 @@ class Transaction {
 
 }  // namespace
 
-PostgresJournalStore::PostgresJournalStore(const std::string& uri) : conn_(PQconnectdb(uri.c_str())) {
+PostgresJournalStore::PostgresJournalStore(const std::string& uri)
+    : conn_(PQconnectdb(uri.c_str())) {
   if (!conn_) throw std::runtime_error("the journal database cannot be opened: out of memory");
   if (PQstatus(conn_) != CONNECTION_OK) {
     const std::string message = errorOf(conn_);
@@ -178,17 +177,20 @@ PostgresJournalStore::PostgresJournalStore(const std::string& uri) : conn_(PQcon
     conn_ = nullptr;
     throw std::runtime_error("the journal database cannot be reached (" + message + ")");
   }
-  const char* host = PQhost(conn_);
-  where_ = std::string("postgresql://") + PQuser(conn_) + "@" + (host ? host : "") + ":" +
-           PQport(conn_) + "/" + PQdb(conn_);
+  // A socket directory is a host too: named as a parameter, as libpq reads it back.
+  const std::string host = PQhost(conn_) ? PQhost(conn_) : "";
+  const bool socket = host.rfind('/', 0) == 0;
+  where_ = "postgresql://" + std::string(PQuser(conn_)) + "@" +
+           (socket ? "" : host + ":" + PQport(conn_)) + "/" + PQdb(conn_) +
+           (socket ? "?host=" + host : "");
   try {
     configure();
     runScript(conn_, kSchema);
   } catch (const std::exception& error) {
     PQfinish(conn_);
     conn_ = nullptr;
-    throw std::runtime_error("the journal database " + where_ + " cannot be used (" +
-                             error.what() + ")");
+    throw std::runtime_error("the journal database " + where_ + " cannot be used (" + error.what() +
+                             ")");
   }
 }
 
@@ -227,8 +229,7 @@ std::string PostgresJournalStore::problem(bool ask) {
 }
 
 void PostgresJournalStore::readScenes(const std::function<void(JournalSceneRow&&)>& row) {
-  eachRow(conn_,
-          "SELECT key, id, name, base_version, source, source_crc FROM scenes ORDER BY key",
+  eachRow(conn_, "SELECT key, id, name, base_version, source, source_crc FROM scenes ORDER BY key",
           [&](const PGresult* r) {
             row({int8At(r, 0, 0), bytesAt(r, 0, 1), bytesAt(r, 0, 2), int8At(r, 0, 3),
                  bytesAt(r, 0, 4), optionalInt8At(r, 0, 5)});

@@ -37,11 +37,11 @@ class PostgresJournalStore : public JournalStore {
   void deleteScene(int64_t key) override;
 
  private:
-  void configure();  // the session's settings, after every (re)connection
+  void configure();                       // the session's settings, after every (re)connection
   std::string connectionProblem() const;  // empty while connected
 
   pg_conn* conn_ = nullptr;
-  std::string where_;  // the URI's place without its password
+  std::string where_;             // the URI's place without its password
   std::string integrity_ = "ok";  // PostgreSQL checks its own pages and log
   std::string logDamage_;
 };

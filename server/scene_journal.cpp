@@ -50,8 +50,9 @@ const std::string& SceneJournal::directory() const { return dir_->path(); }
 
 std::string SceneJournal::durabilityProblem() const {
   if (std::string problem = dir_->problem(); !problem.empty()) return problem;
-  std::lock_guard lock(mutex_);
-  return store_->problem(true);
+  // A write in flight answers for itself (its failure is a 503): health does not wait behind it.
+  std::unique_lock lock(mutex_, std::try_to_lock);
+  return lock.owns_lock() ? store_->problem(true) : "";
 }
 
 void SceneJournal::requireDurable() const {
@@ -99,8 +100,8 @@ std::vector<SceneJournal::StoredScene> SceneJournal::load() {
       if (it == index.end()) return;
       StoredScene::StoredSnapshot snapshot{uint64_t(row.version), std::move(row.source),
                                            std::move(row.parts)};
-      snapshot.intact = uint32_t(row.crc) ==
-                        snapshotChecksum(snapshot.version, snapshot.source, snapshot.parts);
+      snapshot.intact =
+          uint32_t(row.crc) == snapshotChecksum(snapshot.version, snapshot.source, snapshot.parts);
       scenes[it->second].snapshots.push_back(std::move(snapshot));
     });
   } catch (const std::exception& error) {

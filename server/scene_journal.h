@@ -32,9 +32,9 @@ class SceneJournal {
     bool complete = true;      // false: reading its frames failed part-way (loadProblem())
     struct StoredFrame {
       uint64_t version = 0;
-      std::string frame;  // frame JSON as received
-      std::string parts;  // what it did to the served mesh (part_changes.h); empty: not recorded
-                          // (or its checksum failed)
+      std::string frame;   // frame JSON as received
+      std::string parts;   // what it did to the served mesh (part_changes.h); empty: not recorded
+                           // (or its checksum failed)
       bool intact = true;  // the frame's checksum matches (or it has none)
       // The version whose fresh build the engine that applied it came from (SceneSession's
       // base: the scene's creation, a rebuilding light edit, a snapshot); none in older rows.
@@ -63,7 +63,7 @@ class SceneJournal {
   SceneJournal(const SceneJournal&) = delete;
   SceneJournal& operator=(const SceneJournal&) = delete;
 
-  const std::string& path() const;  // the journal file, or the database URI without password
+  const std::string& path() const;       // the journal file, or the database URI without password
   const std::string& directory() const;  // the data directory, absolute
   // "ok", or what was found damaged at open: committed frames of the write-ahead log that SQLite
   // would ignore (wal_check.h), what PRAGMA quick_check reported.

@@ -157,7 +157,10 @@ void SqliteJournalStore::insertFrame(const JournalFrameRow& frame) {
   SqliteStatement insert = db_->prepare(
       "INSERT INTO frames (scene, version, frame, parts, crc, parts_crc, base) VALUES (?, ?, ?, "
       "?, ?, ?, ?)");
-  insert.bind(1, frame.scene).bind(2, frame.version).bindBlob(3, frame.frame).bindBlob(4, frame.parts);
+  insert.bind(1, frame.scene)
+      .bind(2, frame.version)
+      .bindBlob(3, frame.frame)
+      .bindBlob(4, frame.parts);
   bindOptional(insert, 5, frame.crc);
   bindOptional(insert, 6, frame.partsCrc);
   bindOptional(insert, 7, frame.base).run();

@@ -19,7 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kBin = "/usr/lib/postgresql/15/bin";  // Debian's postgresql-15
-constexpr const char* kSuperuser = "penumbra";               // the cluster's, whoever runs it
+constexpr const char* kSuperuser = "penumbra";              // the cluster's, whoever runs it
 
 // Runs `command` (no shell quoting needed: our paths have no spaces) as the cluster's owner.
 int runAsOwner(const std::string& command) {
@@ -55,11 +55,13 @@ PostgresCluster::PostgresCluster() {
   for (const char* tool : {"initdb", "pg_ctl", "postgres"})
     if (!fs::exists(fs::path(kBin) / tool))
       throw std::runtime_error(std::string("PostgreSQL's server binaries are missing (") + kBin +
-                               "/" + tool + "): install Debian's postgresql (.ci/install-deps) "
+                               "/" + tool +
+                               "): install Debian's postgresql (.ci/install-deps) "
                                "to run the journal's PostgreSQL tests");
   if (geteuid() == 0 && !getpwnam("postgres"))
-    throw std::runtime_error("running as root, the test cluster needs the user 'postgres' "
-                             "(Debian's postgresql package creates it)");
+    throw std::runtime_error(
+        "running as root, the test cluster needs the user 'postgres' "
+        "(Debian's postgresql package creates it)");
   dir_ = (fs::temp_directory_path() / ("penumbra-pg-" + std::to_string(getpid()))).string();
   fs::remove_all(dir_);
   fs::create_directories(dir_);

@@ -1,12 +1,13 @@
 // The journal itself (scene_journal.h) on each store: rows come back byte for byte, the
 // version-gap rule, checksums that catch rows changed behind its back, the snapshots kept, a
 // deleted scene's rows gone — the same answers from SQLite and PostgreSQL.
+#include "server/scene_journal.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 #include <string>
 
-#include "server/scene_journal.h"
 #include "test_journal.h"
 
 namespace penumbra::server::test {
@@ -44,7 +45,8 @@ TEST_P(SceneJournalOnEachStore, RowsComeBackByteForByteAcrossAReopen) {
                                    scene.source, 0);
       for (uint64_t v = 1; v <= 1 + rng() % 20; ++v) {
         scene.frames.emplace_back(randomBytes(rng, rng() % 3000), randomBytes(rng, rng() % 300));
-        journal.addFrame(scene.key, v, scene.frames.back().first, scene.frames.back().second, v - 1);
+        journal.addFrame(scene.key, v, scene.frames.back().first, scene.frames.back().second,
+                         v - 1);
       }
       written.push_back(std::move(scene));
     }

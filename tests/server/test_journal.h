@@ -81,7 +81,8 @@ class TestJournal {
         continue;
       }
       size_t length = 0;
-      unsigned char* bytes = PQunescapeBytea(reinterpret_cast<const unsigned char*>(value), &length);
+      unsigned char* bytes =
+          PQunescapeBytea(reinterpret_cast<const unsigned char*>(value), &length);
       out.append(reinterpret_cast<const char*>(bytes), length);
       PQfreemem(bytes);
     }
