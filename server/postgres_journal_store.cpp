@@ -269,11 +269,16 @@ int64_t PostgresJournalStore::insertScene(const JournalSceneRow& scene) {
   return int8At(key.get(), 0, 0);
 }
 
+// A row already at this version can only be a commit whose answer a lost connection swallowed:
+// never acknowledged (SceneJournal writes only the version after the last acknowledged one), so
+// the frame that now takes that version replaces it rather than failing every retry.
 void PostgresJournalStore::insertFrame(const JournalFrameRow& frame) {
   Transaction transaction(conn_);
   run(conn_,
       "INSERT INTO frames (scene, version, frame, parts, crc, parts_crc, base) VALUES ($1, $2, "
-      "$3, $4, $5, $6, $7)",
+      "$3, $4, $5, $6, $7) ON CONFLICT (scene, version) DO UPDATE SET frame = EXCLUDED.frame, "
+      "parts = EXCLUDED.parts, crc = EXCLUDED.crc, parts_crc = EXCLUDED.parts_crc, base = "
+      "EXCLUDED.base",
       Params()
           .add(frame.scene)
           .add(frame.version)

@@ -1,7 +1,8 @@
 // The journal on PostgreSQL when the database goes away: with its server stopped while a
 // Penumbra server serves, edits and new scenes answer 503 journal_failed (nothing applied) and
 // /api/health says durable: false; once it is back the same server journals again, and a restart
-// serves every acknowledged version byte for byte. (What holds for both stores is in
+// serves every acknowledged version byte for byte; a commit whose answer was lost does not block
+// the scene. (What holds for both stores is in
 // journal_test.cpp, journal_snapshot_test.cpp and scene_journal_test.cpp.)
 #include <gtest/gtest.h>
 
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "server/scene_journal.h"
 #include "server_fixture.h"
 #include "test_journal.h"
 #include "tiny_scene.h"
@@ -81,6 +83,25 @@ TEST(JournalPostgres, TheDatabaseStoppedWhileServingMakesEdits503AndLosesNothing
   auto client = again.client();
   EXPECT_TRUE(meshBin(client, id) == mesh);
   EXPECT_EQ(data.sqlText("SELECT version FROM frames ORDER BY version"), "1,2,3,4,5");
+}
+
+// A commit whose answer the lost connection swallowed leaves a row at a version never
+// acknowledged: the next frame at that version takes its place instead of failing every retry,
+// and an acknowledged row is never overwritten (the version-gap rule).
+TEST(JournalPostgres, AFrameWhoseCommitWasNeverAcknowledgedIsReplacedByTheNextOne) {
+  const TestJournal data(JournalBackend::Postgres);
+  SceneJournal journal(data.dir().str(), data.database());
+  const int64_t key = journal.addScene("a", "a", "{}", 0);
+  journal.addFrame(key, 1, "one", "", 0);
+  data.sql("INSERT INTO frames (scene, version, frame) VALUES (" + std::to_string(key) +
+           ", 2, 'lost answer')");
+  EXPECT_THROW(journal.addFrame(key, 1, "one again", "", 0), std::runtime_error);
+  journal.addFrame(key, 2, "two", "", 0);
+  EXPECT_EQ(data.sqlText("SELECT frame FROM frames ORDER BY version"), "one,two");
+  const auto scenes = journal.load();
+  ASSERT_EQ(scenes.size(), 1u);
+  ASSERT_EQ(scenes[0].frames.size(), 2u);
+  EXPECT_TRUE(scenes[0].frames[1].intact);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <libpq-fe.h>
 #include <sqlite3.h>
 
+#include <ostream>
 #include <string>
 
 #include "postgres_cluster.h"
@@ -16,6 +17,10 @@
 namespace penumbra::server::test {
 
 enum class JournalBackend { Sqlite, Postgres };
+
+inline void PrintTo(JournalBackend backend, std::ostream* out) {
+  *out << (backend == JournalBackend::Sqlite ? "SQLite" : "PostgreSQL");
+}
 
 inline std::string backendName(const ::testing::TestParamInfo<JournalBackend>& info) {
   return info.param == JournalBackend::Sqlite ? "Sqlite" : "Postgres";
