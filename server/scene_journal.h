@@ -72,8 +72,9 @@ class SceneJournal {
   // restored from it may lack acknowledged frames, so restore stalls them all.
   const std::string& logDamage() const;
   // Empty while commits are durable; else why not (the data directory removed, replaced or
-  // unwritable, the journal file gone, the database unreachable; a database is asked, a round
-  // trip): every write then throws without writing.
+  // unwritable, the journal file gone, the database unreachable): every write then throws without
+  // writing. A database is asked (a round trip), unless a write is in flight: that write answers
+  // for itself.
   std::string durabilityProblem() const;
   // Read only: restore never changes the journal. A checksum mismatch marks the frame (or the
   // scene's source) not intact; a read error part-way is `loadProblem` (the scenes read so far
