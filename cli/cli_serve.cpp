@@ -40,9 +40,9 @@ std::string defaultStaticDir() {
 
 // serve's options, checked: a usage error for what cannot work.
 server::ServerOptions serveOptions(const Args& args) {
-  args.allowOnly({"host", "port", "static", "grid", "data", "ephemeral", "token", "allow-origin",
-                  "max-scenes", "max-body-mib", "image-memory-mib", "threads", "edit-nice",
-                  "mesh-tolerance", "snapshot-every"});
+  args.allowOnly({"host", "port", "static", "grid", "data", "journal", "ephemeral", "token",
+                  "allow-origin", "max-scenes", "max-body-mib", "image-memory-mib", "threads",
+                  "edit-nice", "mesh-tolerance", "snapshot-every"});
   server::ServerOptions options;
   options.host = args.option("host").value_or("127.0.0.1");
   options.port = args.intOption("port", 8080, 0, 65535);
@@ -73,6 +73,13 @@ server::ServerOptions serveOptions(const Args& args) {
   if (args.flag("ephemeral") && args.option("data"))
     throw UsageError("--ephemeral and --data exclude each other");
   if (!args.flag("ephemeral")) options.dataDir = args.option("data").value_or(kDefaultDataDir);
+  if (const auto journal = args.option("journal")) {
+    if (args.flag("ephemeral")) throw UsageError("--ephemeral and --journal exclude each other");
+    if (journal->rfind("postgresql://", 0) != 0 && journal->rfind("postgres://", 0) != 0)
+      throw UsageError("--journal " + *journal +
+                       ": give a PostgreSQL connection URI (postgresql://user@host/database)");
+    options.journalDatabase = *journal;
+  }
   options.snapshotEvery =
       uint64_t(args.intOption("snapshot-every", int(server::kSnapshotEvery), 0, 1000000000));
   options.engine.threads = args.intOption("threads", 0, 0, 1024);
@@ -197,9 +204,12 @@ int runServe(const Args& args) {
   const std::string tokenQuery = options.token.empty() ? "" : "&token=" + options.token;
   for (const std::string& id : ids)
     std::printf("  open %s?scene=%s%s\n", url.c_str(), id.c_str(), tokenQuery.c_str());
+  const std::string keptIn = options.journalDatabase.empty()
+                                 ? options.dataDir
+                                 : "the PostgreSQL journal, uploads in " + options.dataDir;
   std::printf("  (scenes and edits %s)\n", options.dataDir.empty()
                                                ? "are not kept: --ephemeral"
-                                               : ("are kept in " + options.dataDir).c_str());
+                                               : ("are kept in " + keptIn).c_str());
   std::printf("  (API: %sapi/health; stop with Ctrl-C)\n", url.c_str());
   std::fflush(stdout);
 

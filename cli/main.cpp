@@ -57,6 +57,8 @@ commands:
         [--port P] [--static DIR]      default 127.0.0.1:8080 and ./web_client; prints the URL
         [--grid G] [--threads N]
         [--data DIR | --ephemeral]     journal of scenes and edits (default ./penumbra-data)
+        [--journal postgresql://...]   keep the journal in that PostgreSQL database instead
+                                       (uploaded files stay in the data directory)
         [--snapshot-every N]           journal a snapshot every N versions of a scene, so a
                                        restart replays at most N frames (default 200; 0: never)
         [--token T] [--max-scenes N]   token for mutating requests (needed off loopback; or

@@ -67,7 +67,8 @@ HttpServer::HttpServer(ServerOptions options)
   if (!isLoopbackHost(options_.host) && options_.token.empty())
     throw std::invalid_argument("listening on " + options_.host +
                                 " (not loopback) needs a token: --token T or PENUMBRA_TOKEN");
-  if (!options_.dataDir.empty()) journal_ = std::make_unique<SceneJournal>(options_.dataDir);
+  if (!options_.dataDir.empty())
+    journal_ = std::make_unique<SceneJournal>(options_.dataDir, options_.journalDatabase);
   // Every open connection (an event stream, a slow client) holds a worker for its lifetime
   // (DEPENDENCIES.md): the pool grows with them.
   http_->new_task_queue = [] {

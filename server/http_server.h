@@ -43,6 +43,9 @@ struct ServerOptions {
   MeshCompression meshCompression = MeshCompression::Auto;
   // The journal's directory (README "Durability"); empty: ephemeral, nothing survives a restart.
   std::string dataDir;
+  // Not empty: the journal is kept in this PostgreSQL database (a libpq connection URI,
+  // postgresql://…) instead of dataDir's SQLite file; uploaded files stay in dataDir.
+  std::string journalDatabase;
   // Required (Authorization: Bearer TOKEN) on every POST/PUT/PATCH/DELETE when not empty; a
   // host other than loopback is refused without one.
   std::string token;

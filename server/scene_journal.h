@@ -1,7 +1,9 @@
 // The durable record of served scenes (README "Durability"): each scene's source JSON and every
-// acknowledged frame, in SQLite (WAL, synchronous=FULL), committed before the server answers;
-// and periodic snapshots (a scene and its mesh at one version) that bound what a restart replays.
-// Thread-safe (one mutex around the connection).
+// acknowledged frame, committed before the server answers, and periodic snapshots (a scene and its
+// mesh at one version) that bound what a restart replays. Kept in a JournalStore: SQLite in the
+// data directory (WAL, synchronous=FULL), or a PostgreSQL database; checksums, the version-gap
+// rule and the snapshots kept are this class's, the same on both. Thread-safe (one mutex around
+// the store).
 #pragma once
 
 #include <cstdint>
@@ -15,7 +17,7 @@
 
 namespace penumbra::server {
 
-class SqliteDb;
+class JournalStore;
 class DataDirectory;
 
 class SceneJournal {
@@ -30,9 +32,9 @@ class SceneJournal {
     bool complete = true;      // false: reading its frames failed part-way (loadProblem())
     struct StoredFrame {
       uint64_t version = 0;
-      std::string frame;  // frame JSON as received
-      std::string parts;  // what it did to the served mesh (part_changes.h); empty: not recorded
-                          // (or its checksum failed)
+      std::string frame;   // frame JSON as received
+      std::string parts;   // what it did to the served mesh (part_changes.h); empty: not recorded
+                           // (or its checksum failed)
       bool intact = true;  // the frame's checksum matches (or it has none)
       // The version whose fresh build the engine that applied it came from (SceneSession's
       // base: the scene's creation, a rebuilding light edit, a snapshot); none in older rows.
@@ -52,24 +54,27 @@ class SceneJournal {
   // Snapshots kept per scene: the newest, and one to fall back on should it be damaged.
   static constexpr size_t kSnapshotsKept = 2;
 
-  // Locks DIR (one server per data directory: DataDirectoryLocked) and opens
-  // DIR/journal.sqlite3, creating DIR and the schema, then runs SQLite's quick_check (what it
-  // found: integrity()). Throws std::runtime_error.
-  explicit SceneJournal(const std::string& dir);
+  // Locks DIR (one server per data directory: DataDirectoryLocked; uploaded files live there
+  // whatever the store) and opens the journal, creating DIR and the schema: DIR/journal.sqlite3,
+  // SQLite's quick_check run (what it found: integrity()); or, when `database` is a libpq
+  // connection URI (postgresql://…), that PostgreSQL database. Throws std::runtime_error.
+  explicit SceneJournal(const std::string& dir, const std::string& database = "");
   ~SceneJournal();
   SceneJournal(const SceneJournal&) = delete;
   SceneJournal& operator=(const SceneJournal&) = delete;
 
-  const std::string& path() const { return path_; }
+  const std::string& path() const;       // the journal file, or the database URI without password
   const std::string& directory() const;  // the data directory, absolute
   // "ok", or what was found damaged at open: committed frames of the write-ahead log that SQLite
   // would ignore (wal_check.h), what PRAGMA quick_check reported.
-  const std::string& integrity() const { return integrity_; }
+  const std::string& integrity() const;
   // Committed transactions of the write-ahead log SQLite ignored at open (wal_check.h): the scenes
   // restored from it may lack acknowledged frames, so restore stalls them all.
-  const std::string& logDamage() const { return logDamage_; }
+  const std::string& logDamage() const;
   // Empty while commits are durable; else why not (the data directory removed, replaced or
-  // unwritable, the journal file gone): every write then throws without writing.
+  // unwritable, the journal file gone, the database unreachable): every write then throws without
+  // writing. A database is asked (a round trip), unless a write is in flight: that write answers
+  // for itself.
   std::string durabilityProblem() const;
   // Read only: restore never changes the journal. A checksum mismatch marks the frame (or the
   // scene's source) not intact; a read error part-way is `loadProblem` (the scenes read so far
@@ -101,17 +106,14 @@ class SceneJournal {
                                    const std::string& parts);
 
  private:
-  void requireDurable() const;  // throws std::runtime_error naming durabilityProblem()
-  void open();  // the connection, pragmas, quick_check and schema; throws SqliteError
-  std::string checkWriteAheadLog() const;  // wal_check.h's finding, the log copied aside; or ""
+  // Throws std::runtime_error naming what durabilityProblem() would (without asking the
+  // database: a write that cannot commit fails anyway). Call with mutex_ held.
+  void requireDurable() const;
 
   mutable std::mutex mutex_;
   std::unique_ptr<DataDirectory> dir_;  // locked first, released last
-  std::string path_;
-  std::string integrity_ = "ok";
-  std::string logDamage_;
+  std::unique_ptr<JournalStore> store_;
   std::string loadProblem_;
-  std::unique_ptr<SqliteDb> db_;
   std::map<int64_t, uint64_t> lastVersion_;  // per scene key
 };
 

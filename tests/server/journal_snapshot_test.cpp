@@ -6,7 +6,6 @@
 // the newest is damaged (said in health), and from no snapshot at all (the frames are never
 // deleted, and say where the server built afresh).
 #include <gtest/gtest.h>
-#include <sqlite3.h>
 
 #include <map>
 #include <random>
@@ -15,14 +14,14 @@
 #include "server/scene_journal.h"
 #include "journal_answers.h"
 #include "server_fixture.h"
-#include "temp_data_dir.h"
+#include "test_journal.h"
 #include "tiny_scene.h"
 
 namespace penumbra::server::test {
 namespace {
 
 
-ServerOptions snapshotting(const TempDataDir& data, uint64_t every) {
+ServerOptions snapshotting(const TestJournal& data, uint64_t every) {
   ServerOptions options = data.durable();
   options.snapshotEvery = every;
   return options;
@@ -108,20 +107,6 @@ uint64_t playRandom(httplib::Client& client, const std::string& id, int frames, 
   return version;
 }
 
-std::string sqlText(const TempDataDir& data, const std::string& query) {
-  sqlite3* db = nullptr;
-  EXPECT_EQ(sqlite3_open((data.str() + "/journal.sqlite3").c_str(), &db), SQLITE_OK);
-  sqlite3_stmt* row = nullptr;
-  EXPECT_EQ(sqlite3_prepare_v2(db, query.c_str(), -1, &row, nullptr), SQLITE_OK) << query;
-  std::string text;
-  if (sqlite3_step(row) == SQLITE_ROW && sqlite3_column_type(row, 0) != SQLITE_NULL)
-    text = std::string(static_cast<const char*>(sqlite3_column_blob(row, 0)),
-                       size_t(sqlite3_column_bytes(row, 0)));
-  sqlite3_finalize(row);
-  sqlite3_close(db);
-  return text;
-}
-
 struct Restart {
   std::optional<uint64_t> snapshot;  // what the restore started from
   size_t frames = 0;                 // frames it replayed
@@ -130,7 +115,7 @@ struct Restart {
 };
 
 // Restarts on `data` and checks the scene is back at `last` serving `before`, byte for byte.
-Restart expectRestored(const TempDataDir& data, const std::string& id, uint64_t last,
+Restart expectRestored(const TestJournal& data, const std::string& id, uint64_t last,
                        const Answers& before, uint64_t every) {
   RunningServer server(snapshotting(data, every));
   const std::vector<RestoredScene> restored = server.server().restore();
@@ -147,8 +132,14 @@ Restart expectRestored(const TempDataDir& data, const std::string& id, uint64_t 
           bodyJson(client.Get("/api/health"))};
 }
 
-TEST(JournalSnapshots, RestoreFromASnapshotOrAnOlderOneOrNoneServesTheSameBytes) {
-  TempDataDir data;
+class JournalSnapshots : public ::testing::TestWithParam<JournalBackend> {};
+
+INSTANTIATE_TEST_SUITE_P(Stores, JournalSnapshots,
+                         ::testing::Values(JournalBackend::Sqlite, JournalBackend::Postgres),
+                         backendName);
+
+TEST_P(JournalSnapshots, RestoreFromASnapshotOrAnOlderOneOrNoneServesTheSameBytes) {
+  const TestJournal data(GetParam());
   std::string id;
   uint64_t last = 0;
   Answers before;
@@ -164,9 +155,9 @@ TEST(JournalSnapshots, RestoreFromASnapshotOrAnOlderOneOrNoneServesTheSameBytes)
   const uint64_t newest = last / 5 * 5, older = newest - 5;
   // The newest two snapshots kept; each frame names the build it was applied on: the snapshots
   // at 5 and 10, and 9 (a moved light) rebuilt the engine itself.
-  EXPECT_EQ(sqlText(data, "SELECT group_concat(version) FROM snapshots"),
+  EXPECT_EQ(data.sqlText("SELECT version FROM snapshots ORDER BY version"),
             std::to_string(older) + "," + std::to_string(newest));
-  EXPECT_EQ(sqlText(data, "SELECT group_concat(base) FROM frames WHERE version BETWEEN 4 AND 11"),
+  EXPECT_EQ(data.sqlText("SELECT base FROM frames WHERE version BETWEEN 4 AND 11 ORDER BY version"),
             "0,0,5,5,5,5,9,10");
   Restart r = expectRestored(data, id, last, before, 5);
   EXPECT_EQ(r.snapshot, std::optional<uint64_t>(newest));
@@ -175,8 +166,7 @@ TEST(JournalSnapshots, RestoreFromASnapshotOrAnOlderOneOrNoneServesTheSameBytes)
   EXPECT_EQ(r.health["status"], "ok");
 
   // The newest snapshot damaged: the one before, said in health.
-  sql(data,
-      "UPDATE snapshots SET source = 'x' || source WHERE version = " + std::to_string(newest));
+  data.sql("UPDATE snapshots SET source = 'x' || source WHERE version = " + std::to_string(newest));
   r = expectRestored(data, id, last, before, 5);
   EXPECT_EQ(r.snapshot, std::optional<uint64_t>(older));
   EXPECT_EQ(r.frames, last - older);
@@ -190,9 +180,9 @@ TEST(JournalSnapshots, RestoreFromASnapshotOrAnOlderOneOrNoneServesTheSameBytes)
 
   // The older one verifies but does not load: every frame, replayed on the same fresh builds.
   const std::string where = " WHERE version = " + std::to_string(older);
-  const std::string source = sqlText(data, "SELECT source FROM snapshots" + where);
+  const std::string source = data.sqlText("SELECT source FROM snapshots" + where);
   const std::string parts = "not parts";
-  sql(data, "UPDATE snapshots SET parts = '" + parts + "', crc = " +
+  data.sql("UPDATE snapshots SET parts = '" + parts + "', crc = " +
                 std::to_string(SceneJournal::snapshotChecksum(older, source, parts)) + where);
   r = expectRestored(data, id, last, before, 5);
   EXPECT_EQ(r.snapshot, std::nullopt);
@@ -204,21 +194,21 @@ TEST(JournalSnapshots, RestoreFromASnapshotOrAnOlderOneOrNoneServesTheSameBytes)
   EXPECT_NE(r.snapshotProblem.find("replaying every frame"), std::string::npos);
 
   // No snapshot rows at all, frame by frame (part changes unreadable): the same bytes again.
-  sql(data, "DELETE FROM snapshots");
-  sql(data, "UPDATE frames SET parts = 'not json' WHERE version = 2");
+  data.sql("DELETE FROM snapshots");
+  data.sql("UPDATE frames SET parts = 'not json' WHERE version = 2");
   r = expectRestored(data, id, last, before, 0);
   EXPECT_EQ(r.snapshot, std::nullopt);
   EXPECT_EQ(r.frames, last);
   EXPECT_TRUE(r.snapshotProblem.empty());
   EXPECT_EQ(r.health["status"], "ok");
   // Restore only reads: no snapshot was written back, every frame is still there.
-  EXPECT_EQ(sqlText(data, "SELECT COUNT(*) FROM snapshots"), "0");
-  EXPECT_EQ(sqlText(data, "SELECT COUNT(*) || ' ' || MAX(version) FROM frames"),
+  EXPECT_EQ(data.sqlText("SELECT COUNT(*) FROM snapshots"), "0");
+  EXPECT_EQ(data.sqlText("SELECT COUNT(*) || ' ' || MAX(version) FROM frames"),
             std::to_string(last) + " " + std::to_string(last));
 }
 
-TEST(JournalSnapshots, ALongJournalReplaysOnlyTheTailAndKeepsEveryFrame) {
-  TempDataDir data;
+TEST_P(JournalSnapshots, ALongJournalReplaysOnlyTheTailAndKeepsEveryFrame) {
+  const TestJournal data(GetParam());
   constexpr int kFrames = 430;  // snapshots every 40: 40 … 400, a tail of 30
   std::string id;
   Answers before;
@@ -238,15 +228,15 @@ TEST(JournalSnapshots, ALongJournalReplaysOnlyTheTailAndKeepsEveryFrame) {
     before = served(client, id, kFrames, true);
   }
   // Snapshots are dropped past the newest two; frames never.
-  EXPECT_EQ(sqlText(data, "SELECT group_concat(version) FROM snapshots"), "360,400");
+  EXPECT_EQ(data.sqlText("SELECT version FROM snapshots ORDER BY version"), "360,400");
   EXPECT_EQ(
-      sqlText(data, "SELECT COUNT(*) || ' ' || MIN(version) || ' ' || MAX(version) FROM frames"),
+      data.sqlText("SELECT COUNT(*) || ' ' || MIN(version) || ' ' || MAX(version) FROM frames"),
       std::to_string(kFrames) + " 1 " + std::to_string(kFrames));
   Restart r = expectRestored(data, id, kFrames, before, 40);
   EXPECT_EQ(r.snapshot, std::optional<uint64_t>(400));
   EXPECT_EQ(r.frames, 30u);
   // Every acknowledged version stays restorable from the frames alone.
-  sql(data, "DELETE FROM snapshots");
+  data.sql("DELETE FROM snapshots");
   r = expectRestored(data, id, kFrames, before, 40);
   EXPECT_EQ(r.snapshot, std::nullopt);
   EXPECT_EQ(r.frames, size_t(kFrames));

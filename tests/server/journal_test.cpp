@@ -1,7 +1,7 @@
 // The journal (README "Durability") in-process: a server on a data directory is stopped and a
-// second one restores every scene at its last acknowledged version with the same mesh bytes;
-// a failed journal write acknowledges nothing and changes nothing served. (The SIGKILL test is
-// tests/server/kill_restore.py.)
+// second one restores every scene at its last acknowledged version with the same mesh bytes, on
+// SQLite and on PostgreSQL; a failed journal write acknowledges nothing and changes nothing
+// served. (The SIGKILL test is tests/server/kill_restore.py.)
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
@@ -12,6 +12,7 @@
 
 #include "server_fixture.h"
 #include "temp_data_dir.h"
+#include "test_journal.h"
 
 namespace penumbra::server::test {
 namespace {
@@ -45,8 +46,15 @@ uint64_t drag(httplib::Client& client, const std::string& id, int frames, uint32
   return version;
 }
 
-TEST(Journal, RestartRestoresEveryScenesLastVersionWithTheSameMeshBytes) {
-  TempDataDir data;
+// The tests that hold for every journal store.
+class JournalOnEachStore : public ::testing::TestWithParam<JournalBackend> {};
+
+INSTANTIATE_TEST_SUITE_P(Stores, JournalOnEachStore,
+                         ::testing::Values(JournalBackend::Sqlite, JournalBackend::Postgres),
+                         backendName);
+
+TEST_P(JournalOnEachStore, RestartRestoresEveryScenesLastVersionWithTheSameMeshBytes) {
+  const TestJournal data(GetParam());
   std::map<std::string, std::pair<uint64_t, std::string>> served;  // id → version, mesh
   {
     RunningServer first(data.durable());
@@ -84,8 +92,8 @@ TEST(Journal, RestartRestoresEveryScenesLastVersionWithTheSameMeshBytes) {
 // The server answers while the journal's scenes come back: a scene not back yet is a 503
 // `restoring` with Retry-After (not a refused connection, nor a 404), health counts it, and no
 // new scene can take its id; once back it is served at its last version.
-TEST(Journal, ScenesBeingRestoredAre503WhileTheServerAnswers) {
-  TempDataDir data;
+TEST_P(JournalOnEachStore, ScenesBeingRestoredAre503WhileTheServerAnswers) {
+  const TestJournal data(GetParam());
   std::string cubes;
   uint64_t version = 0;
   {

@@ -1,0 +1,72 @@
+// The database under the journal (scene_journal.h): what is SQL-specific — opening it and its
+// schema, one transaction per write, the statements over scenes, frames and snapshots, what its
+// integrity check found. Rows go in and come out as stored; checksums, the version-gap rule and
+// how many snapshots are kept are SceneJournal's, the same for every store. Not thread-safe:
+// SceneJournal serialises every call behind its mutex.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace penumbra::server {
+
+// A checksum column of a row from before checksums reads as nullopt (journal_store rows below).
+struct JournalSceneRow {
+  int64_t key = 0;  // assigned by insertScene
+  std::string id, name;
+  int64_t baseVersion = 0;
+  std::string source;
+  std::optional<int64_t> sourceCrc;
+};
+
+struct JournalFrameRow {
+  int64_t scene = 0;  // the scene's key
+  int64_t version = 0;
+  std::string frame, parts;
+  std::optional<int64_t> crc, partsCrc, base;
+};
+
+struct JournalSnapshotRow {
+  int64_t scene = 0;
+  int64_t version = 0;
+  std::string source, parts;
+  int64_t crc = 0;
+};
+
+class JournalStore {
+ public:
+  virtual ~JournalStore() = default;
+
+  // The journal's place for messages and /api/health: a file, or a database URI without its
+  // password.
+  virtual const std::string& where() const = 0;
+  // "ok", or the damage found at open (SQLite's quick_check, a damaged write-ahead log).
+  virtual const std::string& integrity() const = 0;
+  // Committed transactions found lost at open (SQLite's write-ahead log): every scene restored
+  // from such a journal is stalled. Empty for a database that keeps its own log.
+  virtual const std::string& logDamage() const = 0;
+  // Empty while a write can be committed; else why not (a lost database connection, which this
+  // tries to open again). `ask`: also ask the database itself (a round trip: for health, not
+  // before every write; a write that fails says so anyway).
+  virtual std::string problem(bool ask) = 0;
+
+  // Every row, scenes by key, frames and snapshots by (scene, version); a failure part-way
+  // throws after the rows read so far were handed over.
+  virtual void readScenes(const std::function<void(JournalSceneRow&&)>& row) = 0;
+  virtual void readFrames(const std::function<void(JournalFrameRow&&)>& row) = 0;
+  virtual void readSnapshots(const std::function<void(JournalSnapshotRow&&)>& row) = 0;
+
+  // Each write is one committed transaction, or throws std::runtime_error with nothing written.
+  // (A node that owns its scenes by a lease will check its fencing token inside each of them.)
+  virtual int64_t insertScene(const JournalSceneRow& scene) = 0;  // returns the new key
+  virtual void insertFrame(const JournalFrameRow& frame) = 0;
+  // Writes (or replaces) the snapshot and deletes the scene's snapshots older than the newest
+  // `keep`.
+  virtual void putSnapshot(const JournalSnapshotRow& snapshot, size_t keep) = 0;
+  virtual void deleteScene(int64_t key) = 0;  // with its frames and snapshots
+};
+
+}  // namespace penumbra::server

@@ -1,0 +1,49 @@
+// The journal's PostgreSQL store (journal_store.h; docs/SERVER.md "Durability"): the same three
+// tables as the SQLite journal in a database named by a libpq connection URI, over one connection
+// (libpq). Each write is a transaction committed with synchronous_commit on, so an acknowledged
+// frame is on the database's disk; a lost connection is opened again on the next write or health
+// check. Not thread-safe.
+#pragma once
+
+#include <string>
+
+#include "server/journal_store.h"
+
+struct pg_conn;
+
+namespace penumbra::server {
+
+class PostgresJournalStore : public JournalStore {
+ public:
+  // Connects to `uri` (postgresql://…) and creates the schema when missing. Throws
+  // std::runtime_error naming the database when it cannot be reached.
+  explicit PostgresJournalStore(const std::string& uri);
+  ~PostgresJournalStore() override;
+  PostgresJournalStore(const PostgresJournalStore&) = delete;
+  PostgresJournalStore& operator=(const PostgresJournalStore&) = delete;
+
+  const std::string& where() const override { return where_; }
+  const std::string& integrity() const override { return integrity_; }
+  const std::string& logDamage() const override { return logDamage_; }
+  std::string problem(bool ask) override;
+
+  void readScenes(const std::function<void(JournalSceneRow&&)>& row) override;
+  void readFrames(const std::function<void(JournalFrameRow&&)>& row) override;
+  void readSnapshots(const std::function<void(JournalSnapshotRow&&)>& row) override;
+
+  int64_t insertScene(const JournalSceneRow& scene) override;
+  void insertFrame(const JournalFrameRow& frame) override;
+  void putSnapshot(const JournalSnapshotRow& snapshot, size_t keep) override;
+  void deleteScene(int64_t key) override;
+
+ private:
+  void configure();                       // the session's settings, after every (re)connection
+  std::string connectionProblem() const;  // empty while connected
+
+  pg_conn* conn_ = nullptr;
+  std::string where_;             // the URI's place without its password
+  std::string integrity_ = "ok";  // PostgreSQL checks its own pages and log
+  std::string logDamage_;
+};
+
+}  // namespace penumbra::server
