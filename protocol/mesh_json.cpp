@@ -164,7 +164,9 @@ void writeReceiver(std::ostream& out, const Scene& scene, const ReceiverMesh& r,
   own["irradiance"] = [&] { writeArray(out, r.irradiance, vec3); };
   own["object"] = [&] { out << compactText(object.id); };
   if (valuesOnly) return writeObject(out, std::move(own), extra);
-  own["class"] = [&] { writeArray(out, r.classes, [&](LightClass c) { out << '"' << toString(c) << '"'; }); };
+  own["class"] = [&] {
+    writeArray(out, r.classes, [&](LightClass c) { out << '"' << toString(c) << '"'; });
+  };
   own["normal"] = [&] { out << compactText(toJson(r.normal)); };
   own["positions"] = [&] { writeArray(out, r.positions, vec3); };
   own["triangles"] = [&] {

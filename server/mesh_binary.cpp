@@ -107,8 +107,9 @@ std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection
   size_t namesBytes = 0;
   for (const std::string& n : names) namesBytes += 4 + (n.size() + 3) / 4 * 4;
   Writer out(kHeaderBytes + namesBytes + selection.parts.size() * kPartRecordBytes +
-             selection.removedParts.size() * kRemovedRecordBytes + vertices * (indirect ? 37 : 25) + triangles * 12 +
-             selection.parts.size() * 4 + selection.valueParts.size() * kValuePartRecordBytes + valueFloats * 4);
+             selection.removedParts.size() * kRemovedRecordBytes + vertices * (indirect ? 37 : 25) +
+             triangles * 12 + selection.parts.size() * 4 +
+             selection.valueParts.size() * kValuePartRecordBytes + valueFloats * 4);
 
   out.raw(kMagic, 4);
   out.u32(kLayoutVersion);
@@ -168,7 +169,8 @@ std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection
     for (const auto& t : r.triangles)
       for (uint32_t index : t) out.u32(index);
   }
-  for (const std::vector<float>& channels : values) out.raw(channels.data(), channels.size() * sizeof(float));
+  for (const std::vector<float>& channels : values)
+    out.raw(channels.data(), channels.size() * sizeof(float));
   return out.take();
 }
 

@@ -26,9 +26,8 @@ inline constexpr uint32_t kFlagIndirect = 2;
 inline constexpr uint8_t kLit = 0, kPenumbra = 1, kUmbra = 2;
 
 // Encodes the selected parts (receivers' display chunks; valueParts as their irradiance alone)
-// of a snapshot, with each vertex's
-// indirect irradiance when `indirect` (a bake of this snapshot) is given. Throws std::overflow_error if a
-// count or version does not fit 32 bits.
+// of a snapshot, with each vertex's indirect irradiance when `indirect` (a bake of this
+// snapshot) is given. Throws std::overflow_error if a count or version does not fit 32 bits.
 std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection,
                    const IndirectBake* indirect = nullptr);
 

@@ -16,7 +16,8 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 // Equal in all but the irradiance: a client holding one needs only the other's irradiance.
 bool sameShape(const ReceiverMesh& a, const ReceiverMesh& b) {
-  return a.normal == b.normal && a.positions == b.positions && a.classes == b.classes && a.triangles == b.triangles;
+  return a.normal == b.normal && a.positions == b.positions && a.classes == b.classes &&
+         a.triangles == b.triangles;
 }
 
 // The engine's chunks of some receivers as parts, all at `version`.
@@ -216,8 +217,8 @@ void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames,
       const auto it = versions.find(key);
       if (it == versions.end() || changed.count(key))
         throw std::runtime_error("frame " + std::to_string(journaled.version) +
-                                 " journaled new values for a part of receiver '" + key.receiver.object +
-                                 "' it does not hold");
+                                 " journaled new values for a part of receiver '" +
+                                 key.receiver.object + "' it does not hold");
       it->second.version = last.version;
     }
     for (const PartKey& key : journaled.changes.removed) {

@@ -107,7 +107,8 @@ size_t SceneSnapshot::triangleCount() const {
 void SceneSnapshot::writeMeshJson(std::ostream& out, const MeshSelection& selection,
                                   const protocol::MeshJsonExtras& more) const {
   const std::set<ReceiverKey> wanted(selection.receivers.begin(), selection.receivers.end());
-  const std::set<ReceiverKey> valuesOnly(selection.valueReceivers.begin(), selection.valueReceivers.end());
+  const std::set<ReceiverKey> valuesOnly(selection.valueReceivers.begin(),
+                                         selection.valueReceivers.end());
   const bool whole = !selection.since;  // every receiver: the cached whole mesh
   Mesh chosen;
   std::vector<uint64_t> versions;

@@ -48,7 +48,7 @@ struct MeshPart {
 // What a mesh response carries: parts (the binary form) and, for mesh JSON, whole
 // receivers. Indices are into SceneSnapshot::parts, ascending.
 struct MeshSelection {
-  std::optional<uint64_t> since;  // empty: the whole mesh
+  std::optional<uint64_t> since;        // empty: the whole mesh
   std::vector<size_t> parts;            // changed in shape after `since`: sent whole
   std::vector<size_t> valueParts;       // changed after `since` in their irradiance alone
   std::vector<PartKey> removedParts;    // gone after `since`

@@ -85,8 +85,9 @@ inline BinaryMesh parseBinary(const std::string& bytes) {
     for (float& n : r.normal) n = f32();
   }
   m.valueParts.resize(valueParts);
-  for (auto& r : m.valueParts) r.object = u32(), r.face = u32(), r.x = i32(), r.y = i32(), r.vertices = u32(), r.version = u32(),
-                          r.channels = u32();
+  for (auto& r : m.valueParts)
+    r.object = u32(), r.face = u32(), r.x = i32(), r.y = i32(), r.vertices = u32(),
+    r.version = u32(), r.channels = u32();
   for (uint32_t i = 0; i < removed; ++i) {
     BinaryMesh::Removed& gone = m.removed.emplace_back();
     gone.object = u32(), gone.face = u32(), gone.x = i32(), gone.y = i32();
@@ -104,11 +105,13 @@ inline BinaryMesh parseBinary(const std::string& bytes) {
     take(r.indices.data(), 4 * r.indices.size());
   }
   for (auto& r : m.valueParts) {
-    if (r.channels != 1 && r.channels != 3) throw std::runtime_error("a value part has neither 1 nor 3 channels");
+    if (r.channels != 1 && r.channels != 3)
+      throw std::runtime_error("a value part has neither 1 nor 3 channels");
     std::vector<float> channels(r.channels * size_t(r.vertices));
     take(channels.data(), 4 * channels.size());
     for (size_t v = 0; v < r.vertices; ++v)
-      for (size_t c = 0; c < 3; ++c) r.irradiance.push_back(channels[v * r.channels + (r.channels == 3 ? c : 0)]);
+      for (size_t c = 0; c < 3; ++c)
+        r.irradiance.push_back(channels[v * r.channels + (r.channels == 3 ? c : 0)]);
   }
   if (at != bytes.size()) throw std::runtime_error("binary mesh has trailing bytes");
   return m;

@@ -130,7 +130,8 @@ TEST(MeshDelta, DeltasAppliedToTheWholeMeshEqualAFreshMeshAfterEachFrame) {
     const json delta = meshJson(s, s.select(s.version - 1));
     EXPECT_EQ(delta["version"], 2);
     for (json r : delta["receivers"]) {
-      const std::string key = r["object"].get<std::string>() + "/" + std::to_string(r["face"].get<int>());
+      const std::string key =
+          r["object"].get<std::string>() + "/" + std::to_string(r["face"].get<int>());
       r.erase("scene_version");
       if (r.contains("positions")) {
         held[key] = r.dump();
@@ -223,7 +224,7 @@ TEST(MeshDelta, PartDeltasAppliedToTheWholeMeshEqualAFreshEnginesChunks) {
     }
     if (HasFailure()) return;
   }
-  EXPECT_GT(floorHeld, 6u * 4);        // the floor is several chunks
+  EXPECT_GT(floorHeld, 6u * 4);         // the floor is several chunks
   EXPECT_LT(floorSent * 2, floorHeld);  // of which a drag's frame sends a few
   EXPECT_GT(valueParts, 0u);            // radiance changes were sent as values
 }
@@ -239,12 +240,16 @@ TEST(MeshDelta, ARadianceEditSendsValuesNotGeometry) {
   options.triangles = 1000;
   const Scene scene = makeModelScene(options);
   SceneSession session("t", "teapot", scene);
-  BinaryMesh held = parseBinary(mesh_binary::encode(*session.snapshot(), session.snapshot()->select(std::nullopt)));
+  BinaryMesh held = parseBinary(
+      mesh_binary::encode(*session.snapshot(), session.snapshot()->select(std::nullopt)));
   const Light light = scene.lights().at(0);
-  ASSERT_TRUE(light.radiance.x == light.radiance.y && light.radiance.y == light.radiance.z);  // white
-  const std::vector<Vec3> radiances = {light.radiance * 1.3, Vec3(0.9, 1.1, 0.7) * light.radiance, light.radiance * 0.6};
+  ASSERT_TRUE(light.radiance.x == light.radiance.y &&
+              light.radiance.y == light.radiance.z);  // white
+  const std::vector<Vec3> radiances = {light.radiance * 1.3, Vec3(0.9, 1.1, 0.7) * light.radiance,
+                                       light.radiance * 0.6};
   for (size_t step = 0; step < radiances.size(); ++step) {
-    const bool white = radiances[step].x == radiances[step].y && radiances[step].y == radiances[step].z;
+    const bool white =
+        radiances[step].x == radiances[step].y && radiances[step].y == radiances[step].z;
     SCOPED_TRACE("step " + std::to_string(step) + (white ? " (white)" : " (coloured)"));
     Edit edit;
     edit.op = Edit::Op::SetLight;
@@ -262,13 +267,15 @@ TEST(MeshDelta, ARadianceEditSendsValuesNotGeometry) {
     EXPECT_EQ(delta.totalVertices, 0u);
     EXPECT_EQ(delta.totalTriangles, 0u);
     EXPECT_GT(delta.valueParts.size(), s.parts.size() / 2);
-    EXPECT_LE(deltaBytes.size() * (white ? 4 : 3), whole.size()) << deltaBytes.size() << " of " << whole.size();
+    EXPECT_LE(deltaBytes.size() * (white ? 4 : 3), whole.size())
+        << deltaBytes.size() << " of " << whole.size();
     for (const BinaryMesh::ValuePart& v : delta.valueParts) EXPECT_EQ(v.channels, white ? 1u : 3u);
     // Applied by (object, face, chunk), the held parts become the whole mesh.
     for (const BinaryMesh::ValuePart& v : delta.valueParts) {
       size_t matched = 0;
       for (BinaryMesh::Part& p : held.parts)
-        if (held.objects.at(p.object) == delta.objects.at(v.object) && p.face == v.face && p.x == v.x && p.y == v.y) {
+        if (held.objects.at(p.object) == delta.objects.at(v.object) && p.face == v.face &&
+            p.x == v.x && p.y == v.y) {
           ASSERT_EQ(p.vertices, v.vertices);
           p.irradiance = v.irradiance;
           p.version = v.version;
@@ -287,7 +294,8 @@ TEST(MeshDelta, ARadianceEditSendsValuesNotGeometry) {
     const json jsonDelta = meshJson(s, s.select(s.version - 1));
     EXPECT_EQ(jsonDelta["version"], 2);
     EXPECT_FALSE(jsonDelta["receivers"].empty());
-    for (const json& r : jsonDelta["receivers"]) EXPECT_FALSE(r.contains("positions") || r.contains("triangles"));
+    for (const json& r : jsonDelta["receivers"])
+      EXPECT_FALSE(r.contains("positions") || r.contains("triangles"));
     if (HasFailure()) return;
   }
 }

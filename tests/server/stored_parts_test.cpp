@@ -1,11 +1,12 @@
 // A journal snapshot's mesh parts (server/stored_parts.h) read back as served: every part's key,
 // version, shape version (below the version where a light's radiance changed its values alone)
 // and mesh bit for bit; bytes of another format or cut short are refused.
+#include "server/stored_parts.h"
+
 #include <gtest/gtest.h>
 
 #include "bench/lib/cubes_scene.h"
 #include "server/scene_session.h"
-#include "server/stored_parts.h"
 
 namespace penumbra::server {
 namespace {
@@ -34,8 +35,9 @@ TEST(StoredParts, PartsReadBackWithTheirVersionsAndShapeVersions) {
     EXPECT_EQ(a.key, b.key);
     EXPECT_EQ(a.version, b.version);
     EXPECT_EQ(a.shapeVersion, b.shapeVersion);
-    EXPECT_TRUE(a.mesh->positions == b.mesh->positions && a.mesh->irradiance == b.mesh->irradiance &&
-                a.mesh->classes == b.mesh->classes && a.mesh->triangles == b.mesh->triangles);
+    EXPECT_TRUE(a.mesh->positions == b.mesh->positions &&
+                a.mesh->irradiance == b.mesh->irradiance && a.mesh->classes == b.mesh->classes &&
+                a.mesh->triangles == b.mesh->triangles);
     valuesOnly += a.version == served.version && a.shapeVersion < a.version;
   }
   EXPECT_GT(valuesOnly, 0u);  // the radiance changed values alone
