@@ -154,16 +154,20 @@ void writeObject(std::ostream& out, MemberWriters own, const Json& extra) {
 }
 
 // receiverToJson's text without the document, each number through the JSON library's own
-// formatting, with `extra`'s members.
-void writeReceiver(std::ostream& out, const Scene& scene, const ReceiverMesh& r, const Json& extra) {
+// formatting, with `extra`'s members; `valuesOnly`: object, face and irradiance alone.
+void writeReceiver(std::ostream& out, const Scene& scene, const ReceiverMesh& r, const Json& extra,
+                   bool valuesOnly) {
   const Object& object = receiverObject(scene, r);
   const auto vec3 = [&](const Vec3& v) { out << compactText(toJson(v)); };
   MemberWriters own;
-  own["class"] = [&] { writeArray(out, r.classes, [&](LightClass c) { out << '"' << toString(c) << '"'; }); };
   own["face"] = [&] { out << r.face.face; };
   own["irradiance"] = [&] { writeArray(out, r.irradiance, vec3); };
-  own["normal"] = [&] { out << compactText(toJson(r.normal)); };
   own["object"] = [&] { out << compactText(object.id); };
+  if (valuesOnly) return writeObject(out, std::move(own), extra);
+  own["class"] = [&] {
+    writeArray(out, r.classes, [&](LightClass c) { out << '"' << toString(c) << '"'; });
+  };
+  own["normal"] = [&] { out << compactText(toJson(r.normal)); };
   own["positions"] = [&] { writeArray(out, r.positions, vec3); };
   own["triangles"] = [&] {
     writeArray(out, r.triangles, [&](const std::array<uint32_t, 3>& t) { out << '[' << t[0] << ',' << t[1] << ',' << t[2] << ']'; });
@@ -186,7 +190,8 @@ void writeMeshJson(std::ostream& out, const Scene& scene, const Mesh& mesh, cons
     out << '[';
     for (size_t k = 0; k < mesh.receivers.size(); ++k) {
       if (k) out << ',';
-      writeReceiver(out, scene, mesh.receivers[k], extras.receiver ? extras.receiver(k) : Json());
+      writeReceiver(out, scene, mesh.receivers[k], extras.receiver ? extras.receiver(k) : Json(),
+                    extras.valuesOnly && extras.valuesOnly(k));
     }
     out << ']';
   };

@@ -33,9 +33,12 @@ void writeMeshJson(std::ostream& out, const Scene& scene, const Mesh& mesh, cons
 // object, or null) to receiver k. Each is merged in key order and replaces a member of the same
 // name, so the text is that of the document with the members set by operator[] (the server's
 // ids, versions, deltas and indirect light; docs/API.md).
+// valuesOnly(k) true: receiver k is written with "object", "face" and "irradiance" alone (and
+// its extras), for a reader that holds its shape already (the server's values-only deltas).
 struct MeshJsonExtras {
   nlohmann::json root = nlohmann::json::object();
   std::function<nlohmann::json(size_t receiver)> receiver;  // empty: none
+  std::function<bool(size_t receiver)> valuesOnly;          // empty: every receiver whole
 };
 void writeMeshJson(std::ostream& out, const Scene& scene, const Mesh& mesh, const std::string& sceneName,
                    const MeshJsonExtras& extras);

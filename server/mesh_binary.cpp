@@ -62,6 +62,20 @@ void writeIndirect(Writer& out, const IndirectBake& bake, const SceneSnapshot& s
     for (int c = 0; c < 3; ++c) out.f32(e.at(v)[c]);
 }
 
+// A part's irradiance as f32: grey (r = g = b at every vertex, as under white lights) sends
+// one channel, else three.
+std::vector<float> irradianceChannels(const ReceiverMesh& r) {
+  std::vector<float> grey, rgb;
+  bool isGrey = true;
+  for (const Vec3& e : r.irradiance) {
+    const float c[3] = {float(e.x), float(e.y), float(e.z)};
+    isGrey = isGrey && c[0] == c[1] && c[1] == c[2];
+    grey.push_back(c[0]);
+    rgb.insert(rgb.end(), c, c + 3);
+  }
+  return isGrey ? grey : rgb;
+}
+
 }  // namespace
 
 std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection, const IndirectBake* indirect) {
@@ -73,7 +87,7 @@ std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection
     if (inserted) names.push_back(name);
     return it->second;
   };
-  std::vector<uint32_t> partObjects, removedObjects;
+  std::vector<uint32_t> partObjects, valueObjects, removedObjects;
   size_t vertices = 0, triangles = 0;
   for (size_t i : selection.parts) {
     const MeshPart& part = snapshot.parts[i];
@@ -81,13 +95,21 @@ std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection
     vertices += part.mesh->positions.size();
     triangles += part.mesh->triangles.size();
   }
+  std::vector<std::vector<float>> values;  // per value part its irradiance channels
+  size_t valueFloats = 0;
+  for (size_t i : selection.valueParts) {
+    valueObjects.push_back(indexOf(snapshot.parts[i].key.receiver.object));
+    values.push_back(irradianceChannels(*snapshot.parts[i].mesh));
+    valueFloats += values.back().size();
+  }
   for (const PartKey& key : selection.removedParts) removedObjects.push_back(indexOf(key.receiver.object));
 
   size_t namesBytes = 0;
   for (const std::string& n : names) namesBytes += 4 + (n.size() + 3) / 4 * 4;
   Writer out(kHeaderBytes + namesBytes + selection.parts.size() * kPartRecordBytes +
-             selection.removedParts.size() * kRemovedRecordBytes + vertices * (indirect ? 37 : 25) + triangles * 12 +
-             selection.parts.size() * 4);
+             selection.removedParts.size() * kRemovedRecordBytes + vertices * (indirect ? 37 : 25) +
+             triangles * 12 + selection.parts.size() * 4 +
+             selection.valueParts.size() * kValuePartRecordBytes + valueFloats * 4);
 
   out.raw(kMagic, 4);
   out.u32(kLayoutVersion);
@@ -99,6 +121,7 @@ std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection
   out.u32(selection.removedParts.size());
   out.u32(vertices);
   out.u32(triangles);
+  out.u32(selection.valueParts.size());
 
   for (const std::string& n : names) {
     out.u32(n.size());
@@ -116,6 +139,16 @@ std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection
     out.u32(r.triangles.size());
     out.u32(part.version);
     for (int c = 0; c < 3; ++c) out.f32(r.normal[c]);
+  }
+  for (size_t k = 0; k < selection.valueParts.size(); ++k) {
+    const MeshPart& part = snapshot.parts[selection.valueParts[k]];
+    out.u32(valueObjects[k]);
+    out.u32(part.key.receiver.face);
+    out.i32(part.key.x);
+    out.i32(part.key.y);
+    out.u32(part.mesh->positions.size());
+    out.u32(part.version);
+    out.u32(values[k].size() == part.mesh->positions.size() ? 1 : 3);
   }
   for (size_t k = 0; k < selection.removedParts.size(); ++k) {
     const PartKey& key = selection.removedParts[k];
@@ -136,6 +169,8 @@ std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection
     for (const auto& t : r.triangles)
       for (uint32_t index : t) out.u32(index);
   }
+  for (const std::vector<float>& channels : values)
+    out.raw(channels.data(), channels.size() * sizeof(float));
   return out.take();
 }
 

@@ -11,9 +11,12 @@
 namespace penumbra::server::mesh_binary {
 
 inline constexpr char kMagic[4] = {'P', 'N', 'M', 'B'};
-inline constexpr uint32_t kLayoutVersion = 2;
-inline constexpr size_t kHeaderBytes = 40;
+// Layout 3 added values-only parts (a part whose irradiance alone changed: its new irradiance,
+// no geometry); a reader of layout 2 refuses it by the version rather than misread it.
+inline constexpr uint32_t kLayoutVersion = 3;
+inline constexpr size_t kHeaderBytes = 44;
 inline constexpr size_t kPartRecordBytes = 40;
+inline constexpr size_t kValuePartRecordBytes = 28;
 inline constexpr size_t kRemovedRecordBytes = 16;
 inline constexpr uint32_t kFlagDelta = 1;  // header flags: a `since` delta, not the whole mesh
 // header flags: each part's irradiance is followed by its indirect irradiance (f32[3V]); only
@@ -22,9 +25,9 @@ inline constexpr uint32_t kFlagIndirect = 2;
 // Class codes in the classes array.
 inline constexpr uint8_t kLit = 0, kPenumbra = 1, kUmbra = 2;
 
-// Encodes the selected parts (receivers' display chunks) of a snapshot, with each vertex's
-// indirect irradiance when `indirect` (a bake of this snapshot) is given. Throws std::overflow_error if a
-// count or version does not fit 32 bits.
+// Encodes the selected parts (receivers' display chunks; valueParts as their irradiance alone)
+// of a snapshot, with each vertex's indirect irradiance when `indirect` (a bake of this
+// snapshot) is given. Throws std::overflow_error if a count or version does not fit 32 bits.
 std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection,
                    const IndirectBake* indirect = nullptr);
 

@@ -29,20 +29,25 @@ std::vector<PartKey> keysFrom(const json& list) {
 PartChanges partChangesOf(const SceneSnapshot& next) {
   PartChanges changes;
   for (const MeshPart& part : next.parts)
-    if (part.version == next.version) changes.changed.push_back(part.key);
+    if (part.version == next.version)
+      (part.shapeVersion == next.version ? changes.changed : changes.values).push_back(part.key);
   for (const auto& [key, version] : next.removed)
     if (version == next.version) changes.removed.push_back(key);
   return changes;
 }
 
 std::string partChangesText(const PartChanges& changes) {
-  return json{{"changed", keysJson(changes.changed)}, {"removed", keysJson(changes.removed)}}.dump();
+  return json{{"changed", keysJson(changes.changed)},
+              {"removed", keysJson(changes.removed)},
+              {"values", keysJson(changes.values)}}
+      .dump();
 }
 
 PartChanges partChangesFromText(const std::string& text) {
   try {
     const json doc = json::parse(text);
-    return {keysFrom(doc.at("changed")), keysFrom(doc.at("removed"))};
+    return {keysFrom(doc.at("changed")), keysFrom(doc.at("removed")),
+            doc.contains("values") ? keysFrom(doc.at("values")) : std::vector<PartKey>{}};
   } catch (const json::exception& error) {
     throw std::runtime_error(std::string("journaled part changes unreadable: ") + error.what());
   }

@@ -12,14 +12,16 @@
 namespace penumbra::server {
 
 struct PartChanges {
-  std::vector<PartKey> changed;  // parts at the frame's version (new, or their mesh changed)
+  std::vector<PartKey> changed;  // parts at the frame's version in shape (new, or reshaped)
   std::vector<PartKey> removed;  // parts that left at the frame's version, in snapshot order
+  std::vector<PartKey> values;   // parts whose irradiance alone changed at the frame's version
 };
 
 // Read off the version a frame made: parts and removals at `next.version`.
 PartChanges partChangesOf(const SceneSnapshot& next);
 
-// Compact JSON: {"changed": [[object, face, x, y], …], "removed": […]}.
+// Compact JSON: {"changed": [[object, face, x, y], …], "removed": […], "values": […]}; text
+// without "values" (journaled before values-only parts) reads as none.
 std::string partChangesText(const PartChanges& changes);
 // Throws std::runtime_error on text partChangesText did not write.
 PartChanges partChangesFromText(const std::string& text);

@@ -14,9 +14,10 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-bool sameMesh(const ReceiverMesh& a, const ReceiverMesh& b) {
-  return a.normal == b.normal && a.positions == b.positions && a.irradiance == b.irradiance &&
-         a.classes == b.classes && a.triangles == b.triangles;
+// Equal in all but the irradiance: a client holding one needs only the other's irradiance.
+bool sameShape(const ReceiverMesh& a, const ReceiverMesh& b) {
+  return a.normal == b.normal && a.positions == b.positions && a.classes == b.classes &&
+         a.triangles == b.triangles;
 }
 
 // The engine's chunks of some receivers as parts, all at `version`.
@@ -24,7 +25,7 @@ std::vector<MeshPart> partsOf(const Scene& scene, const Engine::ReceiverChunks& 
   std::vector<MeshPart> out;
   const ReceiverKey key{scene.object(receiver.face.object).id, receiver.face.face};
   for (const Engine::MeshChunk& chunk : receiver.chunks)
-    out.push_back({{key, chunk.key.x, chunk.key.y}, chunk.mesh, version});
+    out.push_back({{key, chunk.key.x, chunk.key.y}, chunk.mesh, version, version});
   return out;
 }
 
@@ -127,8 +128,9 @@ SceneSession::Applied SceneSession::applyToEngine(
   }
 
   // A part's version moves only when its mesh data really changed, so `since` deltas
-  // carry what a client must redraw, whatever the engine recomputed. Receivers kept as
-  // they were keep their parts and versions.
+  // carry what a client must redraw, whatever the engine recomputed; its shape version only
+  // when more than its irradiance did, so a light's radiance sends values, not geometry.
+  // Receivers kept as they were keep their parts and versions.
   std::map<PartKey, size_t> before;
   for (const ReceiverKey& key : redone) {
     const auto [begin, end] = previousRuns.at(key);
@@ -141,7 +143,10 @@ SceneSession::Applied SceneSession::applyToEngine(
     const auto it = before.find(part.key);
     if (it == before.end()) continue;
     const MeshPart& old = previous->parts[it->second];
-    if (old.mesh == part.mesh || sameMesh(*old.mesh, *part.mesh)) part.version = old.version;
+    const bool sameShaped = old.mesh == part.mesh || sameShape(*old.mesh, *part.mesh);
+    if (sameShaped) part.shapeVersion = old.shapeVersion;
+    if (sameShaped && (old.mesh == part.mesh || old.mesh->irradiance == part.mesh->irradiance))
+      part.version = old.version;
     before.erase(it);
   }
   const double meshSeconds = secondsSince(meshStart);
@@ -171,13 +176,13 @@ void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames,
   std::lock_guard edit(editMutex_);
   const std::shared_ptr<const SceneSnapshot> start = snapshot();
   if (frames.empty()) return;
-  std::map<PartKey, uint64_t> versions;  // every live part's version, as the frames leave them
+  std::map<PartKey, PartVersions> versions;  // every live part's versions, as the frames leave them
   // The bytes of the parts as of `keptAt` (the start, then each fresh build): a part unchanged
   // since keeps them, as it did when served.
   std::map<PartKey, std::shared_ptr<const ReceiverMesh>> kept;
   uint64_t keptAt = start->version;
   for (const MeshPart& part : start->parts) {
-    versions[part.key] = part.version;
+    versions[part.key] = {part.version, part.shapeVersion};
     kept[part.key] = part.mesh;
   }
   auto next = std::make_shared<SceneSnapshot>();
@@ -207,7 +212,15 @@ void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames,
     // As applyToEngine: a part that came back is live again; the parts that left go last.
     const std::set<PartKey> changed(journaled.changes.changed.begin(), journaled.changes.changed.end());
     std::erase_if(next->removed, [&](const auto& entry) { return changed.count(entry.first) > 0; });
-    for (const PartKey& key : changed) versions[key] = last.version;
+    for (const PartKey& key : changed) versions[key] = {last.version, last.version};
+    for (const PartKey& key : journaled.changes.values) {
+      const auto it = versions.find(key);
+      if (it == versions.end() || changed.count(key))
+        throw std::runtime_error("frame " + std::to_string(journaled.version) +
+                                 " journaled new values for a part of receiver '" +
+                                 key.receiver.object + "' it does not hold");
+      it->second.version = last.version;
+    }
     for (const PartKey& key : journaled.changes.removed) {
       versions.erase(key);
       next->removed.emplace_back(key, last.version);
@@ -228,7 +241,7 @@ void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames,
 }
 
 std::vector<MeshPart> SceneSession::meshedParts(
-    const std::map<PartKey, uint64_t>& versions,
+    const std::map<PartKey, PartVersions>& versions,
     const std::map<PartKey, std::shared_ptr<const ReceiverMesh>>& kept, uint64_t keptAt,
     const Scene& scene) {
   std::vector<MeshPart> parts;
@@ -239,7 +252,8 @@ std::vector<MeshPart> SceneSession::meshedParts(
       if (it == versions.end())
         throw std::runtime_error("a part of receiver '" + part.key.receiver.object +
                                  "' has no journaled version");
-      part.version = it->second;
+      part.version = it->second.version;
+      part.shapeVersion = it->second.shape;
       if (part.version <= keptAt) {
         const auto same = kept.find(part.key);
         if (same == kept.end())

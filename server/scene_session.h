@@ -129,10 +129,13 @@ class SceneSession {
   // With editMutex_ held: engine_ becomes a fresh build of `scene` numbered `version`, the new
   // base (rebase(), rollBackEngine's fallback).
   void buildBase(Scene scene, uint64_t version);
-  // With editMutex_ held: the engine's mesh as parts, each at its version in `versions` (every
+  struct PartVersions {
+    uint64_t version = 0, shape = 0;  // MeshPart::version, MeshPart::shapeVersion
+  };
+  // With editMutex_ held: the engine's mesh as parts, each at its versions in `versions` (every
   // part must be there, and only those); a part at or before `keptAt` has the bytes in `kept`.
   std::vector<MeshPart> meshedParts(
-      const std::map<PartKey, uint64_t>& versions,
+      const std::map<PartKey, PartVersions>& versions,
       const std::map<PartKey, std::shared_ptr<const ReceiverMesh>>& kept, uint64_t keptAt,
       const Scene& scene);
 

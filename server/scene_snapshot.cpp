@@ -52,13 +52,19 @@ MeshSelection SceneSnapshot::select(std::optional<uint64_t> since) const {
         lostPart.insert(key.receiver);
       }
   forEachReceiver(parts, [&](const ReceiverKey& key, size_t begin, size_t end) {
-    bool changed = !since || lostPart.erase(key) > 0;
-    for (size_t i = begin; i < end; ++i)
-      if (!since || parts[i].version > *since) {
+    bool reshaped = !since || lostPart.erase(key) > 0, changed = reshaped;
+    for (size_t i = begin; i < end; ++i) {
+      if (since && parts[i].version <= *since) continue;
+      changed = true;
+      if (since && parts[i].shapeVersion <= *since) {
+        selection.valueParts.push_back(i);
+      } else {
         selection.parts.push_back(i);
-        changed = true;
+        reshaped = true;
       }
+    }
     if (changed) selection.receivers.push_back(key);
+    if (changed && !reshaped) selection.valueReceivers.push_back(key);
   });
   // What is left lost a part and has none now: the receiver has left.
   selection.removed.assign(lostPart.begin(), lostPart.end());
@@ -101,11 +107,15 @@ size_t SceneSnapshot::triangleCount() const {
 void SceneSnapshot::writeMeshJson(std::ostream& out, const MeshSelection& selection,
                                   const protocol::MeshJsonExtras& more) const {
   const std::set<ReceiverKey> wanted(selection.receivers.begin(), selection.receivers.end());
+  const std::set<ReceiverKey> valuesOnly(selection.valueReceivers.begin(),
+                                         selection.valueReceivers.end());
   const bool whole = !selection.since;  // every receiver: the cached whole mesh
   Mesh chosen;
   std::vector<uint64_t> versions;
+  std::vector<bool> chosenValuesOnly;
   forEachReceiver(parts, [&](const ReceiverKey& key, size_t begin, size_t end) {
     if (!wanted.count(key)) return;
+    chosenValuesOnly.push_back(valuesOnly.count(key) > 0);
     if (!whole) chosen.receivers.push_back(wholeReceiver(parts, begin, end));
     uint64_t newest = 0;
     for (size_t i = begin; i < end; ++i) newest = std::max(newest, parts[i].version);
@@ -116,6 +126,8 @@ void SceneSnapshot::writeMeshJson(std::ostream& out, const MeshSelection& select
   });
   protocol::MeshJsonExtras extras;
   extras.root = more.root.is_object() ? more.root : nlohmann::json::object();
+  // A delta is mesh delta JSON v2 (its receivers may be values only); a whole mesh is mesh JSON v1.
+  if (selection.since) extras.root["version"] = kMeshDeltaJsonVersion;
   extras.root["id"] = id;
   extras.root["scene_version"] = version;
   extras.root["since"] = selection.since ? nlohmann::json(*selection.since) : nlohmann::json(nullptr);
@@ -128,6 +140,7 @@ void SceneSnapshot::writeMeshJson(std::ostream& out, const MeshSelection& select
     members["scene_version"] = versions.at(k);
     return members;
   };
+  extras.valuesOnly = [&](size_t k) { return bool(chosenValuesOnly.at(k)); };
   protocol::writeMeshJson(out, scene, whole ? mesh() : chosen, name, extras);
 }
 

@@ -40,17 +40,27 @@ struct MeshPart {
   PartKey key;
   std::shared_ptr<const ReceiverMesh> mesh;
   uint64_t version = 0;  // the scene version of its last change
+  // The scene version of its last change of shape (positions, triangles, normal or classes):
+  // at most `version`; below it when only the irradiance changed since (a light's radiance).
+  uint64_t shapeVersion = 0;
 };
 
 // What a mesh response carries: parts (the binary form) and, for mesh JSON, whole
 // receivers. Indices are into SceneSnapshot::parts, ascending.
 struct MeshSelection {
-  std::optional<uint64_t> since;  // empty: the whole mesh
-  std::vector<size_t> parts;            // changed after `since`
+  std::optional<uint64_t> since;        // empty: the whole mesh
+  std::vector<size_t> parts;            // changed in shape after `since`: sent whole
+  std::vector<size_t> valueParts;       // changed after `since` in their irradiance alone
   std::vector<PartKey> removedParts;    // gone after `since`
   std::vector<ReceiverKey> receivers;   // receivers with a changed part (scene order)
+  // Of `receivers`, those whose every change after `since` is a part's irradiance (no part
+  // changed in shape, added or removed): mesh JSON sends them as values only (scene order).
+  std::vector<ReceiverKey> valueReceivers;
   std::vector<ReceiverKey> removed;     // receivers gone after `since` (no part left)
 };
+
+// The "version" of a served mesh JSON delta: mesh JSON v1 whose receivers may be values only.
+inline constexpr int kMeshDeltaJsonVersion = 2;
 
 struct SceneSnapshot {
   std::string id;
@@ -89,7 +99,8 @@ struct SceneSnapshot {
 
   // Writes mesh JSON v1 (SCENE_FORMAT.md) of the selection's receivers, plus "id",
   // "scene_version", "since", per receiver "scene_version", "removed" (docs/API.md) and
-  // `more`'s members; streamed, never a JSON document (it was ~10× the text's size).
+  // `more`'s members; streamed, never a JSON document (it was ~10× the text's size). A delta
+  // (`since` set) says "version": 2 and writes its valueReceivers with their irradiance alone.
   void writeMeshJson(std::ostream& out, const MeshSelection& selection,
                      const protocol::MeshJsonExtras& more = {}) const;
 

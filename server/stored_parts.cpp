@@ -8,7 +8,9 @@ namespace penumbra::server {
 
 namespace {
 
-constexpr char kMagic[8] = {'P', 'N', 'S', 'P', 'A', 'R', 'T', '1'};
+// Format 2 adds each part's shape version; format 1 (before it) reads with shape = version.
+constexpr char kMagic[8] = {'P', 'N', 'S', 'P', 'A', 'R', 'T', '2'};
+constexpr char kMagicFormat1[8] = {'P', 'N', 'S', 'P', 'A', 'R', 'T', '1'};
 
 // Values are copied as they lie in memory: the journal is read back by the same build on the
 // same machine kind (little-endian x86-64 / aarch64), like the rest of its bytes.
@@ -96,6 +98,7 @@ std::string encodeStoredParts(const SceneSnapshot& snapshot) {
   for (const MeshPart& part : snapshot.parts) {
     out.putKey(part.key);
     out.put(part.version);
+    out.put(part.shapeVersion);
     const ReceiverMesh& mesh = *part.mesh;
     out.put(mesh.face);
     out.put(mesh.normal);
@@ -119,8 +122,9 @@ std::string encodeStoredParts(const SceneSnapshot& snapshot) {
 }
 
 StoredParts decodeStoredParts(const std::string& bytes) {
-  if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
-    Reader::fail();
+  if (bytes.size() < sizeof(kMagic)) Reader::fail();
+  const bool format1 = std::memcmp(bytes.data(), kMagicFormat1, sizeof(kMagic)) == 0;
+  if (!format1 && std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0) Reader::fail();
   Reader in(bytes);
   for (size_t i = 0; i < sizeof(kMagic); ++i) in.get<char>();
   StoredParts stored;
@@ -129,6 +133,8 @@ StoredParts decodeStoredParts(const std::string& bytes) {
     MeshPart part;
     part.key = in.getKey();
     part.version = in.get<uint64_t>();
+    part.shapeVersion = format1 ? part.version : in.get<uint64_t>();
+    if (part.shapeVersion > part.version) Reader::fail();
     auto mesh = std::make_shared<ReceiverMesh>();
     mesh->face = in.get<FaceId>();
     mesh->normal = in.get<Vec3>();

@@ -29,7 +29,9 @@ namespace {
 const char* const kHistory[] = {
     R"({"edits":[{"op":"move","id":"box","transform":{"translate":[0.3,0.5,0],"rotate_deg":[0,30,0]}}]})",
     R"({"edits":[{"op":"move","id":"box","transform":{"translate":[0.6,0.5,0.1],"rotate_deg":[0,40,0]}}]})",
+    R"({"edits":[{"op":"set_light","id":"lamp","radiance":[12,12,12]}]})",  // values only
     R"({"edits":[{"op":"remove","id":"box2"}]})",
+    R"({"edits":[{"op":"set_light","id":"lamp","radiance":[12,10,8]}]})",  // values only, coloured
     R"({"edits":[{"op":"move","id":"box","transform":{"translate":[0.6,0.5,0.4],"rotate_deg":[0,45,0]}}]})",
     R"({"edits":[{"op":"add","object":{"id":"box2","material":"white",
        "transform":{"translate":[-1.5,0.25,0.5],"scale":[0.5,0.5,0.5]},
@@ -80,6 +82,11 @@ void checkQuery(const SceneSnapshot& snapshot, std::optional<uint64_t> since) {
     fuzz::check(i < snapshot.parts.size(), "selected part out of range");
     fuzz::check(!since || snapshot.parts[i].version > *since, "selected part not newer than since");
   }
+  for (size_t i : selection.valueParts) {
+    fuzz::check(since && i < snapshot.parts.size(), "value part out of range or in a whole mesh");
+    fuzz::check(snapshot.parts[i].version > *since && snapshot.parts[i].shapeVersion <= *since,
+                "value part not newer than since, or reshaped after it");
+  }
   if (since && *since >= snapshot.version)
     fuzz::check(selection.parts.empty() && selection.removedParts.empty(), "a delta from the future");
   // The route refuses since > version (400) before encoding: the binary header has 32 bits.
@@ -89,6 +96,13 @@ void checkQuery(const SceneSnapshot& snapshot, std::optional<uint64_t> since) {
     Parts rebuilt = partsOf(*history()[*since]);
     for (const PartKey& key : selection.removedParts) rebuilt.erase(key);
     for (size_t i : selection.parts) rebuilt[snapshot.parts[i].key] = snapshot.parts[i].mesh;
+    for (size_t i : selection.valueParts) {  // the held shape, the new irradiance
+      const auto held = rebuilt.find(snapshot.parts[i].key);
+      fuzz::check(held != rebuilt.end(), "value part not held at `since`");
+      auto mesh = std::make_shared<ReceiverMesh>(*held->second);
+      mesh->irradiance = snapshot.parts[i].mesh->irradiance;
+      held->second = std::move(mesh);
+    }
     const Parts expected = partsOf(snapshot);
     fuzz::check(rebuilt.size() == expected.size(), "delta applied to `since` has other parts");
     for (const auto& [key, mesh] : expected)

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "server_fixture.h"
+#include "tests/server/binary_mesh_reader.h"
 
 namespace penumbra::server::test {
 namespace {
@@ -143,93 +144,6 @@ TEST(ServerApi, RemovedObjectsAppearInDeltas) {
   for (const json& r : delta["receivers"]) EXPECT_NE(r["object"], "short_block");
 }
 
-// Reads the binary layout exactly as docs/API.md describes it.
-struct BinaryMesh {
-  uint32_t layout = 0, version = 0, flags = 0, since = 0;
-  std::vector<std::string> objects;
-  struct Part {  // one display chunk of a receiver
-    uint32_t object, face;
-    int32_t x, y;
-    uint32_t vertices, triangles, version;
-    float normal[3];
-    std::vector<float> positions, irradiance;
-    std::vector<uint8_t> classes;
-    std::vector<uint32_t> indices;
-  };
-  std::vector<Part> parts;
-  struct Removed {
-    uint32_t object, face;
-    int32_t x, y;
-  };
-  std::vector<Removed> removed;
-  uint32_t totalVertices = 0, totalTriangles = 0;
-};
-
-BinaryMesh parseBinary(const std::string& bytes) {
-  size_t at = 0;
-  auto take = [&](void* out, size_t n) {
-    if (at + n > bytes.size())
-      throw std::runtime_error("binary mesh truncated at byte " + std::to_string(at));
-    std::memcpy(out, bytes.data() + at, n);
-    at += n;
-  };
-  auto u32 = [&] {
-    uint32_t v;
-    take(&v, 4);
-    return v;
-  };
-  auto i32 = [&] {
-    int32_t v;
-    take(&v, 4);
-    return v;
-  };
-  auto f32 = [&] {
-    float v;
-    take(&v, 4);
-    return v;
-  };
-  auto align = [&] { at = (at + 3) / 4 * 4; };
-  BinaryMesh m;
-  char magic[4];
-  take(magic, 4);
-  if (std::string(magic, 4) != "PNMB") throw std::runtime_error("bad magic");
-  m.layout = u32(), m.version = u32(), m.flags = u32(), m.since = u32();
-  const uint32_t objects = u32(), parts = u32(), removed = u32();
-  m.totalVertices = u32(), m.totalTriangles = u32();
-  EXPECT_EQ(at, 40u);
-  for (uint32_t i = 0; i < objects; ++i) {
-    const uint32_t length = u32();
-    std::string name(length, '\0');
-    take(name.data(), length);
-    align();
-    m.objects.push_back(name);
-  }
-  m.parts.resize(parts);
-  for (auto& r : m.parts) {
-    r.object = u32(), r.face = u32(), r.x = i32(), r.y = i32();
-    r.vertices = u32(), r.triangles = u32(), r.version = u32();
-    for (float& n : r.normal) n = f32();
-  }
-  for (uint32_t i = 0; i < removed; ++i) {
-    BinaryMesh::Removed& gone = m.removed.emplace_back();
-    gone.object = u32(), gone.face = u32(), gone.x = i32(), gone.y = i32();
-  }
-  for (auto& r : m.parts) {
-    EXPECT_EQ(at % 4, 0u);
-    r.positions.resize(3 * r.vertices);
-    take(r.positions.data(), 4 * r.positions.size());
-    r.irradiance.resize(3 * r.vertices);
-    take(r.irradiance.data(), 4 * r.irradiance.size());
-    r.classes.resize(r.vertices);
-    take(r.classes.data(), r.vertices);
-    align();
-    r.indices.resize(3 * r.triangles);
-    take(r.indices.data(), 4 * r.indices.size());
-  }
-  if (at != bytes.size()) throw std::runtime_error("binary mesh has trailing bytes");
-  return m;
-}
-
 TEST(ServerApi, BinaryMeshMatchesJsonMesh) {
   RunningServer running;
   const std::string id = running.addBundled("cornell");
@@ -240,7 +154,7 @@ TEST(ServerApi, BinaryMeshMatchesJsonMesh) {
   ASSERT_EQ(res->status, 200);
   EXPECT_EQ(res->get_header_value("Content-Type"), "application/octet-stream");
   const BinaryMesh bin = parseBinary(res->body);
-  EXPECT_EQ(bin.layout, 2u);
+  EXPECT_EQ(bin.layout, 3u);
   EXPECT_EQ(bin.version, 0u);
   EXPECT_EQ(bin.flags, 0u);
   // A receiver is its parts one after the other (chunks in order, distinct).

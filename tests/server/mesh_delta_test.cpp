@@ -1,7 +1,8 @@
 // The served mesh after edits, as a client following it sees it: the whole mesh at
-// version 0, then each frame's `since` delta applied (listed receivers replaced,
-// removed ones dropped) gives byte-identical receiver JSON to a fresh mesh() of an
-// engine given the same frames. Also gzip Content-Encoding of the binary mesh.
+// version 0, then each frame's `since` delta applied (listed receivers replaced, values-only
+// ones given their new irradiance, removed ones dropped) gives byte-identical receiver JSON to
+// a fresh mesh() of an engine given the same frames, moves and light radiance changes mixed. A
+// radiance edit sends values, not geometry. Also gzip Content-Encoding of the binary mesh.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -10,15 +11,20 @@
 #include <tuple>
 
 #include "bench/lib/cubes_scene.h"
+#include "bench/lib/model_scene.h"
 #include "protocol/mesh_json.h"
 #include "server/gzip_encoding.h"
+#include "server/mesh_binary.h"
 #include "server/scene_session.h"
+#include "tests/server/binary_mesh_reader.h"
 #include "tests/server/server_fixture.h"
 
 namespace penumbra::server {
 namespace {
 
 using nlohmann::json;
+using test::BinaryMesh;
+using test::parseBinary;
 
 // Receiver JSON by "object/face", without the served-only "scene_version".
 std::map<std::string, std::string> receiversByKey(const json& mesh) {
@@ -37,10 +43,27 @@ json meshJson(const SceneSnapshot& snapshot, const MeshSelection& selection) {
   return json::parse(text.str());
 }
 
+// A set_light of the scene's first light: its radiance brighter or dimmer, half the time in
+// another colour too.
+Edit radianceEdit(const Scene& scene, std::mt19937_64& rng) {
+  const Light& light = scene.lights().at(0);
+  std::uniform_real_distribution<double> factor(0.5, 1.5);
+  Edit edit;
+  edit.op = Edit::Op::SetLight;
+  edit.id = light.id;
+  Vec3 radiance = light.radiance * factor(rng);
+  if (rng() % 2) radiance = Vec3(radiance.x * factor(rng), radiance.y, radiance.z * factor(rng));
+  edit.radiance = radiance;
+  return edit;
+}
+
 // A frame like a drag (small moves of one cube), sometimes another cube too, an
-// added cube, or removing the one added before.
+// added cube, or removing the one added before; every third frame a light's radiance alone,
+// and now and then a radiance change with the moves.
 Frame randomFrame(const Scene& scene, std::mt19937_64& rng, int step, bool& added) {
   Frame frame;
+  if (step % 3 == 2) return Frame{{radianceEdit(scene, rng)}};
+  if (step % 7 == 3) frame.edits.push_back(radianceEdit(scene, rng));
   auto moveOf = [&](const std::string& id, double dx, double dz, double turn) {
     const size_t index = *scene.findObject(id);
     Edit edit;
@@ -89,21 +112,40 @@ TEST(MeshDelta, DeltasAppliedToTheWholeMeshEqualAFreshMeshAfterEachFrame) {
 
   std::mt19937_64 rng(17);
   bool added = false;
-  size_t meshed = 0, receivers = 0, reused = 0, lit = 0;
+  size_t meshed = 0, receivers = 0, reused = 0, lit = 0, valuesOnly = 0;
   for (int step = 0; step < 12; ++step) {
     SCOPED_TRACE("step " + std::to_string(step));
     const Frame frame = randomFrame(reference.scene(), rng, step, added);
     const SceneSession::Applied applied = session.apply(frame);
     // The session casts afresh the changed trees that are mostly dead slots; so does the reference.
     reference.compactTrees(reference.apply(frame).changedReceivers);
-    meshed += applied.meshedReceivers;
-    receivers += applied.snapshot->receiverCount();
-    reused += applied.meshCells.cellsReused;
-    lit += applied.meshCells.cellsLit;
+    if (!applied.result.radianceChanged) {  // a radiance change sums every receiver again
+      meshed += applied.meshedReceivers;
+      receivers += applied.snapshot->receiverCount();
+      reused += applied.meshCells.cellsReused;
+      lit += applied.meshCells.cellsLit;
+    }
 
     const SceneSnapshot& s = *applied.snapshot;
     const json delta = meshJson(s, s.select(s.version - 1));
-    for (const auto& [key, text] : receiversByKey(delta)) held[key] = text;
+    EXPECT_EQ(delta["version"], 2);
+    for (json r : delta["receivers"]) {
+      const std::string key =
+          r["object"].get<std::string>() + "/" + std::to_string(r["face"].get<int>());
+      r.erase("scene_version");
+      if (r.contains("positions")) {
+        held[key] = r.dump();
+        continue;
+      }
+      // Values only: the held receiver's shape with the new irradiance.
+      EXPECT_EQ(r.size(), 3u) << r.dump().substr(0, 200);
+      ASSERT_TRUE(held.count(key)) << key;
+      json receiver = json::parse(held.at(key));
+      ASSERT_EQ(receiver["irradiance"].size(), r["irradiance"].size()) << key;
+      receiver["irradiance"] = r["irradiance"];
+      held[key] = receiver.dump();
+      ++valuesOnly;
+    }
     for (const json& gone : delta["removed"])
       held.erase(gone["object"].get<std::string>() + "/" + std::to_string(gone["face"].get<int>()));
 
@@ -123,6 +165,7 @@ TEST(MeshDelta, DeltasAppliedToTheWholeMeshEqualAFreshMeshAfterEachFrame) {
   // most are replayed from the memo.
   EXPECT_LT(meshed * 2, receivers);
   EXPECT_GT(reused, lit);
+  EXPECT_GT(valuesOnly, 0u);  // radiance changes were sent as values
 }
 
 // The binary form's view: parts. Following each frame's part delta (changed parts
@@ -143,20 +186,30 @@ TEST(MeshDelta, PartDeltasAppliedToTheWholeMeshEqualAFreshEnginesChunks) {
   }
   std::mt19937_64 rng(29);
   bool added = false;
-  size_t floorSent = 0, floorHeld = 0;
+  size_t floorSent = 0, floorHeld = 0, valueParts = 0;
   for (int step = 0; step < 12; ++step) {
     SCOPED_TRACE("step " + std::to_string(step));
     const Frame frame = randomFrame(reference.scene(), rng, step, added);
-    const SceneSnapshot& s = *session.apply(frame).snapshot;
+    const SceneSession::Applied applied = session.apply(frame);
+    const SceneSnapshot& s = *applied.snapshot;
     // The session casts afresh the changed trees that are mostly dead slots; so does the reference.
     reference.compactTrees(reference.apply(frame).changedReceivers);
     const MeshSelection delta = s.select(s.version - 1);
     for (const PartKey& key : delta.removedParts) held.erase(key);
     for (size_t i : delta.parts) {
       held[s.parts[i].key] = contentOf(*s.parts[i].mesh);
-      floorSent += s.parts[i].key.receiver.object == "floor";
+      if (!applied.result.radianceChanged) floorSent += s.parts[i].key.receiver.object == "floor";
     }
-    for (const MeshPart& part : s.parts) floorHeld += part.key.receiver.object == "floor";
+    // Values only: the held part keeps its shape and takes the new irradiance.
+    for (size_t i : delta.valueParts) {
+      ASSERT_TRUE(held.count(s.parts[i].key));
+      auto& irradiance = std::get<1>(held.at(s.parts[i].key));
+      ASSERT_EQ(irradiance.size(), s.parts[i].mesh->irradiance.size());
+      irradiance = s.parts[i].mesh->irradiance;
+      ++valueParts;
+    }
+    if (!applied.result.radianceChanged)
+      for (const MeshPart& part : s.parts) floorHeld += part.key.receiver.object == "floor";
 
     reference.forgetMeshMemo();
     std::map<PartKey, Content> want;
@@ -171,8 +224,80 @@ TEST(MeshDelta, PartDeltasAppliedToTheWholeMeshEqualAFreshEnginesChunks) {
     }
     if (HasFailure()) return;
   }
-  EXPECT_GT(floorHeld, 12u * 4);       // the floor is several chunks
-  EXPECT_LT(floorSent * 2, floorHeld);  // of which a frame sends a few
+  EXPECT_GT(floorHeld, 6u * 4);         // the floor is several chunks
+  EXPECT_LT(floorSent * 2, floorHeld);  // of which a drag's frame sends a few
+  EXPECT_GT(valueParts, 0u);            // radiance changes were sent as values
+}
+
+// A light's radiance or colour changes every vertex's value and nothing of the triangulation:
+// the binary delta has no geometry (no whole part, no vertex, no triangle), a part's irradiance
+// alone: under a white light one channel, at most a quarter of the whole mesh's bytes, in
+// colour three, at most a third; applied to the whole mesh it gives the new version's whole
+// mesh. The JSON delta's receivers are values only too.
+TEST(MeshDelta, ARadianceEditSendsValuesNotGeometry) {
+  ModelSceneOptions options;
+  options.kind = ModelKind::Teapot;
+  options.triangles = 1000;
+  const Scene scene = makeModelScene(options);
+  SceneSession session("t", "teapot", scene);
+  BinaryMesh held = parseBinary(
+      mesh_binary::encode(*session.snapshot(), session.snapshot()->select(std::nullopt)));
+  const Light light = scene.lights().at(0);
+  ASSERT_TRUE(light.radiance.x == light.radiance.y &&
+              light.radiance.y == light.radiance.z);  // white
+  const std::vector<Vec3> radiances = {light.radiance * 1.3, Vec3(0.9, 1.1, 0.7) * light.radiance,
+                                       light.radiance * 0.6};
+  for (size_t step = 0; step < radiances.size(); ++step) {
+    const bool white =
+        radiances[step].x == radiances[step].y && radiances[step].y == radiances[step].z;
+    SCOPED_TRACE("step " + std::to_string(step) + (white ? " (white)" : " (coloured)"));
+    Edit edit;
+    edit.op = Edit::Op::SetLight;
+    edit.id = light.id;
+    edit.radiance = radiances[step];
+    const SceneSession::Applied applied = session.apply(Frame{{edit}});
+    EXPECT_TRUE(applied.result.radianceChanged);
+    const SceneSnapshot& s = *applied.snapshot;
+    const std::string whole = mesh_binary::encode(s, s.select(std::nullopt));
+    const std::string deltaBytes = mesh_binary::encode(s, s.select(s.version - 1));
+    const BinaryMesh delta = parseBinary(deltaBytes);
+    EXPECT_EQ(delta.layout, mesh_binary::kLayoutVersion);
+    EXPECT_TRUE(delta.parts.empty());
+    EXPECT_TRUE(delta.removed.empty());
+    EXPECT_EQ(delta.totalVertices, 0u);
+    EXPECT_EQ(delta.totalTriangles, 0u);
+    EXPECT_GT(delta.valueParts.size(), s.parts.size() / 2);
+    EXPECT_LE(deltaBytes.size() * (white ? 4 : 3), whole.size())
+        << deltaBytes.size() << " of " << whole.size();
+    for (const BinaryMesh::ValuePart& v : delta.valueParts) EXPECT_EQ(v.channels, white ? 1u : 3u);
+    // Applied by (object, face, chunk), the held parts become the whole mesh.
+    for (const BinaryMesh::ValuePart& v : delta.valueParts) {
+      size_t matched = 0;
+      for (BinaryMesh::Part& p : held.parts)
+        if (held.objects.at(p.object) == delta.objects.at(v.object) && p.face == v.face &&
+            p.x == v.x && p.y == v.y) {
+          ASSERT_EQ(p.vertices, v.vertices);
+          p.irradiance = v.irradiance;
+          p.version = v.version;
+          ++matched;
+        }
+      EXPECT_EQ(matched, 1u);
+    }
+    const BinaryMesh want = parseBinary(whole);
+    ASSERT_EQ(held.parts.size(), want.parts.size());
+    for (size_t p = 0; p < want.parts.size(); ++p) {
+      EXPECT_EQ(held.parts[p].irradiance, want.parts[p].irradiance) << p;
+      EXPECT_EQ(held.parts[p].positions, want.parts[p].positions) << p;
+      EXPECT_EQ(held.parts[p].version, want.parts[p].version) << p;
+    }
+
+    const json jsonDelta = meshJson(s, s.select(s.version - 1));
+    EXPECT_EQ(jsonDelta["version"], 2);
+    EXPECT_FALSE(jsonDelta["receivers"].empty());
+    for (const json& r : jsonDelta["receivers"])
+      EXPECT_FALSE(r.contains("positions") || r.contains("triangles"));
+    if (HasFailure()) return;
+  }
 }
 
 TEST(MeshDelta, AcceptEncodingParsing) {

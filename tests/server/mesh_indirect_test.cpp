@@ -82,7 +82,7 @@ TEST(MeshIndirect, ValuesEqualCoreVertexIndirectInJsonAndBinary) {
   EXPECT_EQ(first->body, again->body);  // stable bytes
   EXPECT_EQ(again->get_header_value("X-Penumbra-Indirect-Cached"), "1");
   EXPECT_EQ(binaryIndirect(first->body), flat);
-  // Without indirect=1: layout 2 as before, no flag.
+  // Without indirect=1: the same layout without the indirect arrays, no flag.
   const std::string bytes = client.Get((base + "format=bin").c_str())->body;
   EXPECT_EQ(bytes, client.Get((base + "format=bin&indirect=0").c_str())->body);
   uint32_t flags;

@@ -3,7 +3,7 @@
 // a click selects the ceiling light and the inspector shows its centre, width × depth, radiance and
 // intensity; a typed bigger width × depth is one set_light (the server's light grows, the mesh
 // version moves, the floor's penumbrae get wider); a typed double intensity doubles the floor's
-// irradiance (radiance alone: the same mesh, values × 2); the W gizmo drags the light along x;
+// irradiance (radiance alone: the same mesh, values × 2, fetched as values only); the W gizmo drags the light along x;
 // each is undone by Ctrl+Z back to the file's light; a typed x leaves the other coordinates exactly
 // as they were; nothing is shown or logged as an error.
 //
@@ -67,9 +67,13 @@ async function power(page, base, sceneId) {
   const intensity = Number(await page.inputValue('#inspector input[data-key="intensity.0"]'));
   await type(page, 'intensity.0', 2 * intensity);
   const light = await serverLight(base, sceneId);
-  const after = { version: (await state(page)).version, sum: await floorSum(page) };
+  const held = await state(page);
+  const after = { version: held.version, sum: await floorSum(page), deltaBytes: held.mesh.lastBytes };
   check(after.version === before.version + 1 && Math.abs(after.sum / before.sum - 2) < 1e-4 && Math.abs(Math.max(...light.radiance) - 2 * intensity) < 1e-3,
     'a doubled intensity doubles the radiance and the floor\'s irradiance', JSON.stringify({ before, after, radiance: light.radiance }));
+  // Radiance alone: the delta the page applied held values, not geometry (binary value parts).
+  const whole = (await (await fetch(`${base}/api/scenes/${sceneId}/mesh?format=bin`)).arrayBuffer()).byteLength;
+  check(after.deltaBytes * 4 <= whole, 'the intensity\'s mesh delta is values only: at most a quarter of the whole mesh', JSON.stringify({ delta: after.deltaBytes, whole }));
 }
 
 async function drag(page, base, sceneId) {

@@ -1,10 +1,12 @@
-// Decodes the server's binary mesh (docs/API.md "Binary", magic PNMB, layout 2: parts, with flag 2 their indirect light, each one display
-// chunk of one receiver) into typed arrays viewing the response buffer in place. Throws an Error naming what is malformed.
+// Decodes the server's binary mesh (docs/API.md "Binary", magic PNMB, layout 3: parts, with flag 2 their indirect light, each one display
+// chunk of one receiver, and in a delta value parts, a held part's new irradiance alone) into typed arrays viewing the response
+// buffer in place. Throws an Error naming what is malformed.
 
 const MAGIC = 'PNMB';
-const LAYOUT_VERSION = 2;
-const HEADER_BYTES = 40;
+const LAYOUT_VERSION = 3;
+const HEADER_BYTES = 44;
 const PART_RECORD_BYTES = 40;
+const VALUE_PART_RECORD_BYTES = 28;
 const REMOVED_RECORD_BYTES = 16;
 const FLAG_DELTA = 1;
 const FLAG_INDIRECT = 2; // each part's irradiance is followed by its indirect irradiance (mesh?indirect=1)
@@ -41,6 +43,7 @@ export function decodeMeshBinary(buffer) {
   const header = {
     sceneVersion: u32(8), delta: (u32(12) & FLAG_DELTA) !== 0, indirect: (u32(12) & FLAG_INDIRECT) !== 0, since: u32(16),
     names: u32(20), partCount: u32(24), removedCount: u32(28), totalVertices: u32(32), totalTriangles: u32(36),
+    valuePartCount: u32(40),
   };
 
   let offset = HEADER_BYTES;
@@ -58,7 +61,8 @@ export function decodeMeshBinary(buffer) {
     return names[index];
   };
 
-  need(offset, header.partCount * PART_RECORD_BYTES + header.removedCount * REMOVED_RECORD_BYTES, 'records');
+  need(offset, header.partCount * PART_RECORD_BYTES + header.valuePartCount * VALUE_PART_RECORD_BYTES +
+    header.removedCount * REMOVED_RECORD_BYTES, 'records');
   const parts = [];
   for (let p = 0; p < header.partCount; ++p, offset += PART_RECORD_BYTES) {
     const object = name(u32(offset), `part ${p}`);
@@ -68,6 +72,19 @@ export function decodeMeshBinary(buffer) {
       object, face, chunk, key: partKey(object, face, ...chunk), receiverKey: receiverKey(object, face),
       vertexCount: u32(offset + 16), triangleCount: u32(offset + 20), sceneVersion: u32(offset + 24),
       normal: [view.getFloat32(offset + 28, true), view.getFloat32(offset + 32, true), view.getFloat32(offset + 36, true)],
+    });
+  }
+  // Value parts: a part the page holds whose irradiance alone changed (1 channel: grey, r = g = b).
+  const valueParts = [];
+  for (let p = 0; p < header.valuePartCount; ++p, offset += VALUE_PART_RECORD_BYTES) {
+    const object = name(u32(offset), `value part ${p}`);
+    const face = u32(offset + 4);
+    const chunk = [i32(offset + 8), i32(offset + 12)];
+    const channels = u32(offset + 24);
+    if (channels !== 1 && channels !== 3) throw new Error(`binary mesh: value part ${partKey(object, face, ...chunk)} has ${channels} channels (1 or 3)`);
+    valueParts.push({
+      object, face, chunk, key: partKey(object, face, ...chunk), receiverKey: receiverKey(object, face),
+      vertexCount: u32(offset + 16), sceneVersion: u32(offset + 20), channels,
     });
   }
   const removedParts = [];
@@ -99,8 +116,20 @@ export function decodeMeshBinary(buffer) {
     vertices += v;
     triangles += t;
   }
+  for (const part of valueParts) {
+    const v = part.vertexCount;
+    need(offset, 4 * part.channels * v, `value part ${part.key} irradiance`);
+    const values = new Float32Array(buffer, offset, part.channels * v);
+    offset += 4 * part.channels * v;
+    if (part.channels === 3) {
+      part.irradiance = values;
+    } else {
+      part.irradiance = new Float32Array(3 * v);
+      for (let i = 0; i < v; ++i) part.irradiance[3 * i] = part.irradiance[3 * i + 1] = part.irradiance[3 * i + 2] = values[i];
+    }
+  }
   if (offset !== buffer.byteLength) throw new Error(`binary mesh: ${buffer.byteLength - offset} bytes after the last part`);
   if (vertices !== header.totalVertices || triangles !== header.totalTriangles)
     throw new Error(`binary mesh: header totals ${header.totalVertices} vertices, ${header.totalTriangles} triangles; parts hold ${vertices}, ${triangles}`);
-  return { ...header, parts, removedParts, bytes: buffer.byteLength };
+  return { ...header, parts, valueParts, removedParts, bytes: buffer.byteLength };
 }

@@ -1,5 +1,6 @@
 // The lit discontinuity mesh in three.js: parts (one display chunk of one receiver: world-space
-// positions, vertex colours from the tone map) replaced one at a time as deltas arrive, drawn in
+// positions, vertex colours from the tone map) replaced one at a time as deltas arrive (or, for a
+// part whose irradiance alone changed, recoloured in place in its batch's colour buffer), drawn in
 // batches (one Mesh for the parts of one object with the same chunk index, e.g. a room's floor and
 // wall blocks there), and an optional overlay of the mesh's edges coloured by vertex class
 // (see discontinuityEdges). A receiver is read back as one merged view of its parts.
@@ -80,7 +81,9 @@ function batchMesh(entries, material) {
   for (const { part } of entries) { v += part.vertexCount; t += part.indices.length; }
   const positions = new Float32Array(3 * v), colours = new Float32Array(3 * v), indices = new Uint32Array(t);
   let vertexBase = 0, indexBase = 0;
+  const offsets = new Map(); // part key → its first vertex in the batch
   for (const { part, colours: c } of entries) {
+    offsets.set(part.key, vertexBase);
     positions.set(part.positions, 3 * vertexBase);
     colours.set(c, 3 * vertexBase);
     for (let i = 0; i < part.indices.length; ++i) indices[indexBase + i] = part.indices[i] + vertexBase;
@@ -92,7 +95,9 @@ function batchMesh(entries, material) {
   geometry.setAttribute('color', new THREE.BufferAttribute(colours, 3));
   geometry.setIndex(new THREE.BufferAttribute(indices, 1));
   geometry.computeBoundingSphere();
-  return new THREE.Mesh(geometry, material);
+  const mesh = new THREE.Mesh(geometry, material);
+  mesh.userData.offsets = offsets;
+  return mesh;
 }
 
 export class ReceiverLayer {
@@ -116,11 +121,12 @@ export class ReceiverLayer {
     this.triangles = 0;
   }
 
-  // Replaces the listed parts and drops the removed ones (decoded binary mesh); a whole
-  // (non-delta) mesh replaces everything.
+  // Replaces the listed parts, recolours the value parts and drops the removed ones (decoded
+  // binary mesh); a whole (non-delta) mesh replaces everything.
   apply(decoded, toneMap) {
     if (!decoded.delta) this.clear();
-    const touched = new Set([...decoded.removedParts, ...decoded.parts].map((p) => p.receiverKey).filter(Boolean));
+    const valueParts = decoded.valueParts || [];
+    const touched = new Set([...decoded.removedParts, ...decoded.parts, ...valueParts].map((p) => p.receiverKey).filter(Boolean));
     for (const removed of decoded.removedParts) this.remove(removed.key);
     for (const part of decoded.parts) {
       this.remove(part.key);
@@ -137,8 +143,26 @@ export class ReceiverLayer {
       this.vertices += part.vertexCount;
       this.triangles += part.triangleCount;
     }
+    for (const values of valueParts) this.recolour(values, toneMap);
     this.rebuildStale();
     if (this.onColours) this.onColours(decoded.delta ? touched : null);
+  }
+
+  // A held part's new irradiance (a value part: same triangulation): its colours written into its
+  // batch's colour buffer in place, unless the batch is rebuilt anyway.
+  recolour(values, toneMap) {
+    const entry = this.entries.get(values.key);
+    if (!entry || entry.part.vertexCount !== values.vertexCount)
+      throw new Error(`binary mesh: values for part ${values.key} (${values.vertexCount} vertices), which the page does not hold`);
+    entry.part = { ...entry.part, irradiance: values.irradiance, sceneVersion: values.sceneVersion };
+    entry.colours = toneMap.colours(entry.part.object, entry.part.irradiance, this.indirectOf(entry.part));
+    this.merged.delete(entry.part.receiverKey);
+    const key = batchKey(entry.part);
+    const mesh = this.batches.get(key).mesh;
+    if (this.stale.has(key) || !mesh) return;
+    const colour = mesh.geometry.getAttribute('color');
+    colour.array.set(entry.colours, 3 * mesh.userData.offsets.get(values.key));
+    colour.needsUpdate = true;
   }
 
   // The baked indirect light of a part, when the bake is of this part's data (a part changed since

@@ -1,0 +1,120 @@
+// The binary mesh read exactly as docs/API.md "Binary" describes it (layout 3), independently of
+// server/mesh_binary.cpp, for tests. Throws std::runtime_error on bytes not of that layout.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace penumbra::server::test {
+
+struct BinaryMesh {
+  uint32_t layout = 0, version = 0, flags = 0, since = 0;
+  std::vector<std::string> objects;
+  struct Part {  // one display chunk of a receiver
+    uint32_t object, face;
+    int32_t x, y;
+    uint32_t vertices, triangles, version;
+    float normal[3];
+    std::vector<float> positions, irradiance;
+    std::vector<uint8_t> classes;
+    std::vector<uint32_t> indices;
+  };
+  std::vector<Part> parts;
+  struct ValuePart {  // a part whose irradiance alone changed (layout 3)
+    uint32_t object, face;
+    int32_t x, y;
+    uint32_t vertices, version, channels;  // channels 1: grey (r = g = b), expanded on reading
+    std::vector<float> irradiance;
+  };
+  std::vector<ValuePart> valueParts;
+  struct Removed {
+    uint32_t object, face;
+    int32_t x, y;
+  };
+  std::vector<Removed> removed;
+  uint32_t totalVertices = 0, totalTriangles = 0;
+};
+
+inline BinaryMesh parseBinary(const std::string& bytes) {
+  size_t at = 0;
+  auto take = [&](void* out, size_t n) {
+    if (at + n > bytes.size())
+      throw std::runtime_error("binary mesh truncated at byte " + std::to_string(at));
+    std::memcpy(out, bytes.data() + at, n);
+    at += n;
+  };
+  auto u32 = [&] {
+    uint32_t v;
+    take(&v, 4);
+    return v;
+  };
+  auto i32 = [&] {
+    int32_t v;
+    take(&v, 4);
+    return v;
+  };
+  auto f32 = [&] {
+    float v;
+    take(&v, 4);
+    return v;
+  };
+  auto align = [&] { at = (at + 3) / 4 * 4; };
+  BinaryMesh m;
+  char magic[4];
+  take(magic, 4);
+  if (std::string(magic, 4) != "PNMB") throw std::runtime_error("bad magic");
+  m.layout = u32(), m.version = u32(), m.flags = u32(), m.since = u32();
+  const uint32_t objects = u32(), parts = u32(), removed = u32();
+  m.totalVertices = u32(), m.totalTriangles = u32();
+  const uint32_t valueParts = u32();
+  if (at != 44) throw std::runtime_error("binary mesh header is not 44 bytes");
+  for (uint32_t i = 0; i < objects; ++i) {
+    const uint32_t length = u32();
+    std::string name(length, '\0');
+    take(name.data(), length);
+    align();
+    m.objects.push_back(name);
+  }
+  m.parts.resize(parts);
+  for (auto& r : m.parts) {
+    r.object = u32(), r.face = u32(), r.x = i32(), r.y = i32();
+    r.vertices = u32(), r.triangles = u32(), r.version = u32();
+    for (float& n : r.normal) n = f32();
+  }
+  m.valueParts.resize(valueParts);
+  for (auto& r : m.valueParts)
+    r.object = u32(), r.face = u32(), r.x = i32(), r.y = i32(), r.vertices = u32(),
+    r.version = u32(), r.channels = u32();
+  for (uint32_t i = 0; i < removed; ++i) {
+    BinaryMesh::Removed& gone = m.removed.emplace_back();
+    gone.object = u32(), gone.face = u32(), gone.x = i32(), gone.y = i32();
+  }
+  for (auto& r : m.parts) {
+    if (at % 4) throw std::runtime_error("a part's arrays are not 4-byte aligned");
+    r.positions.resize(3 * r.vertices);
+    take(r.positions.data(), 4 * r.positions.size());
+    r.irradiance.resize(3 * r.vertices);
+    take(r.irradiance.data(), 4 * r.irradiance.size());
+    r.classes.resize(r.vertices);
+    take(r.classes.data(), r.vertices);
+    align();
+    r.indices.resize(3 * r.triangles);
+    take(r.indices.data(), 4 * r.indices.size());
+  }
+  for (auto& r : m.valueParts) {
+    if (r.channels != 1 && r.channels != 3)
+      throw std::runtime_error("a value part has neither 1 nor 3 channels");
+    std::vector<float> channels(r.channels * size_t(r.vertices));
+    take(channels.data(), 4 * channels.size());
+    for (size_t v = 0; v < r.vertices; ++v)
+      for (size_t c = 0; c < 3; ++c)
+        r.irradiance.push_back(channels[v * r.channels + (r.channels == 3 ? c : 0)]);
+  }
+  if (at != bytes.size()) throw std::runtime_error("binary mesh has trailing bytes");
+  return m;
+}
+
+}  // namespace penumbra::server::test
