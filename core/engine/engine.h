@@ -243,7 +243,7 @@ class Engine {
   // Lights every vertex of a fresh tree (in parallel over vertices); `beat` (may be empty) is
   // called every kVerticesPerBeat vertices.
   void illuminate(Receiver& receiver, const std::function<void()>& beat = {}) const;
-  static constexpr size_t kVerticesPerBeat = 1024;
+  static constexpr size_t kVerticesPerBeat = 64;
   void relightVertex(Receiver& receiver, VertexId v) const;
   // relightVertex's value alone: writes v's slots only, touches no cell.
   void computeVertex(Receiver& receiver, VertexId v) const;

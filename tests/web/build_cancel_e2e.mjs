@@ -4,10 +4,10 @@
 // moves, another tab's scene list shows the scene as building, and the overlay's Cancel stops the
 // build (DELETE): the overlay goes within --cancelSeconds, the page stays on its scene, nothing of
 // the cancelled scene is left and the server serves on. The build stops at its next progress
-// report; a cast already running (the whole knot's shadow on the floor) runs to its end first, so
-// the bound is loose: 9-15 s measured on 2 busy cores, where the knot's build takes ~22 s.
+// report (per cast, every 64 vertices lit): the DELETE takes under 0.1 s; the bound leaves room
+// for the page's poll and a busy machine.
 //
-// usage: node tests/web/build_cancel_e2e.mjs --penumbra build/penumbra [--triangles 3000] [--cancelSeconds 30]
+// usage: node tests/web/build_cancel_e2e.mjs --penumbra build/penumbra [--triangles 3000] [--cancelSeconds 5]
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
@@ -16,7 +16,7 @@ import path from 'node:path';
 import { check, repo, runWithServerAndBrowser, sleep, until, usageOnHelp } from './harness.mjs';
 
 const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'cubes15.scene.json'),
-  startupSeconds: 120, triangles: 3000, cancelSeconds: 30 };
+  startupSeconds: 120, triangles: 3000, cancelSeconds: 5 };
 
 function knotScene(penumbra, triangles) {
   const file = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'penumbra-cancel-')), 'knot.scene.json');
