@@ -49,11 +49,12 @@ void HttpServer::registerSceneRoutes() {
   const std::string scenePath = std::string("/api/scenes/") + kIdPattern;
 
   http.Get("/api/health", guarded([this](const httplib::Request&, httplib::Response& res) {
-             size_t scenes = 0, restoring = 0;
+             size_t scenes = 0, restoring = 0, building = 0;
              {
                std::lock_guard lock(scenesMutex_);
                scenes = scenes_.size();
                restoring = restoring_.size();
+               building = builds_.size();
              }
              // Durable: a journal whose directory is still the one locked and writable; any
              // damage or stalled scene found at start makes the status "degraded".
@@ -67,6 +68,7 @@ void HttpServer::registerSceneRoutes() {
                       {{"status", degraded ? "degraded" : "ok"},
                        {"scenes", scenes},
                        {"restoring", restoring},
+                       {"building", building},
                        {"event_streams", openStreams_.load()},
                        {"durable", durable},
                        {"journal", std::move(journal)},

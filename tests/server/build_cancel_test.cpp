@@ -92,6 +92,7 @@ TEST(BuildCancel, ProgressRisesThenDeleteStopsTheBuildAndFreesTheId) {
   }
   // Other requests are served meanwhile; the building scene's own routes say so.
   EXPECT_EQ(client.Get("/api/scenes/cubes15/mesh")->status, 200);
+  EXPECT_EQ(bodyJson(client.Get("/api/health"))["building"], 1);
   const auto busy = client.Get(("/api/scenes/" + id + "/mesh").c_str());
   EXPECT_EQ(busy->status, 503);
   EXPECT_EQ(bodyJson(busy)["error"]["code"], "building");
@@ -114,7 +115,9 @@ TEST(BuildCancel, ProgressRisesThenDeleteStopsTheBuildAndFreesTheId) {
   EXPECT_EQ(list[0]["state"], "ready");
   EXPECT_EQ(client.Get(("/api/scenes/" + id).c_str())->status, 404);
   EXPECT_EQ(running.server().addScene(protocol::loadSceneFile(scenePath("cubes15")), "knot"), id);
-  EXPECT_EQ(client.Get("/api/health")->status, 200);
+  const json health = bodyJson(client.Get("/api/health"));
+  EXPECT_EQ(health["status"], "ok");
+  EXPECT_EQ(health["building"], 0);
 }
 
 TEST(BuildCancel, StopCancelsABuildInFlight) {
