@@ -71,7 +71,9 @@ int runBuild(const Args& args) {
 
   ProgressBar casting("casting"), illumination("illumination");
   Engine engine(scene, settings, [&](const char* step, size_t done, size_t total) {
-    (std::string(step) == "casting" ? casting : illumination).update(done, total);
+    const std::string name = step;  // the bars show these two; "ordering" is brief
+    if (name == "casting" || name == "illumination")
+      (name == "casting" ? casting : illumination).update(done, total);
   });
   casting.finish();
   illumination.finish();

@@ -92,7 +92,9 @@ int runRender(const Args& args) {
     EngineSettings engineSettings;
     engineSettings.meshTolerance = meshToleranceOption(args);
     engine = std::make_unique<Engine>(scene, engineSettings, [&](const char* step, size_t done, size_t total) {
-      (std::string(step) == "casting" ? casting : illumination).update(done, total);
+      const std::string name = step;  // the bars show these two; "ordering" is brief
+      if (name == "casting" || name == "illumination")
+        (name == "casting" ? casting : illumination).update(done, total);
     });
     casting.finish();
     illumination.finish();

@@ -153,6 +153,10 @@ std::shared_ptr<SceneSession> HttpServer::findScene(const std::string& id) const
   if (it != scenes_.end() && !it->second && restoring_.count(id))
     throw ApiError(503, error_code::kRestoring, "id",
                    "scene '" + id + "' is being restored from the journal; retry in a moment");
+  if (it != scenes_.end() && !it->second && builds_.count(id))
+    throw ApiError(503, error_code::kBuilding, "id",
+                   "scene '" + id + "' is being built; retry in a moment (GET /api/scenes/" + id +
+                       " says how far it is)");
   if (it == scenes_.end() || !it->second)
     throw ApiError(404, error_code::kNotFound, "id", "no scene with id '" + id + "'");
   return it->second;
@@ -165,45 +169,6 @@ std::string HttpServer::freshId(const std::string& preferred) {
     std::string id = (base.empty() ? "s" : base + "-") + std::to_string(nextId_++);
     if (!scenes_.count(id)) return id;
   }
-}
-
-std::string HttpServer::addScene(Scene scene, const std::string& name,
-                                 const std::string& preferredId) {
-  std::string id;
-  {
-    std::lock_guard lock(scenesMutex_);
-    if (scenes_.size() >= options_.maxScenes)
-      throw ApiError(429, error_code::kTooManyScenes, "",
-                     "the server already holds " + std::to_string(options_.maxScenes) +
-                         " scenes (--max-scenes); DELETE one first");
-    id = freshId(preferredId.empty() ? name : preferredId);
-    scenes_.emplace(id, nullptr);  // reserved while it builds
-  }
-  // Build outside the lock: a large scene takes seconds and other scenes keep serving.
-  std::shared_ptr<SceneSession> session;
-  int64_t key = 0;
-  try {
-    // The journal keeps the scene as built (sceneFromJson(sceneToJson(s)) == s), committed
-    // before the scene is served or acknowledged.
-    const std::string source = journal_ ? protocol::sceneToJson(scene).dump() : "";
-    session = std::make_shared<SceneSession>(id, name, std::move(scene), options_.engine);
-    if (journal_) {
-      try {
-        key = journal_->addScene(id, name, source, session->snapshot()->version);
-      } catch (const std::exception& error) {
-        throw ApiError(503, error_code::kJournalFailed, "",
-                       std::string("the journal could not record the scene: ") + error.what());
-      }
-    }
-  } catch (...) {
-    std::lock_guard lock(scenesMutex_);
-    scenes_.erase(id);
-    throw;
-  }
-  std::lock_guard lock(scenesMutex_);
-  if (journal_) journalKeys_[session.get()] = key;
-  scenes_[id] = std::move(session);
-  return id;
 }
 
 bool HttpServer::hasScene(const std::string& id) const {
@@ -229,6 +194,10 @@ void HttpServer::listen() { http_->listen_after_bind(); }
 
 void HttpServer::stop() {
   stopping_ = true;
+  {
+    std::lock_guard lock(scenesMutex_);
+    for (auto& [id, job] : builds_) job->cancel();  // their requests end at the next report
+  }
   http_->stop();
 }
 

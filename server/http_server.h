@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/engine/engine.h"
+#include "server/build_job.h"
 #include "server/edit_workers.h"
 #include "server/limits.h"
 #include "server/memory_trim.h"
@@ -111,8 +112,27 @@ class HttpServer {
   HttpServer& operator=(const HttpServer&) = delete;
 
   // Builds and serves a scene as POST /api/scenes would; `preferredId` is used when
-  // free and well-formed. Returns the id. Throws ApiError (e.g. too many scenes).
+  // free and well-formed. Returns the id. Throws ApiError (e.g. too many scenes; 409
+  // build_cancelled when cancelBuild or stop() ended it).
   std::string addScene(Scene scene, const std::string& name, const std::string& preferredId = "");
+  // addScene in two steps (scene_builds.cpp), so a request can report its import too: reserve
+  // the id (listed as building from then on; throws ApiError 429 when full), then build the
+  // scene under that job. buildScene frees the reservation when it throws; a caller that gives
+  // up before calling it calls abandonBuild.
+  std::shared_ptr<BuildJob> reserveBuild(const std::string& name, const std::string& preferredId,
+                                         const std::string& ticket = "");
+  std::string buildScene(const std::shared_ptr<BuildJob>& job, Scene scene,
+                         const std::string& name);
+  void abandonBuild(BuildJob& job);
+  // Cancels the build of scene `id` and waits until its request gave the id up (or the build
+  // finished first: then the scene is served). False when `id` is not building.
+  bool cancelBuild(const std::string& id);
+  // The scenes being built now, as BuildJob::toJson.
+  std::vector<nlohmann::json> buildsJson() const;
+  // Whether scene `id` is served (built, not reserved or restoring).
+  bool servesScene(const std::string& id) const;
+  // The job building scene `id`; null when it is not building.
+  std::shared_ptr<BuildJob> findBuild(const std::string& id) const;
 
   // Reads the journal and reserves its scenes' ids: until restore() brings one back, requests
   // for it get 503 restoring. Call before listening (restore() calls it when nobody did).
@@ -201,6 +221,7 @@ class HttpServer {
   std::atomic<int> waitingEdits_{0};  // edits waiting for their scene's turn, all scenes
   mutable std::mutex scenesMutex_;    // guards scenes_, nextId_, journalKeys_
   std::map<std::string, std::shared_ptr<SceneSession>> scenes_;
+  std::map<std::string, std::shared_ptr<BuildJob>> builds_;  // ids reserved in scenes_, building
   std::unique_ptr<SceneJournal> journal_;                                 // null: ephemeral
   std::map<const SceneSession*, int64_t> journalKeys_;                    // guarded by scenesMutex_
   std::map<const SceneSession*, SceneStall> stalls_;                      // guarded by scenesMutex_

@@ -2,6 +2,8 @@
 // rebuild, stats.
 #include <httplib.h>
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 
 #include "core/geom/resource_limit.h"
@@ -24,6 +26,22 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+constexpr size_t kMaxTicketLength = 64;
+
+// ?ticket=T: the creating client's label for its build, shown in the scene list while it builds.
+std::string ticketOf(const httplib::Request& req) {
+  const std::string ticket = queryText(req, "ticket").value_or("");
+  const bool wellFormed =
+      ticket.size() <= kMaxTicketLength &&
+      std::all_of(ticket.begin(), ticket.end(), [](unsigned char c) {
+        return std::isalnum(c) || c == '_' || c == '-';
+      });
+  if (!wellFormed)
+    throw ApiError(400, error_code::kBadParameter, "query.ticket",
+                   "ticket must be at most 64 letters, digits, '_' or '-'");
+  return ticket;
+}
+
 }  // namespace
 
 void HttpServer::registerSceneRoutes() {
@@ -31,11 +49,12 @@ void HttpServer::registerSceneRoutes() {
   const std::string scenePath = std::string("/api/scenes/") + kIdPattern;
 
   http.Get("/api/health", guarded([this](const httplib::Request&, httplib::Response& res) {
-             size_t scenes = 0, restoring = 0;
+             size_t scenes = 0, restoring = 0, building = 0;
              {
                std::lock_guard lock(scenesMutex_);
                scenes = scenes_.size();
                restoring = restoring_.size();
+               building = builds_.size();
              }
              // Durable: a journal whose directory is still the one locked and writable; any
              // damage or stalled scene found at start makes the status "degraded".
@@ -49,6 +68,7 @@ void HttpServer::registerSceneRoutes() {
                       {{"status", degraded ? "degraded" : "ok"},
                        {"scenes", scenes},
                        {"restoring", restoring},
+                       {"building", building},
                        {"event_streams", openStreams_.load()},
                        {"durable", durable},
                        {"journal", std::move(journal)},
@@ -75,12 +95,14 @@ void HttpServer::registerSceneRoutes() {
              json list = json::array();
              for (const auto& session : sessions) {
                json summary = sceneSummaryJson(*session->snapshot());
+               summary["state"] = "ready";
                if (const auto stall = stallOf(*session)) {  // restore stopped short (SceneStall)
                  summary["stalled_at"] = stall->version;
                  summary["problem"] = stall->problem;
                }
                list.push_back(std::move(summary));
              }
+             for (json& building : buildsJson()) list.push_back(std::move(building));
              sendJson(res, 200, {{"scenes", std::move(list)}});
            }));
 
@@ -91,10 +113,15 @@ void HttpServer::registerSceneRoutes() {
                   // Scene JSON as the body, or a file to import (?format=obj|gltf|glb,
                   // docs/API.md).
                   const std::optional<SceneUpload> upload = sceneUploadOf(req);
+                  const std::string ticket = ticketOf(req);
+                  std::string name = queryText(req, "name").value_or(
+                      upload ? upload->fileName : std::string("scene"));
+                  std::shared_ptr<BuildJob> job;
                   Scene scene;
-                  std::string name = queryText(req, "name").value_or("scene");
                   json importJson;
                   if (upload) {
+                    job = reserveBuild(name, name, ticket);  // listed as building from now on
+                    job->note("import");
                     const auto start = Clock::now();
                     try {
                       interchange::ImportResult imported = interchange::importSceneBytes(
@@ -106,11 +133,14 @@ void HttpServer::registerSceneRoutes() {
                                        "a name in the imported file is not valid UTF-8");
                       importJson = imported.report.toJson();
                     } catch (const protocol::ValidationError& error) {
+                      abandonBuild(*job);
                       throw ApiError(422, error_code::kInvalidScene, error.path(), error.problem());
+                    } catch (...) {
+                      abandonBuild(*job);
+                      throw;
                     }
                     importJson["seconds"] =
                         std::chrono::duration<double>(Clock::now() - start).count();
-                    if (!req.has_param("name")) name = upload->fileName;
                   } else {
                     const json body = parseBody(req);
                     try {
@@ -118,10 +148,11 @@ void HttpServer::registerSceneRoutes() {
                     } catch (const protocol::ValidationError& error) {
                       throw ApiError(422, error_code::kInvalidScene, error.path(), error.problem());
                     }
+                    job = reserveBuild(name, name, ticket);
                   }
                   std::string id;
                   try {
-                    id = addScene(std::move(scene), name, name);
+                    id = buildScene(job, std::move(scene), name);
                   } catch (const std::invalid_argument& error) {  // geometry the engine refuses
                     throw ApiError(422, error_code::kInvalidScene, "", error.what());
                   } catch (const ResourceLimitError& error) {  // nothing was created
@@ -137,10 +168,15 @@ void HttpServer::registerSceneRoutes() {
                 })));
 
   http.Get(scenePath, guarded([this](const httplib::Request& req, httplib::Response& res) {
+             if (const auto job = findBuild(req.matches[1])) {  // its progress while it builds
+               sendJson(res, 200, job->toJson());
+               return;
+             }
              const auto session = findScene(req.matches[1]);
              const auto snapshot = session->snapshot();
              json body = {{"id", snapshot->id},
                           {"name", snapshot->name},
+                          {"state", "ready"},
                           {"version", snapshot->version},
                           {"scene", protocol::sceneToJson(snapshot->scene)},
                           {"volumes", volumesInfoJson(snapshot->scene)}};
@@ -154,6 +190,10 @@ void HttpServer::registerSceneRoutes() {
   http.Delete(scenePath,
               readingBody(options_.maxBodyBytes,
                           guarded([this](const httplib::Request& req, httplib::Response& res) {
+                            if (cancelBuild(req.matches[1]) && !servesScene(req.matches[1])) {
+                              res.status = 204;  // cancelled: nothing was journaled
+                              return;
+                            }
                             const auto session = findScene(req.matches[1]);
                             journalRemove(*session);  // first: if it fails, the scene stays
                             {

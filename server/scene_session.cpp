@@ -31,21 +31,23 @@ std::vector<MeshPart> partsOf(const Scene& scene, const Engine::ReceiverChunks& 
 
 }  // namespace
 
-SceneSession::SceneSession(std::string id, std::string name, Scene scene, EngineSettings settings)
+SceneSession::SceneSession(std::string id, std::string name, Scene scene, EngineSettings settings,
+                           const EngineProgress& progress)
     : id_(std::move(id)), settings_(settings) {
   baseScene_ = scene;
   for (const VolumeObject& volume : scene.volumes()) initialVolumeFiles_.push_back(volume.file);
-  engine_ = std::make_unique<Engine>(std::move(scene), settings_);
+  engine_ = std::make_unique<Engine>(std::move(scene), settings_, progress);
   auto first = std::make_shared<SceneSnapshot>();
   first->id = id_;
   first->name = std::move(name);
   first->version = engine_->version();
   first->buildStats = engine_->stats();
   first->scene = engine_->scene();
-  for (const Engine::ReceiverChunks& r : engine_->meshChunks(engine_->receiverFaces())) {
+  for (const Engine::ReceiverChunks& r : engine_->meshChunks(engine_->receiverFaces(), progress)) {
     std::vector<MeshPart> parts = partsOf(first->scene, r, first->version);
     first->parts.insert(first->parts.end(), parts.begin(), parts.end());
   }
+  if (progress) progress("occluders", 0, 0);
   first->occluders = std::make_shared<const OccluderIndexes>(freezeOccluders(*engine_, {}, {}).indexes);
   current_ = std::move(first);
 }

@@ -36,8 +36,11 @@ struct RebuildReport {
 
 class SceneSession {
  public:
-  // Builds the engine (may take seconds for large scenes) and publishes version 0.
-  SceneSession(std::string id, std::string name, Scene scene, EngineSettings settings = {});
+  // Builds the engine (may take seconds for large scenes) and publishes version 0. `progress`
+  // sees the engine's steps, the display meshing ("triangulation") and "occluders"; an exception
+  // it throws ends the construction (BuildJob's cancel), everything built so far freed.
+  SceneSession(std::string id, std::string name, Scene scene, EngineSettings settings = {},
+               const EngineProgress& progress = {});
 
   const std::string& id() const { return id_; }
   // The files of the scene's volumes as it was built (a client's frame may add them back).

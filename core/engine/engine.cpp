@@ -42,6 +42,13 @@ class SharedProgress {
     std::lock_guard lock(mutex_);
     if (done > reported_) progress_(step_, reported_ = done, total_);
   }
+  // The same count again, from inside one long item (a big receiver's vertices), so the callback
+  // sees the work go on (and may throw to end it).
+  void beat() {
+    if (!progress_) return;
+    std::lock_guard lock(mutex_);
+    progress_(step_, reported_, total_);
+  }
   void finish() {
     std::lock_guard lock(mutex_);
     if (progress_) progress_(step_, total_, total_);
@@ -208,7 +215,7 @@ void Engine::build(const EngineProgress& progress) {
   stats_ = BuildStats{};
   stats_.faces = scene_.faces().size();
   stats_.lights = scene_.lights().size();
-  buildOrdersAndCubes();
+  buildOrdersAndCubes(progress);
 
   // One DM-tree per receiving face.
   const auto start = Clock::now();
@@ -224,12 +231,17 @@ void Engine::build(const EngineProgress& progress) {
   countBuild();
 }
 
-void Engine::buildOrdersAndCubes() {
+void Engine::buildOrdersAndCubes(const EngineProgress& progress) {
   const size_t lightCount = scene_.lights().size();
   // Front-to-back orders (§2.1), one light per thread.
   auto start = Clock::now();
   orders_.resize(lightCount);
-  parallel_.forEach(lightCount, [&](size_t l) { orders_[l] = std::make_unique<FaceOrder>(scene_, l, settings_.limits.treeNodes); });
+  SharedProgress orderReport(progress, "ordering", lightCount, 1);
+  parallel_.forEach(lightCount, [&](size_t l) {
+    orders_[l] = std::make_unique<FaceOrder>(scene_, l, settings_.limits.treeNodes);
+    orderReport.add(1);
+  });
+  orderReport.finish();
   for (const auto& order : orders_) stats_.orderFragments += order->counters().fragments;
   stats_.seconds.ordering = secondsSince(start);
 
@@ -253,19 +265,22 @@ void Engine::castAndIlluminateAll(Clock::time_point start, const EngineProgress&
   std::vector<std::vector<ReceiverCast>> casts = castSequences(scene_, orders_, cubes_, receiverIndex_, settings_.closedObjectsAsOne, stats_);
   std::vector<std::vector<FaceId>> shadowedBy(receivers_.size());  // occluders that cast, per receiver
   std::mutex progressMutex;  // both steps report at once
-  SharedProgress castReport(progress, "casting", stats_.castAttempts, 4096, &progressMutex);
+  // Reported per cast (about 256 reports in all): one receiver, the floor, may take most casts.
+  SharedProgress castReport(progress, "casting", stats_.castAttempts,
+                            std::max<size_t>(1, stats_.castAttempts / 256), &progressMutex);
   SharedProgress lightReport(progress, "illumination", receivers_.size(), 1, &progressMutex);
   std::vector<double> castSeconds(receivers_.size()), lightSeconds(receivers_.size());
   parallel_.forEach(receivers_.size(), [&](size_t r) {
     const auto castStart = Clock::now();
-    for (const ReceiverCast& cast : casts[r])
+    for (const ReceiverCast& cast : casts[r]) {
       if (castInto(cast.light, cast.occluder, receivers_[r])) shadowedBy[r].push_back(cast.occluder);
+      castReport.add(1);
+    }
     receivers_[r].tree.shrinkToFit();
-    castReport.add(casts[r].size());
     std::vector<ReceiverCast>().swap(casts[r]);
     const auto lightStart = Clock::now();
     castSeconds[r] = std::chrono::duration<double>(lightStart - castStart).count();
-    illuminate(receivers_[r]);
+    illuminate(receivers_[r], [&] { lightReport.beat(); });
     lightSeconds[r] = secondsSince(lightStart);
     lightReport.add(1);
   });
@@ -382,7 +397,7 @@ void Engine::growSlots(Receiver& receiver) const {
   receiver.lit.resize(slots, 0);
 }
 
-void Engine::illuminate(Receiver& receiver) const {
+void Engine::illuminate(Receiver& receiver, const std::function<void()>& beat) const {
   const size_t slots = receiver.tree.mesh().vertexSlots();
   // Headroom for a big receiver only: its first edits then grow its arrays in place instead of
   // moving every value, and the untouched tail of a large array costs no memory until used. A
@@ -395,7 +410,10 @@ void Engine::illuminate(Receiver& receiver) const {
   receiver.lit.assign(slots, 0);
   // Vertices in parallel (a dense scene's floor holds most of them); each writes its own slots.
   const std::vector<VertexId> vertices = receiver.tree.vertices();
-  parallel_.forEach(vertices.size(), [&](size_t i) { computeVertex(receiver, vertices[i]); }, 16);
+  parallel_.forEach(vertices.size(), [&](size_t i) {
+    computeVertex(receiver, vertices[i]);
+    if (beat && i % kVerticesPerBeat == 0) beat();
+  }, 16);
   // Every cell is new, so its corner values changed: the memo's test is the stamp.
   for (VertexId v : vertices)
     for (CellId c : receiver.tree.cellsAround(v)) receiver.tree.touch(c);
@@ -504,9 +522,9 @@ Mesh Engine::mesh(const std::vector<FaceId>& only) {
   return out;
 }
 
-std::vector<Engine::ReceiverChunks> Engine::meshChunks(const std::vector<FaceId>& only) {
+std::vector<Engine::ReceiverChunks> Engine::meshChunks(const std::vector<FaceId>& only, const EngineProgress& progress) {
   const std::vector<size_t> indices = receiverIndices(only);
-  updateMeshMemos(indices);
+  updateMeshMemos(indices, progress);
   std::vector<ReceiverChunks> out;
   for (size_t i : indices) {
     ReceiverChunks& entry = out.emplace_back();

@@ -192,7 +192,8 @@ class Engine {
   // each once, non-receivers skipped). A receiver's mesh(only) entry is its chunks'
   // meshes concatenated; a chunk this call did not assemble again is the same object
   // the previous call returned, so a caller can tell what changed without comparing.
-  std::vector<ReceiverChunks> meshChunks(const std::vector<FaceId>& only);
+  // progress: step "triangulation", per receiver.
+  std::vector<ReceiverChunks> meshChunks(const std::vector<FaceId>& only, const EngineProgress& progress = {});
   // Drops the memo: the next mesh call lights every cell afresh.
   void forgetMeshMemo() { meshMemo_.clear(); }
 
@@ -229,7 +230,7 @@ class Engine {
   // receivers may cast in parallel.
   std::optional<InsertResult> castInto(size_t light, FaceId occluder, Receiver& receiver);
   // The build's steps (§2.1–2.4); each fills its part of stats_.
-  void buildOrdersAndCubes();
+  void buildOrdersAndCubes(const EngineProgress& progress);
   void castAndIlluminateAll(std::chrono::steady_clock::time_point start, const EngineProgress& progress);
   void splitStepSeconds(double wall, const std::vector<double>& castSeconds, const std::vector<double>& lightSeconds);
   void countBuild();
@@ -239,8 +240,10 @@ class Engine {
   void forgetReceived(FaceId face);
   // Sizes the per-slot arrays to the tree's vertex slots.
   void growSlots(Receiver& receiver) const;
-  // Lights every vertex of a fresh tree (in parallel over vertices).
-  void illuminate(Receiver& receiver) const;
+  // Lights every vertex of a fresh tree (in parallel over vertices); `beat` (may be empty) is
+  // called every kVerticesPerBeat vertices.
+  void illuminate(Receiver& receiver, const std::function<void()>& beat = {}) const;
+  static constexpr size_t kVerticesPerBeat = 64;
   void relightVertex(Receiver& receiver, VertexId v) const;
   // relightVertex's value alone: writes v's slots only, touches no cell.
   void computeVertex(Receiver& receiver, VertexId v) const;

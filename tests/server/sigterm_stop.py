@@ -2,7 +2,7 @@
 """A stop ends the server within 5 s, whatever it is doing, and loses nothing acknowledged:
   1. SIGTERM while a large scene builds at start-up (nothing served yet): ends at once;
   2. SIGTERM while a large scene upload builds in a request, after edits were acknowledged:
-     ends within the grace (4 s), and a restart on the same data directory serves the last
+     ends at once (the stop cancels the build; within the grace, 4 s, in any case), and a restart on the same data directory serves the last
      acknowledged version.
 The large scene is `penumbra generate --model torus-knot` (about 20 s to build on 2 cores).
 Usage: python3 tests/server/sigterm_stop.py --penumbra build/penumbra

@@ -72,8 +72,12 @@ export class ApiClient {
   postEdits(id, frame) { return this.json('POST', `${this.scenePath(id)}/edits`, frame); }
 
   // sceneText: the file's text, sent as is so the server validates it with key paths.
-  createScene(sceneText, name, onProgress) {
-    const query = name ? `?name=${encodeURIComponent(name)}` : '';
+  // ticket: shown with the build in GET /api/scenes (build_progress.js).
+  createScene(sceneText, name, onProgress, ticket) {
+    const params = new URLSearchParams();
+    if (name) params.set('name', name);
+    if (ticket) params.set('ticket', ticket);
+    const query = params.toString() ? `?${params}` : '';
     if (onProgress) return this.upload(`/api/scenes${query}`, sceneText, 'application/json', onProgress);
     return this.json('POST', `/api/scenes${query}`, sceneText);
   }

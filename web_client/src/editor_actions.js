@@ -235,7 +235,10 @@ export class EditorActions {
     try {
       const { scenes } = await this.app.api.listScenes();
       this.sceneList.render(scenes, this.app.sceneId);
-      return scenes;
+      // Scenes being built: shown with their progress until they are ready.
+      clearTimeout(this.sceneListTimer);
+      if (scenes.some((s) => s.state === 'building')) this.sceneListTimer = setTimeout(() => this.refreshScenes(), 1000);
+      return scenes.filter((s) => s.state !== 'building');
     } catch (error) {
       this.app.fail(error);
       return [];

@@ -12,10 +12,21 @@ export class ElapsedCounter {
 
   start(message) {
     this.stop();
+    this.message = message;
     const since = performance.now();
-    const tick = () => this.show(`${message} ${((performance.now() - since) / 1000).toFixed(1)} s`);
-    tick();
-    this.timer = setInterval(tick, EVERY_MS);
+    this.tick = () => this.show(`${this.message} ${((performance.now() - since) / 1000).toFixed(1)} s`);
+    this.tick();
+    this.timer = setInterval(this.tick, EVERY_MS);
+  }
+
+  // A new message while the seconds keep counting from start().
+  relabel(message) {
+    this.message = message;
+    if (this.timer !== null) this.tick();
+  }
+
+  running() {
+    return this.timer !== null;
   }
 
   stop() {

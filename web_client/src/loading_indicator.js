@@ -6,15 +6,21 @@
 import { ElapsedCounter } from './elapsed_counter.js';
 
 export class LoadingIndicator {
-  constructor(root, text, bar, controls) {
-    Object.assign(this, { root, text, bar, controls });
+  // cancelButton: shown while offerCancel's work may be stopped.
+  constructor(root, text, bar, controls, cancelButton) {
+    Object.assign(this, { root, text, bar, controls, cancelButton });
     this.started = performance.now();
-    this.counter = new ElapsedCounter((text) => this.show(text, null));
+    this.fraction = null;
+    this.counter = new ElapsedCounter((message) => this.show(message, this.fraction));
+    cancelButton.addEventListener('click', () => {
+      if (this.onCancel) this.onCancel();
+    });
   }
 
   // fraction: 0..1, or null for an indeterminate bar. A new step ends a waiting() counter.
   step(message, fraction = null) {
     this.counter.stop();
+    this.offerCancel(null);
     this.show(message, fraction);
   }
 
@@ -26,9 +32,24 @@ export class LoadingIndicator {
     else this.bar.value = Math.min(1, Math.max(0, fraction));
   }
 
-  // A step without progress events (the server building a scene): shows the seconds waited.
+  // Long work (the server building a scene): shows the seconds waited, counting on while
+  // relabel() changes the message and the bar (the build's stage and fraction).
   waiting(message) {
+    this.fraction = null;
     this.counter.start(message);
+  }
+
+  relabel(message, fraction) {
+    this.fraction = fraction;
+    if (this.counter.running()) this.counter.relabel(message);
+    else this.show(message, fraction);
+  }
+
+  // Shows the Cancel button calling onCancel(); null hides it.
+  offerCancel(onCancel) {
+    this.onCancel = onCancel;
+    this.cancelButton.hidden = !onCancel;
+    this.cancelButton.disabled = false;
   }
 
   // Bytes received of a download (total 0 when the server did not say).
@@ -39,6 +60,7 @@ export class LoadingIndicator {
 
   done() {
     this.counter.stop();
+    this.offerCancel(null);
     this.root.hidden = true;
     this.controls.disabled = false;
     this.readySeconds = (performance.now() - this.started) / 1000;
@@ -53,6 +75,7 @@ export class LoadingIndicator {
   failed(message) {
     this.failure = message;
     this.counter.stop();
+    this.offerCancel(null);
     this.root.hidden = false;
     this.root.classList.add('failed');
     this.text.textContent = message;

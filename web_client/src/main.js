@@ -43,7 +43,7 @@ class App {
   constructor() {
     this.api = new ApiClient('', new URLSearchParams(window.location.search).get('token'));
     this.banner = new ErrorBanner($('error-banner'), $('error-text'), $('error-close'));
-    this.loading = new LoadingIndicator($('loading'), $('loading-text'), $('loading-progress'), $('controls'));
+    this.loading = new LoadingIndicator($('loading'), $('loading-text'), $('loading-progress'), $('controls'), $('loading-cancel'));
     // ?antialias=on|off and ?drag_scale=0.25..1 override the choices by GL renderer (to compare frame times).
     const query = new URLSearchParams(window.location.search);
     const antialias = query.get('antialias');
@@ -100,7 +100,7 @@ class App {
     let sceneId = requested;
     this.loading.step('Loading the scene…');
     if (!sceneId) {
-      const { scenes } = await this.api.listScenes();
+      const scenes = (await this.api.listScenes()).scenes.filter((s) => s.state !== 'building');
       if (!scenes.length) throw new Error('the server serves no scene: load a .scene.json file');
       sceneId = scenes[0].id;
     }

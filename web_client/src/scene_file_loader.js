@@ -5,6 +5,7 @@
 // (docs/API.md), with the page's scale and light-radiance options. The server names the key path
 // of any problem; the import report (what was repaired) is kept for the next page in
 // sessionStorage and shown there by import_report_panel.js.
+import { BuildProgress, newTicket } from './build_progress.js';
 import { storeImportReport } from './import_report_panel.js';
 import { addVolumes, splitVolumes } from './scene_volumes.js';
 
@@ -44,31 +45,27 @@ export function classifyFiles(files) {
 }
 
 // The import options typed in the page → query parameters (empty fields: the file's own values).
-export function importQuery(kind, name, scaleText, radianceText) {
+export function importQuery(kind, name, scaleText, radianceText, ticket) {
   const params = new URLSearchParams({ format: kind, name });
+  if (ticket) params.set('ticket', ticket);
   if (scaleText.trim()) params.set('scale', scaleText.trim());
   if (radianceText.trim()) params.set('light_radiance', radianceText.replace(/\s+/g, ''));
   return params;
 }
 
-function importFile(api, main, mtl, options, onProgress) {
+function importFile(api, main, mtl, options, onProgress, ticket) {
   const form = new FormData();
   form.append('file', main.file, main.file.name);
   for (const file of mtl) form.append('mtl', file, file.name);
-  const query = importQuery(main.kind, main.file.name, options.scale.value, options.radiance.value);
+  const query = importQuery(main.kind, main.file.name, options.scale.value, options.radiance.value, ticket);
   return api.upload(`/api/scenes?${query}`, form, null, onProgress);
 }
 
-// Upload progress, then the server's build (no events until the scene exists: seconds waited).
-function uploadProgress(loading, fileName) {
-  let building = false;
+// Upload progress, then the server's build (its stage, fraction and seconds: build_progress.js).
+function uploadProgress(loading, fileName, build) {
   return (sent, total, done) => {
-    if (done) {
-      if (!building) loading.waiting('The server builds the discontinuity mesh…');
-      building = true;
-    } else if (!building) {
-      loading.bytes(`Uploading ${fileName}`, sent, total);
-    }
+    if (done) build.start();
+    else if (build.timer === null) loading.bytes(`Uploading ${fileName}`, sent, total);
   };
 }
 
@@ -78,18 +75,23 @@ export function installSceneFileLoader(input, api, onError, options, loading) {
   input.addEventListener('change', async () => {
     const files = input.files ? [...input.files] : [];
     if (!files.length) return;
+    let build = null;
     try {
       const { main, mtl, nrrd } = classifyFiles(files);
-      const progress = uploadProgress(loading, main.file.name);
+      const ticket = newTicket();
+      build = new BuildProgress(api, loading, ticket);
+      const progress = uploadProgress(loading, main.file.name, build);
       let created;
       if (main.kind === 'scene') {
         const name = main.file.name.replace(/\.scene\.json$|\.json$/i, '');
         const { text, volumes } = splitVolumes(await main.file.text(), nrrd);
-        created = await api.createScene(text, name, progress);
+        created = await api.createScene(text, name, progress, ticket);
+        build.stop();
         if (volumes.length) loading.step(`Adding ${volumes.length} volume(s)…`);
         await addVolumes(api, created.id, volumes);
       } else {
-        created = await importFile(api, main, mtl, options, progress);
+        created = await importFile(api, main, mtl, options, progress, ticket);
+        build.stop();
         storeImportReport(created.id, created.name, created.import);
       }
       loading.step('Opening the new scene…');
@@ -97,8 +99,9 @@ export function installSceneFileLoader(input, api, onError, options, loading) {
       if (api.token) next.set('token', api.token); // the new scene's page keeps the token
       window.location.search = `?${next}`;
     } catch (error) {
+      if (build) build.stop();
       loading.cancel();
-      onError(error);
+      if (error.code !== 'build_cancelled') onError(error);
     } finally {
       input.value = '';
     }

@@ -3,6 +3,8 @@
 // server's render as PNG); and the scene as first seen at version 0, kept in this browser
 // (localStorage), for "Reset to file".
 
+import { describeBuild } from './build_progress.js';
+
 const sourceKey = (id, name) => `penumbra.source.${id}.${name}`;
 
 // Keeps the scene JSON of version 0 (the file as the server built it) for a later reset.
@@ -48,6 +50,7 @@ export class SceneList {
 
   render(scenes, currentId) {
     this.root.replaceChildren(...scenes.map((summary) => {
+      if (summary.state === 'building') return this.building(summary);
       const item = document.createElement('li');
       item.dataset.scene = summary.id;
       const link = document.createElement('a');
@@ -67,5 +70,22 @@ export class SceneList {
       item.append(link, info, remove);
       return item;
     }));
+  }
+
+  // A scene the server is still building: its stage and fraction, and Cancel (DELETE).
+  building(summary) {
+    const item = document.createElement('li');
+    item.dataset.scene = summary.id;
+    item.dataset.state = 'building';
+    const info = document.createElement('span');
+    info.className = 'muted';
+    info.textContent = `${summary.id} · building: ${describeBuild(summary.progress)} · ${summary.progress.elapsed_seconds.toFixed(0)} s`;
+    const cancel = document.createElement('button');
+    cancel.type = 'button';
+    cancel.textContent = 'Cancel';
+    cancel.title = `DELETE /api/scenes/${summary.id}: stops its build`;
+    cancel.addEventListener('click', () => this.onDelete(summary));
+    item.append(info, cancel);
+    return item;
   }
 }

@@ -1,0 +1,153 @@
+// A scene being built is a job: listed with state "building" and its progress (stage, done/total,
+// fraction, elapsed), cancelled by DELETE or a stop within a bound, nothing kept of it; the
+// server serves on. The long build: a tessellated torus knot (about 1,500 triangles, seconds).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "bench/lib/model_scene.h"
+#include "server_fixture.h"
+
+namespace penumbra::server::test {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Cancelling stops the build at its next progress report (a receiver at most): well within this
+// even under the sanitizers.
+constexpr std::chrono::seconds kStopBound{5};
+
+std::string knotJson() {
+  ModelSceneOptions options;
+  options.kind = ModelKind::TorusKnot;
+  options.triangles = 1500;
+  return protocol::sceneToJson(makeModelScene(options)).dump();
+}
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The list entry of the build with `ticket`, once it has counted some work; nullopt if the build
+// ended first or 60 s passed.
+std::optional<json> buildWithTicket(httplib::Client& client, const std::string& ticket) {
+  const auto deadline = Clock::now() + std::chrono::seconds(60);
+  while (Clock::now() < deadline) {
+    const json list = bodyJson(client.Get("/api/scenes"));
+    for (const json& scene : list["scenes"])
+      if (scene.value("ticket", "") == ticket && scene["progress"]["done"] > 0) return scene;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return std::nullopt;
+}
+
+struct Answer {
+  int status = 0;  // 0: none (the connection closed)
+  std::string body;
+};
+
+// Starts POST /api/scenes of the knot on a thread; its answer lands in `answer`.
+std::thread postKnot(int port, const std::string& ticket, Answer* answer) {
+  return std::thread([port, ticket, answer, body = knotJson()] {
+    httplib::Client client("127.0.0.1", port);
+    client.set_read_timeout(300, 0);
+    const auto res = client.Post(("/api/scenes?name=knot&ticket=" + ticket).c_str(), body,
+                                 "application/json");
+    if (res) *answer = {res->status, res->body};
+  });
+}
+
+TEST(BuildCancel, ProgressRisesThenDeleteStopsTheBuildAndFreesTheId) {
+  RunningServer running;
+  running.addBundled("cubes15");
+  httplib::Client client = running.client();
+  Answer created;
+  std::thread poster = postKnot(running.port(), "t1", &created);
+
+  // Progress is visible and rises, in the list and at the scene's own URL.
+  const std::optional<json> first = buildWithTicket(client, "t1");
+  ASSERT_TRUE(first) << "no building scene with progress listed";
+  const std::string id = (*first)["id"];
+  EXPECT_EQ((*first)["state"], "building");
+  std::optional<json> later;
+  const auto deadline = Clock::now() + std::chrono::seconds(60);
+  while (!later && Clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(150));
+    const json now = bodyJson(client.Get(("/api/scenes/" + id).c_str()));
+    ASSERT_EQ(now["state"], "building") << "the build ended before it was cancelled";
+    if (now["progress"] != (*first)["progress"] &&
+        now["progress"]["elapsed_seconds"] > (*first)["progress"]["elapsed_seconds"] &&
+        (now["progress"]["stage"] != (*first)["progress"]["stage"] ||
+         now["progress"]["done"] > (*first)["progress"]["done"]))
+      later = now;
+  }
+  ASSERT_TRUE(later) << "progress did not move from " << first->dump();
+  const json progress = (*later)["progress"];
+  if (!progress["fraction"].is_null()) {
+    EXPECT_GE(progress["fraction"], 0.0);
+    EXPECT_LE(progress["fraction"], 1.0);
+  }
+  // Other requests are served meanwhile; the building scene's own routes say so.
+  EXPECT_EQ(client.Get("/api/scenes/cubes15/mesh")->status, 200);
+  EXPECT_EQ(bodyJson(client.Get("/api/health"))["building"], 1);
+  const auto busy = client.Get(("/api/scenes/" + id + "/mesh").c_str());
+  EXPECT_EQ(busy->status, 503);
+  EXPECT_EQ(bodyJson(busy)["error"]["code"], "building");
+
+  const auto cancelStart = Clock::now();
+  const auto deleted = client.Delete(("/api/scenes/" + id).c_str());
+  ASSERT_TRUE(deleted);
+  EXPECT_EQ(deleted->status, 204) << deleted->body;
+  const double cancelSeconds = secondsSince(cancelStart);
+  RecordProperty("cancel_ms", int(cancelSeconds * 1000));
+  EXPECT_LT(cancelSeconds, double(kStopBound.count())) << "at " << later->dump();
+  poster.join();
+  EXPECT_EQ(created.status, 409) << created.body;
+  EXPECT_EQ(json::parse(created.body)["error"]["code"], "build_cancelled");
+
+  // Nothing kept: the list has cubes15 alone, the id answers 404 and is free again.
+  const json list = bodyJson(client.Get("/api/scenes"))["scenes"];
+  ASSERT_EQ(list.size(), 1u) << list.dump();
+  EXPECT_EQ(list[0]["id"], "cubes15");
+  EXPECT_EQ(list[0]["state"], "ready");
+  EXPECT_EQ(client.Get(("/api/scenes/" + id).c_str())->status, 404);
+  EXPECT_EQ(running.server().addScene(protocol::loadSceneFile(scenePath("cubes15")), "knot"), id);
+  const json health = bodyJson(client.Get("/api/health"));
+  EXPECT_EQ(health["status"], "ok");
+  EXPECT_EQ(health["building"], 0);
+}
+
+TEST(BuildCancel, StopCancelsABuildInFlight) {
+  Answer created;
+  std::thread poster;
+  double stopSeconds = 0;
+  {
+    RunningServer running;
+    httplib::Client client = running.client();
+    poster = postKnot(running.port(), "t2", &created);
+    ASSERT_TRUE(buildWithTicket(client, "t2")) << "no building scene listed";
+    const auto stopStart = Clock::now();
+    running.server().stop();  // the destructor joins the listener: every request ended
+    poster.join();
+    stopSeconds = secondsSince(stopStart);
+  }
+  EXPECT_LT(stopSeconds, double(kStopBound.count()));
+  if (created.status) EXPECT_EQ(created.status, 409) << created.body;
+}
+
+TEST(BuildCancel, ATicketOtherThanLettersDigitsDashOrUnderscoreIsRefused) {
+  RunningServer running;
+  httplib::Client client = running.client();
+  const auto res =
+      client.Post("/api/scenes?ticket=a%20b", sceneText("cubes15"), "application/json");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 400);
+  EXPECT_EQ(bodyJson(res)["error"]["path"], "query.ticket");
+  EXPECT_TRUE(bodyJson(client.Get("/api/scenes"))["scenes"].empty());
+}
+
+}  // namespace
+}  // namespace penumbra::server::test

@@ -1,0 +1,88 @@
+#!/usr/bin/env node
+// A long build from the page (a generated torus knot of --triangles triangles, seconds on the
+// server): the loading overlay shows the build's stage and fraction with a seconds counter that
+// moves, another tab's scene list shows the scene as building, and the overlay's Cancel stops the
+// build (DELETE): the overlay goes within --cancelSeconds, the page stays on its scene, nothing of
+// the cancelled scene is left and the server serves on. The build stops at its next progress
+// report (per cast, every 64 vertices lit): the DELETE takes under 0.1 s; the bound leaves room
+// for the page's poll and a busy machine.
+//
+// usage: node tests/web/build_cancel_e2e.mjs --penumbra build/penumbra [--triangles 3000] [--cancelSeconds 5]
+import { execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+
+import { check, repo, runWithServerAndBrowser, sleep, until, usageOnHelp } from './harness.mjs';
+
+const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'cubes15.scene.json'),
+  startupSeconds: 120, triangles: 3000, cancelSeconds: 5 };
+
+function knotScene(penumbra, triangles) {
+  const file = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'penumbra-cancel-')), 'knot.scene.json');
+  execFileSync(penumbra, ['generate', '--model', 'torus-knot', '--triangles', String(triangles), '--out', file], { stdio: 'ignore' });
+  return file;
+}
+
+const overlayText = () => document.getElementById('loading-text').textContent;
+
+async function buildAndCancel(browser, url, base, knotFile, cancelSeconds) {
+  const context = await browser.newContext({ viewport: { width: 1280, height: 800 } });
+  const page = await context.newPage();
+  await page.goto(url, { waitUntil: 'domcontentloaded' });
+  await page.waitForFunction(() => window.penumbra && window.penumbra.state().ready, null, { timeout: 60000 });
+  const startUrl = page.url();
+  const other = await context.newPage(); // a second tab: its scene list shows the build
+  await other.goto(startUrl, { waitUntil: 'domcontentloaded' });
+  await other.waitForFunction(() => window.penumbra && window.penumbra.state().ready, null, { timeout: 60000 });
+
+  await page.setInputFiles('#scene-file', { name: 'knot.scene.json', mimeType: 'application/json', buffer: fs.readFileSync(knotFile) });
+  const building = /^The server builds the discontinuity mesh: (\w+)(?: (\d+) %)? (\d+\.\d) s$/;
+  await page.waitForFunction((pattern) => new RegExp(pattern).test(document.getElementById('loading-text').textContent),
+    building.source, { timeout: 60000 });
+  // Meanwhile the other tab opens again and lists the scene being built.
+  const listed = other.reload({ waitUntil: 'domcontentloaded' })
+    .then(() => other.waitForFunction(() => document.querySelector('#scene-list li[data-state="building"]'), null, { timeout: 30000 }))
+    .then((item) => item.evaluate((node) => node.textContent)).catch((error) => `none: ${error.message}`);
+  const texts = [];
+  for (let i = 0; i < 8; ++i) {
+    texts.push(await page.evaluate(overlayText));
+    await sleep(150);
+  }
+  const seconds = texts.map((t) => t.match(building)).filter(Boolean).map((m) => Number(m[3]));
+  check(seconds.length >= 6 && new Set(seconds).size >= 6 && seconds.every((s, i) => i === 0 || s >= seconds[i - 1]),
+    'the overlay shows the build\'s stage with a seconds counter that moves', JSON.stringify(texts.slice(0, 4)));
+  check(texts.some((t) => / \d+ % /.test(t)), 'the overlay shows the stage\'s fraction', JSON.stringify(texts.slice(-3)));
+  const cancelVisible = await page.evaluate(() => !document.getElementById('loading-cancel').hidden);
+  check(cancelVisible, 'the overlay offers Cancel while the server builds');
+  const item = await listed;
+  check(/building: \w+/.test(item), 'another tab\'s scene list shows the scene being built with its stage', item);
+  await other.close();
+
+  const clicked = performance.now();
+  await page.click('#loading-cancel');
+  await page.waitForFunction(() => document.getElementById('loading').hidden, null, { timeout: 60000 });
+  const took = (performance.now() - clicked) / 1000;
+  console.log(`     the overlay went ${took.toFixed(2)} s after Cancel`);
+  check(took < cancelSeconds, `Cancel stops the build within ${cancelSeconds} s`, `${took.toFixed(2)} s`);
+  const scenes = (await (await fetch(`${base}/api/scenes`)).json()).scenes;
+  check(scenes.length === 1 && scenes[0].state === 'ready', 'nothing is left of the cancelled scene', JSON.stringify(scenes.map((s) => s.id)));
+  check(page.url() === startUrl, 'the page stays on its scene', page.url());
+  const health = await fetch(`${base}/api/health`);
+  check(health.ok, 'the server serves on');
+  const banner = await page.evaluate(() => {
+    const node = document.getElementById('error-banner');
+    return node && !node.hidden ? node.textContent : '';
+  });
+  check(!banner, 'a cancel is not an error', banner);
+  await context.close();
+}
+
+async function main() {
+  const args = usageOnHelp(process.argv, defaults, 'node tests/web/build_cancel_e2e.mjs --penumbra build/penumbra [--triangles N] [--cancelSeconds S]');
+  await runWithServerAndBrowser(args, async ({ browser, url, base }) => {
+    await buildAndCancel(browser, url, base, knotScene(args.penumbra, args.triangles), args.cancelSeconds);
+  });
+}
+
+main();
