@@ -16,6 +16,13 @@ namespace penumbra::server::test {
 
 using Answers = std::map<std::string, std::string>;  // query → body
 
+// The scene's whole binary mesh, as the page loads it.
+inline std::string meshBin(httplib::Client& client, const std::string& id) {
+  const auto res = client.Get(("/api/scenes/" + id + "/mesh?format=bin").c_str());
+  EXPECT_TRUE(res && res->status == 200);
+  return res ? res->body : "";
+}
+
 // The binary mesh (and, with `wholeJson`, the JSON one) and every delta since 0..last, binary
 // and JSON.
 inline Answers served(httplib::Client& client, const std::string& id, uint64_t last, bool wholeJson) {

@@ -15,6 +15,7 @@
 #include <random>
 
 #include "server/data_directory.h"
+#include "journal_answers.h"
 #include "server_fixture.h"
 #include "temp_data_dir.h"
 #include "tiny_scene.h"
@@ -23,12 +24,6 @@ namespace penumbra::server::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string meshBin(httplib::Client& client, const std::string& id) {
-  const auto res = client.Get(("/api/scenes/" + id + "/mesh?format=bin").c_str());
-  EXPECT_TRUE(res && res->status == 200);
-  return res ? res->body : "";
-}
 
 json sceneJson(httplib::Client& client, const std::string& id) {
   return bodyJson(client.Get(("/api/scenes/" + id).c_str()));

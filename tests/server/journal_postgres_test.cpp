@@ -11,18 +11,13 @@
 #include <vector>
 
 #include "server/scene_journal.h"
+#include "journal_answers.h"
 #include "server_fixture.h"
 #include "test_journal.h"
 #include "tiny_scene.h"
 
 namespace penumbra::server::test {
 namespace {
-
-std::string meshBin(httplib::Client& client, const std::string& id) {
-  const auto res = client.Get(("/api/scenes/" + id + "/mesh?format=bin").c_str());
-  EXPECT_TRUE(res && res->status == 200);
-  return res ? res->body : "";
-}
 
 httplib::Result moveBox(httplib::Client& client, const std::string& id, std::mt19937& rng) {
   std::uniform_real_distribution<double> where(-1.5, 1.5);

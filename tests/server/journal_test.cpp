@@ -10,18 +10,13 @@
 #include <random>
 #include <thread>
 
+#include "journal_answers.h"
 #include "server_fixture.h"
 #include "temp_data_dir.h"
 #include "test_journal.h"
 
 namespace penumbra::server::test {
 namespace {
-
-std::string meshBin(httplib::Client& client, const std::string& id) {
-  const auto res = client.Get(("/api/scenes/" + id + "/mesh?format=bin").c_str());
-  EXPECT_TRUE(res && res->status == 200);
-  return res ? res->body : "";
-}
 
 // Seeded moves of the first cubes near where they stand; returns the acknowledged version.
 uint64_t drag(httplib::Client& client, const std::string& id, int frames, uint32_t seed) {
