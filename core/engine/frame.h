@@ -50,8 +50,9 @@ struct FrameResult {
   std::vector<FaceId> removedReceivers;  // receivers that left the scene
   size_t nodesDeleted = 0;         // DM-tree nodes removed by node deletion
   size_t treeRebuilds = 0;         // fallback: receivers' DM-trees rebuilt from scratch
-  // The frame undid more than a set share of a large scene's cast pairs (apply_frame.cpp:
-  // kFullRebuildPairShare), or moved, resized, turned, added or removed a light (orders,
+  // The frame undid more than a set share of a large scene's cast pairs or added more than a
+  // set share of its faces (apply_frame.cpp: kFullRebuildPairShare, kFullRebuildAddedShare), or
+  // moved, resized, turned, added or removed a light (orders,
   // cubes and every shadow change), so the engine was rebuilt instead (treeRebuilds =
   // every receiver).
   bool fullRebuild = false;

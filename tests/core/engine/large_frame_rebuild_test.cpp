@@ -107,5 +107,20 @@ TEST(LargeFrameRebuild, AModelHoldingMostShadowsRebuildsWhenMoved) {
   expectEqualsRebuild(engine, "after moving the large model");
 }
 
+// An added object has no cast pairs yet: adding the bumped model (more than half the faces)
+// rebuilds by its share of the faces.
+TEST(LargeFrameRebuild, AddingAModelOfMostFacesRebuilds) {
+  const double corner = cubesRoom(CubesSceneOptions{.cubes = 80, .seed = 3}).side / 2 - 0.3;
+  const Scene withModel = largeSceneWith(Vec3(corner, 0.2, corner), 0.12, 0.3);
+  Engine engine(largeScene());
+  Edit add;
+  add.op = Edit::Op::Add;
+  add.object = withModel.objects()[*withModel.findObject("model")];
+  const FrameResult result = engine.apply(Frame{{add}});
+  EXPECT_TRUE(result.fullRebuild);
+  ASSERT_NO_THROW(engine.validate());
+  expectEqualsRebuild(engine, "after adding the model");
+}
+
 }  // namespace
 }  // namespace penumbra
