@@ -37,7 +37,7 @@ Scene sphereScene(const Args& args) {
 int runGenerateModel(const Args& args) {
   args.allowOnly({"model", "triangles", "seed", "out"});
   if (args.flag("dense") || args.flag("tilted-light") || args.flag("two-lights"))
-    throw UsageError("--model takes only --triangles, --rest, --seed and --out");
+    throw UsageError("--model takes only --triangles, --rest, --smooth, --seed and --out");
   const auto kind = modelKindFromName(*args.option("model"));
   if (!kind)
     throw UsageError("--model must be one of " + modelKindNames() + ", got '" +
@@ -47,6 +47,7 @@ int runGenerateModel(const Args& args) {
   options.triangles = args.intOption("triangles", defaultModelTriangles(*kind),
                                      minModelTriangles(*kind), kMaxModelTriangles);
   options.rest = args.flag("rest");
+  options.smooth = args.flag("smooth");
   if (options.rest && *kind == ModelKind::Furnished)
     throw UsageError("--rest does not apply to --model furnished (each object has its place)");
   options.seed = uint64_t(args.intOption("seed", int(options.seed), 0, 1 << 30));
@@ -66,7 +67,7 @@ int runGenerateModel(const Args& args) {
     else
       open += (open.empty() ? "" : ", ") + object.id;
   }
-  std::printf("wrote %s: %s, %zu model triangles (%zu faces in all, %zu objects), %s, %s\n",
+  std::printf("wrote %s: %s, %zu model triangles (%zu faces in all, %zu objects), %s, %s%s\n",
               out->c_str(), modelKindName(*kind), triangles, scene.faces().size(),
               scene.objects().size(),
               options.rest                    ? "resting on the floor"
@@ -75,7 +76,8 @@ int runGenerateModel(const Args& args) {
               models == 1 ? (closed ? "closed" : "open (not watertight)")
                           : (std::to_string(closed) + " of " + std::to_string(models) +
                              " models closed; open: " + open)
-                                .c_str());
+                                .c_str(),
+              options.smooth ? ", smooth-shaded (corner normals)" : "");
   return 0;
 }
 
@@ -84,8 +86,8 @@ int runGenerateModel(const Args& args) {
 int runGenerate(const Args& args) {
   if (args.option("volume")) return runGenerateVolume(args);
   if (args.option("model")) return runGenerateModel(args);
-  if (args.flag("rest") || args.option("triangles"))
-    throw UsageError("--rest and --triangles need --model NAME");
+  if (args.flag("rest") || args.flag("smooth") || args.option("triangles"))
+    throw UsageError("--rest, --smooth and --triangles need --model NAME");
   args.allowOnly({"cubes", "seed", "light-scale", "stacked-fraction", "tables", "out", "sphere"});
   CubesSceneOptions options;
   options.cubes = args.intOption("cubes", options.cubes, 0, 100000);

@@ -21,6 +21,7 @@
 #include "core/engine/engine.h"
 #include "core/engine/light_edits.h"
 #include "core/engine/volume_edits.h"
+#include "core/illum/face_lookup.h"
 #include "core/illum/vertex_illumination.h"
 #include "protocol/edits_json.h"
 #include "protocol/json_text.h"
@@ -109,7 +110,8 @@ Vec3 rebuiltValueAt(const Engine& rebuilt, const Engine::Receiver& receiver, con
     if (other.is_valid()) lists.push_back(&tree.occluders(other));
     break;
   }
-  return illuminatePoint(rebuilt.scene(), p, receiver.frame.normal, lists).irradiance;
+  const Vec3 shading = shadingNormalAt(rebuilt.scene(), receiver.face, receiver.frame.normal, p);
+  return illuminatePoint(rebuilt.scene(), p, receiver.frame.normal, shading, lists).irradiance;
 }
 
 std::string faceName(const Scene& scene, FaceId face) {

@@ -47,6 +47,7 @@ commands:
   generate --model NAME --out SCENE    a tessellated model in that room: teapot | torus-knot | blob |
            [--triangles N] [--rest]    bowl | scan (~N triangles; 6000, scan 70000), floating or on
            [--seed S]                  the floor; furnished: 9 models and 2 tables (~N = 100000)
+           [--smooth]                  models shaded smooth: corner normals across edges under 60°
   generate --volume FIELD --out X.nrrd a test field (marschner-lobb, sphere, smoke, mixing) as
            [--size N] [--type T]       gzip NRRD: N³ voxels (64), uchar | ushort | float (uchar),
            [--spacing S] [--seed S]    voxel spacing (1/(N−1): a 1 m cube), noise seed
@@ -85,7 +86,7 @@ int dispatch(int argc, char** argv) {
   if (command == "render") return runRender(Args(argc, argv, 2, {"reference", "stats"}));
   if (command == "replay") return runReplay(Args(argc, argv, 2, {"verify", "display-mesh"}));
   if (command == "serve") return runServe(Args(argc, argv, 2, {"ephemeral"}));
-  if (command == "generate") return runGenerate(Args(argc, argv, 2, {"tilted-light", "two-lights", "dense", "rest"}));
+  if (command == "generate") return runGenerate(Args(argc, argv, 2, {"tilted-light", "two-lights", "dense", "rest", "smooth"}));
   throw UsageError("unknown command '" + command + "'");
 }
 

@@ -36,6 +36,7 @@ std::vector<uint8_t> readableByTinygltf(const std::vector<uint8_t>& bytes);
 struct DecodedPrimitive {
   std::vector<Vec3> positions;
   std::vector<IndexPolygon> triangles;
+  std::vector<Vec3> normals;  // NORMAL per position; empty when the file has none
 };
 
 // The primitive's KHR_draco_mesh_compression geometry, or nullopt without the extension.

@@ -262,6 +262,15 @@ DecodedPrimitive primitiveGeometry(const tinygltf::Model& model, const tinygltf:
   for (size_t i = 0; i < positions.count(); ++i)
     out.positions.push_back(Vec3(positions.component(i, 0), positions.component(i, 1), positions.component(i, 2)));
   out.triangles = trianglesOf(model, primitive, positions.count(), path);
+  // Shading normals, one per position (ignored unless VEC3 with a count matching POSITION).
+  if (const auto normal = primitive.attributes.find("NORMAL"); normal != primitive.attributes.end()) {
+    const AccessorReader normals(model, normal->second, path + ".attributes.NORMAL");
+    if (normals.components() == 3 && normals.count() == positions.count())
+      for (size_t i = 0; i < normals.count(); ++i)
+        out.normals.push_back(Vec3(normals.component(i, 0), normals.component(i, 1), normals.component(i, 2)));
+    else
+      report.count("normals_ignored");
+  }
   return out;
 }
 
@@ -280,6 +289,7 @@ void restoreSceneFaces(const tinygltf::Model& model, const tinygltf::Primitive& 
     report.count("penumbra_faces_restored", restored->size());
     group.trianglesRead = group.polygons.size();
     group.polygons = std::move(*restored);
+    group.cornerNormals.clear();  // per triangle, not per restored face
     group.joinTriangles = false;
   }
 }
@@ -392,10 +402,20 @@ ImportResult importModel(const tinygltf::Model& model, const std::string& warn, 
         DecodedPrimitive local = primitiveGeometry(model, primitive, primitivePath, report);
         for (const Vec3& p : local.positions) group.positions.push_back(Vec3(worldFromNode * glm::dvec4(p, 1.0)));
         group.polygons = std::move(local.triangles);
+        if (!local.normals.empty()) {  // normals map by the inverse transpose
+          const Mat3 normalFromNode = glm::transpose(glm::inverse(Mat3(worldFromNode)));
+          for (const IndexPolygon& t : group.polygons) {
+            std::vector<Vec3>& corners = group.cornerNormals.emplace_back();
+            for (int i : t) corners.push_back(normalFromNode * local.normals[size_t(i)]);
+          }
+        }
         if (group.material >= 0)
           applyBaseColourTexture(model, primitive, primitivePath, geometry, group, report);
         if (mirrored)  // glTF: a mirroring transform flips the winding back
-          for (IndexPolygon& t : group.polygons) std::swap(t[1], t[2]);
+          for (size_t t = 0; t < group.polygons.size(); ++t) {
+            std::swap(group.polygons[t][1], group.polygons[t][2]);
+            if (t < group.cornerNormals.size()) std::swap(group.cornerNormals[t][1], group.cornerNormals[t][2]);
+          }
         if (ours) restoreSceneFaces(model, primitive, primitivePath, group, report);
         geometry.groups.push_back(std::move(group));
       }

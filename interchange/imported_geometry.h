@@ -28,6 +28,9 @@ struct ImportedGroup {
   int material = -1;  // index into ImportedGeometry::materials, -1 = none
   std::vector<Vec3> positions;  // file units (assembly applies ImportOptions::scale)
   std::vector<IndexPolygon> polygons;
+  // The file's shading normals (OBJ `vn`, glTF NORMAL), per polygon one per corner; empty, or
+  // an empty entry for a polygon given none. Assembly turns them into corner normals.
+  std::vector<std::vector<Vec3>> cornerNormals;
   // glTF: triangles of one surface are joined back into convex polygons.
   bool joinTriangles = false;
   // The file's triangles when `polygons` are not what it held (Penumbra's faces rebuilt from

@@ -303,7 +303,10 @@ ImportResult importObjText(const std::string& objText, const std::map<std::strin
       ImportedGroup& group = geometry.groups[it->second];
       std::map<int, int>& local = localIndex[it->second - firstGroup];
       IndexPolygon polygon;
+      std::vector<Vec3> normals;
       for (size_t k = 0; k < count; ++k) {
+        const int vn = shape.mesh.indices[offset + k].normal_index;
+        if (vn >= 0 && size_t(vn) * 3 + 2 < attrib.normals.size()) normals.push_back(vec3(&attrib.normals[size_t(vn) * 3]));
         const int v = shape.mesh.indices[offset + k].vertex_index;
         if (v < 0 || size_t(v) >= vertexCount)
           throw ValidationError("(obj)", "object '" + shape.name + "' face " + std::to_string(f) +
@@ -315,6 +318,11 @@ ImportResult importObjText(const std::string& objText, const std::map<std::strin
       }
       offset += count;
       group.polygons.push_back(std::move(polygon));
+      // Normals on every corner or none (a face with some `vn` missing is shaded flat).
+      if (normals.size() != count) normals.clear();
+      if (!normals.empty() && group.cornerNormals.size() < group.polygons.size() - 1)
+        group.cornerNormals.resize(group.polygons.size() - 1);
+      if (!normals.empty() || !group.cornerNormals.empty()) group.cornerNormals.push_back(std::move(normals));
     }
     if (groupOfMaterial.size() > 1) {
       report.count("groups_split_by_material", groupOfMaterial.size() - 1);

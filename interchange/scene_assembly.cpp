@@ -11,6 +11,7 @@
 #include "core/geom/polygon.h"
 #include "core/geom/tolerance.h"
 #include "interchange/coplanar_overlaps.h"
+#include "interchange/corner_normals.h"
 #include "interchange/default_studio.h"
 #include "interchange/light_polygons.h"
 #include "interchange/mesh_orientation.h"
@@ -73,6 +74,7 @@ struct RepairedGroup {
   std::vector<IndexPolygon> faces;
   size_t verticesWelded = 0;  // used positions that joined an earlier one
   SurfaceFacts topology;      // of `faces` once oriented (lights: unset)
+  std::vector<std::vector<Vec3>> normalsAt;  // the file's normals per position (corner_normals.h)
 };
 
 // minWidth: the scene's Tolerance::minFaceWidth() (thinner faces are refused by Scene).
@@ -86,6 +88,7 @@ RepairedGroup repairGroup(const ImportedGroup& group, bool emissive, double scal
   scaled.reserve(group.positions.size());
   for (const Vec3& p : group.positions) scaled.push_back(place.apply(p * scale));
   WeldResult weld = weldVertices(scaled, weldEps);
+  out.normalsAt = fileNormalsAt(group, weld.remap, weld.positions.size());
   out.positions = std::move(weld.positions);
 
   std::vector<IndexPolygon> pieces;
@@ -405,6 +408,12 @@ ImportResult assembleScene(const ImportedGeometry& geometry, const ImportOptions
     report.count("unused_vertices_dropped", g.positions.size() - compact.size());
     objectIds.back() = objectIdPool.take(g.source->name);
     Json object = {{"id", objectIds.back()}, {"vertices", vertices}, {"faces", faces}};
+    if (!g.normalsAt.empty()) {
+      size_t flatCorners = 0;
+      object["normals"] = cornerNormalsJson(g.positions, g.faces, g.normalsAt, flatCorners);
+      report.count("faces_with_file_normals", g.faces.size());
+      report.count("corners_shaded_flat_without_a_file_normal", flatCorners);
+    }
     const int m = g.source->material;
     if (m >= 0 && geometry.materials[size_t(m)].defined) {
       if (!usedMaterials.count(m)) usedMaterials[m] = materialNames.take(geometry.materials[size_t(m)].name);

@@ -130,6 +130,33 @@ Transform transformFromJson(const Json& value, const std::string& path) {
   return transform;
 }
 
+namespace {
+// Per face, one normal per corner (smooth shading, SCENE_FORMAT.md): finite, non-zero.
+std::vector<std::vector<Vec3>> cornerNormalsFromJson(const Json& value, const std::string& path,
+                                                     const std::vector<std::vector<int>>& faces) {
+  const Json& lists = expectArray(value, path);
+  if (lists.size() != faces.size())
+    fail(path, "has " + std::to_string(lists.size()) + " lists of corner normals for " +
+                   std::to_string(faces.size()) + " faces");
+  std::vector<std::vector<Vec3>> out(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const std::string facePath = indexPath(path, f);
+    const Json& corners = expectArray(lists[f], facePath);
+    if (corners.size() != faces[f].size())
+      fail(facePath, "face has " + std::to_string(faces[f].size()) + " corners but " +
+                         std::to_string(corners.size()) + " normals");
+    for (size_t k = 0; k < corners.size(); ++k) {
+      const Vec3 n = expectVec3(corners[k], indexPath(facePath, k));
+      const double length = glm::length(n);
+      if (!std::isfinite(length) || !(length > 1e-12))
+        fail(indexPath(facePath, k), "a normal must be a finite, non-zero vector");
+      out[f].push_back(n);
+    }
+  }
+  return out;
+}
+}  // namespace
+
 Object objectFromJson(const Json& value, const std::string& path, const std::vector<Material>& materials) {
   expectObject(value, path);
   Object object;
@@ -160,6 +187,9 @@ Object objectFromJson(const Json& value, const std::string& path, const std::vec
     checkConvexPlanar(polygon, facePath, "face");
     object.faces.push_back(std::move(indices));
   }
+
+  if (const Json* normals = optionalKey(value, "normals"))
+    object.normals = cornerNormalsFromJson(*normals, keyPath(path, "normals"), object.faces);
 
   if (const Json* material = optionalKey(value, "material")) {
     object.material = expectString(*material, keyPath(path, "material"));
@@ -307,6 +337,15 @@ Json objectToJson(const Object& object) {
   Json faces = Json::array();
   for (const auto& face : object.faces) faces.push_back(face);
   out["faces"] = std::move(faces);
+  if (!object.normals.empty()) {
+    Json normals = Json::array();
+    for (const auto& corners : object.normals) {
+      Json list = Json::array();
+      for (const Vec3& n : corners) list.push_back(toJson(n));
+      normals.push_back(std::move(list));
+    }
+    out["normals"] = std::move(normals);
+  }
   if (!object.material.empty()) out["material"] = object.material;
   if (object.isStatic) out["static"] = true;
   if (object.transform != Transform{}) out["transform"] = transformToJson(object.transform);

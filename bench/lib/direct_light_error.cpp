@@ -30,7 +30,8 @@ DirectLightError directLightError(const Scene& scene, const Mesh& mesh, const Ca
       const uint32_t faceIndex = uint32_t(view.face[p]);
       const Face& face = scene.faces()[faceIndex];
       if (!scene.receivesLight(face)) continue;
-      const Vec3 truth = reference.evaluate(view.position[p], face.plane.normal).irradiance;
+      const Vec3 truth =
+          reference.evaluate(view.position[p], face.plane.normal, shadingNormal(face, view.position[p])).irradiance;
       const Vec3 mesh = lookup.irradiance(faceIndex, view.position[p]).value_or(Vec3(0.0));
       exact[p] = largest(truth);
       interpolated[p] = largest(mesh);

@@ -184,6 +184,10 @@ Scene makeModelScene(const ModelSceneOptions& options) {
     camera.target = Vec3(0, 0.6, 0);
     camera.fovYDeg = 75;
   }
+  if (options.smooth)
+    for (Object& object : objects)
+      if (!object.isStatic && object.id.rfind("table_", 0) != 0)
+        object.normals = smoothCornerNormals(object.vertices, object.faces);
   return Scene(std::move(lights), std::move(materials), std::move(objects), camera);
 }
 

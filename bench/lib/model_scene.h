@@ -39,6 +39,7 @@ struct ModelSceneOptions {
   ModelKind kind = ModelKind::Teapot;
   int triangles = 0;  // 0: defaultModelTriangles(kind)
   bool rest = false;  // on the floor (lowest vertex at y = 0) instead of floating
+  bool smooth = false;  // the models carry corner normals (smoothCornerNormals, crease 60°)
   uint64_t seed = 1;  // the blob's and the scan's shapes
 };
 

@@ -429,9 +429,10 @@ void Engine::computeVertex(Receiver& receiver, VertexId v) const {
   std::vector<const OccluderList*> lists;
   for (CellId c : tree.cellsAround(v)) lists.push_back(&tree.occluders(c));
   const Vec3 p = receiver.frame.to3D(tree.position(v));
+  const Vec3 shading = shadingNormalAt(scene_, receiver.face, receiver.frame.normal, p);
   const std::span<VertexLight> perLight = receiver.perLight[v.index];
   for (size_t l = 0; l < perLight.size(); ++l)
-    perLight[l] = illuminateVertex(scene_, l, p, receiver.frame.normal, lists);
+    perLight[l] = illuminateVertex(scene_, l, p, receiver.frame.normal, shading, lists);
   receiver.lit[v.index] = 1;
 }
 

@@ -15,14 +15,21 @@
 namespace penumbra {
 
 Backprojection::Backprojection(const Scene& scene, size_t light, const Vec3& p, const Vec3& n) {
-  reset(scene, light, p, n);
+  reset(scene, light, p, n, n);
 }
 
-void Backprojection::reset(const Scene& scene, size_t light, const Vec3& p, const Vec3& n) {
+Backprojection::Backprojection(const Scene& scene, size_t light, const Vec3& p, const Vec3& n,
+                               const Vec3& shading) {
+  reset(scene, light, p, n, shading);
+}
+
+void Backprojection::reset(const Scene& scene, size_t light, const Vec3& p, const Vec3& n, const Vec3& shading) {
   scene_ = &scene;
   tolerance_ = scene.tolerance();
   p_ = p;
   n_ = n;
+  s_ = shading;
+  smooth_ = shading != n;
   applies_ = false;
   front_.clear();
   cone_.clear();
@@ -379,9 +386,15 @@ void Backprojection::resolve() const {
   }
   // Lambert's sum over the boundary of what is left, oriented as the light is in
   // the frame (counter-clockwise): the light's own sum gives the sign.
+  // With a shading normal the orientation still comes from n: the front part lies wholly in
+  // front of n's plane, not of the shading normal's.
   double sum = 0, lightSum = 0;
-  for (const Segment2& s : contour.boundary())
-    sum += lambertEdgeTerm(p_, n_, frame_.to3D(s.from), frame_.to3D(s.to));
+  if (smooth_) {
+    sum = shadedBoundarySum(contour.boundary());
+  } else {
+    for (const Segment2& s : contour.boundary())
+      sum += lambertEdgeTerm(p_, n_, frame_.to3D(s.from), frame_.to3D(s.to));
+  }
   for (size_t i = 0; i < front2_.size(); ++i)
     lightSum += lambertEdgeTerm(p_, n_, frame_.to3D(front2_[i]), frame_.to3D(front2_[(i + 1) % front2_.size()]));
   visibleFactor_ = std::max(0.0, 0.5 * (lightSum < 0 ? -sum : sum));
@@ -419,8 +432,47 @@ void Backprojection::resolvePieces(VisibleRegion& region) const {
   }
 }
 
+double Backprojection::shadedBoundarySum(std::span<const Segment2> boundary) const {
+  // The integrand is cos⁺ about s: the region is cut by the plane through p normal to s. Each
+  // boundary segment keeps its part in front (d ≥ 0); where the boundary leaves the front at
+  // x and comes back at y, the cut's boundary runs along the line where that plane meets the
+  // light's, from x to y. Edge terms along one line are additive, so with F(q) the term from
+  // the first crossing to q, the line's share is F(y) − F(x) summed over the pairs, which is
+  // ΣF(entries) − ΣF(exits) whatever their pairing. (The term of a segment in that plane is
+  // not zero: the cut is part of the boundary.)
+  const Plane shade = Plane::throughPoint(s_, p_);
+  double sum = 0, crossings = 0;
+  bool anyCrossing = false;
+  Vec3 origin{0.0};
+  auto cross = [&](const Vec3& x, double sign) {
+    if (!anyCrossing) origin = x, anyCrossing = true;
+    crossings += sign * lambertEdgeTerm(p_, s_, origin, x);
+  };
+  for (const Segment2& segment : boundary) {
+    const Vec3 a = frame_.to3D(segment.from), b = frame_.to3D(segment.to);
+    const double da = shade.signedDistance(a), db = shade.signedDistance(b);
+    const bool inA = da >= 0, inB = db >= 0;
+    if (inA && inB) {
+      sum += lambertEdgeTerm(p_, s_, a, b);
+    } else if (inA != inB) {
+      const Vec3 x = a + (b - a) * (da / (da - db));
+      if (inA) {
+        sum += lambertEdgeTerm(p_, s_, a, x);
+        cross(x, -1);  // leaves the front
+      } else {
+        sum += lambertEdgeTerm(p_, s_, x, b);
+        cross(x, +1);  // comes back
+      }
+    }
+  }
+  return sum + crossings;
+}
+
 double Backprojection::unoccludedFactor() const {
-  return applies_ ? lambertIntegral(p_, n_, front_) : 0.0;
+  if (!applies_) return 0.0;
+  if (!smooth_) return lambertIntegral(p_, n_, front_);
+  const Polygon3 shaded = clipFront(front_, Plane::throughPoint(s_, p_), tolerance_.length());
+  return shaded.size() >= 3 ? lambertIntegral(p_, s_, shaded) : 0.0;
 }
 
 bool Backprojection::anyVisible() const {

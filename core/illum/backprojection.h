@@ -13,6 +13,7 @@
 #include "core/geom/convex2d.h"
 #include "core/geom/plane_frame.h"
 #include "core/illum/shadow_chain.h"
+#include "core/illum/visible_contour.h"
 #include "core/illum/visible_region.h"
 #include "core/mesh/mesh.h"
 #include "core/scene/scene.h"
@@ -22,11 +23,16 @@ namespace penumbra {
 class Backprojection {
  public:
   // Light `light` of `scene` seen from p with unit front normal n, nothing removed yet.
+  // `shading` (unit, in front of n's plane; shading_normal.h) is the normal the factors are
+  // taken about: Lambert's integral of cos⁺ about it over what is visible. n alone decides
+  // visibility (the front part, the single-sided rule, what blocks).
   Backprojection(const Scene& scene, size_t light, const Vec3& p, const Vec3& n);
+  Backprojection(const Scene& scene, size_t light, const Vec3& p, const Vec3& n, const Vec3& shading);
   Backprojection() = default;  // applies() is false until reset()
   // Starts afresh as the constructor would, keeping the buffers' capacity: one object
   // reused for many points allocates nothing once warm (vertex_illumination.cpp).
-  void reset(const Scene& scene, size_t light, const Vec3& p, const Vec3& n);
+  void reset(const Scene& scene, size_t light, const Vec3& p, const Vec3& n) { reset(scene, light, p, n, n); }
+  void reset(const Scene& scene, size_t light, const Vec3& p, const Vec3& n, const Vec3& shading);
 
   // Whether the light faces p (p strictly in front of its plane) and some of it lies
   // in front of p's plane; otherwise it contributes nothing and has no class.
@@ -63,7 +69,8 @@ class Backprojection {
   // crosses it as δ → 0 (p on the face, q − p entering it). Other faces as occlude().
   bool occludeApproaching(const Face& face, const Vec3& d);
 
-  // ∫ cosθp·cosθL / r² dA over the front part of the light, and over what is left.
+  // ∫ cos⁺θs·cosθL / r² dA over the front part of the light, and over what is left, with
+  // θs the angle to the shading normal (n itself unless one was given).
   double unoccludedFactor() const;
   double visibleFactor() const;
   // Some candidate removed positive area; some positive area is left.
@@ -75,7 +82,8 @@ class Backprojection {
   // Lit (nothing removed), Umbra (nothing left) or Penumbra; Lit if !applies().
   LightClass lightClass() const;
   size_t comparisons() const { return comparisons_; }
-  // The visible part in world space (on the light's plane), convex pieces.
+  // The visible part in world space (on the light's plane), convex pieces: what n's point
+  // sees, not clipped to the shading normal's front.
   std::vector<Polygon3> visiblePieces() const;
 
  private:
@@ -93,6 +101,8 @@ class Backprojection {
   // The visible part as convex pieces: the shadows subtracted, largest first.
   void resolvePieces(VisibleRegion& region) const;
   double cutEps() const;
+  // Lambert's sum about the shading normal over `boundary` clipped to its front half-space.
+  double shadedBoundarySum(std::span<const Segment2> boundary) const;
   bool occludeMesh(uint32_t handle, const MeshTopology& mesh, std::span<const Face> faces, const Vec3* towards);
   // Inward side planes of the cone from p over front_ (no margin), made on first use.
   const std::vector<Plane>& lightCone();
@@ -100,6 +110,8 @@ class Backprojection {
   const Scene* scene_ = nullptr;
   Tolerance tolerance_;
   Vec3 p_{0.0}, n_{0.0};
+  Vec3 s_{0.0};                 // the shading normal
+  bool smooth_ = false;         // s_ differs from n_
   Polygon3 lightPolygon_;       // the light's polygon that lightPlane_ and frame_ are of
   Plane lightPlane_;
   double pHeight_ = 0;          // p's distance in front of the light's plane

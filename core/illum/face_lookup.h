@@ -16,4 +16,12 @@ inline const Face* findFace(const Scene& scene, FaceId id) {
   return it != faces.end() && it->id == id ? &*it : nullptr;
 }
 
+// The normal point p of face `id` is shaded with: its corner normals interpolated
+// (shading_normal.h), or `flat`, the face's own normal, when it has none.
+inline Vec3 shadingNormalAt(const Scene& scene, FaceId id, const Vec3& flat, const Vec3& p) {
+  const Face* face = findFace(scene, id);
+  return face && !face->cornerNormals.empty() ? interpolatedNormal(face->polygon, face->cornerNormals, flat, p)
+                                              : flat;
+}
+
 }  // namespace penumbra

@@ -35,9 +35,10 @@ std::vector<OccluderEntry> entriesFor(const OccluderList& list, size_t light) {
 // The calling thread's Backprojection, reset for each point: its buffers keep their capacity,
 // where a fresh object cost some eight allocations a point. Not reentrant: nothing called
 // while a view is in use asks for another.
-Backprojection& reusedView(const Scene& scene, size_t light, const Vec3& p, const Vec3& n) {
+Backprojection& reusedView(const Scene& scene, size_t light, const Vec3& p, const Vec3& n,
+                           const Vec3& shading) {
   thread_local Backprojection view;
-  view.reset(scene, light, p, n);
+  view.reset(scene, light, p, n, shading);
   return view;
 }
 
@@ -79,7 +80,7 @@ Vec3 directionInPlane(const Vec3& n, const Vec3& d) {
 }  // namespace
 
 VertexLight illuminateVertex(const Scene& scene, size_t light, const Vec3& p, const Vec3& n,
-                             const std::vector<const OccluderList*>& cellsAround) {
+                             const Vec3& shading, const std::vector<const OccluderList*>& cellsAround) {
   if (cellsAround.empty()) throw std::invalid_argument("illuminateVertex: no cells around");
   for (const OccluderList* list : cellsAround)
     if (!list) throw std::invalid_argument("illuminateVertex: null occluder list");
@@ -90,7 +91,7 @@ VertexLight illuminateVertex(const Scene& scene, size_t light, const Vec3& p, co
                        [&](const OccluderEntry& e) { return e.light == light && e.face == face; });
   };
 
-  Backprojection& view = reusedView(scene, light, p, n);
+  Backprojection& view = reusedView(scene, light, p, n, shading);
   if (!view.applies()) return VertexLight{};
 
   // (1) Some cell sees the whole light, so p does (a blocker of p would block
@@ -141,21 +142,22 @@ VertexLight illuminateVertex(const Scene& scene, size_t light, const Vec3& p, co
   return fromView(view, VertexCase::Covering);
 }
 
-VertexIrradiance illuminatePoint(const Scene& scene, const Vec3& p, const Vec3& n,
+VertexIrradiance illuminatePoint(const Scene& scene, const Vec3& p, const Vec3& n, const Vec3& shading,
                                  const std::vector<const OccluderList*>& cellsAround) {
   VertexIrradiance total;
   bool anyLight = false;
   for (size_t l = 0; l < scene.lights().size(); ++l)
-    accumulate(total, anyLight, scene.lights()[l], illuminateVertex(scene, l, p, n, cellsAround));
+    accumulate(total, anyLight, scene.lights()[l], illuminateVertex(scene, l, p, n, shading, cellsAround));
   if (!anyLight) total.lightClass = LightClass::Umbra;
   return total;
 }
 
 VertexLight illuminateVertexFromCell(const Scene& scene, size_t light, const Vec3& p,
-                                     const Vec3& n, const Vec3& d, const OccluderList& cell) {
+                                     const Vec3& n, const Vec3& shading, const Vec3& d,
+                                     const OccluderList& cell) {
   const Vec3 towards = directionInPlane(n, d);
   const std::vector<OccluderEntry> entries = entriesFor(cell, light);
-  Backprojection& view = reusedView(scene, light, p, n);
+  Backprojection& view = reusedView(scene, light, p, n, shading);
   if (!view.applies()) return VertexLight{};
   if (entries.empty()) return fromView(view, VertexCase::Unoccluded);
   // The cell's inside is hidden throughout: so is the limit.
@@ -174,12 +176,12 @@ VertexLight illuminateVertexFromCell(const Scene& scene, size_t light, const Vec
 }
 
 VertexIrradiance illuminatePointFromCell(const Scene& scene, const Vec3& p, const Vec3& n,
-                                         const Vec3& d, const OccluderList& cell) {
+                                         const Vec3& shading, const Vec3& d, const OccluderList& cell) {
   VertexIrradiance total;
   bool anyLight = false;
   for (size_t l = 0; l < scene.lights().size(); ++l)
     accumulate(total, anyLight, scene.lights()[l],
-               illuminateVertexFromCell(scene, l, p, n, d, cell));
+               illuminateVertexFromCell(scene, l, p, n, shading, d, cell));
   if (!anyLight) total.lightClass = LightClass::Umbra;
   return total;
 }

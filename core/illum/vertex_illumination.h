@@ -51,7 +51,8 @@ bool identicalValue(const VertexIrradiance& a, const VertexIrradiance& b);
 // value for relight counters (a vertex lit again from other cells may move the last bits).
 bool sameValue(const VertexIrradiance& a, const VertexIrradiance& b);
 
-// Light `light` at p (unit front normal n) from the occluder lists of the cells
+// Light `light` at p (unit front normal n, shaded about `shading`: n itself for a flat face;
+// Backprojection) from the occluder lists of the cells
 // around p (entries of other lights are ignored). The cases in order:
 // (1) a cell without entry for the light → the whole front part, Lit;
 // (2) a face flagged umbra in some cell, present in every cell and blocking p under
@@ -61,8 +62,8 @@ bool sameValue(const VertexIrradiance& a, const VertexIrradiance& b);
 //     removed, Umbra if nothing is left, Lit otherwise.
 // Throws std::invalid_argument if cellsAround is empty or holds a null list.
 VertexLight illuminateVertex(const Scene& scene, size_t light, const Vec3& p, const Vec3& n,
-                             const std::vector<const OccluderList*>& cellsAround);
-VertexIrradiance illuminatePoint(const Scene& scene, const Vec3& p, const Vec3& n,
+                             const Vec3& shading, const std::vector<const OccluderList*>& cellsAround);
+VertexIrradiance illuminatePoint(const Scene& scene, const Vec3& p, const Vec3& n, const Vec3& shading,
                                  const std::vector<const OccluderList*>& cellsAround);
 
 // The limit of the same quantity as the point tends to p from inside `cell`, along
@@ -70,8 +71,9 @@ VertexIrradiance illuminatePoint(const Scene& scene, const Vec3& p, const Vec3& 
 // face flagged umbra → 0, Umbra; otherwise the cell's faces, a face whose plane
 // contains p blocking by its limiting projection (Backprojection::occludeApproaching).
 VertexLight illuminateVertexFromCell(const Scene& scene, size_t light, const Vec3& p,
-                                     const Vec3& n, const Vec3& d, const OccluderList& cell);
+                                     const Vec3& n, const Vec3& shading, const Vec3& d,
+                                     const OccluderList& cell);
 VertexIrradiance illuminatePointFromCell(const Scene& scene, const Vec3& p, const Vec3& n,
-                                         const Vec3& d, const OccluderList& cell);
+                                         const Vec3& shading, const Vec3& d, const OccluderList& cell);
 
 }  // namespace penumbra

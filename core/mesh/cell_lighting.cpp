@@ -86,7 +86,14 @@ CellLighter::CellLighter(const Scene& scene, const MeshSource& source, double sp
       spacing_(spacing),
       chunkSide_(chunkSide),
       refine_(refine),
-      dark_(scene.lights().size()) {}
+      dark_(scene.lights().size()) {
+  if (const Face* face = findFace(scene, source.face); face && !face->cornerNormals.empty()) face_ = face;
+}
+
+Vec3 CellLighter::shadingAt(const Vec3& p) const {
+  return face_ ? interpolatedNormal(face_->polygon, face_->cornerNormals, source_.frame.normal, p)
+               : source_.frame.normal;
+}
 
 // A point is on a value discontinuity (D0) when an occluder of a cell around it
 // has its plane through it (it touches the receiver there): it then takes its
@@ -188,6 +195,7 @@ void CellLighter::lightsAt(const Vec2& q, const OccluderList& list, const Vec3& 
   }
   const Vec3 p = source_.frame.to3D(q);
   const Vec3 normal = source_.frame.normal;
+  const Vec3 shading = shadingAt(p);
   // A contact corner or lattice point takes the limit from the cell; another lattice
   // point is lit exactly from this cell's list (cases 2 and 3 keep it dark in a light's umbra).
   // (A refinement point at the centre itself has no direction to take a limit along: it lies
@@ -195,15 +203,15 @@ void CellLighter::lightsAt(const Vec2& q, const OccluderList& list, const Vec3& 
   const bool limit = (corner < polygon.size() || onContact(p)) && glm::length(centre - p) > eps_;
   oneCell_.assign(1, &list);
   for (size_t l = 0; l < lights; ++l)
-    out.push_back(limit ? illuminateVertexFromCell(scene_, l, p, normal, centre - p, list)
-                        : illuminateVertex(scene_, l, p, normal, oneCell_));
+    out.push_back(limit ? illuminateVertexFromCell(scene_, l, p, normal, shading, centre - p, list)
+                        : illuminateVertex(scene_, l, p, normal, shading, oneCell_));
 }
 
 void CellLighter::levelsAt(const Vec2& q, std::vector<double>& out) const {
   thread_local Backprojection view;
   const Vec3 p = source_.frame.to3D(q);
   for (size_t l = 0; l < inputs_.lights; ++l) {
-    view.reset(scene_, l, p, source_.frame.normal);
+    view.reset(scene_, l, p, source_.frame.normal, shadingAt(p));
     out.push_back(view.applies() ? view.unoccludedFactor() : 0.0);
   }
 }
@@ -301,9 +309,9 @@ void CellLighter::emit(CellId c, CellMemo& out) {
       const Vec2 middle = centroid(piece);
       oneCell_.assign(1, &list);
       addOwn(middle);
+      const Vec3 p = source_.frame.to3D(middle);
       for (size_t l = 0; l < inputs_.lights; ++l)
-        output_.ownLights.push_back(
-            illuminateVertex(scene_, l, source_.frame.to3D(middle), source_.frame.normal, oneCell_));
+        output_.ownLights.push_back(illuminateVertex(scene_, l, p, source_.frame.normal, shadingAt(p), oneCell_));
     }
     const CellFan shape = refine(piece, first, fan, list, centre);
     output_.pieces.push_back({chunkOf(piece), uint32_t(output_.points.size()), shape});

@@ -105,6 +105,8 @@ class CellLighter {
   // illuminatePoint, reused.
   std::vector<const Face*> listFaces_;
   std::vector<const OccluderList*> oneCell_;
+  const Face* face_ = nullptr;  // the receiver's face when it has corner normals
+  Vec3 shadingAt(const Vec3& p) const;
 };
 
 }  // namespace penumbra

@@ -134,16 +134,23 @@ LightView viewLight(const Scene& scene, const Vec3& p, const Vec3& n, const Ligh
   return view;
 }
 
+// Lambert about the shading normal s over the part of a visible piece in front of s's
+// plane (the integrand is cos⁺); the piece itself where s is the face's normal n.
+double shadedFactor(const Vec3& p, const Vec3& n, const Vec3& s, const Polygon3& piece) {
+  if (s == n) return lambertFactor(p, n, piece);
+  return lambertFactor(p, s, clipFront(piece, Plane::throughPoint(s, p), 0.0));
+}
+
 // The public result for one light; `applies` says whether the light's emitting
 // front is at all in front of p (otherwise it contributes nothing).
-LightVisibility lightVisibility(const Scene& scene, const Vec3& p, const Vec3& n,
+LightVisibility lightVisibility(const Scene& scene, const Vec3& p, const Vec3& n, const Vec3& s,
                                 const Light& light, bool* applies) {
   const LightView view = viewLight(scene, p, n, light);
   *applies = view.applies;
   LightVisibility out;
   if (!view.applies) return out;
   // (d) Lambert over the front-clipped light and over each visible piece.
-  out.unoccludedFactor = lambertFactor(p, n, view.front);
+  out.unoccludedFactor = shadedFactor(p, n, s, view.front);
   if (!view.occluded && !view.pieces.empty()) {
     // Nothing removed: the visible part is the front-clipped light itself (not
     // its image through the plane frame), so a lit point gets exactly its value.
@@ -156,7 +163,7 @@ LightVisibility lightVisibility(const Scene& scene, const Vec3& p, const Vec3& n
     Polygon3 world;
     world.reserve(piece.size());
     for (const Vec2& q : piece) world.push_back(view.frame.to3D(q));
-    out.visibleFactor += lambertFactor(p, n, world);
+    out.visibleFactor += shadedFactor(p, n, s, world);
     out.visiblePieces.push_back(std::move(world));
   }
   out.lightClass = view.pieces.empty() ? LightClass::Umbra
@@ -170,18 +177,25 @@ LightVisibility lightVisibility(const Scene& scene, const Vec3& p, const Vec3& n
 ExactReference::ExactReference(const Scene& scene) : scene_(scene) {}
 
 LightVisibility ExactReference::visibility(const Vec3& p, const Vec3& n, size_t light) const {
-  bool applies = false;
-  return lightVisibility(scene_, p, n, scene_.lights().at(light), &applies);
+  return visibility(p, n, n, light);
 }
 
-PointIrradiance ExactReference::evaluate(const Vec3& p, const Vec3& n) const {
+LightVisibility ExactReference::visibility(const Vec3& p, const Vec3& n, const Vec3& shading,
+                                           size_t light) const {
+  bool applies = false;
+  return lightVisibility(scene_, p, n, shading, scene_.lights().at(light), &applies);
+}
+
+PointIrradiance ExactReference::evaluate(const Vec3& p, const Vec3& n) const { return evaluate(p, n, n); }
+
+PointIrradiance ExactReference::evaluate(const Vec3& p, const Vec3& n, const Vec3& shading) const {
   PointIrradiance out;
   bool anyLight = false;
   for (const Light& light : scene_.lights()) {
     // A light whose front does not face p, or that lies wholly behind p's plane,
     // contributes nothing and leaves the class alone.
     bool applies = false;
-    const LightVisibility v = lightVisibility(scene_, p, n, light, &applies);
+    const LightVisibility v = lightVisibility(scene_, p, n, shading, light, &applies);
     if (!applies) continue;
     out.irradiance += light.radiance * v.visibleFactor;
     out.lightClass = anyLight ? combine(out.lightClass, v.lightClass) : v.lightClass;

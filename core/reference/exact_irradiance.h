@@ -32,9 +32,13 @@ class ExactReference {
  public:
   explicit ExactReference(const Scene& scene);
 
-  // p lies on a receiving face with unit front normal n.
+  // p lies on a receiving face with unit front normal n. With `shading` (a smooth face's
+  // interpolated normal, in front of n's plane), the factors are Lambert's about it over
+  // each visible piece clipped to its front; visibility and pieces stay n's.
   PointIrradiance evaluate(const Vec3& p, const Vec3& n) const;
+  PointIrradiance evaluate(const Vec3& p, const Vec3& n, const Vec3& shading) const;
   LightVisibility visibility(const Vec3& p, const Vec3& n, size_t light) const;
+  LightVisibility visibility(const Vec3& p, const Vec3& n, const Vec3& shading, size_t light) const;
 
  private:
   const Scene& scene_;

@@ -72,10 +72,13 @@ Mesh referenceGridMesh(const Scene& scene, int gridSize, const ProgressCallback&
   const ExactReference reference(scene);
   size_t done = 0;
   for (ReceiverMesh& r : mesh.receivers) {
+    const auto face = std::lower_bound(scene.faces().begin(), scene.faces().end(), r.face,
+                                       [](const Face& f, FaceId id) { return f.id < id; });
     tbb::parallel_for(tbb::blocked_range<size_t>(0, r.positions.size(), 16),
                       [&](const tbb::blocked_range<size_t>& range) {
                         for (size_t k = range.begin(); k != range.end(); ++k) {
-                          const PointIrradiance e = reference.evaluate(r.positions[k], r.normal);
+                          const PointIrradiance e =
+                              reference.evaluate(r.positions[k], r.normal, shadingNormal(*face, r.positions[k]));
                           r.irradiance[k] = e.irradiance;
                           r.classes[k] = e.lightClass;
                         }

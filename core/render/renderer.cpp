@@ -115,7 +115,7 @@ RenderedImage render(const Scene& scene, const Mesh& mesh, const RenderSettings&
     Vec3 irradiance(0.0);
     if (receives[faceIndex] && frontFacing) {
       if (settings.reference) {
-        irradiance = reference.evaluate(position, face.plane.normal).irradiance;
+        irradiance = reference.evaluate(position, face.plane.normal, shadingNormal(face, position)).irradiance;
       } else if (const auto value = lookup.irradiance(faceIndex, position)) {
         irradiance = *value;
       }

@@ -8,6 +8,7 @@
 #include "core/scene/closed_convex.h"
 #include "core/scene/convex_solid.h"
 #include "core/scene/mesh_topology.h"
+#include "core/scene/shading_normal.h"
 
 namespace penumbra {
 
@@ -74,6 +75,8 @@ void Scene::checkReferences(const Object& object) const {
     for (int index : face)
       if (index < 0 || size_t(index) >= object.vertices.size())
         throw std::invalid_argument("object '" + object.id + "' has a face index out of range");
+  if (const auto problem = normalsProblem(object.normals, object.faces))
+    throw std::invalid_argument("object '" + object.id + "' " + *problem);
 }
 
 std::vector<Polygon3> Scene::worldPolygons(const Object& object) {
@@ -117,7 +120,8 @@ std::vector<Face> Scene::facesOf(const Object& object, uint32_t handle) const {
     });
     Polygon3 polygon = off ? projectedOnto(polygons[f], plane) : polygons[f];
     const double faceArea = area(polygon);
-    out.push_back(Face{FaceId{handle, f}, std::move(polygon), plane, faceArea});
+    std::vector<Vec3> corners = worldCornerNormals(object.normals, f, object.transform, plane);
+    out.push_back(Face{FaceId{handle, f}, std::move(polygon), plane, faceArea, std::move(corners)});
   }
   return out;
 }

@@ -17,6 +17,7 @@
 #include "core/geom/plane.h"
 #include "core/geom/polygon.h"
 #include "core/geom/tolerance.h"
+#include "core/scene/shading_normal.h"
 #include "core/scene/transform.h"
 #include "core/scene/volume_object.h"
 
@@ -55,6 +56,9 @@ struct Object {
   std::string id;
   std::vector<Vec3> vertices;             // object space
   std::vector<std::vector<int>> faces;    // indices into vertices, CCW from the front
+  // Smooth shading (optional): per face, one object-space normal per corner, in the face's
+  // order; empty when the object is shaded flat (core/scene/shading_normal.h).
+  std::vector<std::vector<Vec3>> normals;
   std::string material;                   // empty: default material
   bool isStatic = false;
   Transform transform;
@@ -114,7 +118,17 @@ struct Face {
   Polygon3 polygon;
   Plane plane;       // front normal
   double area = 0;
+  // World-space unit shading normals, one per polygon corner, each strictly in front of
+  // `plane`; empty: the face is shaded with plane.normal (shading_normal.h).
+  std::vector<Vec3> cornerNormals;
 };
+
+// The normal a point of `face` is shaded with: its corner normals interpolated at p, or the
+// face's own normal when it has none (shading_normal.h).
+inline Vec3 shadingNormal(const Face& face, const Vec3& p) {
+  return face.cornerNormals.empty() ? face.plane.normal
+                                    : interpolatedNormal(face.polygon, face.cornerNormals, face.plane.normal, p);
+}
 
 // Where a light lies relative to a face's plane (DESIGN.md "Faces").
 enum class FaceClass { Front, Offending, Back };

@@ -29,6 +29,13 @@ json liftedFloor(double lift) {
   return json::parse("[[-3, 0, -3], [-3, 0, 3], [3, " + std::to_string(lift) + ", 3], [3, 0, -3]]");
 }
 
+// Corner normals for the cube of objects[1]: six faces of four corners, all straight up.
+json cubeCornerNormals() {
+  json lists = json::array();
+  for (int f = 0; f < 6; ++f) lists.push_back(json::array({{0, 1, 0}, {0, 1, 0}, {0, 1, 0}, {0, 1, 0}}));
+  return lists;
+}
+
 const std::vector<MalformedCase>& cases() {
   static const std::vector<MalformedCase> all = {
       // Document root and header.
@@ -102,6 +109,28 @@ const std::vector<MalformedCase>& cases() {
       {"MissingObjects", [](json& s) { s.erase("objects"); }, "objects", "missing required key"},
       {"ObjectsNotArray", [](json& s) { s["objects"] = "all"; }, "objects", "expected an array"},
       {"ObjectMissingId", [](json& s) { s["objects"][1].erase("id"); }, "objects[1].id", "missing required key"},
+      // Corner normals (smooth shading): one list per face, one finite non-zero vector per corner.
+      {"NormalsNotArray", [](json& s) { s["objects"][1]["normals"] = 1; }, "objects[1].normals", "expected an array"},
+      {"NormalsTooFewFaces", [](json& s) { s["objects"][1]["normals"] = json::array({json::array()}); },
+       "objects[1].normals", "lists of corner normals for 6 faces"},
+      {"NormalsTooFewCorners",
+       [](json& s) {
+         s["objects"][1]["normals"] = cubeCornerNormals();
+         s["objects"][1]["normals"][3].erase(0);
+       },
+       "objects[1].normals[3]", "4 corners but 3 normals"},
+      {"NormalZero",
+       [](json& s) {
+         s["objects"][1]["normals"] = cubeCornerNormals();
+         s["objects"][1]["normals"][2][1] = json::array({0, 0, 0});
+       },
+       "objects[1].normals[2][1]", "finite, non-zero"},
+      {"NormalNotVector",
+       [](json& s) {
+         s["objects"][1]["normals"] = cubeCornerNormals();
+         s["objects"][1]["normals"][5][3] = "up";
+       },
+       "objects[1].normals[5][3]", "expected"},
       {"DuplicateObjectId", [](json& s) { s["objects"][2]["id"] = "box1"; }, "objects[2].id",
        "duplicate object id 'box1'"},
       {"ObjectMissingVertices", [](json& s) { s["objects"][1].erase("vertices"); }, "objects[1].vertices",

@@ -368,3 +368,28 @@ RC_GTEST_PROP(SceneJsonProperty, RandomDamageIsRefusedCleanly, ()) {
 
 }  // namespace
 }  // namespace penumbra::protocol
+
+namespace penumbra::protocol {
+namespace {
+
+// Corner normals (smooth shading) survive writing and reading bit for bit; an object without
+// them writes none.
+TEST(SceneJson, CornerNormalsRoundTripExactly) {
+  nlohmann::json base = testing::baseSceneJson();
+  nlohmann::json lists = nlohmann::json::array();
+  for (int f = 0; f < 6; ++f) {
+    nlohmann::json corners = nlohmann::json::array();
+    for (int k = 0; k < 4; ++k) corners.push_back({0.1 * k + 0.01 * f, 1.0 / 3.0, -0.25});
+    lists.push_back(corners);
+  }
+  base["objects"][2]["normals"] = lists;
+  const Scene scene = sceneFromJson(base);
+  const nlohmann::json written = sceneToJson(scene);
+  EXPECT_EQ(written["objects"][2]["normals"], lists);
+  EXPECT_FALSE(written["objects"][1].contains("normals"));
+  const Scene again = sceneFromJson(written);
+  EXPECT_EQ(again.objects()[2].normals, scene.objects()[2].normals);
+}
+
+}  // namespace
+}  // namespace penumbra::protocol

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/engine/engine.h"
+#include "core/illum/face_lookup.h"
 #include "core/reference/exact_irradiance.h"
 #include "tests/core/engine/incremental_compare.h"
 
@@ -45,7 +46,8 @@ inline size_t referenceMismatches(const Engine& engine, size_t samples, uint64_t
     for (VertexId v : r.tree.vertices()) {
       if (!pick(rng)) continue;
       const Vec3 p = r.frame.to3D(r.tree.position(v));
-      const PointIrradiance truth = reference.evaluate(p, r.frame.normal);
+      const PointIrradiance truth =
+          reference.evaluate(p, r.frame.normal, shadingNormalAt(engine.scene(), r.face, r.frame.normal, p));
       for (int c = 0; c < 3; ++c)
         if (std::abs(engine.value(r, v).irradiance[c] - truth.irradiance[c]) >
             1e-9 * std::abs(truth.irradiance[c]) + 1e-12 * peak) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "bench/lib/sample_points.h"
+#include "core/illum/face_lookup.h"
 #include "core/illum/vertex_illumination.h"
 #include "core/reference/exact_irradiance.h"
 
@@ -65,7 +66,8 @@ VertexIrradiance valueAt(const Engine& engine, const Engine::Receiver& r, const 
     *matched = false;
     lists.push_back(&r.tree.occluders(r.tree.locate(q)));
   }
-  return illuminatePoint(engine.scene(), r.frame.to3D(q), r.frame.normal, lists);
+  return illuminatePoint(engine.scene(), r.frame.to3D(q), r.frame.normal,
+                         shadingNormalAt(engine.scene(), r.face, r.frame.normal, r.frame.to3D(q)), lists);
 }
 
 double distanceToBoundary(const Polygon2& polygon, const Vec2& q) {
@@ -145,7 +147,9 @@ EngineDiff compareEngines(const Engine& a, const Engine& b, double peak, size_t 
         if (!close(ours.irradiance, theirs.irradiance, peak)) {
           // The exact reference decides which side is off: only `a` being off (or
           // both) is an error of the engine under test.
-          const Vec3 truth = reference.evaluate(r.frame.to3D(r.tree.position(v)), r.frame.normal).irradiance;
+          const Vec3 at = r.frame.to3D(r.tree.position(v));
+          const Vec3 truth =
+              reference.evaluate(at, r.frame.normal, shadingNormalAt(one.scene(), r.face, r.frame.normal, at)).irradiance;
           const VertexIrradiance& aValue = pair == &a ? ours : theirs;
           const VertexIrradiance& bValue = pair == &a ? theirs : ours;
           if (close(aValue.irradiance, truth, peak) && !close(bValue.irradiance, truth, peak)) {
@@ -173,8 +177,10 @@ EngineDiff compareEngines(const Engine& a, const Engine& b, double peak, size_t 
     if (!ra || !rb) continue;
     ++diff.pointsCompared;
     const VertexIrradiance va = illuminatePoint(a.scene(), point.position, ra->frame.normal,
+                                                shadingNormalAt(a.scene(), ra->face, ra->frame.normal, point.position),
                                                 {&ra->tree.occluders(ra->tree.locate(ra->frame.to2D(point.position)))});
     const VertexIrradiance vb = illuminatePoint(b.scene(), point.position, rb->frame.normal,
+                                                shadingNormalAt(b.scene(), rb->face, rb->frame.normal, point.position),
                                                 {&rb->tree.occluders(rb->tree.locate(rb->frame.to2D(point.position)))});
     if (va.lightClass != vb.lightClass || !close(va.irradiance, vb.irradiance, peak)) {
       if (diff.classErrors++ == 0)

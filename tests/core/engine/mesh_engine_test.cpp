@@ -12,18 +12,14 @@
 #include "core/engine/engine.h"
 #include "core/scene/mesh_topology.h"
 #include "tests/core/engine/incremental_compare.h"
+#include "tests/core/engine/model_room.h"
 #include "tests/core/engine/reference_check.h"
 #include "tests/core/illum/random_meshes.h"
 
 namespace penumbra {
 namespace {
 
-Scene roomWith(std::vector<Object> models) {
-  std::vector<Light> lights{squareCeilingLight("light", Vec3(0.2, kDenseLightY, -0.1), kDenseLightSide, 0, Vec3(1, 0, 0))};
-  std::vector<Object> objects = roomObjects(kDenseHalfSide, kDenseHalfSide, kDenseHeight);
-  for (Object& m : models) objects.push_back(std::move(m));
-  return Scene(std::move(lights), {{"white", Vec3(0.8)}}, std::move(objects));
-}
+using testing::roomWith;
 
 void expectExact(Engine& engine, const std::string& label) {
   const testing::ReferenceCheck c = testing::checkAgainstReference(engine, label);

@@ -81,9 +81,9 @@ Counts checkLists(const Engine& engine) {
       std::sort(all.begin(), all.end(), [](const OccluderEntry& a, const OccluderEntry& b) {
         return std::tie(a.light, a.face) < std::tie(b.light, b.face);
       });
-      const Vec3 forward = illuminatePoint(s, p, n, {&all}).irradiance;
+      const Vec3 forward = illuminatePoint(s, p, n, n, {&all}).irradiance;
       std::reverse(all.begin(), all.end());
-      const Vec3 backward = illuminatePoint(s, p, n, {&all}).irradiance;
+      const Vec3 backward = illuminatePoint(s, p, n, n, {&all}).irradiance;
       for (int c = 0; c < 3; ++c)
         if (std::abs(forward[c] - backward[c]) > 1e-9 * std::abs(forward[c]) + 1e-12 * peak) {
           if (counts.orderDependent++ < 5)

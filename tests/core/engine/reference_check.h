@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/engine/engine.h"
+#include "core/illum/face_lookup.h"
 #include "core/reference/exact_irradiance.h"
 
 namespace penumbra::testing {
@@ -30,7 +31,8 @@ inline ReferenceCheck checkAgainstReference(Engine& engine, const std::string& l
   for (const Engine::Receiver& r : engine.receivers())
     for (VertexId v : r.tree.vertices()) {
       const Vec3 p = r.frame.to3D(r.tree.position(v));
-      const PointIrradiance truth = reference.evaluate(p, r.frame.normal);
+      const PointIrradiance truth =
+          reference.evaluate(p, r.frame.normal, shadingNormalAt(engine.scene(), r.face, r.frame.normal, p));
       const VertexIrradiance& value = engine.value(r, v);
       ++out.vertices;
       const double error = std::abs(value.irradiance.x - truth.irradiance.x);

@@ -82,7 +82,7 @@ void checkPoint(const Scene& scene, const ExactReference& reference, double peak
   for (const Cells* cells : {&exact, &superset, &several}) {
     const auto around = cells->pointers();
     for (size_t l = 0; l < lights; ++l) {
-      const VertexLight mine = illuminateVertex(scene, l, p, n, around);
+      const VertexLight mine = illuminateVertex(scene, l, p, n, n, around);
       const double lightPeak = peak / maxAbs(scene.lights()[l].radiance);
       if (!mine.applies) {
         EXPECT_EQ(expected[l].unoccludedFactor, 0.0);
@@ -106,7 +106,7 @@ void checkPoint(const Scene& scene, const ExactReference& reference, double peak
         }
       }
     }
-    const VertexIrradiance all = illuminatePoint(scene, p, n, around);
+    const VertexIrradiance all = illuminatePoint(scene, p, n, n, around);
     const PointIrradiance ref = reference.evaluate(p, n);
     for (int c = 0; c < 3; ++c) expectClose(all.irradiance[c], ref.irradiance[c], peak, "irradiance");
     EXPECT_EQ(all.lightClass, ref.lightClass);
@@ -263,7 +263,7 @@ TEST(IlluminateVertex, D0VertexBesideUmbraCellIsNeverDark) {
       }
       if (!flagged) continue;
       ++checked;
-      const VertexIrradiance mine = illuminatePoint(scene, c.p, c.normal, {&inside, &outside});
+      const VertexIrradiance mine = illuminatePoint(scene, c.p, c.normal, c.normal, {&inside, &outside});
       const PointIrradiance ref = reference.evaluate(c.p, c.normal);
       for (int ch = 0; ch < 3; ++ch) expectClose(mine.irradiance[ch], ref.irradiance[ch], peak, "D0");
       EXPECT_EQ(mine.lightClass, ref.lightClass);
@@ -295,7 +295,7 @@ TEST(IlluminateVertex, UmbraFlagInEveryCellDecides) {
     OccluderList a, b;
     appendEntries(a, 0, facesOfObject(scene, c.object), {top->id});
     appendEntries(b, 0, facesOfObject(scene, c.object), {top->id});
-    const VertexLight v = illuminateVertex(scene, 0, p, c.normal, {&a, &b});
+    const VertexLight v = illuminateVertex(scene, 0, p, c.normal, c.normal, {&a, &b});
     EXPECT_EQ(v.decidedBy, VertexCase::Umbra);
     EXPECT_EQ(v.factor, 0.0);
     EXPECT_EQ(v.lightClass, LightClass::Umbra);
@@ -303,7 +303,7 @@ TEST(IlluminateVertex, UmbraFlagInEveryCellDecides) {
     EXPECT_EQ(ExactReference(scene).visibility(p, c.normal, 0).visibleFactor, 0.0);
     // The same flag with the face missing from a neighbouring cell: falls through.
     const OccluderList lit;  // no entry for the light
-    const VertexLight fell = illuminateVertex(scene, 0, p, c.normal, {&a, &lit});
+    const VertexLight fell = illuminateVertex(scene, 0, p, c.normal, c.normal, {&a, &lit});
     EXPECT_EQ(fell.decidedBy, VertexCase::Unoccluded);
     ++done;
   }
@@ -316,7 +316,7 @@ TEST(IlluminateVertex, UmbraFlagInEveryCellDecides) {
 void expectLinearApproach(const Scene& scene, const ExactReference& reference, double peak,
                           const Vec3& p, const Vec3& n, const Vec3& d, const OccluderList& cell,
                           const std::array<double, 3>& deltas, const char* what) {
-  const VertexIrradiance limit = illuminatePointFromCell(scene, p, n, d, cell);
+  const VertexIrradiance limit = illuminatePointFromCell(scene, p, n, n, d, cell);
   std::array<double, 3> err{};
   for (size_t i = 0; i < 3; ++i)
     err[i] = maxAbs(limit.irradiance - reference.evaluate(p + deltas[i] * d, n).irradiance);
@@ -416,10 +416,10 @@ TEST(IlluminateVertexFromCell, TiltedPanelCornerHidesPartOfTheLight) {
       const Vec3 d(std::cos(glm::radians(deg)), 0, std::sin(glm::radians(deg)));  // behind
       expectLinearApproach(scene, reference, peak, p, n, d, cell, {1e-3, 1e-4, 1e-5}, "panel");
       // Some corner limits are strictly partial (the side edge's constraint matters).
-      const VertexLight lim = illuminateVertexFromCell(scene, 0, p, n, d, cell);
+      const VertexLight lim = illuminateVertexFromCell(scene, 0, p, n, n, d, cell);
       if (p.x != 0.5 && lim.lightClass == LightClass::Penumbra && lim.factor > 0) ++partial;
       // From the front the panel does not block.
-      const VertexLight front = illuminateVertexFromCell(scene, 0, p, n, -d, cell);
+      const VertexLight front = illuminateVertexFromCell(scene, 0, p, n, n, -d, cell);
       EXPECT_EQ(front.lightClass, LightClass::Lit);
       EXPECT_EQ(front.comparisons, 0u);
     }
@@ -447,7 +447,7 @@ TEST(IlluminateVertex, TimePerVertexOnFifteenCubes) {
   double sink = 0;
   const auto t0 = Clock::now();
   for (size_t i = 0; i < points.size(); ++i)
-    sink += illuminatePoint(scene, points[i], floor.plane.normal, {&cells[i]}).irradiance.x;
+    sink += illuminatePoint(scene, points[i], floor.plane.normal, floor.plane.normal, {&cells[i]}).irradiance.x;
   const auto t1 = Clock::now();
   for (const Vec3& p : points) sink -= reference.evaluate(p, floor.plane.normal).irradiance.x;
   const auto t2 = Clock::now();
