@@ -64,8 +64,8 @@ def main():
     cluster.signal_node(0, signal.SIGSTOP)
     stopped = time.monotonic()
     status, headers, _ = request(two, "GET", "/api/scenes/cubes15")
-    if status != 503 or headers.get("Retry-After") != "1":
-        fail(f"node 2 answered {status} (Retry-After {headers.get('Retry-After')}) while node 1 "
+    if status != 503 or headers.get("retry-after") != "1":
+        fail(f"node 2 answered {status} (Retry-After {headers.get('retry-after')}) while node 1 "
              "held the lease")
     while True:  # node 1 cannot hand it over: node 2 waits for the lease to expire
         status, _, body = request(two, "GET", "/api/scenes/cubes15")
