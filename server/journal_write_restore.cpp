@@ -33,16 +33,23 @@ ApiError journalError(const std::string& what, const std::exception& error) {
 void HttpServer::journalFrame(const SceneSession& session, const SceneSnapshot& next,
                               const std::string& frame) {
   if (!journal_) return;
-  int64_t key = 0;
+  std::optional<int64_t> key;
   {
     std::lock_guard lock(scenesMutex_);
     const auto it = journalKeys_.find(&session);
-    if (it == journalKeys_.end())
-      throw ApiError(404, error_code::kNotFound, "id", "the scene was deleted");
-    key = it->second;
+    if (it != journalKeys_.end()) key = it->second;
+  }
+  if (!key) {
+    // Dropped since the request found it (its lease lost or handed over: still journaled), or
+    // deleted.
+    if (leases_ && journal_->hasScene(session.id()))
+      throw ApiError(503, error_code::kOwnedElsewhere, "id",
+                     "scene '" + session.id() +
+                         "' is no longer served by this node; the frame was not applied, retry");
+    throw ApiError(404, error_code::kNotFound, "id", "the scene was deleted");
   }
   try {
-    journal_->addFrame(key, next.version, frame, partChangesText(partChangesOf(next)),
+    journal_->addFrame(*key, next.version, frame, partChangesText(partChangesOf(next)),
                        next.frameBase);
   } catch (const LeaseLost& error) {
     // Another node took the scene over: this one stops serving it (the frame is undone, its

@@ -12,8 +12,12 @@ using namespace pg;
 
 namespace {
 
-// As the SQLite journal's tables (sqlite_journal_store.cpp), every number a BIGINT.
+// As the SQLite journal's tables (sqlite_journal_store.cpp), every number a BIGINT, and the
+// scene leases. Under a transaction-scoped advisory lock: nodes starting together on an empty
+// database would otherwise race on CREATE TABLE IF NOT EXISTS (a unique violation in pg_type).
 constexpr const char* kSchema = R"(
+BEGIN;
+SELECT pg_advisory_xact_lock(7039390);
 CREATE TABLE IF NOT EXISTS scenes (
   key BIGINT GENERATED ALWAYS AS IDENTITY PRIMARY KEY,
   id TEXT NOT NULL,
@@ -44,6 +48,7 @@ CREATE TABLE IF NOT EXISTS scene_leases (
   token BIGINT NOT NULL,
   expires TIMESTAMPTZ NOT NULL,
   wanted_by TEXT);
+COMMIT;
 )";
 
 // Inside a write's transaction: the scene's lease still holds `lease` (scene_leases.h), locked
