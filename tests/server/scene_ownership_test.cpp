@@ -82,7 +82,7 @@ TEST(SceneOwnership, TwoNodesServeASceneFromOneOwnerThatHandsItOverWhenAsked) {
   const TestJournal data(JournalBackend::Postgres);
   std::mt19937 rng(39);
   std::uniform_real_distribution<double> where(-1.5, 1.5);
-  RunningServer a(node(data, "a", 0.6)), b(node(data, "b", 0.6));
+  RunningServer a(node(data, "a", 1.5)), b(node(data, "b", 1.5));
   auto clientA = a.client(), clientB = b.client();
   const auto created = postJson(clientA, "/api/scenes?name=tiny", tinyScene());
   ASSERT_EQ(created->status, 201) << created->body;
