@@ -6,6 +6,7 @@
 // and fenced: tests/server/scene_fencing.py, with real processes.)
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <random>
 #include <string>
@@ -140,6 +141,53 @@ TEST(SceneOwnership, AStoppingNodeGivesItsLeasesBackAndAnotherServesItsScenesAtO
   EXPECT_EQ(bodyJson(served)["version"], 1);
   EXPECT_TRUE(meshBin(client, id) == mesh);
   EXPECT_EQ(client.Get("/api/scenes/nothing")->status, 404);
+}
+
+
+// Memory follows use: a scene nobody asked for within --idle-release (and with no event stream
+// open) is dropped and its lease given back; asked again, it comes back at its version. A scene
+// handed over ends its event streams, so clients reconnect to the new owner.
+TEST(SceneOwnership, AnIdleSceneIsGivenBackAndAHandedOverScenesStreamsEnd) {
+  const TestJournal data(JournalBackend::Postgres);
+  ServerOptions idle = node(data, "a", 0.6);
+  idle.idleReleaseSeconds = 1;
+  RunningServer a(idle), b(node(data, "b", 0.6));
+  auto client = a.client();
+  const auto created = postJson(client, "/api/scenes?name=tiny", tinyScene());
+  ASSERT_EQ(created->status, 201) << created->body;
+  const std::string id = bodyJson(created)["id"];
+  ASSERT_EQ(postJson(client, "/api/scenes/" + id + "/edits", moveFrame("box", 1, 0.5, 1))->status,
+            200);
+  const std::string mesh = meshBin(client, id);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (a.server().servesScene(id) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_FALSE(a.server().servesScene(id)) << "the idle scene is still served";
+  EXPECT_EQ(data.sqlText("SELECT expires <= now() FROM scene_leases"), "t");
+  const auto back = client.Get(("/api/scenes/" + id).c_str());
+  ASSERT_EQ(back->status, 200) << back->body;
+  EXPECT_EQ(bodyJson(back)["version"], 1);
+  EXPECT_TRUE(meshBin(client, id) == mesh);
+
+  std::atomic<bool> streamEnded{false};
+  std::thread stream([&] {
+    auto streamClient = a.client();
+    streamClient.Get(("/api/scenes/" + id + "/events").c_str(),
+                     [](const char*, size_t) { return true; });
+    streamEnded = true;
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // open, and not idle
+  EXPECT_TRUE(a.server().servesScene(id)) << "a scene with an open event stream was given back";
+  auto clientB = b.client();
+  const auto served = waitServed(clientB, id, 5);
+  EXPECT_EQ(served->status, 200) << served->body;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!streamEnded && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_TRUE(streamEnded) << "the handed-over scene's event stream is still open";
+  if (!streamEnded) a.server().stop();  // ends it, so the thread can be joined
+  stream.join();
+  EXPECT_FALSE(a.server().servesScene(id));
 }
 
 }  // namespace
