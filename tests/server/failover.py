@@ -10,11 +10,14 @@ Checks, then exits 1 naming the first failure:
     times reported: median, p95, max), at its last acknowledged version (or one past it: a frame
     committed whose answer the kill cut off) with the byte-identical mesh received for it;
   - at the end, the journal holds every acknowledged frame at its version, each frame row is one a
-    client sent, and no version has two writers (0 split-brain writes).
+    client sent, and no version has two writers (0 split-brain writes);
+  - an event stream of the first scene through HAProxy, reconnecting as a browser does, followed
+    the scene from node to node and announces its last version.
 Usage: python3 tests/server/failover.py --penumbra build/penumbra [--kills 3] [--scenes 6]
        [--seed 1] [--lease-seconds 1.5] [--pause 0.05]      (bench/failover: 20 kills over 20 scenes)
 """
 import argparse
+import http.client
 import json
 import os
 import random
@@ -89,6 +92,39 @@ class Drag(threading.Thread):
             time.sleep(self.pause)
 
 
+class Watch(threading.Thread):
+    """An event stream of one scene through HAProxy, reconnecting as a browser's EventSource does
+    (after its `retry:`) whenever the stream ends or breaks; records the versions announced."""
+
+    def __init__(self, port, scene):
+        super().__init__(daemon=True)
+        self.port, self.scene = port, scene
+        self.running = threading.Event()
+        self.running.set()
+        self.connections = 0
+        self.last_version = None
+
+    def run(self):
+        while self.running.is_set():
+            conn = http.client.HTTPConnection("127.0.0.1", self.port, timeout=15)
+            try:
+                conn.request("GET", f"/api/scenes/{self.scene}/events")
+                answer = conn.getresponse()
+                if answer.status == 200:
+                    self.connections += 1
+                    while self.running.is_set():
+                        line = answer.readline()
+                        if not line:
+                            break  # ended (its node gave the scene up) or cut (killed)
+                        if line.startswith(b"data: "):
+                            self.last_version = json.loads(line[6:])["version"]
+            except (OSError, http.client.HTTPException, ValueError):
+                pass
+            finally:
+                conn.close()
+            time.sleep(1.0)  # the stream's retry: 1000
+
+
 def wait_answer(port, scene, since, deadline):
     """The first moment after `since` scene answers GET 200 through HAProxy; None past deadline."""
     while time.monotonic() < deadline:
@@ -129,6 +165,8 @@ def main():
     for drag in drags.values():
         drag.running.set()
         drag.start()
+    watch = Watch(port, scenes[0])
+    watch.start()
 
     kill_to_answer = []
     meshes_checked = 0
@@ -187,6 +225,19 @@ def main():
         drag.join(30)
         if drag.errors:
             fail(drag.errors[0])
+    # The event stream followed the scene from node to node: reconnected, and announces its last
+    # version (once the stream's poll has seen it).
+    final = drags[scenes[0]].last
+    deadline = time.monotonic() + 5
+    while watch.last_version != final and time.monotonic() < deadline:
+        time.sleep(0.05)
+    watch.running.clear()
+    moved = sum(1 for line in cluster.node_log(0).splitlines() + cluster.node_log(1).splitlines()
+                + cluster.node_log(2).splitlines() if f"took scene '{scenes[0]}' over" in line)
+    if watch.last_version != final or (moved and watch.connections < 2):
+        fail(f"the event stream of {scenes[0]} (taken over {moved} times) connected "
+             f"{watch.connections} times and last announced version {watch.last_version}, "
+             f"the scene is at {final}")
 
     # The journal: every acknowledged frame at its version; each row one a client sent.
     lost = split = 0
@@ -214,7 +265,8 @@ def main():
           f"takeover; kill-to-answer median "
           f"{statistics.median(kill_to_answer):.2f} s, p95 {percentile(kill_to_answer, 95):.2f} s, "
           f"max {max(kill_to_answer):.2f} s over {len(kill_to_answer)} scene takeovers "
-          f"(lease {args.lease_seconds} s; {time.monotonic() - started:.0f} s in all)")
+          f"(lease {args.lease_seconds} s; {time.monotonic() - started:.0f} s in all); the event "
+          f"stream of {scenes[0]} reconnected {watch.connections - 1} times and is current")
     cluster.stop()
 
 
