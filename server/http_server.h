@@ -145,8 +145,6 @@ class HttpServer {
   std::vector<nlohmann::json> buildsJson() const;
   // Whether scene `id` is served (built, not reserved or restoring).
   bool servesScene(const std::string& id) const;
-  // This node's name in the scene leases; empty without them (SQLite, ephemeral).
-  std::string nodeId() const;
   // The job building scene `id`; null when it is not building.
   std::shared_ptr<BuildJob> findBuild(const std::string& id) const;
 

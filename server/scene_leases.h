@@ -26,7 +26,6 @@ class SceneLeases {
   SceneLeases& operator=(const SceneLeases&) = delete;
 
   const std::string& node() const { return node_; }
-  double leaseSeconds() const { return leaseSeconds_; }
 
   // Who holds a lease another node asked for, and for how long yet.
   struct Holder {

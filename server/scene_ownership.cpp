@@ -30,8 +30,6 @@ std::string defaultNodeId(int port, const void* server) {
 
 }  // namespace
 
-std::string HttpServer::nodeId() const { return leases_ ? leases_->node() : ""; }
-
 void HttpServer::startLeases() {
   const std::string node =
       options_.nodeId.empty() ? defaultNodeId(options_.port, this) : options_.nodeId;
