@@ -38,11 +38,31 @@ std::string defaultStaticDir() {
   return "";
 }
 
+// A node among several sharing a PostgreSQL journal (docs/SERVER.md "Many nodes").
+void nodeOptions(const Args& args, server::ServerOptions& options) {
+  for (const char* name : {"node-id", "lease-seconds", "idle-release", "restore"})
+    if (args.option(name) && options.journalDatabase.empty())
+      throw UsageError(std::string("--") + name +
+                       " needs --journal postgresql://... (scene leases live in that database)");
+  options.nodeId = args.option("node-id").value_or("");
+  options.leaseSeconds = args.doubleOption("lease-seconds", options.leaseSeconds);
+  if (!(options.leaseSeconds >= 0.3 && options.leaseSeconds <= 3600))
+    throw UsageError("--lease-seconds: give 0.3 to 3600 seconds");
+  options.idleReleaseSeconds = args.doubleOption("idle-release", options.idleReleaseSeconds);
+  if (!(options.idleReleaseSeconds >= 1))
+    throw UsageError("--idle-release: give at least 1 second");
+  const std::string restore = args.option("restore").value_or("all");
+  if (restore != "all" && restore != "on-request")
+    throw UsageError("--restore " + restore + ": give all or on-request");
+  options.restoreAtStart = restore == "all";
+}
+
 // serve's options, checked: a usage error for what cannot work.
 server::ServerOptions serveOptions(const Args& args) {
   args.allowOnly({"host", "port", "static", "grid", "data", "journal", "ephemeral", "token",
                   "allow-origin", "max-scenes", "max-body-mib", "image-memory-mib", "threads",
-                  "edit-nice", "mesh-tolerance", "snapshot-every"});
+                  "edit-nice", "mesh-tolerance", "snapshot-every", "node-id", "lease-seconds",
+                  "idle-release", "restore"});
   server::ServerOptions options;
   options.host = args.option("host").value_or("127.0.0.1");
   options.port = args.intOption("port", 8080, 0, 65535);
@@ -80,6 +100,7 @@ server::ServerOptions serveOptions(const Args& args) {
                        ": give a PostgreSQL connection URI (postgresql://user@host/database)");
     options.journalDatabase = *journal;
   }
+  nodeOptions(args, options);
   options.snapshotEvery =
       uint64_t(args.intOption("snapshot-every", int(server::kSnapshotEvery), 0, 1000000000));
   options.engine.threads = args.intOption("threads", 0, 0, 1024);

@@ -60,6 +60,10 @@ commands:
         [--data DIR | --ephemeral]     journal of scenes and edits (default ./penumbra-data)
         [--journal postgresql://...]   keep the journal in that PostgreSQL database instead
                                        (uploaded files stay in the data directory)
+        [--node-id ID] [--restore R]   with it, nodes share scenes by leases: this node's name
+        [--lease-seconds S]            (default hostname:port), all (default) or on-request
+        [--idle-release S]             restores at start, lease length (3 s), idle scenes given
+                                       back after S s (600); docs/SERVER.md "Many nodes"
         [--snapshot-every N]           journal a snapshot every N versions of a scene, so a
                                        restart replays at most N frames (default 200; 0: never)
         [--token T] [--max-scenes N]   token for mutating requests (needed off loopback; or

@@ -32,6 +32,8 @@ inline constexpr const char* kJournalFailed = "journal_failed";       // 503
 inline constexpr const char* kRestoring =
     "restoring";  // 503 + Retry-After: back from the journal soon
 inline constexpr const char* kSceneStalled = "scene_stalled";  // 409
+// 503 + Retry-After: another node holds the scene's lease (docs/SERVER.md "Many nodes")
+inline constexpr const char* kOwnedElsewhere = "owned_elsewhere";
 inline constexpr const char* kBuilding = "building";  // 503 + Retry-After: the scene is being built
 inline constexpr const char* kBuildCancelled = "build_cancelled";  // 409: DELETE or a stop ended it
 }  // namespace error_code

@@ -131,6 +131,7 @@ HttpServer::HttpServer(ServerOptions options)
       }));
   registerRoutes();
   registerStaticFiles();
+  if (journal_ && !options_.journalDatabase.empty()) startLeases();
 }
 
 HttpServer::~HttpServer() {
@@ -147,19 +148,27 @@ HttpServer::~HttpServer() {
   }
 }
 
-std::shared_ptr<SceneSession> HttpServer::findScene(const std::string& id) const {
-  std::lock_guard lock(scenesMutex_);
-  const auto it = scenes_.find(id);
-  if (it != scenes_.end() && !it->second && restoring_.count(id))
-    throw ApiError(503, error_code::kRestoring, "id",
-                   "scene '" + id + "' is being restored from the journal; retry in a moment");
-  if (it != scenes_.end() && !it->second && builds_.count(id))
-    throw ApiError(503, error_code::kBuilding, "id",
-                   "scene '" + id + "' is being built; retry in a moment (GET /api/scenes/" + id +
-                       " says how far it is)");
-  if (it == scenes_.end() || !it->second)
-    throw ApiError(404, error_code::kNotFound, "id", "no scene with id '" + id + "'");
-  return it->second;
+std::shared_ptr<SceneSession> HttpServer::findScene(const std::string& id) {
+  {
+    std::lock_guard lock(scenesMutex_);
+    const auto it = scenes_.find(id);
+    if (it != scenes_.end() && !it->second && restoring_.count(id))
+      throw ApiError(503, error_code::kRestoring, "id",
+                     "scene '" + id + "' is being restored from the journal; retry in a moment");
+    if (it != scenes_.end() && !it->second && builds_.count(id))
+      throw ApiError(503, error_code::kBuilding, "id",
+                     "scene '" + id + "' is being built; retry in a moment (GET /api/scenes/" +
+                         id + " says how far it is)");
+    if (it != scenes_.end() && it->second) {
+      if (leases_) lastUse_[id] = std::chrono::steady_clock::now();
+      return it->second;
+    }
+    if (it != scenes_.end() || !leases_ || stopping_)
+      throw ApiError(404, error_code::kNotFound, "id", "no scene with id '" + id + "'");
+    scenes_.emplace(id, nullptr);  // another node's, or nobody's: restoring while taken over
+    restoring_.insert(id);
+  }
+  return takeOver(id);
 }
 
 std::string HttpServer::freshId(const std::string& preferred) {
@@ -199,6 +208,7 @@ void HttpServer::stop() {
     for (auto& [id, job] : builds_) job->cancel();  // their requests end at the next report
   }
   http_->stop();
+  stopLeases();
 }
 
 bool HttpServer::isRunning() const { return http_->is_running(); }

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <cstddef>
 #include <map>
 #include <memory>
@@ -11,6 +13,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/engine/engine.h"
@@ -19,6 +22,7 @@
 #include "server/limits.h"
 #include "server/memory_trim.h"
 #include "server/scene_journal.h"
+#include "server/scene_leases.h"
 #include "server/scene_session.h"
 #include "server/static_files.h"
 #include "server/work_budget.h"
@@ -64,6 +68,16 @@ struct ServerOptions {
   // Every this many versions a journaled scene is snapshotted (docs/SERVER.md "Snapshots"), so
   // a restart replays at most that many frames; 0: never.
   uint64_t snapshotEvery = kSnapshotEvery;
+  // With a PostgreSQL journal, nodes sharing it each serve a scene only while they hold its
+  // lease (scene_leases.h; docs/SERVER.md "Many nodes"). This node's name in the leases (empty:
+  // hostname:port).
+  std::string nodeId;
+  double leaseSeconds = 3;  // how long a lease outlives its last renewal (renewed every third)
+  // A scene nobody asked for in this long (and with no event stream open) is given back.
+  double idleReleaseSeconds = 600;
+  // Start-up restores every journaled scene whose lease is free (one node, as with SQLite);
+  // false: a scene comes back when first asked for (a node among several).
+  bool restoreAtStart = true;
 };
 
 // The id a scene named `name` asks for ("cubes15.scene.json" → "cubes15").
@@ -206,7 +220,28 @@ class HttpServer {
   // /api/health's "journal" member: path, integrity, durability, stalled scenes
   // (journal_write_restore.cpp).
   nlohmann::json journalHealthJson() const;
-  std::shared_ptr<SceneSession> findScene(const std::string& id) const;
+  // The served scene `id`; with leases, one not served here is taken over (takeOver). Throws
+  // ApiError 404 (no such scene), 503 + Retry-After (restoring, building, owned elsewhere).
+  std::shared_ptr<SceneSession> findScene(const std::string& id);
+  // Scene ownership among nodes (scene_ownership.cpp; null leases_: SQLite or ephemeral).
+  void startLeases();
+  void stopLeases();  // every lease given back (SIGTERM: another node takes the scenes at once)
+  // Takes the lease of scene `id` (reserved as restoring by the caller) and restores it from
+  // the journal; frees the reservation and throws ApiError when it cannot.
+  std::shared_ptr<SceneSession> takeOver(const std::string& id);
+  // Whether a new scene may take id `id` here: its lease taken, no journaled scene has it.
+  bool claimNewId(const std::string& id);
+  // The scene stops being served here (its lease lost, handed over, idle): its streams end.
+  // Returns its lease token, if it had one.
+  std::optional<int64_t> dropScene(const std::string& id, const std::string& why);
+  // Start-up with every scene restored: keeps the scenes whose lease this node took.
+  void takeLeasesOf(std::vector<SceneJournal::StoredScene>& scenes);
+  void keepLeases();  // the renewal thread
+  void renewLeasesOnce();
+  // Brings one journaled scene back (journal_write_restore.cpp), its problems noted for
+  // /api/health; null when it no longer builds.
+  std::shared_ptr<SceneSession> restoreStored(const SceneJournal::StoredScene& stored,
+                                              RestoredScene& report);
   std::string freshId(const std::string& preferred);  // call with scenesMutex_ held
 
   ServerOptions options_;
@@ -233,6 +268,14 @@ class HttpServer {
   std::vector<std::pair<std::string, std::string>> staticRoots_;  // URL prefix → canonical dir
   StaticFiles staticFiles_;  // the page, served from those roots
   size_t nextId_ = 1;
+  std::unique_ptr<SceneLeases> leases_;
+  std::map<std::string, int64_t> leaseTokens_;  // scene id → its lease's token; scenesMutex_
+  std::map<std::string, std::chrono::steady_clock::time_point> lastUse_;  // scenesMutex_
+  std::mutex leaseStopMutex_;
+  std::condition_variable leaseStop_;
+  bool leasesStopping_ = false;  // guarded by leaseStopMutex_
+  std::thread leaseKeeper_;
+  std::chrono::steady_clock::time_point leasesRenewedAt_ = std::chrono::steady_clock::now();
   std::mutex uploadDirMutex_;
   std::string uploadDir_;  // volumeUploadDir(), once made
 };

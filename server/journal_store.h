@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 namespace penumbra::server {
@@ -36,6 +37,17 @@ struct JournalSnapshotRow {
   int64_t crc = 0;
 };
 
+// The fencing token a write of a scene owned by a lease carries (scene_leases.h): its transaction
+// checks that the scene's lease still holds that token, else throws LeaseLost with nothing
+// written. None: an unfenced write (SQLite, one node).
+using LeaseToken = std::optional<int64_t>;
+
+// A write refused because another node took the scene's lease over (a newer token).
+class LeaseLost : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class JournalStore {
  public:
   virtual ~JournalStore() = default;
@@ -58,15 +70,20 @@ class JournalStore {
   virtual void readScenes(const std::function<void(JournalSceneRow&&)>& row) = 0;
   virtual void readFrames(const std::function<void(JournalFrameRow&&)>& row) = 0;
   virtual void readSnapshots(const std::function<void(JournalSnapshotRow&&)>& row) = 0;
+  // One scene's rows: the newest scene with this id (nullopt: none), then its frames and
+  // snapshots as above. (These defaults read everything; a store with many scenes has its own.)
+  virtual std::optional<JournalSceneRow> sceneById(const std::string& id);
+  virtual void readFramesOf(int64_t key, const std::function<void(JournalFrameRow&&)>& row);
+  virtual void readSnapshotsOf(int64_t key, const std::function<void(JournalSnapshotRow&&)>& row);
 
-  // Each write is one committed transaction, or throws std::runtime_error with nothing written.
-  // (A node that owns its scenes by a lease will check its fencing token inside each of them.)
-  virtual int64_t insertScene(const JournalSceneRow& scene) = 0;  // returns the new key
-  virtual void insertFrame(const JournalFrameRow& frame) = 0;
+  // Each write is one committed transaction, or throws std::runtime_error with nothing written
+  // (LeaseLost when `lease` is no longer the scene's token).
+  virtual int64_t insertScene(const JournalSceneRow& scene, LeaseToken lease) = 0;  // the new key
+  virtual void insertFrame(const JournalFrameRow& frame, LeaseToken lease) = 0;
   // Writes (or replaces) the snapshot and deletes the scene's snapshots older than the newest
   // `keep`.
-  virtual void putSnapshot(const JournalSnapshotRow& snapshot, size_t keep) = 0;
-  virtual void deleteScene(int64_t key) = 0;  // with its frames and snapshots
+  virtual void putSnapshot(const JournalSnapshotRow& snapshot, size_t keep, LeaseToken lease) = 0;
+  virtual void deleteScene(int64_t key, LeaseToken lease) = 0;  // with its frames and snapshots
 };
 
 }  // namespace penumbra::server

@@ -33,17 +33,30 @@ ApiError journalError(const std::string& what, const std::exception& error) {
 void HttpServer::journalFrame(const SceneSession& session, const SceneSnapshot& next,
                               const std::string& frame) {
   if (!journal_) return;
-  int64_t key = 0;
+  std::optional<int64_t> key;
   {
     std::lock_guard lock(scenesMutex_);
     const auto it = journalKeys_.find(&session);
-    if (it == journalKeys_.end())
-      throw ApiError(404, error_code::kNotFound, "id", "the scene was deleted");
-    key = it->second;
+    if (it != journalKeys_.end()) key = it->second;
+  }
+  if (!key) {
+    // Dropped since the request found it (its lease lost or handed over: still journaled), or
+    // deleted.
+    if (leases_ && journal_->hasScene(session.id()))
+      throw ApiError(503, error_code::kOwnedElsewhere, "id",
+                     "scene '" + session.id() +
+                         "' is no longer served by this node; the frame was not applied, retry");
+    throw ApiError(404, error_code::kNotFound, "id", "the scene was deleted");
   }
   try {
-    journal_->addFrame(key, next.version, frame, partChangesText(partChangesOf(next)),
+    journal_->addFrame(*key, next.version, frame, partChangesText(partChangesOf(next)),
                        next.frameBase);
+  } catch (const LeaseLost& error) {
+    // Another node took the scene over: this one stops serving it (the frame is undone, its
+    // streams end) and the client's retry finds the new owner.
+    dropScene(session.id(), error.what());
+    throw ApiError(503, error_code::kOwnedElsewhere, "id",
+                   std::string(error.what()) + "; the frame was not applied, retry");
   } catch (const std::exception& error) {
     // Nothing is published and SceneSession::apply undoes the frame in the engine (atomic
     // frames): the scene stays at its last acknowledged version and the frame may be sent again.
@@ -97,7 +110,8 @@ nlohmann::json HttpServer::journalHealthJson() const {
           {"durability", durability.empty() ? "ok" : durability},
           {"scene_problems", std::move(problems)},
           {"snapshot_every", options_.snapshotEvery},
-          {"snapshot_problems", std::move(snapshotProblems)}};
+          {"snapshot_problems", std::move(snapshotProblems)},
+          {"node", leases_ ? nlohmann::json(leases_->node()) : nlohmann::json(nullptr)}};
 }
 
 void HttpServer::journalRemove(const SceneSession& session) {
@@ -111,10 +125,22 @@ void HttpServer::journalRemove(const SceneSession& session) {
   }
   try {
     journal_->removeScene(key);
+  } catch (const LeaseLost& error) {
+    dropScene(session.id(), error.what());
+    throw ApiError(503, error_code::kOwnedElsewhere, "id",
+                   std::string(error.what()) + "; the scene was not deleted, retry");
   } catch (const std::exception& error) {
     throw journalError("the deletion", error);
   }
   std::lock_guard lock(scenesMutex_);
+  if (const auto lease = leaseTokens_.find(session.id()); lease != leaseTokens_.end()) {
+    try {
+      leases_->release(session.id(), lease->second);
+    } catch (const std::exception&) {  // it expires by itself
+    }
+    leaseTokens_.erase(lease);
+    lastUse_.erase(session.id());
+  }
   journalKeys_.erase(&session);
   stalls_.erase(&session);  // deleted by its user: its kept frames went with it
   std::erase_if(journalProblems_, [&](const JournalProblem& p) { return p.id == session.id(); });
@@ -308,8 +334,13 @@ std::shared_ptr<SceneSession> restoreScene(const StoredScene& stored, const Scen
 
 void HttpServer::reserveJournalScenes() {
   if (!journal_ || pendingRestore_) return;
+  if (leases_ && !options_.restoreAtStart) {  // a node among several: scenes come on request
+    pendingRestore_.emplace();
+    return;
+  }
   pendingRestore_ = journal_->load();
-  if (!options_.dataDir.empty()) {
+  if (leases_) takeLeasesOf(*pendingRestore_);
+  if (!options_.dataDir.empty() && !leases_) {
     const std::string uploads = (std::filesystem::path(options_.dataDir) / "volumes").string();
     if (const size_t removed = removeOrphanUploads(uploads, *pendingRestore_))
       std::fprintf(stderr,
@@ -329,21 +360,9 @@ std::vector<RestoredScene> HttpServer::restore() {
   std::vector<SceneJournal::StoredScene> journaled = std::move(*pendingRestore_);
   pendingRestore_.reset();
   for (SceneJournal::StoredScene& stored : journaled) {
-    const auto start = std::chrono::steady_clock::now();
     RestoredScene report;
-    report.id = stored.id;
-    std::shared_ptr<SceneSession> session =
-        restoreScene(stored, *journal_, options_.engine, report);
-    report.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::shared_ptr<SceneSession> session = restoreStored(stored, report);
     std::lock_guard lock(scenesMutex_);
-    if (!report.problem.empty())
-      journalProblems_.push_back({report.id, report.stalledAt, report.problem});
-    if (!report.snapshotProblem.empty()) {  // loud, though the scene came back whole
-      std::fprintf(stderr, "penumbra serve: scene '%s': %s\n", report.id.c_str(),
-                   report.snapshotProblem.c_str());
-      snapshotProblems_.push_back({report.id, report.snapshotProblem});
-    }
     if (restoring_.erase(stored.id) == 0) {
       restored.push_back(std::move(report));  // the id was taken already (a scene served twice)
       continue;
@@ -351,6 +370,7 @@ std::vector<RestoredScene> HttpServer::restore() {
     if (session) {
       journalKeys_[session.get()] = stored.key;
       if (report.stalledAt) stalls_[session.get()] = SceneStall{*report.stalledAt, report.problem};
+      if (leases_) lastUse_[stored.id] = std::chrono::steady_clock::now();
       scenes_[stored.id] = std::move(session);
     } else {
       scenes_.erase(stored.id);  // not served: the id is free
@@ -358,6 +378,23 @@ std::vector<RestoredScene> HttpServer::restore() {
     restored.push_back(std::move(report));
   }
   return restored;
+}
+
+std::shared_ptr<SceneSession> HttpServer::restoreStored(const SceneJournal::StoredScene& stored,
+                                                        RestoredScene& report) {
+  const auto start = std::chrono::steady_clock::now();
+  report.id = stored.id;
+  std::shared_ptr<SceneSession> session = restoreScene(stored, *journal_, options_.engine, report);
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::lock_guard lock(scenesMutex_);
+  if (!report.problem.empty())
+    journalProblems_.push_back({report.id, report.stalledAt, report.problem});
+  if (!report.snapshotProblem.empty()) {  // loud, though the scene came back whole
+    std::fprintf(stderr, "penumbra serve: scene '%s': %s\n", report.id.c_str(),
+                 report.snapshotProblem.c_str());
+    snapshotProblems_.push_back({report.id, report.snapshotProblem});
+  }
+  return session;
 }
 
 std::optional<SceneStall> HttpServer::stallOf(const SceneSession& session) const {

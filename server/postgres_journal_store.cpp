@@ -1,19 +1,23 @@
 #include "server/postgres_journal_store.h"
 
-#include <endian.h>
 #include <libpq-fe.h>
 
-#include <cstring>
-#include <memory>
 #include <stdexcept>
-#include <vector>
+
+#include "server/postgres_statements.h"
 
 namespace penumbra::server {
 
+using namespace pg;
+
 namespace {
 
-// As the SQLite journal's tables (sqlite_journal_store.cpp), every number a BIGINT.
+// As the SQLite journal's tables (sqlite_journal_store.cpp), every number a BIGINT, and the
+// scene leases. Under a transaction-scoped advisory lock: nodes starting together on an empty
+// database would otherwise race on CREATE TABLE IF NOT EXISTS (a unique violation in pg_type).
 constexpr const char* kSchema = R"(
+BEGIN;
+SELECT pg_advisory_xact_lock(7039390);
 CREATE TABLE IF NOT EXISTS scenes (
   key BIGINT GENERATED ALWAYS AS IDENTITY PRIMARY KEY,
   id TEXT NOT NULL,
@@ -37,134 +41,34 @@ CREATE TABLE IF NOT EXISTS snapshots (
   parts BYTEA NOT NULL,
   crc BIGINT NOT NULL,
   PRIMARY KEY (scene, version));
+CREATE INDEX IF NOT EXISTS scenes_by_id ON scenes (id);
+CREATE TABLE IF NOT EXISTS scene_leases (
+  scene_id TEXT PRIMARY KEY,
+  owner TEXT NOT NULL,
+  token BIGINT NOT NULL,
+  expires TIMESTAMPTZ NOT NULL,
+  wanted_by TEXT);
+COMMIT;
 )";
 
-// Type OIDs of the parameters (pg_type.h): sent in binary, as are the results.
-constexpr Oid kInt8 = 20, kText = 25, kBytea = 17;
-
-using Result = std::unique_ptr<PGresult, decltype(&PQclear)>;
-
-// A statement's parameters in binary; NULL for an absent number.
-class Params {
- public:
-  Params& add(int64_t value) {
-    const uint64_t big = htobe64(uint64_t(value));
-    return push(std::string(reinterpret_cast<const char*>(&big), 8), kInt8, false);
-  }
-  Params& add(std::optional<int64_t> value) { return value ? add(*value) : push("", kInt8, true); }
-  Params& text(const std::string& value) { return push(value, kText, false); }
-  Params& bytes(const std::string& value) { return push(value, kBytea, false); }
-
-  int count() const { return int(bytes_.size()); }
-  const Oid* types() const { return types_.data(); }
-  // Pointers into the stored bytes: valid until the next add.
-  std::vector<const char*> values() const {
-    std::vector<const char*> out;
-    for (size_t i = 0; i < bytes_.size(); ++i) out.push_back(null_[i] ? nullptr : bytes_[i].data());
-    return out;
-  }
-  std::vector<int> lengths() const {
-    std::vector<int> out;
-    for (const std::string& b : bytes_) out.push_back(int(b.size()));
-    return out;
-  }
-  std::vector<int> formats() const { return std::vector<int>(bytes_.size(), 1); }
-
- private:
-  Params& push(std::string value, Oid type, bool null) {
-    bytes_.push_back(std::move(value));
-    types_.push_back(type);
-    null_.push_back(null);
-    return *this;
-  }
-  std::vector<std::string> bytes_;
-  std::vector<Oid> types_;
-  std::vector<bool> null_;
-};
-
-std::string errorOf(PGconn* conn) {
-  std::string message = PQerrorMessage(conn);
-  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
-  return message;
+// Inside a write's transaction: the scene's lease still holds `lease` (scene_leases.h), locked
+// (FOR SHARE) until the commit, so a takeover waits for this write or this write sees its newer
+// token. Throws LeaseLost otherwise.
+void checkLease(PGconn* conn, const char* sql, const Params& params, LeaseToken lease,
+                const std::string& scene) {
+  if (!lease) return;
+  if (PQntuples(run(conn, sql, params).get()) == 0)
+    throw LeaseLost("scene '" + scene + "' is owned by another node now (its lease token " +
+                    std::to_string(*lease) + " was taken over); nothing was written");
 }
 
-// Runs one statement; throws std::runtime_error with the database's message unless it succeeded.
-Result run(PGconn* conn, const char* sql, const Params& params = {}) {
-  const std::vector<const char*> values = params.values();
-  const std::vector<int> lengths = params.lengths(), formats = params.formats();
-  Result result(PQexecParams(conn, sql, params.count(), params.types(), values.data(),
-                             lengths.data(), formats.data(), 1),
-                &PQclear);
-  const ExecStatusType status = result ? PQresultStatus(result.get()) : PGRES_FATAL_ERROR;
-  if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK)
-    throw std::runtime_error(std::string(sql).substr(0, 40) + ": " + errorOf(conn));
-  return result;
+void checkLeaseOfKey(PGconn* conn, int64_t key, LeaseToken lease) {
+  if (!lease) return;
+  checkLease(conn,
+             "SELECT 1 FROM scene_leases l JOIN scenes s ON s.id = l.scene_id WHERE s.key = $1 "
+             "AND l.token = $2 FOR SHARE OF l",
+             Params().add(key).add(*lease), lease, "#" + std::to_string(key));
 }
-
-// Runs statements without parameters or rows (the schema, session settings), several at once.
-void runScript(PGconn* conn, const char* sql) {
-  const Result result(PQexec(conn, sql), &PQclear);
-  if (!result || PQresultStatus(result.get()) != PGRES_COMMAND_OK)
-    throw std::runtime_error(std::string(sql).substr(0, 40) + ": " + errorOf(conn));
-}
-
-int64_t int8At(const PGresult* result, int row, int column) {
-  uint64_t big = 0;
-  std::memcpy(&big, PQgetvalue(result, row, column), sizeof big);
-  return int64_t(be64toh(big));
-}
-
-std::optional<int64_t> optionalInt8At(const PGresult* result, int row, int column) {
-  if (PQgetisnull(result, row, column)) return std::nullopt;
-  return int8At(result, row, column);
-}
-
-std::string bytesAt(const PGresult* result, int row, int column) {
-  return std::string(PQgetvalue(result, row, column), size_t(PQgetlength(result, row, column)));
-}
-
-// Hands each row of `sql` to `row` as it arrives (single-row mode: a large journal is never
-// held whole); throws at the first error, after the rows before it.
-void eachRow(PGconn* conn, const char* sql, const std::function<void(const PGresult*)>& row) {
-  if (!PQsendQueryParams(conn, sql, 0, nullptr, nullptr, nullptr, nullptr, 1) ||
-      !PQsetSingleRowMode(conn))
-    throw std::runtime_error(std::string(sql).substr(0, 40) + ": " + errorOf(conn));
-  std::string error;
-  // Every result is read, even after an error, so that the connection is ready for the next.
-  while (PGresult* next = PQgetResult(conn)) {
-    const Result result(next, &PQclear);
-    const ExecStatusType status = PQresultStatus(next);
-    if (status == PGRES_SINGLE_TUPLE && error.empty()) {
-      try {
-        row(next);
-      } catch (const std::exception& thrown) {
-        error = thrown.what();
-      }
-    } else if (status != PGRES_TUPLES_OK && status != PGRES_SINGLE_TUPLE && error.empty()) {
-      error = std::string(sql).substr(0, 40) + ": " + errorOf(conn);
-    }
-  }
-  if (!error.empty()) throw std::runtime_error(error);
-}
-
-// BEGIN .. COMMIT; rolled back when left uncommitted (an exception), if the connection lives.
-class Transaction {
- public:
-  explicit Transaction(PGconn* conn) : conn_(conn) { run(conn_, "BEGIN"); }
-  ~Transaction() {
-    if (open_ && PQstatus(conn_) == CONNECTION_OK) PQclear(PQexec(conn_, "ROLLBACK"));
-  }
-  Transaction(const Transaction&) = delete;
-  Transaction& operator=(const Transaction&) = delete;
-  void commit() {
-    open_ = false;  // a failed COMMIT has ended the transaction too
-    run(conn_, "COMMIT");
-  }
-
- private:
-  PGconn* conn_;
-  bool open_ = true;
-};
 
 }  // namespace
 
@@ -229,7 +133,7 @@ std::string PostgresJournalStore::problem(bool ask) {
 }
 
 void PostgresJournalStore::readScenes(const std::function<void(JournalSceneRow&&)>& row) {
-  eachRow(conn_, "SELECT key, id, name, base_version, source, source_crc FROM scenes ORDER BY key",
+  eachRow(conn_, "SELECT key, id, name, base_version, source, source_crc FROM scenes ORDER BY key", {},
           [&](const PGresult* r) {
             row({int8At(r, 0, 0), bytesAt(r, 0, 1), bytesAt(r, 0, 2), int8At(r, 0, 3),
                  bytesAt(r, 0, 4), optionalInt8At(r, 0, 5)});
@@ -240,6 +144,7 @@ void PostgresJournalStore::readFrames(const std::function<void(JournalFrameRow&&
   eachRow(conn_,
           "SELECT scene, version, frame, parts, crc, parts_crc, base FROM frames ORDER BY scene, "
           "version",
+          {},
           [&](const PGresult* r) {
             row({int8At(r, 0, 0), int8At(r, 0, 1), bytesAt(r, 0, 2), bytesAt(r, 0, 3),
                  optionalInt8At(r, 0, 4), optionalInt8At(r, 0, 5), optionalInt8At(r, 0, 6)});
@@ -247,15 +152,50 @@ void PostgresJournalStore::readFrames(const std::function<void(JournalFrameRow&&
 }
 
 void PostgresJournalStore::readSnapshots(const std::function<void(JournalSnapshotRow&&)>& row) {
-  eachRow(conn_, "SELECT scene, version, source, parts, crc FROM snapshots ORDER BY scene, version",
+  eachRow(conn_, "SELECT scene, version, source, parts, crc FROM snapshots ORDER BY scene, version", {},
           [&](const PGresult* r) {
             row({int8At(r, 0, 0), int8At(r, 0, 1), bytesAt(r, 0, 2), bytesAt(r, 0, 3),
                  int8At(r, 0, 4)});
           });
 }
 
-int64_t PostgresJournalStore::insertScene(const JournalSceneRow& scene) {
+std::optional<JournalSceneRow> PostgresJournalStore::sceneById(const std::string& id) {
+  const Result r = run(conn_,
+                       "SELECT key, id, name, base_version, source, source_crc FROM scenes WHERE "
+                       "id = $1 ORDER BY key DESC LIMIT 1",
+                       Params().text(id));
+  if (PQntuples(r.get()) == 0) return std::nullopt;
+  return JournalSceneRow{int8At(r.get(), 0, 0), bytesAt(r.get(), 0, 1), bytesAt(r.get(), 0, 2),
+                         int8At(r.get(), 0, 3), bytesAt(r.get(), 0, 4),
+                         optionalInt8At(r.get(), 0, 5)};
+}
+
+void PostgresJournalStore::readFramesOf(int64_t key,
+                                        const std::function<void(JournalFrameRow&&)>& row) {
+  eachRow(conn_,
+          "SELECT scene, version, frame, parts, crc, parts_crc, base FROM frames WHERE scene = $1 "
+          "ORDER BY version",
+          Params().add(key), [&](const PGresult* r) {
+            row({int8At(r, 0, 0), int8At(r, 0, 1), bytesAt(r, 0, 2), bytesAt(r, 0, 3),
+                 optionalInt8At(r, 0, 4), optionalInt8At(r, 0, 5), optionalInt8At(r, 0, 6)});
+          });
+}
+
+void PostgresJournalStore::readSnapshotsOf(int64_t key,
+                                           const std::function<void(JournalSnapshotRow&&)>& row) {
+  eachRow(conn_,
+          "SELECT scene, version, source, parts, crc FROM snapshots WHERE scene = $1 ORDER BY "
+          "version",
+          Params().add(key), [&](const PGresult* r) {
+            row({int8At(r, 0, 0), int8At(r, 0, 1), bytesAt(r, 0, 2), bytesAt(r, 0, 3),
+                 int8At(r, 0, 4)});
+          });
+}
+
+int64_t PostgresJournalStore::insertScene(const JournalSceneRow& scene, LeaseToken lease) {
   Transaction transaction(conn_);
+  checkLease(conn_, "SELECT 1 FROM scene_leases WHERE scene_id = $1 AND token = $2 FOR SHARE",
+             Params().text(scene.id).add(lease.value_or(0)), lease, scene.id);
   const Result key = run(conn_,
                          "INSERT INTO scenes (id, name, base_version, source, source_crc) VALUES "
                          "($1, $2, $3, $4, $5) RETURNING key",
@@ -272,8 +212,9 @@ int64_t PostgresJournalStore::insertScene(const JournalSceneRow& scene) {
 // A row already at this version can only be a commit whose answer a lost connection swallowed:
 // never acknowledged (SceneJournal writes only the version after the last acknowledged one), so
 // the frame that now takes that version replaces it rather than failing every retry.
-void PostgresJournalStore::insertFrame(const JournalFrameRow& frame) {
+void PostgresJournalStore::insertFrame(const JournalFrameRow& frame, LeaseToken lease) {
   Transaction transaction(conn_);
+  checkLeaseOfKey(conn_, frame.scene, lease);
   run(conn_,
       "INSERT INTO frames (scene, version, frame, parts, crc, parts_crc, base) VALUES ($1, $2, "
       "$3, $4, $5, $6, $7) ON CONFLICT (scene, version) DO UPDATE SET frame = EXCLUDED.frame, "
@@ -290,8 +231,10 @@ void PostgresJournalStore::insertFrame(const JournalFrameRow& frame) {
   transaction.commit();
 }
 
-void PostgresJournalStore::putSnapshot(const JournalSnapshotRow& snapshot, size_t keep) {
+void PostgresJournalStore::putSnapshot(const JournalSnapshotRow& snapshot, size_t keep,
+                                       LeaseToken lease) {
   Transaction transaction(conn_);
+  checkLeaseOfKey(conn_, snapshot.scene, lease);
   run(conn_,
       "INSERT INTO snapshots (scene, version, source, parts, crc) VALUES ($1, $2, $3, $4, $5) "
       "ON CONFLICT (scene, version) DO UPDATE SET source = EXCLUDED.source, parts = "
@@ -309,8 +252,9 @@ void PostgresJournalStore::putSnapshot(const JournalSnapshotRow& snapshot, size_
   transaction.commit();
 }
 
-void PostgresJournalStore::deleteScene(int64_t key) {
+void PostgresJournalStore::deleteScene(int64_t key, LeaseToken lease) {
   Transaction transaction(conn_);
+  checkLeaseOfKey(conn_, key, lease);
   run(conn_, "DELETE FROM scenes WHERE key = $1", Params().add(key));
   transaction.commit();
 }

@@ -1,6 +1,6 @@
 // The journal's PostgreSQL store (journal_store.h; docs/SERVER.md "Durability"): the same three
 // tables as the SQLite journal in a database named by a libpq connection URI, over one connection
-// (libpq). Each write is a transaction committed with synchronous_commit on, so an acknowledged
+// (libpq), and the scene_leases table (scene_leases.h) whose tokens fence every write. Each write is a transaction committed with synchronous_commit on, so an acknowledged
 // frame is on the database's disk; a lost connection is opened again on the next write or health
 // check. Not thread-safe.
 #pragma once
@@ -30,11 +30,14 @@ class PostgresJournalStore : public JournalStore {
   void readScenes(const std::function<void(JournalSceneRow&&)>& row) override;
   void readFrames(const std::function<void(JournalFrameRow&&)>& row) override;
   void readSnapshots(const std::function<void(JournalSnapshotRow&&)>& row) override;
+  std::optional<JournalSceneRow> sceneById(const std::string& id) override;
+  void readFramesOf(int64_t key, const std::function<void(JournalFrameRow&&)>& row) override;
+  void readSnapshotsOf(int64_t key, const std::function<void(JournalSnapshotRow&&)>& row) override;
 
-  int64_t insertScene(const JournalSceneRow& scene) override;
-  void insertFrame(const JournalFrameRow& frame) override;
-  void putSnapshot(const JournalSnapshotRow& snapshot, size_t keep) override;
-  void deleteScene(int64_t key) override;
+  int64_t insertScene(const JournalSceneRow& scene, LeaseToken lease) override;
+  void insertFrame(const JournalFrameRow& frame, LeaseToken lease) override;
+  void putSnapshot(const JournalSnapshotRow& snapshot, size_t keep, LeaseToken lease) override;
+  void deleteScene(int64_t key, LeaseToken lease) override;
 
  private:
   void configure();                       // the session's settings, after every (re)connection

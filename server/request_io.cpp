@@ -27,7 +27,8 @@ void sendJson(httplib::Response& res, int status, const json& body) {
 
 void sendError(httplib::Response& res, const ApiError& error, const json& extra) {
   sendJson(res, error.status(), errorJson(error.code(), error.what(), error.path(), extra));
-  if (error.code() == error_code::kRestoring || error.code() == error_code::kBuilding)
+  if (error.code() == error_code::kRestoring || error.code() == error_code::kBuilding ||
+      error.code() == error_code::kOwnedElsewhere)
     res.set_header("Retry-After", "1");
 }
 

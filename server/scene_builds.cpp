@@ -31,24 +31,63 @@ std::string HttpServer::addScene(Scene scene, const std::string& name,
 std::shared_ptr<BuildJob> HttpServer::reserveBuild(const std::string& name,
                                                    const std::string& preferredId,
                                                    const std::string& ticket) {
-  std::lock_guard lock(scenesMutex_);
-  if (scenes_.size() >= options_.maxScenes)
-    throw ApiError(429, error_code::kTooManyScenes, "",
-                   "the server already holds " + std::to_string(options_.maxScenes) +
-                       " scenes (--max-scenes); DELETE one first");
-  const std::string id = freshId(preferredId.empty() ? name : preferredId);
-  scenes_.emplace(id, nullptr);  // reserved while it builds
-  auto job = std::make_shared<BuildJob>(id, name, ticket);
-  if (stopping_) job->cancel();
-  builds_[id] = job;
-  return job;
+  const std::string& preferred = preferredId.empty() ? name : preferredId;
+  std::vector<std::string> elsewhere;  // ids other nodes hold: reserved until one is claimed
+  auto freeElsewhere = [&] {
+    std::lock_guard lock(scenesMutex_);
+    for (const std::string& taken : elsewhere) scenes_.erase(taken);
+  };
+  for (;;) {
+    std::string id;
+    {
+      std::lock_guard lock(scenesMutex_);
+      if (scenes_.size() - elsewhere.size() >= options_.maxScenes) {
+        for (const std::string& taken : elsewhere) scenes_.erase(taken);
+        throw ApiError(429, error_code::kTooManyScenes, "",
+                       "the server already holds " + std::to_string(options_.maxScenes) +
+                           " scenes (--max-scenes); DELETE one first");
+      }
+      id = freshId(preferred);
+      scenes_.emplace(id, nullptr);  // reserved while it builds
+    }
+    bool claimed = true;
+    try {
+      claimed = !leases_ || claimNewId(id);
+    } catch (const std::exception& error) {
+      elsewhere.push_back(id);
+      freeElsewhere();
+      throw ApiError(503, error_code::kJournalFailed, "",
+                     std::string("the scene leases cannot be read: ") + error.what());
+    }
+    if (!claimed) {
+      elsewhere.push_back(id);
+      continue;
+    }
+    freeElsewhere();
+    std::lock_guard lock(scenesMutex_);
+    auto job = std::make_shared<BuildJob>(id, name, ticket);
+    if (stopping_) job->cancel();
+    builds_[id] = job;
+    return job;
+  }
 }
 
 void HttpServer::abandonBuild(BuildJob& job) {
+  std::optional<int64_t> lease;
   {
     std::lock_guard lock(scenesMutex_);
     scenes_.erase(job.id());
     builds_.erase(job.id());
+    if (const auto it = leaseTokens_.find(job.id()); it != leaseTokens_.end()) {
+      lease = it->second;
+      leaseTokens_.erase(it);
+    }
+  }
+  if (lease) {
+    try {
+      leases_->release(job.id(), *lease);
+    } catch (const std::exception&) {  // it expires by itself
+    }
   }
   job.end();
 }
@@ -69,7 +108,12 @@ std::string HttpServer::buildScene(const std::shared_ptr<BuildJob>& job, Scene s
     job->check();  // last chance: once journaled, the scene is served (a DELETE then removes it)
     if (journal_) {
       try {
-        key = journal_->addScene(id, name, source, session->snapshot()->version);
+        LeaseToken lease;
+        {
+          std::lock_guard lock(scenesMutex_);
+          if (const auto it = leaseTokens_.find(id); it != leaseTokens_.end()) lease = it->second;
+        }
+        key = journal_->addScene(id, name, source, session->snapshot()->version, lease);
       } catch (const std::exception& error) {
         throw ApiError(503, error_code::kJournalFailed, "",
                        std::string("the journal could not record the scene: ") + error.what());
@@ -87,6 +131,7 @@ std::string HttpServer::buildScene(const std::shared_ptr<BuildJob>& job, Scene s
   {
     std::lock_guard lock(scenesMutex_);
     if (journal_) journalKeys_[session.get()] = key;
+    if (leases_) lastUse_[id] = std::chrono::steady_clock::now();
     scenes_[id] = std::move(session);
     builds_.erase(id);
   }

@@ -61,6 +61,41 @@ void SceneJournal::requireDurable() const {
   if (!problem.empty()) throw std::runtime_error(problem);
 }
 
+namespace {
+
+SceneJournal::StoredScene storedScene(JournalSceneRow&& row) {
+  SceneJournal::StoredScene scene;
+  scene.key = row.key;
+  scene.id = std::move(row.id);
+  scene.name = std::move(row.name);
+  scene.baseVersion = uint64_t(row.baseVersion);
+  scene.source = std::move(row.source);
+  scene.sourceIntact = matches(row.sourceCrc, crcOf(0, scene.source));
+  return scene;
+}
+
+SceneJournal::StoredScene::StoredFrame storedFrame(JournalFrameRow&& row) {
+  SceneJournal::StoredScene::StoredFrame frame;
+  frame.version = uint64_t(row.version);
+  frame.frame = std::move(row.frame);
+  frame.parts = std::move(row.parts);
+  frame.intact = matches(row.crc, SceneJournal::frameChecksum(frame.version, frame.frame));
+  // Damaged part changes only cost speed: that scene replays frame by frame.
+  if (!matches(row.partsCrc, crcOf(0, frame.parts))) frame.parts.clear();
+  if (row.base) frame.base = uint64_t(*row.base);
+  return frame;
+}
+
+SceneJournal::StoredScene::StoredSnapshot storedSnapshot(JournalSnapshotRow&& row) {
+  SceneJournal::StoredScene::StoredSnapshot snapshot{uint64_t(row.version), std::move(row.source),
+                                                     std::move(row.parts)};
+  snapshot.intact = uint32_t(row.crc) == SceneJournal::snapshotChecksum(
+                                             snapshot.version, snapshot.source, snapshot.parts);
+  return snapshot;
+}
+
+}  // namespace
+
 std::vector<SceneJournal::StoredScene> SceneJournal::load() {
   std::lock_guard lock(mutex_);
   std::vector<StoredScene> scenes;
@@ -68,13 +103,7 @@ std::vector<SceneJournal::StoredScene> SceneJournal::load() {
   size_t reading = 0;  // the scene whose frames are being read
   try {
     store_->readScenes([&](JournalSceneRow&& row) {
-      StoredScene scene;
-      scene.key = row.key;
-      scene.id = std::move(row.id);
-      scene.name = std::move(row.name);
-      scene.baseVersion = uint64_t(row.baseVersion);
-      scene.source = std::move(row.source);
-      scene.sourceIntact = matches(row.sourceCrc, crcOf(0, scene.source));
+      StoredScene scene = storedScene(std::move(row));
       index[scene.key] = scenes.size();
       lastVersion_[scene.key] = scene.baseVersion;
       scenes.push_back(std::move(scene));
@@ -84,25 +113,13 @@ std::vector<SceneJournal::StoredScene> SceneJournal::load() {
       if (it == index.end()) return;
       reading = it->second;
       StoredScene& scene = scenes[it->second];
-      StoredScene::StoredFrame frame;
-      frame.version = uint64_t(row.version);
-      frame.frame = std::move(row.frame);
-      frame.parts = std::move(row.parts);
-      frame.intact = matches(row.crc, frameChecksum(frame.version, frame.frame));
-      // Damaged part changes only cost speed: that scene replays frame by frame.
-      if (!matches(row.partsCrc, crcOf(0, frame.parts))) frame.parts.clear();
-      if (row.base) frame.base = uint64_t(*row.base);
-      lastVersion_[scene.key] = frame.version;
-      scene.frames.push_back(std::move(frame));
+      lastVersion_[scene.key] = uint64_t(row.version);
+      scene.frames.push_back(storedFrame(std::move(row)));
     });
     store_->readSnapshots([&](JournalSnapshotRow&& row) {
       const auto it = index.find(row.scene);
       if (it == index.end()) return;
-      StoredScene::StoredSnapshot snapshot{uint64_t(row.version), std::move(row.source),
-                                           std::move(row.parts)};
-      snapshot.intact =
-          uint32_t(row.crc) == snapshotChecksum(snapshot.version, snapshot.source, snapshot.parts);
-      scenes[it->second].snapshots.push_back(std::move(snapshot));
+      scenes[it->second].snapshots.push_back(storedSnapshot(std::move(row)));
     });
   } catch (const std::exception& error) {
     // A damaged file: keep what was read, say so; the scenes from the one being read on may be
@@ -115,13 +132,60 @@ std::vector<SceneJournal::StoredScene> SceneJournal::load() {
   return scenes;
 }
 
+std::optional<SceneJournal::StoredScene> SceneJournal::loadScene(const std::string& id,
+                                                                 int64_t lease) {
+  std::lock_guard lock(mutex_);
+  std::optional<JournalSceneRow> row = store_->sceneById(id);
+  if (!row) return std::nullopt;
+  StoredScene scene = storedScene(std::move(*row));
+  uint64_t last = scene.baseVersion;
+  try {
+    store_->readFramesOf(scene.key, [&](JournalFrameRow&& frame) {
+      last = uint64_t(frame.version);
+      scene.frames.push_back(storedFrame(std::move(frame)));
+    });
+    store_->readSnapshotsOf(scene.key, [&](JournalSnapshotRow&& snapshot) {
+      scene.snapshots.push_back(storedSnapshot(std::move(snapshot)));
+    });
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "penumbra serve: reading scene '%s' from the journal failed: %s\n",
+                 id.c_str(), error.what());
+    scene.complete = false;
+  }
+  lastVersion_[scene.key] = last;
+  leases_[scene.key] = lease;
+  return scene;
+}
+
+bool SceneJournal::hasScene(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  return store_->sceneById(id).has_value();
+}
+
+void SceneJournal::holdLease(int64_t key, int64_t lease) {
+  std::lock_guard lock(mutex_);
+  leases_[key] = lease;
+}
+
+void SceneJournal::forgetScene(int64_t key) {
+  std::lock_guard lock(mutex_);
+  lastVersion_.erase(key);
+  leases_.erase(key);
+}
+
+LeaseToken SceneJournal::leaseOf(int64_t key) const {
+  const auto it = leases_.find(key);
+  return it == leases_.end() ? LeaseToken() : LeaseToken(it->second);
+}
+
 int64_t SceneJournal::addScene(const std::string& id, const std::string& name,
-                               const std::string& source, uint64_t baseVersion) {
+                               const std::string& source, uint64_t baseVersion, LeaseToken lease) {
   std::lock_guard lock(mutex_);
   requireDurable();
-  const int64_t key =
-      store_->insertScene({0, id, name, int64_t(baseVersion), source, int64_t(crcOf(0, source))});
+  const int64_t key = store_->insertScene(
+      {0, id, name, int64_t(baseVersion), source, int64_t(crcOf(0, source))}, lease);
   lastVersion_[key] = baseVersion;
+  if (lease) leases_[key] = *lease;
   return key;
 }
 
@@ -136,7 +200,8 @@ void SceneJournal::addFrame(int64_t key, uint64_t version, const std::string& fr
                              " (an earlier frame could not be journaled)");
   requireDurable();
   store_->insertFrame({key, int64_t(version), frame, parts, int64_t(frameChecksum(version, frame)),
-                       int64_t(crcOf(0, parts)), int64_t(base)});
+                       int64_t(crcOf(0, parts)), int64_t(base)},
+                      leaseOf(key));
   last->second = version;
 }
 
@@ -148,14 +213,15 @@ void SceneJournal::addSnapshot(int64_t key, uint64_t version, const std::string&
   // Older snapshots only cost space: a restart starts from the newest that verifies.
   store_->putSnapshot(
       {key, int64_t(version), source, parts, int64_t(snapshotChecksum(version, source, parts))},
-      kSnapshotsKept);
+      kSnapshotsKept, leaseOf(key));
 }
 
 void SceneJournal::removeScene(int64_t key) {
   std::lock_guard lock(mutex_);
   requireDurable();
-  store_->deleteScene(key);
+  store_->deleteScene(key, leaseOf(key));
   lastVersion_.erase(key);
+  leases_.erase(key);
 }
 
 }  // namespace penumbra::server

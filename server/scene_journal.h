@@ -15,9 +15,10 @@
 #include <utility>
 #include <vector>
 
+#include "server/journal_store.h"
+
 namespace penumbra::server {
 
-class JournalStore;
 class DataDirectory;
 
 class SceneJournal {
@@ -81,10 +82,22 @@ class SceneJournal {
   // come back; the scene being read and those after it are flagged by `complete = false`).
   std::vector<StoredScene> load();
   const std::string& loadProblem() const { return loadProblem_; }
+  // One scene, as load() would return it: the newest journaled scene with this id (nullopt:
+  // none), for a node that took its lease over (scene_leases.h). Its writes from now on carry
+  // `lease` as their fencing token. A read error part-way leaves it `complete = false`.
+  std::optional<StoredScene> loadScene(const std::string& id, int64_t lease);
+  // Whether a scene with this id is journaled (a node of a cluster picking a new scene's id).
+  bool hasScene(const std::string& id);
+  // Scene `key`'s writes carry `lease` from now on (its lease taken at start-up).
+  void holdLease(int64_t key, int64_t lease);
+  // Forgets scene `key` (a node that gave its lease up): its writes fail until loadScene again.
+  void forgetScene(int64_t key);
   // Each call is one committed transaction; throws std::runtime_error (nothing written) on failure,
-  // and before writing anything when durabilityProblem() is not empty.
+  // and before writing anything when durabilityProblem() is not empty; LeaseLost when another
+  // node took the scene's lease over.
+  // `lease`: the token of the scene's lease (scene_leases.h) its writes carry; none with SQLite.
   int64_t addScene(const std::string& id, const std::string& name, const std::string& source,
-                   uint64_t baseVersion);
+                   uint64_t baseVersion, LeaseToken lease = {});
   // `version` must follow the scene's last journaled version by exactly one: a gap means an
   // earlier frame was applied but never journaled, and the scene takes no more frames.
   // `parts`: the frame's PartChanges as text, which lets a restart mesh once
@@ -109,12 +122,14 @@ class SceneJournal {
   // Throws std::runtime_error naming what durabilityProblem() would (without asking the
   // database: a write that cannot commit fails anyway). Call with mutex_ held.
   void requireDurable() const;
+  LeaseToken leaseOf(int64_t key) const;  // call with mutex_ held
 
   mutable std::mutex mutex_;
   std::unique_ptr<DataDirectory> dir_;  // locked first, released last
   std::unique_ptr<JournalStore> store_;
   std::string loadProblem_;
   std::map<int64_t, uint64_t> lastVersion_;  // per scene key
+  std::map<int64_t, int64_t> leases_;        // per scene key: the lease token its writes carry
 };
 
 }  // namespace penumbra::server

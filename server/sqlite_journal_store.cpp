@@ -141,7 +141,7 @@ void SqliteJournalStore::readSnapshots(const std::function<void(JournalSnapshotR
          rows.columnInt(4)});
 }
 
-int64_t SqliteJournalStore::insertScene(const JournalSceneRow& scene) {
+int64_t SqliteJournalStore::insertScene(const JournalSceneRow& scene, LeaseToken) {
   SqliteTransaction transaction(*db_);
   SqliteStatement insert = db_->prepare(
       "INSERT INTO scenes (id, name, base_version, source, source_crc) VALUES (?, ?, ?, ?, ?)");
@@ -152,7 +152,7 @@ int64_t SqliteJournalStore::insertScene(const JournalSceneRow& scene) {
   return key;
 }
 
-void SqliteJournalStore::insertFrame(const JournalFrameRow& frame) {
+void SqliteJournalStore::insertFrame(const JournalFrameRow& frame, LeaseToken) {
   SqliteTransaction transaction(*db_);
   SqliteStatement insert = db_->prepare(
       "INSERT INTO frames (scene, version, frame, parts, crc, parts_crc, base) VALUES (?, ?, ?, "
@@ -167,7 +167,8 @@ void SqliteJournalStore::insertFrame(const JournalFrameRow& frame) {
   transaction.commit();
 }
 
-void SqliteJournalStore::putSnapshot(const JournalSnapshotRow& snapshot, size_t keep) {
+void SqliteJournalStore::putSnapshot(const JournalSnapshotRow& snapshot, size_t keep,
+                                     LeaseToken) {
   SqliteTransaction transaction(*db_);
   db_->prepare(
          "INSERT OR REPLACE INTO snapshots (scene, version, source, parts, crc) VALUES (?, ?, "
@@ -188,7 +189,7 @@ void SqliteJournalStore::putSnapshot(const JournalSnapshotRow& snapshot, size_t 
   transaction.commit();
 }
 
-void SqliteJournalStore::deleteScene(int64_t key) {
+void SqliteJournalStore::deleteScene(int64_t key, LeaseToken) {
   SqliteTransaction transaction(*db_);
   db_->prepare("DELETE FROM scenes WHERE key = ?").bind(1, key).run();
   transaction.commit();

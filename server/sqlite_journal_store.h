@@ -29,10 +29,10 @@ class SqliteJournalStore : public JournalStore {
   void readFrames(const std::function<void(JournalFrameRow&&)>& row) override;
   void readSnapshots(const std::function<void(JournalSnapshotRow&&)>& row) override;
 
-  int64_t insertScene(const JournalSceneRow& scene) override;
-  void insertFrame(const JournalFrameRow& frame) override;
-  void putSnapshot(const JournalSnapshotRow& snapshot, size_t keep) override;
-  void deleteScene(int64_t key) override;
+  int64_t insertScene(const JournalSceneRow& scene, LeaseToken lease) override;
+  void insertFrame(const JournalFrameRow& frame, LeaseToken lease) override;
+  void putSnapshot(const JournalSnapshotRow& snapshot, size_t keep, LeaseToken lease) override;
+  void deleteScene(int64_t key, LeaseToken lease) override;
 
  private:
   void open();  // the connection, pragmas, quick_check and schema; throws SqliteError
