@@ -115,6 +115,20 @@ json imageCounts(const Scene& scene, const Mesh& mesh, int size, int threads) {
   return {{"over_1pct", one}, {"over_2pct", two}, {"bright_radiance", bright}};
 }
 
+// The pixels over 1 %: where, which object, the exact and interpolated values, and the error
+// relative to the local unshadowed level (what the mesh's tolerance is relative to).
+json missesJson(const Scene& scene, const DirectLightError& e) {
+  json out = json::array();
+  for (const DirectLightMiss& m : e.misses) {
+    const Face& face = scene.faces()[m.face];
+    out.push_back({{"x", m.x}, {"y", m.y}, {"object", scene.object(face.id.object).id}, {"face", face.id.face},
+                   {"position", {m.position.x, m.position.y, m.position.z}}, {"exact", m.exact}, {"mesh", m.mesh},
+                   {"unshadowed", m.unshadowed},
+                   {"relative_to_local", m.unshadowed > 0 ? std::abs(m.mesh - m.exact) / m.unshadowed : 0.0}});
+  }
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -156,7 +170,8 @@ int main(int argc, char** argv) try {
                       {"over_1pct_above_bright", e.overOnePercentAboveBright},
                       {"worst", {{"relative", e.worstRelative}, {"x", e.worstX}, {"y", e.worstY},
                                  {"mesh", e.worstMesh}, {"exact", e.worstExact}}},
-                      {"image", image}});
+                      {"image", image},
+                      {"misses", missesJson(scene, e)}});
     }
   }
   if (!o.jsonOut.empty()) std::ofstream(o.jsonOut) << rows.dump(2) << "\n";

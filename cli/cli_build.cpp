@@ -1,10 +1,13 @@
 #include <sys/resource.h>
 
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <optional>
+#include <string>
 
 #include "core/engine/engine.h"
 #include "core/engine/parallel.h"
@@ -29,13 +32,27 @@ double peakMemoryMiB() {
   return double(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
+// The display mesh's receivers, vertices and triangles per scene object (by id): where a
+// scene's triangles go (a model's small faces against the room's floor under its shadow).
+nlohmann::json meshByObject(const Scene& scene, const Mesh& mesh) {
+  std::map<std::string, std::array<size_t, 3>> counts;  // receivers, vertices, triangles
+  for (const ReceiverMesh& r : mesh.receivers) {
+    auto& [receivers, vertices, triangles] = counts[scene.object(r.face.object).id];
+    ++receivers, vertices += r.positions.size(), triangles += r.triangles.size();
+  }
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [id, c] : counts) out[id] = {{"receivers", c[0]}, {"vertices", c[1]}, {"triangles", c[2]}};
+  return out;
+}
+
 // The build stats (protocol/build_stats_json.h) with the written mesh and this process's peak.
-nlohmann::json statsJson(const BuildStats& s, const Mesh& mesh) {
+nlohmann::json statsJson(const Scene& scene, const BuildStats& s, const Mesh& mesh) {
   nlohmann::json out = protocol::buildStatsToJson(s);
   out["mesh"] = {{"vertices", mesh.vertexCount()},
                  {"triangles", mesh.triangleCount()},
                  {"tolerance", mesh.tolerance},
-                 {"capped_cells", mesh.cappedCells}};
+                 {"capped_cells", mesh.cappedCells},
+                 {"by_object", meshByObject(scene, mesh)}};
   out["peak_memory_mib"] = peakMemoryMiB();
   return out;
 }
@@ -95,7 +112,7 @@ int runBuild(const Args& args) {
 
   const BuildStats& stats = engine.stats();
   if (args.flag("stats")) {
-    std::printf("%s\n", statsJson(stats, mesh).dump(2).c_str());
+    std::printf("%s\n", statsJson(engine.scene(), stats, mesh).dump(2).c_str());
   } else {
     std::printf("wrote %s: %zu receivers, %zu vertices, %zu triangles, interpolation within %g of the local "
                 "unshadowed light (%zu cells capped) (%.3f s)\n", out->c_str(), mesh.receivers.size(),

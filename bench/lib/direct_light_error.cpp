@@ -14,6 +14,14 @@ namespace {
 
 double largest(const Vec3& v) { return std::max({v.x, v.y, v.z}); }
 
+// The largest channel of what every light gives at p with nothing in the way.
+double unshadowedAt(const Scene& scene, const ExactReference& reference, const Vec3& p, const Vec3& n) {
+  Vec3 sum{0.0};
+  for (size_t l = 0; l < scene.lights().size(); ++l)
+    sum += reference.visibility(p, n, l).unoccludedFactor * scene.lights()[l].radiance;
+  return largest(sum);
+}
+
 }  // namespace
 
 DirectLightError directLightError(const Scene& scene, const Mesh& mesh, const Camera& camera, int width,
@@ -54,6 +62,12 @@ DirectLightError directLightError(const Scene& scene, const Mesh& mesh, const Ca
     out.overOnePercent += relative > 0.01 ? 1 : 0;
     out.overOnePercentAboveBright += relative > 0.01 && exact[p] > out.brightLevel ? 1 : 0;
     out.overTwoPercent += relative > 0.02 ? 1 : 0;
+    if (relative > 0.01) {
+      const uint32_t face = uint32_t(view.face[p]);
+      const Vec3 normal = scene.faces()[face].plane.normal;
+      out.misses.push_back({int(p % size_t(width)), int(p / size_t(width)), face, view.position[p], exact[p],
+                            interpolated[p], unshadowedAt(scene, reference, view.position[p], normal)});
+    }
     if (relative > out.worstRelative) {
       out.worstRelative = relative;
       out.worstX = int(p % size_t(width));

@@ -14,6 +14,16 @@
 
 namespace penumbra {
 
+// A pixel off by more than 1 % of the bright level: where, and its local unshadowed level (the
+// largest channel of what every light would give there with nothing in the way: the scale the
+// display mesh's tolerance is relative to).
+struct DirectLightMiss {
+  int x = 0, y = 0;
+  uint32_t face = 0;  // Scene::faces() index
+  Vec3 position{0.0};
+  double exact = 0, mesh = 0, unshadowed = 0;  // largest channel
+};
+
 struct DirectLightError {
   size_t pixels = 0;        // surface pixels on faces that receive light
   double brightLevel = 0;   // 99th percentile of the exact irradiance's largest channel there
@@ -25,6 +35,7 @@ struct DirectLightError {
   double worstRelative = 0;  // the largest |mesh − exact| / brightLevel
   int worstX = -1, worstY = -1;
   double worstMesh = 0, worstExact = 0;  // largest channel at the worst pixel
+  std::vector<DirectLightMiss> misses;    // the pixels over 1 %, in row order
 };
 
 // The view's surface pixels (first front-facing face, as the renderer's rays see them) on

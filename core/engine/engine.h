@@ -50,7 +50,7 @@ struct EngineSettings {
   // (counted: Mesh::cappedCells). On by default: what a person sees is within the tolerance.
   static constexpr double kRecommendedMeshTolerance = 0.005;
   double meshTolerance = kRecommendedMeshTolerance;
-  double meshRefineMinEdgeDivisions = 2048;
+  double meshRefineMinEdgeDivisions = 4096;
   static constexpr uint32_t kRefineMaxPoints = 1024;
   // Test hook (failure injection, tests/server/frame_failure_property_test.cpp): called at
   // named points of apply() ("removed", "added", "relight", "rebuild": its whole-engine

@@ -1,7 +1,7 @@
 // The receiver mesh builder's buckets: integer grid cells (x, y) to the chain of locations in
 // each, in one open-addressing array (linear probing, grown at half load). A node-based
 // std::unordered_map cost a heap block per bucket and most of the builder's time. Only find
-// and insert: nothing is ever erased. Not thread-safe to write.
+// and insert: nothing is erased but all at once (clear). Not thread-safe to write.
 #pragma once
 
 #include <cstddef>
@@ -37,6 +37,11 @@ class BucketTable {
     }
   }
   size_t size() const { return size_; }
+  // Empties the table, keeping its slots.
+  void clear() {
+    for (Slot& s : slots_) s.used = false;
+    size_ = 0;
+  }
 
  private:
   struct Slot {

@@ -1,8 +1,9 @@
 #include "core/mesh/cell_refinement.h"
 
+#include "core/mesh/bucket_table.h"
+
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <span>
 #include <stdexcept>
 #include <utility>
@@ -52,8 +53,8 @@ class Refiner {
       any |= halved || centroids[t] != kPasses;
     }
     if (!any) return false;
-    if (piece_.points.size() > settings_.maxPoints) {  // the round does not fit: undo it
-      truncate(pointsBefore, true);
+    if (piece_.points.size() > settings_.maxPoints) {  // the round does not fit: undo it (the last)
+      truncate(pointsBefore);
       piece_.capped = true;
       return false;
     }
@@ -70,14 +71,11 @@ class Refiner {
     return true;
   }
 
-  // Drops the points from `count` on (no edge decision refers to them unless `decided`).
-  void truncate(size_t count, bool decided = false) {
+  // Drops the points from `count` on.
+  void truncate(size_t count) {
     piece_.points.resize(count);
     piece_.values.resize(count * piece_.lights);
     piece_.levels.resize(count * piece_.lights);
-    if (decided)
-      for (auto it = edges_.begin(); it != edges_.end();)
-        it = it->second != kPasses && it->second >= count ? edges_.erase(it) : std::next(it);
   }
 
   // Appends the exact values at q; returns its index.
@@ -136,17 +134,15 @@ class Refiner {
   // For every edge two triangles of the piece share (an inner edge), the smaller of their
   // heights; edges on the piece's outline are not listed.
   void measureInteriorEdges() {
-    std::map<std::pair<uint32_t, uint32_t>, std::pair<int, double>> seen;
+    inner_.clear();
     for (const auto& tri : piece_.triangles) {
       const double height = heightOf(tri);
       for (int e = 0; e < 3; ++e) {
-        auto& [count, lowest] = seen.try_emplace(keyOf(tri[e], tri[(e + 1) % 3]), 0, height).first->second;
+        const auto [a, b] = keyOf(tri[e], tri[(e + 1) % 3]);
+        auto& [count, lowest] = *inner_.tryEmplace(a, b, {0, height}).first;
         ++count, lowest = std::min(lowest, height);
       }
     }
-    inner_.clear();
-    for (const auto& [key, entry] : seen)
-      if (entry.first == 2) inner_.emplace(key, entry.second);
   }
 
   static std::pair<uint32_t, uint32_t> keyOf(uint32_t a, uint32_t b) { return {std::min(a, b), std::max(a, b)}; }
@@ -158,7 +154,7 @@ class Refiner {
   // one edge that makes slivers the mesh builder's merge within eps can fold.
   uint32_t decideEdge(uint32_t a, uint32_t b) {
     const auto key = keyOf(a, b);
-    if (const auto found = edges_.find(key); found != edges_.end()) return found->second;
+    if (const uint32_t* found = edges_.find(key.first, key.second)) return *found;
     uint32_t decision = kPasses;
     const Vec2 pa = piece_.points[a], pb = piece_.points[b];
     if (glm::length(pb - pa) > settings_.minEdge) {
@@ -170,7 +166,7 @@ class Refiner {
         truncate(m);  // a passing (or refused) midpoint is not kept
       }
     }
-    edges_[key] = decision;
+    edges_.tryEmplace(key.first, key.second, decision);
     return decision;
   }
 
@@ -179,8 +175,8 @@ class Refiner {
   // Whether `key` is an inner edge with a triangle on it thinner than 2·minHeight().
   bool tooThin(const std::pair<uint32_t, uint32_t>& key) {
     if (!innerMeasured_) measureInteriorEdges(), innerMeasured_ = true;
-    const auto inner = inner_.find(key);
-    return inner != inner_.end() && !(inner->second >= 2 * minHeight());
+    const auto* inner = inner_.find(key.first, key.second);
+    return inner && inner->first == 2 && !(inner->second >= 2 * minHeight());
   }
 
   uint32_t decideCentroid(const std::array<uint32_t, 3>& tri) {
@@ -242,8 +238,9 @@ class Refiner {
   const RefineSettings& settings_;
   const PointEvaluator& evaluate_;
   const LevelEvaluator& level_;
-  std::map<std::pair<uint32_t, uint32_t>, uint32_t> edges_;
-  std::map<std::pair<uint32_t, uint32_t>, double> inner_;  // this round's inner edges: thinner triangle's height
+  BucketTable<uint32_t> edges_;  // (lower, higher index): the midpoint halving it, or kPasses
+  // This round's edges: the triangles on each (2: an inner edge) and the thinner one's height.
+  BucketTable<std::pair<int, double>> inner_;
   bool innerMeasured_ = false;
   std::vector<uint8_t> settled_;  // per triangle: nothing about it failed (it never will)
   std::vector<double> levels_;

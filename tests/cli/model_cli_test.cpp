@@ -9,6 +9,8 @@
 #include <string>
 #include <tuple>
 
+#include <nlohmann/json.hpp>
+
 #include "tests/cli/cli_test_support.h"
 
 namespace {
@@ -42,6 +44,34 @@ TEST(ModelCli, GenerateWritesAValidSceneAndSaysWhatItWrote) {
   EXPECT_EQ(status, 0) << text;
   EXPECT_NE(text.find("floating, closed"), std::string::npos) << text;
   std::filesystem::remove(scene);
+}
+
+// `build --stats` says where the display triangles go: per scene object, summing to the mesh's.
+TEST(ModelCli, BuildStatsSplitTheDisplayMeshByObject) {
+  const std::string scene = tempPath("knot.scene.json"), mesh = tempPath("knot.mesh.json");
+  auto [status, text] = run("generate --model torus-knot --triangles 300 --rest --out " + scene);
+  ASSERT_EQ(status, 0) << text;
+  const std::string stats = tempPath("stats.json");
+  ASSERT_EQ(std::system((kBinary + " build " + scene + " --out " + mesh + " --threads 1 --stats >" + stats +
+                         " 2>/dev/null").c_str()),
+            0);
+  std::ifstream in(stats);
+  const nlohmann::json out = nlohmann::json::parse(in);
+  const nlohmann::json& byObject = out.at("mesh").at("by_object");
+  size_t receivers = 0, vertices = 0, triangles = 0;
+  for (const auto& [id, entry] : byObject.items()) {
+    receivers += entry.at("receivers").get<size_t>();
+    vertices += entry.at("vertices").get<size_t>();
+    triangles += entry.at("triangles").get<size_t>();
+  }
+  EXPECT_EQ(vertices, out.at("mesh").at("vertices").get<size_t>());
+  EXPECT_EQ(triangles, out.at("mesh").at("triangles").get<size_t>());
+  ASSERT_TRUE(byObject.contains("floor")) << byObject.dump();
+  ASSERT_TRUE(byObject.contains("torus_knot")) << byObject.dump();
+  EXPECT_EQ(byObject["floor"]["receivers"], 1);  // one face
+  EXPECT_GT(byObject["torus_knot"]["receivers"].get<size_t>(), 10u);  // each lit face of the knot
+  EXPECT_EQ(receivers, byObject["torus_knot"]["receivers"].get<size_t>() + 6);  // and the room's six
+  for (const std::string& path : {scene, mesh, stats}) std::filesystem::remove(path);
 }
 
 TEST(ModelCli, BadOptionsExit2NamingTheOption) {
