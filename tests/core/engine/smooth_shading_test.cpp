@@ -69,6 +69,36 @@ TEST(SmoothShading, CornerNormalsFollowTheTransformAndMirrors) {
   }
 }
 
+// Distinct normals per corner: each world corner carries the transformed normal of the object
+// corner at its position, also where a mirror reversed the face's corners.
+TEST(SmoothShading, EachWorldCornerKeepsItsOwnNormal) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> angle(-180, 180), scale(0.3, 2.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    Object o = test::bumpySphere("m", {0.1, 1.1, 0.2}, 0.4, 6, 0.3, uint64_t(trial));
+    o.normals = smoothCornerNormals(o.vertices, o.faces);
+    o.transform.rotateDeg = Vec3(angle(rng), angle(rng), angle(rng));
+    o.transform.scale = Vec3(scale(rng), scale(rng), scale(rng));
+    if (trial % 2) o.transform.scale.y = -o.transform.scale.y;
+    const Scene scene = roomWith({o});
+    const uint32_t handle = scene.handleOf(*scene.findObject("m"));
+    const Mat3 rotation = o.transform.rotation();
+    size_t matched = 0;
+    for (const Face& face : scene.facesOfObject(handle)) {
+      if (face.cornerNormals.empty()) continue;
+      const auto& indices = o.faces[face.id.face];
+      for (size_t j = 0; j < face.polygon.size(); ++j)
+        for (size_t k = 0; k < indices.size(); ++k) {
+          if (glm::length(o.transform.apply(o.vertices[size_t(indices[k])]) - face.polygon[j]) > 1e-12) continue;
+          const Vec3 expected = glm::normalize(rotation * (o.normals[face.id.face][k] / o.transform.scale));
+          EXPECT_NEAR(glm::length(face.cornerNormals[j] - expected), 0, 1e-12) << "trial " << trial;
+          ++matched;
+        }
+    }
+    EXPECT_GT(matched, o.faces.size() * 2) << "trial " << trial;
+  }
+}
+
 TEST(SmoothShading, InterpolationHitsCornersStaysInFrontAndIsContinuous) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(0, 1), jitter(-0.6, 0.6);
