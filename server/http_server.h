@@ -15,9 +15,11 @@
 
 #include "core/engine/engine.h"
 #include "server/build_job.h"
+#include "server/connection_server.h"
 #include "server/edit_workers.h"
 #include "server/limits.h"
 #include "server/memory_trim.h"
+#include "server/render_jobs.h"
 #include "server/scene_journal.h"
 #include "server/scene_session.h"
 #include "server/static_files.h"
@@ -64,6 +66,11 @@ struct ServerOptions {
   // Every this many versions a journaled scene is snapshotted (docs/SERVER.md "Snapshots"), so
   // a restart replays at most that many frames; 0: never.
   uint64_t snapshotEvery = kSnapshotEvery;
+  // Connections per client address, and how fast a request's head and body must arrive
+  // (server/connection_server.h; `serve --max-connections-per-ip`).
+  ConnectionLimits connections;
+  // A frame whose estimated work (server/frame_cost.h) is past this is refused with 422.
+  uint64_t maxFrameWork = kMaxFrameWork;
 };
 
 // The id a scene named `name` asks for ("cubes15.scene.json" → "cubes15").
@@ -166,6 +173,8 @@ class HttpServer {
   void registerVolumeRoutes();
   void registerBodyFallbacks();
   std::optional<WorkBudget::Share> takeImageMemory(uint64_t pixels, bool gi);
+  // The render `ticket` of scene `sceneId`, running or recently ended; else 404.
+  std::shared_ptr<RenderJob> findRender(const std::string& sceneId, const std::string& ticket) const;
   void registerStaticFiles();
   // Answers (and returns true) when the request may not go on: no token on a mutating
   // request, a static path leading out of its root (access_control.cpp).
@@ -212,6 +221,7 @@ class HttpServer {
   ServerOptions options_;
   MemoryTrimmer trimmer_{kTrimInterval};  // gives freed memory back after requests (outlives http_)
   WorkBudget imageBudget_;   // working memory of the images rendering now (image_routes)
+  RenderJobs renders_;       // the images rendering now and just ended, by ticket
   EditWorkers editWorkers_;  // apply edit batches, one per core at most (outlives http_)
   std::unique_ptr<httplib::Server> http_;
   int port_ = 0;
