@@ -1,5 +1,5 @@
 // The running server render's progress beside the panel's counter: the server's stage and
-// fraction, polled by the render's ticket (GET /api/scenes/{id}/renders/{ticket}) while it runs,
+// fraction, polled by the render's ticket (in GET /api/scenes/{id}/renders) while it runs,
 // as text and a bar, and a Cancel button that stops it (DELETE of the ticket, and the request
 // aborted). Elements are made here, after the counter's element.
 
@@ -40,8 +40,11 @@ export class RenderProgress {
 
   async poll(ticket) {
     try {
-      const job = await this.api.json('GET', `${this.api.scenePath(this.sceneId)}/renders/${ticket}`);
-      if (ticket !== this.ticket) return;
+      // The scene's list, not the ticket's own route: before the request reaches the server the
+      // ticket is unknown there, and a 404 would be logged as a failed load.
+      const { renders } = await this.api.json('GET', `${this.api.scenePath(this.sceneId)}/renders`);
+      const job = renders.find((r) => r.ticket === ticket);
+      if (ticket !== this.ticket || !job) return;
       this.last = job.progress;
       const { stage, fraction } = job.progress;
       const name = STAGES[stage] ?? stage;
@@ -49,7 +52,7 @@ export class RenderProgress {
       this.bar.hidden = fraction === null;
       if (fraction !== null) this.bar.value = fraction;
     } catch {
-      // Not started on the server yet (404), or just ended: the next poll or the image says.
+      // The server unreachable for a moment: the next poll or the image says.
     }
   }
 
