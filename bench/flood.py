@@ -57,7 +57,7 @@ def lights_frame(count, add):
         if add:
             edits.append({"op": "add_light", "light": {
                 "id": f"flood{i}", "radiance": [2, 2, 2],
-                "polygon": [[x - 0.1, 4.9, -0.1], [x + 0.1, 4.9, -0.1], [x + 0.1, 4.9, 0.1], [x - 0.1, 4.9, 0.1]]}})
+                "polygon": [[x - 0.1, 3.3, -0.1], [x + 0.1, 3.3, -0.1], [x + 0.1, 3.3, 0.1], [x - 0.1, 3.3, 0.1]]}})
         else:
             edits.append({"op": "remove_light", "id": f"flood{i}"})
     return json.dumps({"edits": edits})
