@@ -43,7 +43,9 @@ class ConnectionStream : public httplib::Stream {
  public:
   ConnectionStream(socket_t sock, const ConnectionLimits& limits, int readTimeoutMs,
                    int writeTimeoutMs)
-      : sock_(sock), limits_(limits), readTimeoutMs_(readTimeoutMs),
+      : sock_(sock),
+        limits_(limits),
+        readTimeoutMs_(readTimeoutMs),
         writeTimeoutMs_(writeTimeoutMs) {
     buffer_.resize(kBufferBytes);
   }
@@ -97,8 +99,10 @@ class ConnectionStream : public httplib::Stream {
       }
     }
     size_t n = std::min(size, end_ - begin_);
-    if (inHead_) n = headRead(n);
-    else if (!bodyOnTime(n)) return -1;
+    if (inHead_)
+      n = headRead(n);
+    else if (!bodyOnTime(n))
+      return -1;
     std::copy(buffer_.data() + begin_, buffer_.data() + begin_ + n, ptr);
     begin_ += n;
     return ssize_t(n);
@@ -115,9 +119,9 @@ class ConnectionStream : public httplib::Stream {
     ip = peerAddress(sock_);
     port = -1;
     if (getpeername(sock_, reinterpret_cast<sockaddr*>(&address), &length) == 0)
-      port = ntohs(address.ss_family == AF_INET6
-                       ? reinterpret_cast<sockaddr_in6*>(&address)->sin6_port
-                       : reinterpret_cast<sockaddr_in*>(&address)->sin_port);
+      port =
+          ntohs(address.ss_family == AF_INET6 ? reinterpret_cast<sockaddr_in6*>(&address)->sin6_port
+                                              : reinterpret_cast<sockaddr_in*>(&address)->sin_port);
   }
   void get_local_ip_and_port(std::string& ip, int& port) const override {
     sockaddr_storage address{};
@@ -147,9 +151,7 @@ class ConnectionStream : public httplib::Stream {
     return text;
   }
 
-  int headMsLeft() const {
-    return int(1000 * (limits_.headSeconds - secondsSince(started_)));
-  }
+  int headMsLeft() const { return int(1000 * (limits_.headSeconds - secondsSince(started_))); }
 
   bool waitFor(short events, int timeoutMs) const {
     pollfd p{sock_, events, 0};
@@ -222,8 +224,7 @@ class ConnectionStream : public httplib::Stream {
 thread_local ConnectionStream* current = nullptr;
 
 // An answer written by the loop itself (no request was read, or its head could not be).
-void writeRaw(socket_t sock, int status, const char* reason, const std::string& body,
-              bool retry) {
+void writeRaw(socket_t sock, int status, const char* reason, const std::string& body, bool retry) {
   std::string text = "HTTP/1.1 " + std::to_string(status) + " " + reason +
                      "\r\nContent-Type: application/json\r\nConnection: close\r\n" +
                      (retry ? "Retry-After: 1\r\n" : "") +
@@ -306,10 +307,10 @@ bool ConnectionServer::process_and_close_socket(socket_t sock) {
     if (stream.problem().status) {  // httplib answered 400 in the headers (our error handler
                                     // made it this), or nothing for the request line
       if (!ok)
-        writeRaw(sock, stream.problem().status,
-                 stream.problem().status == 408 ? "Request Timeout"
-                                                : "Request Header Fields Too Large",
-                 stream.problem().body, false);
+        writeRaw(
+            sock, stream.problem().status,
+            stream.problem().status == 408 ? "Request Timeout" : "Request Header Fields Too Large",
+            stream.problem().body, false);
       giveSlot(address);
       closeGently(sock);
       return false;

@@ -1,12 +1,11 @@
 // GET /api/scenes/{id}/events: server-sent events, one per new version (coalesced), and one per
 // change of a render's progress or state on the scene (`event: render`, RenderJob::toJson).
-#include "server/http_server.h"
-
 #include <httplib.h>
 
 #include <chrono>
 #include <map>
 
+#include "server/http_server.h"
 #include "server/request_io.h"
 #include "server/response_json.h"
 

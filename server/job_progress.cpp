@@ -22,12 +22,13 @@ double JobProgress::elapsedSeconds() const {
 
 nlohmann::json JobProgress::toJson() const {
   std::lock_guard lock(mutex_);
-  return {{"stage", stage_},
-          {"done", done_},
-          {"total", total_},
-          {"fraction", total_ > 0 ? nlohmann::json(double(done_) / double(total_)) : nlohmann::json()},
-          {"elapsed_seconds", elapsedSeconds()},
-          {"cancelling", cancelled_.load()}};
+  return {
+      {"stage", stage_},
+      {"done", done_},
+      {"total", total_},
+      {"fraction", total_ > 0 ? nlohmann::json(double(done_) / double(total_)) : nlohmann::json()},
+      {"elapsed_seconds", elapsedSeconds()},
+      {"cancelling", cancelled_.load()}};
 }
 
 }  // namespace penumbra::server

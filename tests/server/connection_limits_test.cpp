@@ -112,8 +112,8 @@ TEST(ConnectionLimits, OneAddressHoldsItsCapAndAnotherAddressStillGetsHealth) {
     const std::string answer = readUntilClosed(fd, 4);
     refused += answer.rfind("HTTP/1.1 503", 0) == 0 &&
                answer.find("too_many_connections") != std::string::npos;
-    timedOut += answer.rfind("HTTP/1.1 408", 0) == 0 &&
-                answer.find("request_timeout") != std::string::npos;
+    timedOut +=
+        answer.rfind("HTTP/1.1 408", 0) == 0 && answer.find("request_timeout") != std::string::npos;
     close(fd);
   }
   EXPECT_EQ(refused, count - 32);
@@ -163,9 +163,10 @@ TEST(ConnectionLimits, PipelinedRequestsAreAnsweredInOrder) {
   const int kReads = 60;
   for (int i = 0; i < kReads; ++i)
     requests += "GET /api/health?n=" + std::to_string(i) + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n";
-  requests += "POST /api/scenes/tiny/edits HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: "
-              "application/json\r\nContent-Length: " +
-              std::to_string(frame.size()) + "\r\n\r\n" + frame;
+  requests +=
+      "POST /api/scenes/tiny/edits HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: "
+      "application/json\r\nContent-Length: " +
+      std::to_string(frame.size()) + "\r\n\r\n" + frame;
   requests += "GET /api/scenes/tiny HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n";
   const int fd = connectFrom("127.0.0.1", running.port());
   ASSERT_GE(fd, 0);

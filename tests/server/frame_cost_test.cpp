@@ -2,13 +2,14 @@
 // limit is refused with 422 frame_too_costly at `edits`, naming the estimate and the limit, the
 // scene unchanged; below it the frame applies. Seeded frames of random light and face additions:
 // refused exactly when light changes × lights × faces + faces added × lights is past the limit.
+#include "server/frame_cost.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "protocol/edits_json.h"
 #include "server/api_errors.h"
-#include "server/frame_cost.h"
 #include "server_fixture.h"
 #include "tiny_scene.h"
 
@@ -16,11 +17,13 @@ namespace penumbra::server::test {
 namespace {
 
 json light(const std::string& id, double x) {
-  return {{"op", "add_light"},
-          {"light",
-           {{"id", id},
-            {"radiance", {5, 5, 5}},
-            {"polygon", {{x - 0.1, 2.5, -0.1}, {x + 0.1, 2.5, -0.1}, {x + 0.1, 2.5, 0.1}, {x - 0.1, 2.5, 0.1}}}}}};
+  return {
+      {"op", "add_light"},
+      {"light",
+       {{"id", id},
+        {"radiance", {5, 5, 5}},
+        {"polygon",
+         {{x - 0.1, 2.5, -0.1}, {x + 0.1, 2.5, -0.1}, {x + 0.1, 2.5, 0.1}, {x - 0.1, 2.5, 0.1}}}}}};
 }
 
 json panel(const std::string& id, int faces) {  // a strip of `faces` quads high above the box
@@ -77,8 +80,10 @@ TEST(FrameCost, EstimateMatchesTheFormulaOnSeededFrames) {
       }
     }
     if (random() % 3 == 0) {  // reshape the lamp
-      edits.push_back({{"op", "set_light"}, {"id", "lamp"},
-                       {"polygon", {{-0.4, 2.9, -0.4}, {0.4, 2.9, -0.4}, {0.4, 2.9, 0.4}, {-0.4, 2.9, 0.4}}}});
+      edits.push_back(
+          {{"op", "set_light"},
+           {"id", "lamp"},
+           {"polygon", {{-0.4, 2.9, -0.4}, {0.4, 2.9, -0.4}, {0.4, 2.9, 0.4}, {-0.4, 2.9, 0.4}}}});
       ++changes;
     }
     if (edits.empty()) continue;

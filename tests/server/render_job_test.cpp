@@ -158,9 +158,9 @@ TEST(RenderJobs, ANewerRenderOfThePageStopsTheOlderAndTheEventStreamSaysSo) {
   const auto newer = Clock::now();
   int status = 0;
   while (Clock::now() - newer < kStopBound && status != 200) {
-    const auto res = client.Get(
-        "/api/scenes/cubes15/image?width=16&height=16&page=page1&ticket=newer" +
-        std::to_string(status));
+    const auto res =
+        client.Get("/api/scenes/cubes15/image?width=16&height=16&page=page1&ticket=newer" +
+                   std::to_string(status));
     status = res ? res->status : 0;
   }
   EXPECT_EQ(status, 200);
