@@ -1,5 +1,5 @@
-// cpp-httplib's server with a connection loop of our own (docs/API.md "Load": "A cap per client address"): at
-// most `perAddress` connections from one client address (past it a 503 and close, before a byte
+// cpp-httplib's server with a connection loop of our own (docs/API.md "Load", "A cap per client
+// address"): at most `perAddress` connections from one client address (past it a 503 and close, before a byte
 // is read); each request's head (request line and headers) must arrive within `headSeconds` and
 // stay within `maxHeadBytes` and `maxHeaderLines` (else 408 / 431 and close); a body must keep
 // arriving at `minBodyBytesPerSecond` after its first `headSeconds`; pipelined requests are
