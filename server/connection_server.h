@@ -1,11 +1,12 @@
 // cpp-httplib's server with a connection loop of our own (docs/API.md "Load", "A cap per client
-// address"): at most `perAddress` connections from one client address (past it a 503 and close, before a byte
-// is read); each request's head (request line and headers) must arrive within `headSeconds` and
-// stay within `maxHeadBytes` and `maxHeaderLines` (else 408 / 431 and close); a body must keep
-// arriving at `minBodyBytesPerSecond` after its first `headSeconds`; pipelined requests are
-// read from one buffer kept across requests and answered in order (httplib 0.11 makes a new
-// buffer per request and dropped them). Handlers ask clientGone() whether the client of the
-// request they answer has closed its connection. Thread-safe; each connection on its worker.
+// address"): at most `perAddress` connections from one client address (past it a 503 and close,
+// before a byte is read); each request's head (request line and headers) must arrive within
+// `headSeconds` and stay within `maxHeadBytes` and `maxHeaderLines` (else 408 / 431 and close); a
+// body must keep arriving at `minBodyBytesPerSecond` after its first `headSeconds`; pipelined
+// requests are read from one buffer kept across requests and answered in order (httplib 0.11
+// makes a new buffer per request and dropped them). Handlers ask clientGone() whether the client
+// of the request they answer has closed its connection. Thread-safe; each connection on its
+// worker.
 #pragma once
 
 #include <httplib.h>
