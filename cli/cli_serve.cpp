@@ -62,7 +62,7 @@ server::ServerOptions serveOptions(const Args& args) {
   args.allowOnly({"host", "port", "static", "grid", "data", "journal", "ephemeral", "token",
                   "allow-origin", "max-scenes", "max-body-mib", "image-memory-mib", "threads",
                   "edit-nice", "mesh-tolerance", "snapshot-every", "node-id", "lease-seconds",
-                  "idle-release", "restore"});
+                  "idle-release", "restore", "max-frame-work", "max-connections-per-ip"});
   server::ServerOptions options;
   options.host = args.option("host").value_or("127.0.0.1");
   options.port = args.intOption("port", 8080, 0, 65535);
@@ -77,6 +77,10 @@ server::ServerOptions serveOptions(const Args& args) {
       uint64_t(
           args.intOption("image-memory-mib", int(server::kImageMemoryBytes >> 20), 16, 1 << 20))
       << 20;
+  options.maxFrameWork = uint64_t(
+      args.intOption("max-frame-work", int(server::kMaxFrameWork), 1, 1 << 30));
+  options.connections.perAddress = size_t(args.intOption(
+      "max-connections-per-ip", int(options.connections.perAddress), 1, server::kWorkerThreads));
   const char* envToken = std::getenv("PENUMBRA_TOKEN");
   options.token = args.option("token").value_or(envToken ? envToken : "");
   // --allow-origin A,B: pages of these origins may edit too (e.g. a dev server of the page).

@@ -70,6 +70,8 @@ commands:
         [--max-body-mib M]             PENUMBRA_TOKEN); limits (default 32 scenes, 16 MiB)
         [--image-memory-mib M]         images rendering at once (default 512 MiB; then 503)
         [--edit-nice K]                edits apply K nice steps below reads (0-19; default 0)
+        [--max-frame-work W]           refuse a frame whose light work is past W (422)
+        [--max-connections-per-ip N]   connections one client address may hold (default 256)
         [--allow-origin O,...]         other origins whose pages may edit (default: only the
                                        server's own page; a loopback server answers loopback Hosts)
   help                                 this text

@@ -36,6 +36,11 @@ inline constexpr const char* kSceneStalled = "scene_stalled";  // 409
 inline constexpr const char* kOwnedElsewhere = "owned_elsewhere";
 inline constexpr const char* kBuilding = "building";  // 503 + Retry-After: the scene is being built
 inline constexpr const char* kBuildCancelled = "build_cancelled";  // 409: DELETE or a stop ended it
+inline constexpr const char* kRenderCancelled = "render_cancelled";  // 409: see RenderJob
+inline constexpr const char* kTooManyConnections = "too_many_connections";  // 503 per address
+inline constexpr const char* kRequestTimeout = "request_timeout";  // 408: a head too slow
+inline constexpr const char* kHeadersTooLarge = "headers_too_large";  // 431
+inline constexpr const char* kFrameTooCostly = "frame_too_costly";  // 422, names the limit
 }  // namespace error_code
 
 // Fixed bodies for when building one fails (no memory left, or a throwing error path).

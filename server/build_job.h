@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/engine/engine.h"
+#include "server/job_progress.h"
 
 namespace penumbra::server {
 
@@ -31,42 +32,32 @@ class BuildJob {
 
   const std::string& id() const { return id_; }
 
-  // The engine's progress callback: records the stage and its done/total (a new stage at once,
-  // the same stage at most kProgressPerSecond times a second), then throws BuildCancelled
-  // when the job was cancelled.
+  // The engine's progress callback: records the stage and its done/total (JobProgress::record),
+  // then throws BuildCancelled when the job was cancelled.
   void report(const char* stage, size_t done, size_t total);
   EngineProgress progress();  // report() as an EngineProgress
   // Records a stage without a count (an import), without checking for a cancel.
-  void note(const char* stage) { record(stage, 0, 0); }
+  void note(const char* stage) { progress_.record(stage, 0, 0); }
   // Throws BuildCancelled when cancelled (between steps the engine does not report).
   void check() const;
 
   // Asks the build to stop at its next report; returns at once.
-  void cancel() { cancelled_ = true; }
-  bool cancelled() const { return cancelled_; }
+  void cancel() { progress_.cancel(); }
+  bool cancelled() const { return progress_.cancelled(); }
 
   // The creating request marks the job ended (built, failed or cancelled); waitEnded returns
   // then, or after `timeout` (false).
   void end();
   bool waitEnded(std::chrono::milliseconds timeout);
 
-  // {"id", "name", "state": "building", "ticket"?, "progress": {"stage", "done", "total",
-  // "fraction" (null when the stage has no count), "elapsed_seconds", "cancelling"}}.
+  // {"id", "name", "state": "building", "ticket"?, "progress": JobProgress::toJson}.
   nlohmann::json toJson() const;
 
-  static constexpr int kProgressPerSecond = 10;
-
  private:
-  void record(const char* stage, size_t done, size_t total);
-  using Clock = std::chrono::steady_clock;
   const std::string id_, name_, ticket_;
-  const Clock::time_point started_ = Clock::now();
-  std::atomic<bool> cancelled_{false};
-  mutable std::mutex mutex_;  // guards the fields below
+  JobProgress progress_;
+  std::mutex mutex_;  // guards ended_
   std::condition_variable endedChanged_;
-  std::string stage_ = "queued";
-  size_t done_ = 0, total_ = 0;
-  Clock::time_point reported_ = started_;
   bool ended_ = false;
 };
 

@@ -14,6 +14,7 @@
 #include "protocol/frame_result_json.h"
 #include "server/body_reader.h"
 #include "server/frame_batch.h"
+#include "server/frame_cost.h"
 #include "server/http_server.h"
 #include "server/request_io.h"
 #include "server/response_json.h"
@@ -225,6 +226,8 @@ void HttpServer::registerEditRoutes() {
                           edit >= 0 ? json{{"edit", edit}} : json::object());
                       return;
                     }
+                    refuseCostlyFrame(estimateFrameCost(session->snapshot()->scene, frame),
+                                      options_.maxFrameWork);
                     // A frame adding a volume is journaled with its file resolved (relative to the
                     // data directory when inside it), as a restart reads it.
                     const bool addsVolume =

@@ -1,10 +1,11 @@
-// GET /api/scenes/{id}/events: server-sent events, one per new version (coalesced).
-#include "server/http_server.h"
-
+// GET /api/scenes/{id}/events: server-sent events, one per new version (coalesced), and one per
+// change of a render's progress or state on the scene (`event: render`, RenderJob::toJson).
 #include <httplib.h>
 
 #include <chrono>
+#include <map>
 
+#include "server/http_server.h"
 #include "server/request_io.h"
 #include "server/response_json.h"
 
@@ -39,13 +40,15 @@ void HttpServer::registerEventRoutes() {
              struct StreamState {
                std::optional<uint64_t> announced;  // last version sent
                Clock::time_point lastWrite = Clock::now();
+               std::map<std::string, uint64_t> renders;  // ticket → reports and state last sent
              };
+             const std::string sceneId = req.matches[1];
              auto state = std::make_shared<StreamState>();
              res.set_header("Cache-Control", "no-store");
              res.set_header("X-Accel-Buffering", "no");
              res.set_chunked_content_provider(
                  "text/event-stream",
-                 guardedProvider([this, session, state](size_t, httplib::DataSink& sink) {
+                 guardedProvider([this, session, state, sceneId](size_t, httplib::DataSink& sink) {
                    auto write = [&](const std::string& text) {
                      state->lastWrite = Clock::now();
                      return sink.write(text.data(), text.size());
@@ -63,6 +66,16 @@ void HttpServer::registerEventRoutes() {
                      sink.done();
                      return true;
                    }
+                   std::map<std::string, uint64_t> renders;  // those listed now
+                   for (const auto& job : renders_.ofScene(sceneId)) {
+                     const uint64_t seen = job->reports() * 4 + uint64_t(job->state());
+                     renders[job->ticket()] = seen;
+                     const auto it = state->renders.find(job->ticket());
+                     if (it != state->renders.end() && it->second == seen) continue;
+                     if (!write("event: render\ndata: " + jsonText(job->toJson()) + "\n\n"))
+                       return false;
+                   }
+                   state->renders = std::move(renders);
                    if (now->version > *state->announced) {
                      // Coalesced: one event covers every version since the last one sent.
                      const json event = changedAtJson(*now, *state->announced);

@@ -63,7 +63,7 @@ HttpServer::HttpServer(ServerOptions options)
     : options_(std::move(options)),
       imageBudget_(options_.imageMemoryBytes),
       editWorkers_(0, options_.editNiceness),
-      http_(std::make_unique<httplib::Server>()) {
+      http_(std::make_unique<ConnectionServer>(options_.connections)) {
   if (!isLoopbackHost(options_.host) && options_.token.empty())
     throw std::invalid_argument("listening on " + options_.host +
                                 " (not loopback) needs a token: --token T or PENUMBRA_TOKEN");
@@ -95,6 +95,13 @@ HttpServer::HttpServer(ServerOptions options)
         // path may hold any bytes (`GET /%ff`): sendJson replaces invalid UTF-8.
         if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
         try {
+          // A head the connection refused (too slow, too large) reaches here as httplib's 400.
+          if (const auto problem = ConnectionServer::headProblem(); problem.status) {
+            res.status = problem.status;
+            res.set_header("Connection", "close");
+            res.set_content(problem.body, "application/json");
+            return httplib::Server::HandlerResponse::Handled;
+          }
           sendJson(res, res.status, errorJsonForStatus(res.status, req.method, req.path, maxBody));
         } catch (...) {
           res.set_content(kInternalErrorBody, "application/json");
@@ -207,6 +214,7 @@ void HttpServer::stop() {
     std::lock_guard lock(scenesMutex_);
     for (auto& [id, job] : builds_) job->cancel();  // their requests end at the next report
   }
+  renders_.cancelAll("the server is stopping");
   http_->stop();
   stopLeases();
 }

@@ -18,9 +18,11 @@
 
 #include "core/engine/engine.h"
 #include "server/build_job.h"
+#include "server/connection_server.h"
 #include "server/edit_workers.h"
 #include "server/limits.h"
 #include "server/memory_trim.h"
+#include "server/render_jobs.h"
 #include "server/scene_journal.h"
 #include "server/scene_leases.h"
 #include "server/scene_session.h"
@@ -78,6 +80,11 @@ struct ServerOptions {
   // Start-up restores every journaled scene whose lease is free (one node, as with SQLite);
   // false: a scene comes back when first asked for (a node among several).
   bool restoreAtStart = true;
+  // Connections per client address, and how fast a request's head and body must arrive
+  // (server/connection_server.h; `serve --max-connections-per-ip`).
+  ConnectionLimits connections;
+  // A frame whose estimated work (server/frame_cost.h) is past this is refused with 422.
+  uint64_t maxFrameWork = kMaxFrameWork;
 };
 
 // The id a scene named `name` asks for ("cubes15.scene.json" → "cubes15").
@@ -180,6 +187,8 @@ class HttpServer {
   void registerVolumeRoutes();
   void registerBodyFallbacks();
   std::optional<WorkBudget::Share> takeImageMemory(uint64_t pixels, bool gi);
+  // The render `ticket` of scene `sceneId`, running or recently ended; else 404.
+  std::shared_ptr<RenderJob> findRender(const std::string& sceneId, const std::string& ticket) const;
   void registerStaticFiles();
   // Answers (and returns true) when the request may not go on: no token on a mutating
   // request, a static path leading out of its root (access_control.cpp).
@@ -247,6 +256,7 @@ class HttpServer {
   ServerOptions options_;
   MemoryTrimmer trimmer_{kTrimInterval};  // gives freed memory back after requests (outlives http_)
   WorkBudget imageBudget_;   // working memory of the images rendering now (image_routes)
+  RenderJobs renders_;       // the images rendering now and just ended, by ticket
   EditWorkers editWorkers_;  // apply edit batches, one per core at most (outlives http_)
   std::unique_ptr<httplib::Server> http_;
   int port_ = 0;

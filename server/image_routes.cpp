@@ -2,15 +2,19 @@
 #include <httplib.h>
 
 #include <algorithm>
+#include <chrono>
 #include <map>
+#include <thread>
 #include <vector>
 
 #include "core/render/renderer.h"
 #include "core/scene/camera_limits.h"
+#include "server/body_reader.h"
 #include "server/http_server.h"
 #include "server/image_encoding.h"
 #include "server/limits.h"
 #include "server/request_io.h"
+#include "server/response_json.h"
 #include "server/scene_occluders.h"
 
 namespace penumbra::server {
@@ -122,6 +126,19 @@ std::optional<gi::GiSettings> giFromQuery(const httplib::Request& req, uint64_t 
   return gi;
 }
 
+// The query's `ticket` (the client's own name for this render, to poll or cancel it) or `page`
+// (its page's, so a newer render stops the older), checked; empty when not given.
+std::string renderLabel(const httplib::Request& req, const char* key) {
+  const std::string label = queryText(req, key).value_or("");
+  if (label.size() > kMaxIdLength ||
+      label.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
+          std::string::npos)
+    throw ApiError(400, error_code::kBadParameter, std::string("query.") + key,
+                   std::string(key) + " must be up to " + std::to_string(kMaxIdLength) +
+                       " letters, digits, '_' or '-'");
+  return label;
+}
+
 }  // namespace
 
 // The image's estimated working memory from the budget, or nullopt when others hold it now;
@@ -142,57 +159,115 @@ void HttpServer::registerImageRoutes() {
   httplib::Server& http = *http_;
   const std::string scenePath = std::string("/api/scenes/") + kIdPattern;
 
-  http.Get(
-      scenePath + "/image", guarded([this](const httplib::Request& req, httplib::Response& res) {
-        const auto snapshot = findScene(req.matches[1])->snapshot();
-        const auto width = queryUnsigned(req, "width", 1, kMaxImageSide);
-        const auto height = queryUnsigned(req, "height", 1, kMaxImageSide);
-        if (!width)
-          throw ApiError(400, error_code::kBadParameter, "query.width",
-                         "width is required (1 to " + std::to_string(kMaxImageSide) + ")");
-        if (!height)
-          throw ApiError(400, error_code::kBadParameter, "query.height",
-                         "height is required (1 to " + std::to_string(kMaxImageSide) + ")");
-        const std::string format = queryText(req, "format").value_or("png");
-        if (format != "png" && format != "exr")
-          throw ApiError(400, error_code::kBadParameter, "query.format",
-                         "format must be 'png' or 'exr', got '" + format + "'");
-        RenderSettings settings;
-        settings.width = int(*width);
-        settings.height = int(*height);
-        settings.camera = cameraFromQuery(req, snapshot->scene);
-        // Progressive passes ask for few samples first (README "The page"): paths per pixel,
-        // and stratified samples per light (split over its visible pieces) from 4 up to the
-        // CLI's 16.
-        const uint64_t samples = samplesFromQuery(req, *width * *height);
-        settings.microfacet.pathsPerPixel = int(samples);
-        settings.microfacet.lightSamples = int(std::clamp<uint64_t>(samples, 4, 16));
-        // The DM's exact visibility from the snapshot's frozen occluder lists: no engine, no lock.
-        settings.occluders = occluderLookup(snapshot->occluders);
-        settings.gi = giFromQuery(req, *width * *height);
-        const auto share = takeImageMemory(*width * *height, settings.gi.has_value());
-        if (!share)
-          return sendBusy(res, "the images rendering now hold the server's image memory (" +
-                                   std::to_string(imageBudget_.capacity() >> 20) + " MiB)");
-        RenderedImage image;
-        try {
-          image = render(snapshot->scene, snapshot->mesh(), settings);
-        } catch (const std::invalid_argument& error) {  // e.g. a degenerate camera
-          throw ApiError(400, error_code::kBadParameter, "query", error.what());
-        }
-        const std::vector<uint8_t> bytes = format == "png" ? encodePng(image) : encodeExr(image);
-        res.status = 200;
-        res.set_header("Cache-Control", "no-store");
-        res.set_header("X-Penumbra-Version", std::to_string(snapshot->version));
-        res.set_header("X-Penumbra-Render-Seconds", std::to_string(image.seconds));
-        res.set_header("X-Penumbra-Samples", std::to_string(samples));
-        if (image.gi) {
-          res.set_header("X-Penumbra-Gi-Sensors", std::to_string(image.gi->placement.sensors));
-          res.set_header("X-Penumbra-Gi-Seconds", std::to_string(image.gi->seconds));
-        }
-        res.set_content(std::string(bytes.begin(), bytes.end()),
-                        format == "png" ? "image/png" : "image/x-exr");
-      }));
+  http.Get(scenePath + "/image",
+           guarded([this](const httplib::Request& req, httplib::Response& res) {
+             const auto snapshot = findScene(req.matches[1])->snapshot();
+             const auto width = queryUnsigned(req, "width", 1, kMaxImageSide);
+             const auto height = queryUnsigned(req, "height", 1, kMaxImageSide);
+             if (!width)
+               throw ApiError(400, error_code::kBadParameter, "query.width",
+                              "width is required (1 to " + std::to_string(kMaxImageSide) + ")");
+             if (!height)
+               throw ApiError(400, error_code::kBadParameter, "query.height",
+                              "height is required (1 to " + std::to_string(kMaxImageSide) + ")");
+             const std::string format = queryText(req, "format").value_or("png");
+             if (format != "png" && format != "exr")
+               throw ApiError(400, error_code::kBadParameter, "query.format",
+                              "format must be 'png' or 'exr', got '" + format + "'");
+             RenderSettings settings;
+             settings.width = int(*width);
+             settings.height = int(*height);
+             settings.camera = cameraFromQuery(req, snapshot->scene);
+             // Progressive passes ask for few samples first (README "The page"): paths per pixel,
+             // and stratified samples per light (split over its visible pieces) from 4 up to the
+             // CLI's 16.
+             const uint64_t samples = samplesFromQuery(req, *width * *height);
+             settings.microfacet.pathsPerPixel = int(samples);
+             settings.microfacet.lightSamples = int(std::clamp<uint64_t>(samples, 4, 16));
+             // The DM's exact visibility from the snapshot's frozen occluder lists: no engine, no
+             // lock.
+             settings.occluders = occluderLookup(snapshot->occluders);
+             settings.gi = giFromQuery(req, *width * *height);
+             // A newer view of the same page stops the renders it replaces before it waits for
+             // their memory.
+             const std::string page = renderLabel(req, "page");
+             renders_.cancelPage(page);
+             const auto share = takeImageMemory(*width * *height, settings.gi.has_value());
+             if (!share)
+               return sendBusy(res, "the images rendering now hold the server's image memory (" +
+                                        std::to_string(imageBudget_.capacity() >> 20) + " MiB)");
+             const auto job = renders_.start(req.matches[1], renderLabel(req, "ticket"), page,
+                                             ConnectionServer::clientGoneProbe());
+             job->setPixels(*width * *height);
+             res.set_header("X-Penumbra-Render-Ticket", job->ticket());
+             RenderedImage image;
+             std::vector<uint8_t> bytes;
+             try {
+               image = render(snapshot->scene, snapshot->mesh(), settings,
+                              [&job](size_t done, size_t total) { job->report(done, total); });
+               job->stage("encoding");
+               bytes = format == "png" ? encodePng(image) : encodeExr(image);
+             } catch (const RenderCancelled& why) {
+               job->end(RenderJob::State::Cancelled);
+               throw ApiError(409, error_code::kRenderCancelled, "",
+                              std::string("the render was cancelled: ") + why.what());
+             } catch (const std::invalid_argument& error) {  // e.g. a degenerate camera
+               job->end(RenderJob::State::Failed);
+               throw ApiError(400, error_code::kBadParameter, "query", error.what());
+             } catch (...) {
+               job->end(RenderJob::State::Failed);
+               throw;
+             }
+             job->end(RenderJob::State::Done);
+             res.status = 200;
+             res.set_header("Cache-Control", "no-store");
+             res.set_header("X-Penumbra-Version", std::to_string(snapshot->version));
+             res.set_header("X-Penumbra-Render-Seconds", std::to_string(image.seconds));
+             res.set_header("X-Penumbra-Samples", std::to_string(samples));
+             if (image.gi) {
+               res.set_header("X-Penumbra-Gi-Sensors", std::to_string(image.gi->placement.sensors));
+               res.set_header("X-Penumbra-Gi-Seconds", std::to_string(image.gi->seconds));
+             }
+             res.set_content(std::string(bytes.begin(), bytes.end()),
+                             format == "png" ? "image/png" : "image/x-exr");
+           }));
+
+  // Renders as jobs (server/render_job.h): listed, polled, cancelled by ticket.
+  http.Get(scenePath + "/renders",
+           guarded([this](const httplib::Request& req, httplib::Response& res) {
+             findScene(req.matches[1]);
+             json list = json::array();
+             for (const auto& job : renders_.ofScene(req.matches[1])) list.push_back(job->toJson());
+             sendJson(res, 200, {{"renders", list}});
+           }));
+  http.Get(scenePath + "/renders/([A-Za-z0-9_-]+)",
+           guarded([this](const httplib::Request& req, httplib::Response& res) {
+             sendJson(res, 200, findRender(req.matches[1], req.matches[2])->toJson());
+           }));
+  http.Delete(scenePath + "/renders/([A-Za-z0-9_-]+)",
+              readingBody(options_.maxBodyBytes,
+                          guarded([this](const httplib::Request& req, httplib::Response& res) {
+                            const auto job = findRender(req.matches[1], req.matches[2]);
+                            job->cancel("cancelled by DELETE");
+                            // The render stops at its next report: wait for it, boundedly, so the
+                            // answer says how it ended.
+                            const auto deadline =
+                                std::chrono::steady_clock::now() + kRenderCancelWait;
+                            while (!job->ended() && std::chrono::steady_clock::now() < deadline)
+                              std::this_thread::sleep_for(std::chrono::milliseconds(10));
+                            sendJson(res, 200, job->toJson());
+                          })));
+}
+
+std::shared_ptr<RenderJob> HttpServer::findRender(const std::string& sceneId,
+                                                  const std::string& ticket) const {
+  auto job = renders_.find(sceneId, ticket);
+  if (!job)
+    throw ApiError(404, error_code::kNotFound, "ticket",
+                   "no render '" + ticket + "' of scene '" + sceneId +
+                       "' running or ended in the last " +
+                       std::to_string(int(RenderJobs::kKeepEndedSeconds)) + " s");
+  return job;
 }
 
 }  // namespace penumbra::server

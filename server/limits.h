@@ -62,7 +62,12 @@ inline constexpr uint64_t kMaxGiRayBudget = uint64_t(1) << 27;
 inline constexpr int kDefaultIndirectSensorSize = 8;
 inline constexpr uint64_t kMaxIndirectRayBudget = uint64_t(1) << 27;
 inline constexpr size_t kIndirectCacheEntries = 2;
-inline constexpr uint64_t kDefaultImageSamples = 16;  // the CLI's MicrofacetSettings
+inline constexpr uint64_t kDefaultImageSamples = 16;
+// A frame's estimated light work (server/frame_cost.h: light changes × lights × faces + faces
+// added × lights) at most this, else 422 frame_too_costly (`serve --max-frame-work`).
+inline constexpr uint64_t kMaxFrameWork = uint64_t(1) << 17;
+// How long DELETE of a render ticket waits for the render to stop before it answers.
+inline constexpr std::chrono::seconds kRenderCancelWait{5};  // the CLI's MicrofacetSettings
 // Scene ids in URLs: letters, digits, '_', '-', '.' (so file stems work).
 inline constexpr const char* kIdPattern = "([A-Za-z0-9_.-]+)";
 inline constexpr size_t kMaxIdLength = 64;

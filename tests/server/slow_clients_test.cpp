@@ -50,7 +50,11 @@ int slowSocketsAllowed(int wanted) {
 TEST(SlowClients, HealthAnswersWhile500SocketsHoldHalfARequest) {
   const int count = slowSocketsAllowed(500);
   ASSERT_GE(count, 300) << "raise the open-file limit";
-  RunningServer running;
+  // All from one address here: the cap per address (ConnectionLimits test) is lifted, so every
+  // socket holds a worker.
+  ServerOptions options = RunningServer::loopback();
+  options.connections.perAddress = 1000;
+  RunningServer running(options);
   std::vector<int> sockets;
   for (int i = 0; i < count; ++i) {
     const int fd = halfRequest(running.port());

@@ -1,17 +1,38 @@
 // The server's rendering of the page's current view (GET /image with the camera as query
 // parameters), refreshed a short while after the camera or the scene version stops changing.
-// Scenes with microfacet materials refine progressively: a fast image with few samples first,
-// then better ones, each replacing the shown one; a new camera or version aborts the passes left.
-// With GI on, the last pass asks for bounced light by sensors and the info shows their count and time.
-// While a pass is on its way a counter beside the info says so ("rendering with GI… 12.3 s"): a GI
-// render takes seconds to minutes.
+// Scenes with microfacet materials refine progressively: a fast image with 1 sample first, then
+// RATIO times the samples each pass, each shown as it comes, until the render has converged
+// (render_panel_noise.js) or reached the most samples the server allows at this size; a new
+// camera or version, or Cancel, stops the passes left. With GI on, a last pass at the final
+// samples adds bounced light by sensors and the info shows their count and time.
+// Every pass is a render job on the server (its ticket and this page's label): while one runs a
+// counter beside the info says so ("rendering with GI… 12.3 s"), its stage and fraction and a
+// Cancel button follow it (render_panel_progress.js); a newer pass of this page stops the older
+// one on the server too.
 
 import { ElapsedCounter } from './elapsed_counter.js';
+import { CONVERGED_LEVELS, RATIO, noiseLevels, pixelsOf } from './render_panel_noise.js';
+import { RenderProgress } from './render_panel_progress.js';
 
 const DEBOUNCE_MS = 250;
 const WIDTH = 320;
-// Microfacet paths per pixel of each pass (the last is the server's default, as `penumbra render`).
+// The server's bounds on a request's samples (server/limits.h): at most MAX_SAMPLES, and
+// samples × pixels at most SAMPLE_BUDGET.
+const MAX_SAMPLES = 256;
+const SAMPLE_BUDGET = 2 ** 24;
+// The first passes' samples (then × RATIO until converged).
 export const PROGRESSIVE_SAMPLES = [1, 4, 16];
+
+// Samples of each pass for an image of `pixels`: 1, 4, 16, … up to the server's bound.
+export function sampleSchedule(pixels) {
+  const most = Math.max(1, Math.min(MAX_SAMPLES, Math.floor(SAMPLE_BUDGET / pixels)));
+  const out = [];
+  for (let s = 1; s < most; s *= RATIO) out.push(s);
+  out.push(most);
+  return out;
+}
+
+const randomLabel = () => Math.random().toString(36).slice(2, 10);
 
 export class RenderPanel {
   // progressive(): whether the scene has materials that need samples (else one pass).
@@ -19,14 +40,18 @@ export class RenderPanel {
   constructor(api, sceneId, view, img, info, progress, onError, progressive = () => false) {
     Object.assign(this, { api, sceneId, view, img, info, progress, onError, progressive });
     this.counter = new ElapsedCounter((text) => { this.progress.textContent = text; });
+    this.job = new RenderProgress(api, sceneId, progress, () => this.stop());
+    this.page = `p${randomLabel()}`; // this page's renders: a newer one stops the older
     this.timer = null;
     this.abort = null;
     this.url = null;
     this.renders = 0;
     this.lastVersion = null;
-    this.passes = []; // {version, samples, seconds} of each image shown, the newest last (bounded)
+    this.passes = []; // {version, samples, seconds, giSensors, noise} of each image shown, newest last (bounded)
     this.aborted = 0;
+    this.tickets = 0;
     this.gi = false; // bounced light by sensors (gi=sensors), off by default: it costs seconds
+    this.outcome = ''; // how the last refinement ended: 'converged', 'at the server's limit', 'stopped'
   }
 
   setGi(on) {
@@ -39,6 +64,15 @@ export class RenderPanel {
     this.timer = setTimeout(() => this.refresh(), DEBOUNCE_MS);
   }
 
+  // Stops the passes on their way (Cancel): the shown image stays.
+  stop() {
+    if (!this.abort) return;
+    this.abort.abort();
+    ++this.aborted;
+    this.outcome = 'stopped';
+    this.info.textContent += ' — stopped';
+  }
+
   async refresh() {
     if (this.abort) {
       this.abort.abort();
@@ -46,18 +80,32 @@ export class RenderPanel {
     }
     const abort = new AbortController();
     this.abort = abort;
+    this.outcome = '';
     const width = WIDTH;
     const height = Math.max(1, Math.round(WIDTH / this.view.aspect()));
     const camera = this.view.cameraQuery();
-    const passes = this.progressive() ? PROGRESSIVE_SAMPLES : [null];
+    const schedule = this.progressive() ? sampleSchedule(width * height) : [null];
+    let previous = null; // the last pass's pixels and samples, for the noise estimate
     try {
-      for (const [i, samples] of passes.entries()) {
-        // GI costs the same whatever the samples: only the last pass pays it, the first shows fast.
-        const gi = this.gi && i === passes.length - 1;
-        this.counter.start(`rendering${gi ? ' with GI (sensors)' : ''}${samples ? `, ${samples} samples` : ''}…`);
-        const image = await this.api.image(this.sceneId, width, height, camera, abort.signal, samples, gi);
+      for (const [i, samples] of schedule.entries()) {
+        const last = i === schedule.length - 1;
+        // GI costs the same whatever the samples: a refining scene pays it once, at the end.
+        const gi = this.gi && last && schedule.length === 1;
+        const image = await this.pass(width, height, camera, abort, samples, gi);
+        if (!image) return;
+        const pixels = schedule.length > 1 ? await pixelsOf(image.blob) : null;
         if (abort.signal.aborted) return;
-        this.show(image, width, height, passes.length > 1 ? `${image.samples}/${passes.at(-1)} samples, ` : '');
+        const noise = previous ? noiseLevels(previous.pixels, pixels, image.samples / previous.samples) : null;
+        previous = { pixels, samples: image.samples };
+        const converged = noise !== null && noise < CONVERGED_LEVELS;
+        this.outcome = schedule.length === 1 ? 'converged' : converged ? 'converged' : last ? 'at the server\'s limit' : '';
+        this.show(image, width, height, noise);
+        if (this.outcome && this.gi && schedule.length > 1) {
+          const withGi = await this.pass(width, height, camera, abort, image.samples, true);
+          if (!withGi) return;
+          this.show(withGi, width, height, noise);
+        }
+        if (this.outcome) break;
       }
     } catch (error) {
       if (error.name !== 'AbortError') this.onError(error);
@@ -65,20 +113,44 @@ export class RenderPanel {
       if (this.abort === abort) {
         this.abort = null;
         this.counter.stop();
+        this.job.stop();
         this.progress.textContent = '';
       }
     }
   }
 
-  show({ blob, version, seconds, samples, giSensors, giSeconds }, width, height, pass) {
+  // One render on the server, followed until it comes (null when aborted).
+  async pass(width, height, camera, abort, samples, gi) {
+    const ticket = `${this.page}-${++this.tickets}`;
+    this.counter.start(`rendering${gi ? ' with GI (sensors)' : ''}${samples ? `, ${samples} samples` : ''}…`);
+    this.job.follow(ticket);
+    const params = new URLSearchParams({ width: String(width), height: String(height), ...camera, ticket, page: this.page });
+    if (samples) params.set('samples', String(samples));
+    if (gi) params.set('gi', 'sensors');
+    const response = await this.api.request('GET', `${this.api.scenePath(this.sceneId)}/image?${params}`, { signal: abort.signal });
+    const image = {
+      blob: await response.blob(),
+      version: Number(response.headers.get('X-Penumbra-Version')),
+      seconds: Number(response.headers.get('X-Penumbra-Render-Seconds')),
+      samples: Number(response.headers.get('X-Penumbra-Samples')),
+      giSensors: response.headers.has('X-Penumbra-Gi-Sensors') ? Number(response.headers.get('X-Penumbra-Gi-Sensors')) : null,
+      giSeconds: Number(response.headers.get('X-Penumbra-Gi-Seconds')),
+    };
+    return abort.signal.aborted ? null : image;
+  }
+
+  show({ blob, version, seconds, samples, giSensors, giSeconds }, width, height, noise) {
     if (this.url) URL.revokeObjectURL(this.url);
     this.url = URL.createObjectURL(blob);
     this.img.src = this.url;
     this.lastVersion = version;
     ++this.renders;
-    this.passes.push({ version, samples, seconds, giSensors });
+    this.passes.push({ version, samples, seconds, giSensors, noise });
     if (this.passes.length > 64) this.passes.shift();
     const gi = giSensors === null ? '' : `, GI: ${giSensors} sensors in ${(giSeconds * 1000).toFixed(0)} ms`;
-    this.info.textContent = `v${version}, ${width}×${height}, ${pass}${(seconds * 1000).toFixed(0)} ms${gi}`;
+    const refining = this.progressive()
+      ? `${samples} samples${noise === null ? '' : `, noise ${noise.toFixed(1)}/255`}${this.outcome ? ` (${this.outcome})` : ''}, `
+      : '';
+    this.info.textContent = `v${version}, ${width}×${height}, ${refining}${(seconds * 1000).toFixed(0)} ms${gi}`;
   }
 }

@@ -164,8 +164,10 @@ export function installTestHook(app) {
     // The server images shown so far ({version, samples, seconds}, newest last) and aborted passes.
     renderPasses() {
       const panel = app.renderPanel;
-      // renders: images shown so far (passes keeps the last 64); inFlight: a pass is being fetched.
-      return panel ? { passes: [...panel.passes], aborted: panel.aborted, renders: panel.renders, inFlight: panel.abort !== null } : null;
+      // renders: images shown so far (passes keeps the last 64); inFlight: a pass is being fetched;
+      // outcome: how the last refinement ended ('' while it runs).
+      return panel ? { passes: [...panel.passes], aborted: panel.aborted, renders: panel.renders, inFlight: panel.abort !== null,
+        outcome: panel.outcome } : null;
     },
     // The baked indirect light's state (baked_indirect.js).
     bakedIndirect() {

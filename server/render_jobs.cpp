@@ -1,0 +1,74 @@
+#include "server/render_jobs.h"
+
+#include <algorithm>
+
+#include "server/api_errors.h"
+
+namespace penumbra::server {
+
+std::shared_ptr<RenderJob> RenderJobs::start(const std::string& sceneId, std::string ticket,
+                                             const std::string& page,
+                                             std::function<bool()> clientGone) {
+  std::lock_guard lock(mutex_);
+  prune();
+  if (ticket.empty()) {
+    do ticket = "r" + std::to_string(next_++);
+    while (jobs_.count(ticket));
+  }
+  if (const auto it = jobs_.find(ticket); it != jobs_.end() && !it->second->ended())
+    throw ApiError(409, error_code::kBadParameter, "query.ticket",
+                   "a render with ticket '" + ticket + "' is still running");
+  cancelPageLocked(page);
+  auto job = std::make_shared<RenderJob>(ticket, sceneId, page, std::move(clientGone));
+  jobs_[ticket] = job;
+  return job;
+}
+
+std::shared_ptr<RenderJob> RenderJobs::find(const std::string& sceneId,
+                                            const std::string& ticket) const {
+  std::lock_guard lock(mutex_);
+  const auto it = jobs_.find(ticket);
+  return it != jobs_.end() && it->second->sceneId() == sceneId ? it->second : nullptr;
+}
+
+std::vector<std::shared_ptr<RenderJob>> RenderJobs::ofScene(const std::string& sceneId) const {
+  std::lock_guard lock(mutex_);
+  std::vector<std::shared_ptr<RenderJob>> out;
+  for (const auto& [ticket, job] : jobs_)
+    if (job->sceneId() == sceneId && job->endedSecondsAgo() <= kKeepEndedSeconds)
+      out.push_back(job);
+  return out;
+}
+
+void RenderJobs::cancelAll(const std::string& why) {
+  std::lock_guard lock(mutex_);
+  for (auto& [ticket, job] : jobs_) job->cancel(why);
+}
+
+void RenderJobs::cancelPage(const std::string& page) {
+  std::lock_guard lock(mutex_);
+  cancelPageLocked(page);
+}
+
+void RenderJobs::cancelPageLocked(const std::string& page) {
+  if (page.empty()) return;
+  for (auto& [ticket, job] : jobs_)
+    if (job->page() == page && !job->ended()) job->cancel("a newer render from the same page");
+}
+
+void RenderJobs::prune() {
+  std::vector<std::pair<double, std::string>> ended;
+  for (auto it = jobs_.begin(); it != jobs_.end();) {
+    if (it->second->ended() && it->second->endedSecondsAgo() > kKeepEndedSeconds) {
+      it = jobs_.erase(it);
+    } else {
+      if (it->second->ended()) ended.emplace_back(it->second->endedSecondsAgo(), it->first);
+      ++it;
+    }
+  }
+  if (ended.size() <= kKeepEnded) return;
+  std::sort(ended.begin(), ended.end());  // the most recently ended first
+  for (size_t i = kKeepEnded; i < ended.size(); ++i) jobs_.erase(ended[i].second);
+}
+
+}  // namespace penumbra::server
