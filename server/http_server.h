@@ -164,6 +164,7 @@ class HttpServer {
   void registerImageRoutes();
   void registerEventRoutes();
   void registerVolumeRoutes();
+  void registerRenameRoutes();
   void registerBodyFallbacks();
   std::optional<WorkBudget::Share> takeImageMemory(uint64_t pixels, bool gi);
   void registerStaticFiles();

@@ -67,6 +67,7 @@ class JournalStore {
   // `keep`.
   virtual void putSnapshot(const JournalSnapshotRow& snapshot, size_t keep) = 0;
   virtual void deleteScene(int64_t key) = 0;  // with its frames and snapshots
+  virtual void renameScene(int64_t key, const std::string& name) = 0;
 };
 
 }  // namespace penumbra::server

@@ -315,4 +315,10 @@ void PostgresJournalStore::deleteScene(int64_t key) {
   transaction.commit();
 }
 
+void PostgresJournalStore::renameScene(int64_t key, const std::string& name) {
+  Transaction transaction(conn_);
+  run(conn_, "UPDATE scenes SET name = $1 WHERE key = $2", Params().text(name).add(key));
+  transaction.commit();
+}
+
 }  // namespace penumbra::server

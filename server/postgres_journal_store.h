@@ -35,6 +35,7 @@ class PostgresJournalStore : public JournalStore {
   void insertFrame(const JournalFrameRow& frame) override;
   void putSnapshot(const JournalSnapshotRow& snapshot, size_t keep) override;
   void deleteScene(int64_t key) override;
+  void renameScene(int64_t key, const std::string& name) override;
 
  private:
   void configure();                       // the session's settings, after every (re)connection

@@ -158,4 +158,10 @@ void SceneJournal::removeScene(int64_t key) {
   lastVersion_.erase(key);
 }
 
+void SceneJournal::renameScene(int64_t key, const std::string& name) {
+  std::lock_guard lock(mutex_);
+  requireDurable();
+  store_->renameScene(key, name);
+}
+
 }  // namespace penumbra::server

@@ -33,6 +33,7 @@ class SqliteJournalStore : public JournalStore {
   void insertFrame(const JournalFrameRow& frame) override;
   void putSnapshot(const JournalSnapshotRow& snapshot, size_t keep) override;
   void deleteScene(int64_t key) override;
+  void renameScene(int64_t key, const std::string& name) override;
 
  private:
   void open();  // the connection, pragmas, quick_check and schema; throws SqliteError

@@ -7,6 +7,7 @@ import { primitiveObject, primitiveSize } from './primitives.js';
 import { addEdits, addLightEdits, duplicateObject, freshId, lightCopy, materialEdits, removeEdits, removeLightEdits,
   renameEdits, renameLightEdits, resetEdits } from './object_edits.js';
 import { floorSpot, freeOffset, lightOffset } from './placement.js';
+import { renameScene } from './scene_rename.js';
 import { SceneList, download, forgetSource, rememberSource, sourceOf } from './scene_library.js';
 import { sameTransform, transformOf } from './scene_transform.js';
 import * as THREE from 'three';
@@ -19,6 +20,7 @@ export class EditorActions {
     this.running = new Set(); // structural changes under way (the page is busy until they end)
     this.sceneList = new SceneList($('scene-list'), {
       onDelete: (summary) => this.deleteScene(summary),
+      onRename: (summary, name) => renameScene(app, summary, name).then(() => this.refreshScenes(), app.fail),
       pageUrl: (id) => this.pageUrl(id),
     });
   }
