@@ -2,7 +2,7 @@
 // scene's id and name (its file at version 0 for "Reset to file", its undo history) moves to the
 // new name, and the page's header follows when it is the scene on show.
 
-const KEPT = ['penumbra.source', 'penumbra.history'];
+const KEPT = ['penumbra.source', 'penumbra.history', 'penumbra.look'];
 
 function moveKept(id, from, to) {
   try {
@@ -24,6 +24,7 @@ export async function renameScene(app, summary, name) {
   if (summary.id === app.sceneId) {
     app.sceneName = answer.name;
     app.history.storageKey = `penumbra.history.${summary.id}.${answer.name}`;
+    if (app.look) app.look.setting.key = `penumbra.look.${summary.id}.${answer.name}`;
     document.getElementById('scene-name').textContent = `${summary.id} (${answer.name})`;
   }
   return answer;
