@@ -55,10 +55,12 @@ export class ToneMap {
   // The objects' albedos (again after objects were added); the exposure stays as calibrated.
   learnObjects(scene) {
     this.albedo = new Map();
+    this.calibrationAlbedo = new Map(); // a metal's own albedo: its dimmed colour does not raise the exposure
     for (const object of scene.objects) {
       const material = object.material && scene.materials ? scene.materials[object.material] : null;
       const albedo = (material && material.albedo) || [0.8, 0.8, 0.8];
       this.albedo.set(object.id, material && material.type === 'conductor' ? albedo.map((a) => METAL_DIFFUSE * a) : albedo);
+      this.calibrationAlbedo.set(object.id, albedo);
     }
   }
 
@@ -68,7 +70,7 @@ export class ToneMap {
     this.calibrated = true;
     const values = [];
     for (const r of parts) {
-      const albedo = this.albedoOf(r.object);
+      const albedo = this.calibrationAlbedo.get(r.object) || [0.8, 0.8, 0.8];
       for (let i = 0; i < r.irradiance.length; i += 3) {
         let m = 0;
         for (let c = 0; c < 3; ++c) m = Math.max(m, albedo[c] / Math.PI * (r.irradiance[i + c] + this.ambient[c]));
