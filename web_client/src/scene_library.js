@@ -63,6 +63,7 @@ export class SceneList {
       const remove = document.createElement('button');
       remove.type = 'button';
       remove.textContent = 'Delete';
+      remove.dataset.action = 'delete';
       remove.title = `DELETE /api/scenes/${summary.id}`;
       remove.addEventListener('click', () => {
         if (window.confirm(`Delete scene ${summary.id} (${summary.name}) from the server?`)) this.onDelete(summary);
