@@ -442,8 +442,9 @@ TEST(EditsJson, SetMaterialReadsAMaterialAndRoundTrips) {
   const std::vector<Material> materials = {Material{"red", Vec3(0.8, 0.1, 0.1)}};
   json frameText = baseFrame();
   frameText["edits"][2]["object"]["material"] = "paint";
-  frameText["edits"].insert(frameText["edits"].begin(),
-                            {{"op", "set_material"}, {"id", "paint"}, {"material", {{"albedo", {0.2, 0.2, 0.2}}}}});
+  frameText["edits"].insert(
+      frameText["edits"].begin(),
+      json::parse(R"({"op": "set_material", "id": "paint", "material": {"albedo": [0.2, 0.2, 0.2]}})"));
   EXPECT_NO_THROW(frameFromJson(frameText, &materials));
   std::swap(frameText["edits"][0], frameText["edits"][3]);
   EXPECT_THROW(frameFromJson(frameText, &materials), ValidationError);
