@@ -27,7 +27,7 @@ export class Inspector {
   // onTransform(id, transform): a typed transform to apply; onLight(lightId, {polygon, radiance}):
   // a typed light.
   // more: {onRename(id, newName), onMaterial(id, material), materials() → [[name, JSON]], materialOf(id),
-  // onPaint(id, {albedo?, type?})}.
+  // onPaint(id, {albedo?, type?}), paintable(id): a polygon object (a volume is not painted here)}.
   constructor(root, onTransform, onLight, more = {}) {
     this.root = root;
     this.onTransform = onTransform;
@@ -52,7 +52,7 @@ export class Inspector {
     this.inputs = {};
     for (const [key, label] of ROWS) this.inputs[key] = this.row(key, label, 3, () => this.typed());
     if (this.more.materials && this.more.materials().length) this.materialRow(id);
-    if (this.more.onPaint) this.paintRow(id);
+    if (this.more.onPaint && this.more.paintable(id)) this.paintRow(id);
     this.update(data);
   }
 

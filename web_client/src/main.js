@@ -83,6 +83,7 @@ class App {
         materials: () => Object.entries((this.sceneJson && this.sceneJson.materials) || {}),
         materialOf: (id) => (this.objects.json.get(id) || {}).material,
         onPaint: (id, change) => this.editor.paint(id, change),
+        paintable: (id) => { const o = this.objects.json.get(id); return !!o && o.type !== 'volume'; },
       });
     this.outliner = new Outliner($('outliner'), (id) => this.gizmo && this.gizmo.select(id));
     this.ownVersions = new Set();
