@@ -1,7 +1,10 @@
 #include "protocol/edits_json.h"
 
+#include <optional>
+
 #include "protocol/json_reader.h"
 #include "protocol/json_text.h"
+#include "protocol/material_json.h"
 #include "protocol/scene_json.h"
 #include "protocol/volume_json.h"
 
@@ -11,7 +14,7 @@ namespace {
 
 constexpr std::string_view kOps =
     "expected \"move\", \"add\", \"remove\", \"set_light\", \"add_light\", \"remove_light\", "
-    "\"set_volume\" or \"add_volume\"";
+    "\"set_volume\", \"add_volume\" or \"set_material\"";
 
 // Without a material list, any named material passes here (Engine::apply checks
 // it against the scene); every other object check still runs.
@@ -70,6 +73,11 @@ Edit editFromJson(const Json& value, const std::string& path,
       fail(keyPath(where, "type"), "missing: \"type\": \"volume\"");
     edit.volume = volumeFromJson(volume, where, materialsFor(volume, materials), files);
     edit.id = edit.volume.id;
+  } else if (op == "set_material") {
+    edit.op = Edit::Op::SetMaterial;
+    edit.id = expectName(requireKey(value, "id", path), keyPath(path, "id"));
+    edit.material =
+        materialFromJson(edit.id, requireKey(value, "material", path), keyPath(path, "material"));
   } else {
     fail(keyPath(path, "op"), "unknown op '" + op + "' (" + std::string(kOps) + ")");
   }
@@ -83,8 +91,19 @@ Frame frameFromJson(const Json& value, const std::vector<Material>* materials,
   expectObject(value, "");
   const Json& edits = expectArray(requireKey(value, "edits", ""), "edits");
   Frame frame;
-  for (size_t i = 0; i < edits.size(); ++i)
-    frame.edits.push_back(editFromJson(edits[i], indexPath("edits", i), materials, files));
+  // The materials as the frame's earlier set_material edits leave them (an object added after one
+  // may name it).
+  std::optional<std::vector<Material>> known;
+  if (materials) known = *materials;
+  for (size_t i = 0; i < edits.size(); ++i) {
+    frame.edits.push_back(
+        editFromJson(edits[i], indexPath("edits", i), known ? &*known : nullptr, files));
+    const Edit& edit = frame.edits.back();
+    if (known && edit.op == Edit::Op::SetMaterial) {
+      std::erase_if(*known, [&](const Material& m) { return m.id == edit.id; });
+      known->push_back(edit.material);
+    }
+  }
   return frame;
 }
 
@@ -120,6 +139,11 @@ Json frameToJson(const Frame& frame) {
         break;
       case Edit::Op::AddVolume:
         edits.push_back({{"op", "add_volume"}, {"volume", volumeToJson(edit.volume)}});
+        break;
+      case Edit::Op::SetMaterial:
+        edits.push_back({{"op", "set_material"},
+                         {"id", edit.id},
+                         {"material", materialToJson(edit.material)}});
         break;
     }
   }

@@ -16,7 +16,7 @@
 namespace penumbra::protocol {
 
 // One frame: {"edits": [{"op": "move"|"add"|"remove"|"set_light"|"add_light"|
-// "remove_light"|"set_volume"|"add_volume", ...}, ...]}. Throws ValidationError at the first
+// "remove_light"|"set_volume"|"add_volume"|"set_material", ...}, ...]}. Throws ValidationError at the first
 // problem with the path inside the frame (e.g. `edits[1].transform.scale`,
 // `edits[0].light.polygon[2]`): unknown op, missing keys, wrong types, non-finite numbers, zero
 // scale, an invalid object or light, a light polygon that is not planar and convex, a negative
@@ -25,7 +25,8 @@ namespace penumbra::protocol {
 // engine's check (EditError). add_volume reads its volume's file through `files` (volume_json.h);
 // without them it is refused at `edits[i].volume.file`, and the server passes only the files it
 // holds (VolumeFiles::onlyKnown): a client cannot make it open any other. A set_volume's isovalue
-// range and a move's target (object or volume) are the engine's check.
+// range and a move's target (object or volume) are the engine's check. A set_material's material
+// is read as a scene's materials[id] (material_json.h); the frame's later edits may name it.
 Frame frameFromJson(const nlohmann::json& value, const std::vector<Material>* materials = nullptr,
                     const VolumeFiles* files = nullptr);
 

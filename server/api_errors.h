@@ -18,6 +18,7 @@ inline constexpr const char* kNotFound = "not_found";                 // 404
 inline constexpr const char* kPayloadTooLarge = "payload_too_large";  // 413
 inline constexpr const char* kInvalidScene = "invalid_scene";         // 422
 inline constexpr const char* kInvalidFrame = "invalid_frame";         // 422
+inline constexpr const char* kInvalidName = "invalid_name";           // 422
 inline constexpr const char* kTooManyScenes = "too_many_scenes";      // 429
 inline constexpr const char* kTooManyStreams = "too_many_streams";    // 429
 inline constexpr const char* kInternal = "internal_error";            // 500

@@ -14,7 +14,10 @@ std::optional<Frame> combinedFrame(const std::vector<const Frame*>& frames) {
     std::set<std::string> mine;
     for (const Edit& edit : frame->edits) {
       // Lights and objects are named apart: "lamp" the light is not "lamp" the object.
-      const std::string name = (isLightEdit(edit) ? "light:" : "object:") + edit.id;
+      const char* kind = isLightEdit(edit)                         ? "light:"
+                         : edit.op == Edit::Op::SetMaterial ? "material:"
+                                                            : "object:";
+      const std::string name = kind + edit.id;
       if (earlier.count(name)) return std::nullopt;
       mine.insert(name);
       combined.edits.push_back(edit);

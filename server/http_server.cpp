@@ -252,6 +252,7 @@ void HttpServer::registerRoutes() {
   registerImageRoutes();
   registerEventRoutes();
   registerVolumeRoutes();
+  registerRenameRoutes();
   registerBodyFallbacks();  // last: httplib tries content-reader routes in order
 }
 

@@ -185,6 +185,7 @@ class HttpServer {
   void registerImageRoutes();
   void registerEventRoutes();
   void registerVolumeRoutes();
+  void registerRenameRoutes();
   void registerBodyFallbacks();
   std::optional<WorkBudget::Share> takeImageMemory(uint64_t pixels, bool gi);
   // The render `ticket` of scene `sceneId`, running or recently ended; else 404.

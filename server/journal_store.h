@@ -84,6 +84,7 @@ class JournalStore {
   // `keep`.
   virtual void putSnapshot(const JournalSnapshotRow& snapshot, size_t keep, LeaseToken lease) = 0;
   virtual void deleteScene(int64_t key, LeaseToken lease) = 0;  // with its frames and snapshots
+  virtual void renameScene(int64_t key, const std::string& name, LeaseToken lease) = 0;
 };
 
 }  // namespace penumbra::server

@@ -259,4 +259,11 @@ void PostgresJournalStore::deleteScene(int64_t key, LeaseToken lease) {
   transaction.commit();
 }
 
+void PostgresJournalStore::renameScene(int64_t key, const std::string& name, LeaseToken lease) {
+  Transaction transaction(conn_);
+  checkLeaseOfKey(conn_, key, lease);
+  run(conn_, "UPDATE scenes SET name = $1 WHERE key = $2", Params().text(name).add(key));
+  transaction.commit();
+}
+
 }  // namespace penumbra::server

@@ -224,4 +224,10 @@ void SceneJournal::removeScene(int64_t key) {
   leases_.erase(key);
 }
 
+void SceneJournal::renameScene(int64_t key, const std::string& name) {
+  std::lock_guard lock(mutex_);
+  requireDurable();
+  store_->renameScene(key, name, leaseOf(key));
+}
+
 }  // namespace penumbra::server

@@ -110,6 +110,8 @@ class SceneJournal {
   void addSnapshot(int64_t key, uint64_t version, const std::string& source,
                    const std::string& parts);
   void removeScene(int64_t key);
+  // The scene's new name (scene lists and restarts show it).
+  void renameScene(int64_t key, const std::string& name);
 
   // The checksum journaled with a frame: zlib's CRC-32 over its version and JSON. (Its part
   // changes have their own; a mismatch there only drops them: the scene replays frame by frame.)

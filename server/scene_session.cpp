@@ -273,6 +273,25 @@ std::vector<MeshPart> SceneSession::meshedParts(
   return parts;
 }
 
+void SceneSession::rename(const std::string& name, const std::function<void()>& journal) {
+  std::lock_guard edit(editMutex_);
+  const std::shared_ptr<const SceneSnapshot> now = snapshot();
+  auto next = std::make_shared<SceneSnapshot>();  // a copy, but for its mesh cache
+  next->id = now->id;
+  next->name = name;
+  next->version = now->version;
+  next->scene = now->scene;
+  next->parts = now->parts;
+  next->removed = now->removed;
+  next->removedFloor = now->removedFloor;
+  next->occluders = now->occluders;
+  next->buildStats = now->buildStats;
+  next->lastFrame = now->lastFrame;
+  next->frameBase = now->frameBase;
+  if (journal) journal();
+  publish(std::move(next));
+}
+
 void SceneSession::publish(std::shared_ptr<const SceneSnapshot> next) {
   {
     std::lock_guard lock(publishMutex_);

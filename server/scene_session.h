@@ -116,6 +116,10 @@ class SceneSession {
   // Indirect light baked per version on first request (mesh?indirect=1); independent of edits.
   IndirectCache& indirectCache() const { return indirect_; }
 
+  // Publishes the current version again under a new name, serialised with frames: `journal`
+  // (which may throw, changing nothing) sees it first. The version does not move.
+  void rename(const std::string& name, const std::function<void()>& journal);
+
   // Marks the session deleted: waiters wake, event streams end.
   void close();
   bool closed() const;

@@ -195,4 +195,10 @@ void SqliteJournalStore::deleteScene(int64_t key, LeaseToken) {
   transaction.commit();
 }
 
+void SqliteJournalStore::renameScene(int64_t key, const std::string& name, LeaseToken) {
+  SqliteTransaction transaction(*db_);
+  db_->prepare("UPDATE scenes SET name = ? WHERE key = ?").bindText(1, name).bind(2, key).run();
+  transaction.commit();
+}
+
 }  // namespace penumbra::server

@@ -33,6 +33,7 @@ class SqliteJournalStore : public JournalStore {
   void insertFrame(const JournalFrameRow& frame, LeaseToken lease) override;
   void putSnapshot(const JournalSnapshotRow& snapshot, size_t keep, LeaseToken lease) override;
   void deleteScene(int64_t key, LeaseToken lease) override;
+  void renameScene(int64_t key, const std::string& name, LeaseToken lease) override;
 
  private:
   void open();  // the connection, pragmas, quick_check and schema; throws SqliteError

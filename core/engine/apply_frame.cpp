@@ -61,6 +61,9 @@ void applyEdits(Scene& scene, const Frame& frame) {
       case Edit::Op::RemoveLight:
         applyLightEdit(scene, edit);
         break;
+      case Edit::Op::SetMaterial:
+        scene.setMaterial(edit.material);
+        break;
       case Edit::Op::SetVolume:
       case Edit::Op::AddVolume:
         break;  // applied above
@@ -74,6 +77,7 @@ std::set<uint32_t> namedHandles(const Scene& scene, const Frame& frame) {
   for (const Edit& edit : frame.edits) {
     if (isLightEdit(edit)) continue;  // lights are no objects
     if (edit.op == Edit::Op::SetVolume || edit.op == Edit::Op::AddVolume) continue;  // nor volumes
+    if (edit.op == Edit::Op::SetMaterial) continue;  // nor materials
     if (const auto index = scene.findObject(edit.op == Edit::Op::Add ? edit.object.id : edit.id))
       out.insert(scene.handleOf(*index));
   }

@@ -79,6 +79,7 @@ void Engine::checkFrame(const Frame& frame) const {
         throw EditError(i, path, "object '" + object.id + "' would leave the edit volume");
   };
   VolumeEditCheck volumes(scene_);  // volumes as the frame's earlier edits leave them
+  std::set<std::string, std::less<>> newMaterials;  // added by the frame's earlier edits
   auto objectExists = [&](const std::string& id) { return current(id).has_value(); };
   for (size_t i = 0; i < frame.edits.size(); ++i) {
     const Edit& edit = frame.edits[i];
@@ -100,11 +101,18 @@ void Engine::checkFrame(const Frame& frame) const {
           if (!current(edit.id)) throw EditError(i, "id", "unknown object '" + edit.id + "'");
           edited[edit.id] = std::nullopt;
           break;
-        case Edit::Op::Add:
+        case Edit::Op::Add: {
           if (current(edit.object.id) || volumes.has(edit.object.id))
             throw EditError(i, "object.id", "duplicate object id '" + edit.object.id + "'");
-          checkFaces(edit.object, i, "object");
+          Object checked = edit.object;  // a material the frame adds is known from then on
+          if (newMaterials.count(checked.material)) checked.material.clear();
+          checkFaces(checked, i, "object");
           edited[edit.object.id] = edit.object;
+          break;
+        }
+        case Edit::Op::SetMaterial:
+          if (edit.material.id.empty()) throw EditError(i, "id", "a material needs an id");
+          if (!scene_.findMaterial(edit.material.id)) newMaterials.insert(edit.material.id);
           break;
         case Edit::Op::SetLight:
         case Edit::Op::AddLight:

@@ -13,11 +13,11 @@
 namespace penumbra {
 
 struct Edit {
-  enum class Op { Move, Add, Remove, SetLight, AddLight, RemoveLight, SetVolume, AddVolume };
+  enum class Op { Move, Add, Remove, SetLight, AddLight, RemoveLight, SetVolume, AddVolume, SetMaterial };
   Op op = Op::Move;
   // move, remove: an existing object's id (a polygon object's or a volume's); add: object.id;
   // set_light, remove_light: an existing light's id; add_light: light.id; set_volume: an
-  // existing volume's id; add_volume: volume.id
+  // existing volume's id; add_volume: volume.id; set_material: material.id
   std::string id;
   Transform transform;  // move: the new absolute transform
   Object object;        // add: the new object (transform included)
@@ -27,6 +27,9 @@ struct Edit {
   Light light;  // add_light: the new light, as in a scene's lights (it comes last)
   double isovalue = 0;  // set_volume: the volume's new isovalue
   VolumeObject volume;  // add_volume: the new volume, its data read (it comes last)
+  // set_material: the material under its id, replacing the scene's of that id or added last. Only
+  // the camera sees materials (albedo colours the irradiance view): no shadow work.
+  Material material;
 };
 
 struct Frame {

@@ -283,6 +283,13 @@ std::optional<std::string> Scene::radianceProblem(const Vec3& radiance) {
   return std::nullopt;
 }
 
+void Scene::setMaterial(Material material) {
+  if (const auto index = findMaterial(material.id))
+    materials_[*index] = std::move(material);
+  else
+    materials_.push_back(std::move(material));
+}
+
 void Scene::setLight(size_t index, const Polygon3& polygon, const Vec3& radiance) {
   if (index >= lights_.size()) throw std::invalid_argument("no light with index " + std::to_string(index));
   // A kept polygon is not checked again: a loaded scene's lights passed the file's checks,

@@ -227,6 +227,9 @@ class Scene {
   // stay as constructed, as for object edits. Throws std::invalid_argument (changing
   // nothing) for a bad index, a new polygon lightProblem() refuses or a radianceProblem().
   void setLight(size_t index, const Polygon3& polygon, const Vec3& radiance);
+  // Replaces the material of `material.id`, or appends it when the scene has none of that id
+  // (materials keep their order). Faces and lights are untouched: no face depends on it.
+  void setMaterial(Material material);
   // Appends a light (a new id, a polygon lightProblem() takes, a radiance radianceProblem()
   // takes) / removes light `index` (a scene keeps at least one). Throw std::invalid_argument,
   // changing nothing. Bounds and tolerance stay as constructed.

@@ -405,6 +405,51 @@ TEST(FrameResultJson, NamesReceiversByObjectId) {
   EXPECT_EQ(out["tree_rebuilds"], 2);
 }
 
+// Each (frame text, key path): the frame is refused naming that path.
+void expectRefusedAt(const std::vector<std::pair<std::string, std::string>>& refused) {
+  for (const auto& [body, path] : refused) {
+    try {
+      frameFromJson(json::parse(body));
+      ADD_FAILURE() << body << " was read";
+    } catch (const ValidationError& error) {
+      EXPECT_EQ(error.path(), path) << body << ": " << error.what();
+    }
+  }
+}
+
+TEST(EditsJson, SetMaterialReadsAMaterialAndRoundTrips) {
+  const json text = json::parse(
+      R"({"edits": [{"op": "set_material", "id": "paint", "material": {"type": "conductor", "roughness": 0.2, "albedo": [0.9, 0.1, 0.1]}}]})");
+  const Frame frame = frameFromJson(text);
+  ASSERT_EQ(frame.edits.size(), 1u);
+  EXPECT_EQ(frame.edits[0].op, Edit::Op::SetMaterial);
+  EXPECT_EQ(frame.edits[0].material.id, "paint");
+  EXPECT_EQ(frame.edits[0].material.type, MaterialType::Conductor);
+  EXPECT_EQ(frameFromJson(frameToJson(frame)).edits[0].material, frame.edits[0].material);
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {R"({"edits": [{"op": "set_material", "material": {"albedo": [1, 1, 1]}}]})", "edits[0].id"},
+      {R"({"edits": [{"op": "set_material", "id": "p"}]})", "edits[0].material"},
+      {R"({"edits": [{"op": "set_material", "id": "p", "material": 3}]})", "edits[0].material"},
+      {R"({"edits": [{"op": "set_material", "id": "p", "material": {"albedo": [2, 0, 0]}}]})",
+       "edits[0].material.albedo"},
+      {R"({"edits": [{"op": "set_material", "id": "p", "material": {"type": "plastic", "albedo": [1, 0, 0]}}]})",
+       "edits[0].material.type"},
+      {R"({"edits": [{"op": "set_material", "id": "p", "material": {"albedo": [1, 0, 0], "ior": 1.5}}]})",
+       "edits[0].material.ior"},
+  };
+  expectRefusedAt(refused);
+  // With the scene's materials, a later add may name the material the frame sets; an earlier one not.
+  const std::vector<Material> materials = {Material{"red", Vec3(0.8, 0.1, 0.1)}};
+  json frameText = baseFrame();
+  frameText["edits"][2]["object"]["material"] = "paint";
+  frameText["edits"].insert(
+      frameText["edits"].begin(),
+      json::parse(R"({"op": "set_material", "id": "paint", "material": {"albedo": [0.2, 0.2, 0.2]}})"));
+  EXPECT_NO_THROW(frameFromJson(frameText, &materials));
+  std::swap(frameText["edits"][0], frameText["edits"][3]);
+  EXPECT_THROW(frameFromJson(frameText, &materials), ValidationError);
+}
+
 TEST(EditsJson, VolumeEditsReadTheirKeysAndRoundTrip) {
   const json text =
       json::parse(R"({"edits": [{"op": "set_volume", "id": "smoke", "isovalue": 90.5}]})");
@@ -424,14 +469,7 @@ TEST(EditsJson, VolumeEditsReadTheirKeysAndRoundTrip) {
       {R"({"edits": [{"op": "add_volume", "volume": {"id": "v", "type": "volume", "file": "/etc/passwd", "isovalue": 1}}]})",
        "edits[0].volume.file"},
   };
-  for (const auto& [body, path] : refused) {
-    try {
-      frameFromJson(json::parse(body));
-      ADD_FAILURE() << body << " was read";
-    } catch (const ValidationError& error) {
-      EXPECT_EQ(error.path(), path) << body << ": " << error.what();
-    }
-  }
+  expectRefusedAt(refused);
   // Files the server holds only: a path outside them is refused before it is opened.
   VolumeFiles known;
   known.onlyKnown = true;

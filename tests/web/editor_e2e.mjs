@@ -208,7 +208,7 @@ async function imported(browser, base, sceneId) {
   check(listed.includes(sceneId) && listed.includes(created.id), 'the scene list shows the server\'s scenes', JSON.stringify(listed));
   page.once('dialog', (dialog) => dialog.accept());
   await Promise.all([page.waitForURL((url) => url.searchParams.get('scene') === sceneId, { timeout: 20000 }),
-    page.click(`#scene-list li[data-scene="${created.id}"] button`)]);
+    page.click(`#scene-list li[data-scene="${created.id}"] button[data-action="delete"]`)]);
   const left = (await (await fetch(`${base}/api/scenes`)).json()).scenes.map((s) => s.id);
   check(!left.includes(created.id), 'Delete in the list removes the scene from the server and opens another', JSON.stringify(left));
   await page.close();

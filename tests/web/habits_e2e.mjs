@@ -36,8 +36,8 @@ async function tooltips(page) {
   const titles = () => page.evaluate(() => [...document.querySelectorAll('#inspector input')].map((i) => i.title));
   check((await clickObject(page, 'cube_3')) === 'cube_3', 'a click selects cube_3');
   const object = await titles();
-  check(object.length === 10 && object.every((t) => t.length > 10) && new Set(object).size === 10,
-    'each of an object\'s 10 inspector fields (name, move, rotate, scale) has its own tooltip', JSON.stringify(object));
+  check(object.length === 11 && object.every((t) => t.length > 10) && new Set(object).size === 11,
+    'each of an object\'s 11 inspector fields (name, move, rotate, scale, colour) has its own tooltip', JSON.stringify(object));
   await page.evaluate(() => window.penumbra.select('light:light'));
   const light = await titles();
   check(light.length >= 7 && light.every((t) => t.length > 10), 'each of a light\'s inspector fields has a tooltip', JSON.stringify(light));

@@ -63,11 +63,13 @@ export function check(condition, what, detail = '') {
   return condition;
 }
 
-// Starts the server (on `port`, 0: any free one; serving the page in `staticDir`) and resolves
+// Starts the server (on `port`, 0: any free one; serving the page in `staticDir`; `storage`: its
+// journal options, ephemeral unless given; `scene` null: only what the journal holds) and resolves
 // with {server, url} once it prints the page's URL.
-export function startServer(penumbra, scene, timeoutSeconds, port = 0, staticDir = path.join(repo, 'web_client')) {
+export function startServer(penumbra, scene, timeoutSeconds, port = 0, staticDir = path.join(repo, 'web_client'),
+  storage = ['--ephemeral']) {
   return new Promise((resolve, reject) => {
-    const server = spawn(penumbra, ['serve', scene, '--port', String(port), '--ephemeral', '--static', staticDir],
+    const server = spawn(penumbra, ['serve', ...(scene ? [scene] : []), '--port', String(port), ...storage, '--static', staticDir],
       { cwd: repo, stdio: ['ignore', 'pipe', 'pipe'] });
     let out = '';
     let err = '';

@@ -7,6 +7,8 @@ import { primitiveObject, primitiveSize } from './primitives.js';
 import { addEdits, addLightEdits, duplicateObject, freshId, lightCopy, materialEdits, removeEdits, removeLightEdits,
   renameEdits, renameLightEdits, resetEdits } from './object_edits.js';
 import { floorSpot, freeOffset, lightOffset } from './placement.js';
+import { objectMaterialEdits } from './material_edits.js';
+import { renameScene } from './scene_rename.js';
 import { SceneList, download, forgetSource, rememberSource, sourceOf } from './scene_library.js';
 import { sameTransform, transformOf } from './scene_transform.js';
 import * as THREE from 'three';
@@ -19,6 +21,7 @@ export class EditorActions {
     this.running = new Set(); // structural changes under way (the page is busy until they end)
     this.sceneList = new SceneList($('scene-list'), {
       onDelete: (summary) => this.deleteScene(summary),
+      onRename: (summary, name) => renameScene(app, summary, name).then(() => this.refreshScenes(), app.fail),
       pageUrl: (id) => this.pageUrl(id),
     });
   }
@@ -155,6 +158,13 @@ export class EditorActions {
     return this.change(materialEdits(current, material), `material of ${id}`, id, id);
   }
 
+  // A colour or type chosen in the inspector: one frame, one undo step (material_edits.js).
+  paint(id, change) {
+    const current = this.current(id);
+    const edits = current && objectMaterialEdits(this.scene(), current, change);
+    return edits ? this.change(edits, `material of ${id}`, id, id) : null;
+  }
+
   // An object's JSON with the transform it has now (after drags not yet reloaded).
   current(id) {
     const object = this.app.objects.json.get(id);
@@ -226,9 +236,19 @@ export class EditorActions {
     }
   }
 
-  downloadPng() {
-    const panel = this.app.renderPanel;
-    if (panel && panel.url) fetch(panel.url).then((r) => r.blob()).then((blob) => download(`${this.app.sceneId}.v${panel.lastVersion}.png`, blob));
+  // The server's render of the view as PNG: at the view's size in pixels, or `size` ('WxH').
+  async downloadPng(size = 'view') {
+    const { app } = this;
+    const canvas = app.view.renderer.domElement;
+    const [width, height] = size === 'view' ? [canvas.width, canvas.height] : size.split('x').map(Number);
+    try {
+      const image = await app.api.image(app.sceneId, Math.min(width, 4096), Math.min(height, 4096), app.view.cameraQuery());
+      download(`${app.sceneId}.v${image.version}.${width}x${height}.png`, image.blob);
+      return { width, height, version: image.version, bytes: image.blob.size };
+    } catch (error) {
+      app.fail(error);
+      return null;
+    }
   }
 
   async refreshScenes() {

@@ -13,6 +13,7 @@ const LEADS = {
   bad_request: 'The server could not read the upload',
   invalid_scene: 'The server refused the scene',
   invalid_frame: 'The server refused the edit',
+  invalid_name: 'The server refused the name',
   scene_stalled: 'The scene is read-only on the server',
   too_many_scenes: 'The server holds as many scenes as it may: delete one first',
   too_many_streams: 'The server has too many pages open',

@@ -4,6 +4,7 @@
 // value not typed goes back exactly as the page holds it, never as the rounded text shown.
 
 import { ExactField } from './exact_field.js';
+import { MATERIAL_TYPES, albedoHex, hexAlbedo } from './material_edits.js';
 import { centroid, intensityOf, movedTo, quadAxes, resized, resizedQuad, sizeOf, withIntensity } from './light_shape.js';
 
 const ROWS = [['translate', 'move (m)'], ['rotate_deg', 'rotate (°)'], ['scale', 'scale']];
@@ -25,7 +26,8 @@ const TIPS = {
 export class Inspector {
   // onTransform(id, transform): a typed transform to apply; onLight(lightId, {polygon, radiance}):
   // a typed light.
-  // more: {onRename(id, newName), onMaterial(id, material), materials() → [[name, JSON]], materialOf(id)}.
+  // more: {onRename(id, newName), onMaterial(id, material), materials() → [[name, JSON]], materialOf(id),
+  // onPaint(id, {albedo?, type?}), paintable(id): a polygon object (a volume is not painted here)}.
   constructor(root, onTransform, onLight, more = {}) {
     this.root = root;
     this.onTransform = onTransform;
@@ -50,6 +52,7 @@ export class Inspector {
     this.inputs = {};
     for (const [key, label] of ROWS) this.inputs[key] = this.row(key, label, 3, () => this.typed());
     if (this.more.materials && this.more.materials().length) this.materialRow(id);
+    if (this.more.onPaint && this.more.paintable(id)) this.paintRow(id);
     this.update(data);
   }
 
@@ -97,6 +100,33 @@ export class Inspector {
     select.value = current || '';
     select.addEventListener('change', () => this.more.onMaterial(id, select.value));
     row.append(label, select);
+    this.root.append(row);
+  }
+
+  // The object's colour (albedo) and material type: a change is one edit and one undo step, to its
+  // material when only it uses that one, else to a copy of its own (material_edits.js).
+  paintRow(id) {
+    const row = document.createElement('div');
+    row.className = 'row inspector-row';
+    const label = document.createElement('span');
+    label.textContent = 'colour, type';
+    const name = this.more.materialOf(id);
+    const body = (name && new Map(this.more.materials()).get(name)) || { albedo: [0.8, 0.8, 0.8] };
+    const colour = document.createElement('input');
+    Object.assign(colour, { type: 'color', value: albedoHex(body.albedo || [0.8, 0.8, 0.8]) });
+    colour.dataset.key = 'albedo';
+    colour.title = 'The material\'s colour (albedo, the share of light it reflects per channel): one edit, one undo step. '
+      + 'A material other objects share is left to them: this object gets its own copy';
+    const type = document.createElement('select');
+    type.dataset.key = 'type';
+    type.title = 'The material\'s type: diffuse (matte), rough diffuse, conductor (metal) or dielectric (glass); '
+      + 'the server render and the view\'s glossy layer follow. One edit, one undo step';
+    for (const t of MATERIAL_TYPES) type.append(new Option(t.replace('_', ' '), t));
+    type.value = body.type || 'diffuse';
+    label.title = colour.title;
+    colour.addEventListener('change', () => this.more.onPaint(id, { albedo: hexAlbedo(colour.value) }));
+    type.addEventListener('change', () => this.more.onPaint(id, { type: type.value }));
+    row.append(label, colour, type);
     this.root.append(row);
   }
 

@@ -32,6 +32,7 @@ import { installTestHook } from './test_hook.js';
 import { TimingsPanel } from './timings_panel.js';
 import { ToneMap } from './tone_map.js';
 import { UndoHistory } from './undo_history.js';
+import { ViewLook } from './view_look.js';
 import { VolumeControls } from './volume_controls.js';
 import { installVolumeLoader } from './volume_loader.js';
 
@@ -81,6 +82,8 @@ class App {
         onMaterial: (id, material) => this.editor.setMaterial(id, material),
         materials: () => Object.entries((this.sceneJson && this.sceneJson.materials) || {}),
         materialOf: (id) => (this.objects.json.get(id) || {}).material,
+        onPaint: (id, change) => this.editor.paint(id, change),
+        paintable: (id) => { const o = this.objects.json.get(id); return !!o && o.type !== 'volume'; },
       });
     this.outliner = new Outliner($('outliner'), (id) => this.gizmo && this.gizmo.select(id));
     this.ownVersions = new Set();
@@ -124,13 +127,15 @@ class App {
     this.objects.build(wrapped.scene);
     this.volumes.show();
     this.toneMap = new ToneMap(wrapped.scene, this.objects.bounds);
+    this.look = new ViewLook(this, sceneId, wrapped.name);
     this.view.setCamera(wrapped.scene.camera, this.objects.bounds, this.objects);
 
     this.meshSync = new MeshSync(this.api, sceneId, (decoded) => {
-      // The exposure is fixed from the first whole mesh, before its colours are made.
-      if (!this.toneMap.calibrated) this.toneMap.calibrate(decoded.parts);
+      // The exposure is taken from the first whole mesh (or kept), before its colours are made.
+      this.look.beforeMesh(decoded);
       this.glossy.setExposure(this.toneMap.exposure);
       this.receivers.apply(decoded, this.toneMap);
+      this.look.afterMesh();
       if (this.bakedIndirect) this.bakedIndirect.schedule(); // a new version: bake it once edits pause
       $('version').textContent = String(decoded.sceneVersion);
       this.view.requestRender();
@@ -367,6 +372,7 @@ class App {
     this.adopt(wrapped);
     this.gizmo.select(null);
     this.toneMap.learnObjects(wrapped.scene);
+    this.receivers.recolourAll(this.toneMap); // a material's new colour changes no irradiance
     this.buildStandIns(wrapped.scene);
     if (selectId) this.gizmo.select(selectId);
     this.view.requestRender();
@@ -397,6 +403,7 @@ class App {
         this.objects.syncTransforms(wrapped.scene, dragged);
         this.volumes.sync(wrapped.scene);
         this.objects.syncLights(wrapped.scene, dragged && isLight(dragged) ? dragged.slice(6) : null);
+        this.look.afterMesh(); // another client's new light power: the exposure follows
         this.refreshInspector();
       } else {
         this.gizmo.select(null);

@@ -22,7 +22,7 @@ export function installPanelControls(app, editor) {
   click('reset-scene', () => editor.resetToFile());
   click('download-json', () => editor.downloadJson());
   click('download-glb', () => editor.downloadGlb());
-  click('download-png', () => editor.downloadPng());
+  click('download-png', () => editor.downloadPng($('png-size').value));
   $('snap').addEventListener('change', (event) => app.gizmo.setSnap(event.target.checked));
   $('unlock-shell').addEventListener('change', (event) => {
     app.objects.unlocked = event.target.checked;

@@ -175,6 +175,11 @@ export class ReceiverLayer {
   // New baked indirect light (null: none), every part recoloured with it.
   setIndirect(indirect, toneMap) {
     this.indirect = indirect;
+    this.recolourAll(toneMap);
+  }
+
+  // Every part's colours again (new albedos or exposure: the irradiance is as held).
+  recolourAll(toneMap) {
     for (const entry of this.entries.values()) {
       entry.colours = toneMap.colours(entry.part.object, entry.part.irradiance, this.indirectOf(entry.part));
       this.stale.add(batchKey(entry.part));

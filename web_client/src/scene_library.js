@@ -43,9 +43,9 @@ export function download(name, blob) {
 }
 
 export class SceneList {
-  // onDelete(summary) → promise; pageUrl(id) → the URL that opens a scene.
-  constructor(root, { onDelete, pageUrl }) {
-    Object.assign(this, { root, onDelete, pageUrl });
+  // onDelete(summary) → promise; onRename(summary, name) → promise; pageUrl(id) → the URL that opens a scene.
+  constructor(root, { onDelete, onRename, pageUrl }) {
+    Object.assign(this, { root, onDelete, onRename, pageUrl });
   }
 
   render(scenes, currentId) {
@@ -63,11 +63,21 @@ export class SceneList {
       const remove = document.createElement('button');
       remove.type = 'button';
       remove.textContent = 'Delete';
+      remove.dataset.action = 'delete';
       remove.title = `DELETE /api/scenes/${summary.id}`;
       remove.addEventListener('click', () => {
         if (window.confirm(`Delete scene ${summary.id} (${summary.name}) from the server?`)) this.onDelete(summary);
       });
-      item.append(link, info, remove);
+      const rename = document.createElement('button');
+      rename.type = 'button';
+      rename.textContent = 'Rename';
+      rename.dataset.action = 'rename';
+      rename.title = `Give scene ${summary.id} a new name (PATCH /api/scenes/${summary.id}; kept across restarts)`;
+      rename.addEventListener('click', () => {
+        const name = window.prompt(`New name for scene ${summary.id}:`, summary.name);
+        if (name !== null && name !== summary.name) this.onRename(summary, name);
+      });
+      item.append(link, info, rename, remove);
       return item;
     }));
   }

@@ -187,6 +187,10 @@ export function installTestHook(app) {
     cameraQuery() {
       return app.view.cameraQuery();
     },
+    // The view's exposure: the automatic one, the user's offset in stops, their product.
+    exposure() {
+      return { auto: app.toneMap.auto, ev: app.toneMap.ev, exposure: app.toneMap.exposure };
+    },
     // Puts the camera at `position` looking at `target` (as an orbit would).
     lookFrom(position, target) {
       app.view.camera.position.fromArray(position);

@@ -1,13 +1,17 @@
 // Irradiance → display colour, with the server renderer's exposure idea (core/render/renderer.h):
 // radiance = albedo/π · (E + ambient), ambient = 10% of the lights' power spread over the
-// surface of the scene's bounding box; exposure = 1 / the 99th percentile of the surfaces'
-// largest radiance channel. The page takes that percentile over the mesh's vertices (not the
-// pixels) once per scene load, so colours stay steady while objects move. Colours are linear;
-// the renderer's sRGB output encodes them like the server's PNG.
+// surface of the scene's bounding box (so faces no light reaches are not black); automatic exposure
+// = 1 / the 99th percentile of the surfaces' largest radiance channel, taken over the mesh's
+// vertices (not the pixels) when the scene loads or its lights change (look_setting.js keeps it per
+// scene), not while objects move; the user's offset in stops (ev) scales it. A metal (conductor)
+// has no diffuse reflection: its DM colours are drawn at METAL_DIFFUSE of its albedo, under the
+// glossy layer's reflection, so it reads dark and shiny as in the server's render. Colours are
+// linear; the renderer's sRGB output encodes them like the server's PNG.
 import * as THREE from 'three';
 
 const AMBIENT_FRACTION = 0.1;
 const PERCENTILE = 0.99;
+export const METAL_DIFFUSE = 0.25;
 
 function polygonArea(polygon) {
   const n = new THREE.Vector3();
@@ -23,35 +27,50 @@ function polygonArea(polygon) {
 export class ToneMap {
   // scene: scene JSON v1; bounds: THREE.Box3 of lights and world-space faces (as core's Scene::bounds).
   constructor(scene, bounds) {
+    this.bounds = bounds;
+    this.setLights(scene.lights);
+    this.learnObjects(scene);
+    this.auto = 1;
+    this.ev = 0;
+    this.calibrated = false;
+  }
+
+  // The exposure the colours use: the automatic one, times 2^ev.
+  get exposure() {
+    return this.auto * 2 ** this.ev;
+  }
+
+  // The ambient term from the lights' power (again after they changed).
+  setLights(lights) {
     const power = [0, 0, 0];
-    for (const light of scene.lights) {
+    for (const light of lights) {
       const area = polygonArea(light.polygon);
       for (let c = 0; c < 3; ++c) power[c] += Math.PI * light.radiance[c] * area;
     }
-    const e = bounds.getSize(new THREE.Vector3());
+    const e = this.bounds.getSize(new THREE.Vector3());
     const surface = 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
     this.ambient = power.map((p) => (surface > 0 ? AMBIENT_FRACTION * p / surface : 0));
-    this.learnObjects(scene);
-    this.exposure = 1;
-    this.calibrated = false;
   }
 
   // The objects' albedos (again after objects were added); the exposure stays as calibrated.
   learnObjects(scene) {
     this.albedo = new Map();
+    this.calibrationAlbedo = new Map(); // a metal's own albedo: its dimmed colour does not raise the exposure
     for (const object of scene.objects) {
       const material = object.material && scene.materials ? scene.materials[object.material] : null;
-      this.albedo.set(object.id, material ? material.albedo : [0.8, 0.8, 0.8]);
+      const albedo = (material && material.albedo) || [0.8, 0.8, 0.8];
+      this.albedo.set(object.id, material && material.type === 'conductor' ? albedo.map((a) => METAL_DIFFUSE * a) : albedo);
+      this.calibrationAlbedo.set(object.id, albedo);
     }
   }
 
-  // Sets the exposure from the mesh's parts ({object, irradiance: Float32Array}); call on load.
+  // Sets the automatic exposure from the mesh's parts ({object, irradiance: Float32Array}).
   // (A chunk-border vertex counts once per part holding it: too few to move the percentile.)
   calibrate(parts) {
     this.calibrated = true;
     const values = [];
     for (const r of parts) {
-      const albedo = this.albedoOf(r.object);
+      const albedo = this.calibrationAlbedo.get(r.object) || [0.8, 0.8, 0.8];
       for (let i = 0; i < r.irradiance.length; i += 3) {
         let m = 0;
         for (let c = 0; c < 3; ++c) m = Math.max(m, albedo[c] / Math.PI * (r.irradiance[i + c] + this.ambient[c]));
@@ -61,7 +80,7 @@ export class ToneMap {
     if (!values.length) return;
     values.sort((a, b) => a - b);
     const v = values[Math.min(values.length - 1, Math.floor(PERCENTILE * values.length))];
-    if (v > 0) this.exposure = 1 / v;
+    if (v > 0) this.auto = 1 / v;
   }
 
   albedoOf(objectId) {
