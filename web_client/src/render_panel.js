@@ -108,7 +108,10 @@ export class RenderPanel {
         if (this.outcome) break;
       }
     } catch (error) {
-      if (error.name !== 'AbortError') this.onError(error);
+      // Superseded: this page's newer render (a new view) reached the server before the old
+      // request's abort did, so the server ended the old one (409 render_cancelled). Not an error.
+      const superseded = error.code === 'render_cancelled' || abort.signal.aborted;
+      if (error.name !== 'AbortError' && !superseded) this.onError(error);
     } finally {
       if (this.abort === abort) {
         this.abort = null;
