@@ -162,8 +162,9 @@ export class ApiClient {
   }
 
   // gi: bounced light by sensors (the server's defaults) instead of the flat ambient term.
-  async image(id, width, height, cameraQuery, signal, samples = null, gi = false) {
-    const params = new URLSearchParams({ width: String(width), height: String(height), ...cameraQuery });
+  // extra: more query keys (a render job's ticket and page, docs/API.md).
+  async image(id, width, height, cameraQuery, signal, samples = null, gi = false, extra = {}) {
+    const params = new URLSearchParams({ width: String(width), height: String(height), ...cameraQuery, ...extra });
     if (samples) params.set('samples', String(samples));
     if (gi) params.set('gi', 'sensors');
     const response = await this.request('GET', `${this.scenePath(id)}/image?${params}`, { signal });

@@ -127,18 +127,8 @@ export class RenderPanel {
     const ticket = `${this.page}-${++this.tickets}`;
     this.counter.start(`rendering${gi ? ' with GI (sensors)' : ''}${samples ? `, ${samples} samples` : ''}…`);
     this.job.follow(ticket);
-    const params = new URLSearchParams({ width: String(width), height: String(height), ...camera, ticket, page: this.page });
-    if (samples) params.set('samples', String(samples));
-    if (gi) params.set('gi', 'sensors');
-    const response = await this.api.request('GET', `${this.api.scenePath(this.sceneId)}/image?${params}`, { signal: abort.signal });
-    const image = {
-      blob: await response.blob(),
-      version: Number(response.headers.get('X-Penumbra-Version')),
-      seconds: Number(response.headers.get('X-Penumbra-Render-Seconds')),
-      samples: Number(response.headers.get('X-Penumbra-Samples')),
-      giSensors: response.headers.has('X-Penumbra-Gi-Sensors') ? Number(response.headers.get('X-Penumbra-Gi-Sensors')) : null,
-      giSeconds: Number(response.headers.get('X-Penumbra-Gi-Seconds')),
-    };
+    const image = await this.api.image(this.sceneId, width, height, camera, abort.signal, samples, gi,
+                                       { ticket, page: this.page });
     return abort.signal.aborted ? null : image;
   }
 
