@@ -117,6 +117,20 @@ double peakIrradiance(const Engine& engine) {
   return peak;
 }
 
+MoveCheck moveAndCompareWithRebuild(Engine& engine, const std::string& id, const Transform& transform,
+                                    uint64_t seed) {
+  Edit move;
+  move.op = Edit::Op::Move;
+  move.id = id;
+  move.transform = transform;
+  MoveCheck check;
+  check.frame = engine.apply(Frame{{move}});
+  engine.validate();
+  const Engine rebuilt(engine.scene());
+  check.diff = compareEngines(engine, rebuilt, peakIrradiance(rebuilt), 200, seed);
+  return check;
+}
+
 EngineDiff compareEngines(const Engine& a, const Engine& b, double peak, size_t randomPoints, uint64_t seed) {
   EngineDiff diff;
   const ExactReference reference(a.scene());

@@ -39,6 +39,16 @@ EngineDiff compareEngines(const Engine& a, const Engine& b, double peak, size_t 
 // The largest vertex irradiance (red channel) of an engine.
 double peakIrradiance(const Engine& engine);
 
+// Moves object `id` to `transform` in one frame, validates the engine, then compares it with
+// a fresh build of its scene (compareEngines, 200 points seeded by `seed`): "incremental ≡
+// rebuild" after one move.
+struct MoveCheck {
+  FrameResult frame;
+  EngineDiff diff;
+};
+MoveCheck moveAndCompareWithRebuild(Engine& engine, const std::string& id, const Transform& transform,
+                                    uint64_t seed);
+
 // A random frame of `edits` edits (move: small/large translations, rotations about
 // y, resting on or touching/piercing another object; add: a new cube on the floor or
 // on a cube; remove) on the generated cubes scene held by `engine`.

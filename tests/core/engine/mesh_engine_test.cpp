@@ -131,18 +131,12 @@ TEST(MeshEngine, MovesEqualRebuild) {
   const Vec3 steps[] = {{0.05, 0.0, 0.02}, {0.2, -0.1, 0.0}, {-0.9, 0.1, 0.5}};
   int f = 0;
   for (const Vec3& step : steps) {
-    Edit move;
-    move.op = Edit::Op::Move;
-    move.id = "m";
-    move.transform.translate = step;
-    move.transform.rotateDeg = Vec3(5.0 * f, 10.0 * f, 0);
-    const FrameResult result = engine.apply(Frame{{move}});
-    EXPECT_FALSE(result.fullRebuild);
-    engine.validate();
-    Engine rebuilt(engine.scene());
-    const testing::EngineDiff diff =
-        testing::compareEngines(engine, rebuilt, testing::peakIrradiance(rebuilt), 200, uint64_t(f));
-    EXPECT_EQ(diff.errors(), 0u) << "frame " << f << ": " << diff.firstProblem;
+    Transform transform;
+    transform.translate = step;
+    transform.rotateDeg = Vec3(5.0 * f, 10.0 * f, 0);
+    const testing::MoveCheck check = testing::moveAndCompareWithRebuild(engine, "m", transform, uint64_t(f));
+    EXPECT_FALSE(check.frame.fullRebuild);
+    EXPECT_EQ(check.diff.errors(), 0u) << "frame " << f << ": " << check.diff.firstProblem;
     ++f;
   }
   expectExact(engine, "torus after moves");

@@ -156,18 +156,12 @@ TEST(SmoothShading, MovesOfASmoothMeshEqualRebuild) {
   const Vec3 steps[] = {{0.05, 0.0, 0.02}, {-0.6, 0.1, 0.4}};
   int f = 0;
   for (const Vec3& step : steps) {
-    Edit move;
-    move.op = Edit::Op::Move;
-    move.id = "m";
-    move.transform.translate = step;
-    move.transform.rotateDeg = Vec3(15.0 * (f + 1), 10.0 * f, 0);
-    move.transform.scale = Vec3(1, f == 1 ? -1.2 : 1, 1);  // a mirror on the second
-    engine.apply(Frame{{move}});
-    engine.validate();
-    Engine rebuilt(engine.scene());
-    const testing::EngineDiff diff =
-        testing::compareEngines(engine, rebuilt, testing::peakIrradiance(rebuilt), 200, uint64_t(f));
-    EXPECT_EQ(diff.errors(), 0u) << "frame " << f << ": " << diff.firstProblem;
+    Transform transform;
+    transform.translate = step;
+    transform.rotateDeg = Vec3(15.0 * (f + 1), 10.0 * f, 0);
+    transform.scale = Vec3(1, f == 1 ? -1.2 : 1, 1);  // a mirror on the second
+    const testing::MoveCheck check = testing::moveAndCompareWithRebuild(engine, "m", transform, uint64_t(f));
+    EXPECT_EQ(check.diff.errors(), 0u) << "frame " << f << ": " << check.diff.firstProblem;
     ++f;
   }
   const testing::ReferenceCheck c = testing::checkAgainstReference(engine, "torus after moves");
