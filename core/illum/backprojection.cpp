@@ -203,7 +203,7 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
   const ConvexSolid& w = mesh.welded;
   enum : uint8_t { kUsable = 1, kAhead = 2, kBeyondLight = 4, kBeforeP = 8 };
   thread_local std::vector<uint8_t> corner;  // kUsable, kAhead, kBeyondLight, kBeforeP
-  thread_local std::vector<uint32_t> cornerStamp, chainFaces;
+  thread_local std::vector<uint32_t> cornerStamp, chainFaces, chainClusters;
   thread_local uint32_t stamp = 0;
   if (cornerStamp.size() < w.vertices.size()) cornerStamp.resize(w.vertices.size(), 0), corner.resize(w.vertices.size());
   if (++stamp == 0) std::fill(cornerStamp.begin(), cornerStamp.end(), 0), stamp = 1;
@@ -223,20 +223,35 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
     if (receiver.signedDistance(c.centre) < -r || h < -r || h > pHeight_ + r) return true;
     return std::any_of(sides.begin(), sides.end(), [&](const Plane& side) { return side.signedDistance(c.centre) < -r; });
   };
+  // A ball wholly ahead of p's plane, beyond the light's and short of p's height with the
+  // margin of kUsable (and a length tolerance more) holds only usable corners: its faces need
+  // no corner looked at.
+  auto wholeUsable = [&](const MeshTopology::Cluster& c) {
+    const double r = c.radius + tolerance_.length(), h = lightPlane_.signedDistance(c.centre);
+    return receiver.signedDistance(c.centre) > r && h > r && pHeight_ - (h + r) > 1e-3 * pHeight_;
+  };
   // In the chain: faces p is strictly behind (blocking ones) with every corner usable.
   // Faces whose plane holds p count only as limits (with `towards`); the rest go one by
   // one, but for those with no corner ahead of p's plane, past the light's or short of p's
   // height, which cannot block (occlude() would say so).
   const double onPlane = tolerance_.onPlane();
   chainFaces.clear();
+  chainClusters.clear();
   bool othersBlock = false;
-  for (const MeshTopology::Cluster& cluster : mesh.clusters) {
+  for (size_t c = 0; c < mesh.clusters.size(); ++c) {
+    const MeshTopology::Cluster& cluster = mesh.clusters[c];
     if (missesCone(cluster)) continue;
+    const bool usable = wholeUsable(cluster);
+    const size_t before = chainFaces.size();
     for (uint32_t i = cluster.first; i < cluster.last; ++i) {
       const uint32_t f = mesh.clusterFaces[i];
-      const double distance = faces[f].plane.signedDistance(p_);
+      const double distance = mesh.clusterPlanes[i].signedDistance(p_);
       if (!(distance < -onPlane)) {
         if (towards && !(distance > onPlane)) othersBlock = occludeApproaching(faces[f], *towards) || othersBlock;
+        continue;
+      }
+      if (usable) {
+        chainFaces.push_back(f);
         continue;
       }
       uint8_t all = 0xff, any = 0;
@@ -249,13 +264,21 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
       else if ((any & (kAhead | kBeyondLight | kBeforeP)) == (kAhead | kBeyondLight | kBeforeP))
         othersBlock = occlude(faces[f]) || othersBlock;
     }
+    // Every face of the cluster in the chain: its precomputed sum stands for them.
+    if (chainFaces.size() - before == size_t(cluster.last - cluster.first)) {
+      chainFaces.resize(before);
+      chainClusters.push_back(uint32_t(c));
+    }
   }
   if (othersBlock) {
+    for (uint32_t c : chainClusters)
+      for (uint32_t i = mesh.clusters[c].first; i < mesh.clusters[c].last; ++i) occlude(faces[mesh.clusterFaces[i]]);
     for (uint32_t f : chainFaces) occlude(faces[f]);
     return true;
   }
   ++comparisons_;
-  if (!appendShadowChain(mesh, chainFaces, p_, lightPlane_, pHeight_, frame_, tolerance_.area(), chain_))
+  if (!appendShadowChain(mesh, chainFaces, chainClusters, p_, lightPlane_, pHeight_, frame_, tolerance_.area(),
+                         chain_))
     return false;
   chainObjects_.push_back(handle);
   resolved_ = false;

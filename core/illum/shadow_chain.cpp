@@ -5,7 +5,8 @@
 
 namespace penumbra {
 
-bool appendShadowChain(const MeshTopology& mesh, std::span<const uint32_t> chainFaces, const Vec3& p,
+bool appendShadowChain(const MeshTopology& mesh, std::span<const uint32_t> chainFaces,
+                       std::span<const uint32_t> chainClusters, const Vec3& p,
                        const Plane& lightPlane, double pHeight, const PlaneFrame& frame, double minArea,
                        std::vector<ChainEdge>& out) {
   const ConvexSolid& w = mesh.welded;
@@ -19,6 +20,13 @@ bool appendShadowChain(const MeshTopology& mesh, std::span<const uint32_t> chain
   if (projected.size() < w.vertices.size()) projected.resize(w.vertices.size()), projectedStamp.resize(w.vertices.size(), 0);
   if (++stamp == 0) std::fill(projectedStamp.begin(), projectedStamp.end(), 0), stamp = 1;
   touched.clear();
+  for (const uint32_t c : chainClusters) {  // a whole cluster: its sum, inner edges cancelled
+    for (uint32_t i = mesh.clusterChainStarts[c]; i < mesh.clusterChainStarts[c + 1]; ++i) {
+      const auto [e, count] = mesh.clusterChain[i];
+      if (net[e] == 0) touched.push_back(e);
+      net[e] += count;
+    }
+  }
   for (const uint32_t f : chainFaces) {
     for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
       const uint32_t e = mesh.cornerEdge[k];

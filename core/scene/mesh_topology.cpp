@@ -32,6 +32,31 @@ void groupBy(const std::vector<std::pair<uint32_t, uint32_t>>& pairs, size_t key
   for (const auto& [key, value] : pairs) values[next[key]++] = value;
 }
 
+// Each cluster's faces' edges with their net direction counts (MeshTopology::clusterChain).
+void sumClusterChains(MeshTopology& mesh) {
+  const ConvexSolid& w = mesh.welded;
+  std::vector<int> net(w.edges.size(), 0);
+  std::vector<uint32_t> touched;
+  mesh.clusterChainStarts.assign(1, 0);
+  for (const MeshTopology::Cluster& cluster : mesh.clusters) {
+    touched.clear();
+    for (uint32_t i = cluster.first; i < cluster.last; ++i) {
+      const uint32_t f = mesh.clusterFaces[i];
+      for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
+        const uint32_t e = mesh.cornerEdge[k];
+        if (e == MeshTopology::kNoEdge) continue;
+        if (net[e] == 0) touched.push_back(e);
+        net[e] += mesh.cornerForward[k] ? 1 : -1;
+      }
+    }
+    for (uint32_t e : touched) {
+      if (net[e] != 0) mesh.clusterChain.push_back({e, net[e]});
+      net[e] = 0;
+    }
+    mesh.clusterChainStarts.push_back(uint32_t(mesh.clusterChain.size()));
+  }
+}
+
 // Splits faces order[begin, end) at the median of their centres along the longest side
 // of the centres' box until at most kClusterFaces are left, each then a cluster.
 void splitIntoClusters(std::vector<uint32_t>& order, size_t begin, size_t end, const std::vector<Vec3>& centres,
@@ -121,6 +146,9 @@ MeshTopology MeshTopology::of(std::span<const Face> faces, double onPlane, size_
   mesh.clusterFaces.resize(faces.size());
   for (size_t f = 0; f < faces.size(); ++f) mesh.clusterFaces[f] = uint32_t(f);
   if (!faces.empty()) splitIntoClusters(mesh.clusterFaces, 0, faces.size(), centres, mesh);
+  mesh.clusterPlanes.reserve(faces.size());
+  for (uint32_t f : mesh.clusterFaces) mesh.clusterPlanes.push_back(faces[f].plane);
+  sumClusterChains(mesh);
 
   Vec3 low = w.vertices.empty() ? Vec3(0.0) : w.vertices[0], high = low;
   for (const Vec3& v : w.vertices) {

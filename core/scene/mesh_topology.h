@@ -46,6 +46,16 @@ struct MeshTopology {
   static constexpr size_t kClusterFaces = 32;
   std::vector<Cluster> clusters;
   std::vector<uint32_t> clusterFaces;
+  // clusterPlanes[i]: the plane of face clusterFaces[i], copied in cluster order so a
+  // point's pass over the faces its cone meets reads them in a row (the faces themselves
+  // are ~200 bytes apart).
+  std::vector<Plane> clusterPlanes;
+  // Per cluster: its faces' edges summed as a point's chain sums them when every face of the
+  // cluster blocks it (core/illum/shadow_chain.h; run both ways inside the cluster they
+  // cancel): cluster c's (edge, net count) are clusterChain[clusterChainStarts[c] .. [c + 1]),
+  // only those with a nonzero count, in the order its faces first run them.
+  std::vector<uint32_t> clusterChainStarts;
+  std::vector<std::pair<uint32_t, int>> clusterChain;
   // The axis-aligned box around the corners as a closed convex solid (a conservative
   // stand-in for the mesh where only a superset of its shadow is needed).
   ConvexSolid box;
