@@ -48,12 +48,26 @@ async function buildAndCancel(browser, url, base, knotFile, cancelSeconds) {
   await page.waitForFunction((pattern) => new RegExp(pattern).test(document.getElementById('loading-text').textContent),
     building.source, { timeout: 60000 });
   // Meanwhile the other tab opens again and lists the scene being built.
+  const otherLists = { count: 0 };
+  other.on('request', (request) => {
+    if (new URL(request.url()).pathname === '/api/scenes' && request.method() === 'GET') ++otherLists.count;
+  });
   const listed = other.reload({ waitUntil: 'domcontentloaded' })
     .then(() => other.waitForFunction(() => document.querySelector('#scene-list li[data-state="building"]'), null, { timeout: 30000 }))
     .then((item) => item.evaluate((node) => node.textContent)).catch((error) => `none: ${error.message}`);
   await watchTheOverlay(page, '');
   const item = await listed;
   check(/building: \w+/.test(item), 'another tab\'s scene list shows the scene being built with its stage', item);
+  // Its entry follows the builds event stream: it changes, and no list is asked for meanwhile.
+  otherLists.count = 0;
+  const entry = () => other.evaluate(() => document.querySelector('#scene-list li[data-state="building"]')?.textContent || '');
+  const entries = [await entry()];
+  for (let i = 0; i < 4; ++i) {
+    await sleep(300);
+    entries.push(await entry());
+  }
+  check(new Set(entries).size >= 2 && entries.every((e) => /building: \w+/.test(e)) && otherLists.count === 0,
+    'the other tab\'s entry follows the build with no scene list polled', JSON.stringify({ entries, lists: otherLists.count }));
   await other.close();
   check(asked.streams >= 1 && asked.lists === 0, 'the build\'s progress came through the builds event stream, no scene list polled',
     JSON.stringify(asked));

@@ -254,9 +254,9 @@ export class EditorActions {
     try {
       const { scenes } = await this.api.listScenes();
       this.sceneList.render(scenes, this.state.id);
-      // Scenes being built: shown with their progress until they are ready.
-      clearTimeout(this.sceneListTimer);
-      if (scenes.some((s) => s.state === 'building')) this.sceneListTimer = setTimeout(() => this.refreshScenes(), 1000);
+      // Scenes being built: shown with their progress (the builds event stream) until they end.
+      this.sceneList.followBuilds(scenes.some((s) => s.state === 'building') ? this.api.buildEventsUrl() : null,
+        () => this.refreshScenes());
       return scenes.filter((s) => s.state !== 'building');
     } catch (error) {
       this.fail(error);
