@@ -140,6 +140,29 @@ class App {
     meshResponse.catch(() => {}); // reported when awaited below
     const wrapped = prefetch ? await (await api.adopt(prefetch.scene, 'GET scene')).json() : await api.getScene(sceneId);
     performance.mark('penumbra:scene');
+    this.takeScene(wrapped);
+
+    this.part('meshSync', new MeshSync(api, sceneId, (decoded) => this.meshApplied(decoded)));
+    await this.meshSync.loadWhole(async () => ApiClient.bytesWithProgress(await meshResponse,
+      (loaded, total) => this.loading.bytes('Downloading the lit mesh', loaded, total)));
+    performance.mark('penumbra:mesh');
+    this.loading.step('Drawing…');
+    this.installSceneParts(sceneId);
+    this.editor.updateReset();
+    this.editor.refreshScenes();
+    hub.emit('selection', null);
+    api.stats(sceneId).then((stats) => hub.emit('built', stats, false)).catch(this.fail);
+
+    this.renderPanel.schedule();
+    this.view.requestRender();
+    performance.mark('penumbra:ready');
+    this.loading.done();
+  }
+
+  // The scene as first loaded: its header, undo history, stand-ins, tone map, look and camera.
+  takeScene(wrapped) {
+    const { state, hub } = this;
+    const sceneId = state.id;
     $('scene-name').textContent = `${wrapped.id} (${wrapped.name})`;
     showImportReport($('import-report'), sceneId, wrapped.name);
     state.adopt(wrapped);
@@ -159,13 +182,12 @@ class App {
     this.part('toneMap', new ToneMap(wrapped.scene, this.objects.bounds));
     this.part('look', new ViewLook(this.page, sceneId, wrapped.name));
     this.view.setCamera(wrapped.scene.camera, this.objects.bounds, this.objects);
+  }
 
-    this.part('meshSync', new MeshSync(api, sceneId, (decoded) => this.meshApplied(decoded)));
-    await this.meshSync.loadWhole(async () => ApiClient.bytesWithProgress(await meshResponse,
-      (loaded, total) => this.loading.bytes('Downloading the lit mesh', loaded, total)));
-    performance.mark('penumbra:mesh');
-    this.loading.step('Drawing…');
-
+  // The parts bound to the loaded scene: gizmo, server render, baked indirect light, the event
+  // stream, the panel's controls and the volume loader.
+  installSceneParts(sceneId) {
+    const { api, state, hub } = this;
     this.part('gizmo', installGizmo(this.page));
     this.part('renderPanel', new RenderPanel(api, sceneId, this.view, $('render'), $('render-info'), $('render-progress'), this.fail,
       () => hasPhysicalMaterials(state.json)));
@@ -188,15 +210,6 @@ class App {
     }));
     installPanelControls(this.page);
     installVolumeLoader($('volume-file'), this.page);
-    this.editor.updateReset();
-    this.editor.refreshScenes();
-    hub.emit('selection', null);
-    api.stats(sceneId).then((stats) => hub.emit('built', stats, false)).catch(this.fail);
-
-    this.renderPanel.schedule();
-    this.view.requestRender();
-    performance.mark('penumbra:ready');
-    this.loading.done();
   }
 
   // A mesh version applied: the exposure is taken from the first whole mesh (or kept), before its
