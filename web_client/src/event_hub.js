@@ -16,6 +16,7 @@ export const EVENTS = {
   edited: 'an edit of this page is answered and its mesh held ({result, roundTrip, bytes, phases})',
   imageStale: 'the server\'s image no longer shows the scene or the view',
   built: 'a full build\'s stats are known (the stats: GET stats at load, or a rebuild\'s answer; rebuilt: whether a rebuild)',
+  render: 'a server render\'s progress or state changed (the render job, as GET renders lists it)',
   connection: 'the event stream\'s state changed (state, previous)',
 };
 

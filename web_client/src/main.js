@@ -193,6 +193,8 @@ class App {
       () => hasPhysicalMaterials(state.json)));
     this.view.onCameraChange(() => this.renderPanel.schedule());
     hub.on('imageStale', () => this.renderPanel.schedule());
+    hub.on('render', (job) => this.renderPanel.job.report(job));
+    hub.on('connection', (now) => this.renderPanel.job.setStreaming(now === 'connected'));
     this.part('bakedIndirect', new BakedIndirect(api, sceneId, (indirect) => {
       this.receivers.setIndirect(indirect, this.toneMap);
       const { version, seconds } = this.bakedIndirect;
@@ -202,6 +204,7 @@ class App {
     hub.on('version', () => this.bakedIndirect.schedule()); // a new version: bake it once edits pause
     this.part('events', new EventSync(api.eventsUrl(sceneId), {
       onVersion: (version) => this.follow.versionAnnounced(version),
+      onRender: (job) => hub.emit('render', job),
       onError: this.fail,
       onConnection: (now, previous) => {
         hub.emit('connection', now, previous);
