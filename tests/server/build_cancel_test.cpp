@@ -3,10 +3,13 @@
 // server serves on. The long build: a tessellated torus knot (about 1,500 triangles, seconds).
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "bench/lib/model_scene.h"
 #include "server_fixture.h"
@@ -118,6 +121,72 @@ TEST(BuildCancel, ProgressRisesThenDeleteStopsTheBuildAndFreesTheId) {
   const json health = bodyJson(client.Get("/api/health"));
   EXPECT_EQ(health["status"], "ok");
   EXPECT_EQ(health["building"], 0);
+}
+
+// The `event: build` data of an event stream's text, in order.
+std::vector<json> buildEvents(const std::string& text) {
+  std::vector<json> out;
+  const std::string head = "event: build\ndata: ";
+  for (size_t at = text.find(head); at != std::string::npos; at = text.find(head, at + 1)) {
+    const size_t start = at + head.size();
+    const size_t end = text.find('\n', start);
+    if (end == std::string::npos) break;
+    out.push_back(json::parse(text.substr(start, end - start)));
+  }
+  return out;
+}
+
+TEST(BuildCancel, TheBuildsEventStreamFollowsProgressAndTheEnd) {
+  RunningServer running;
+  httplib::Client client = running.client();
+  // GET /api/builds/events, collected on a thread until it reports the build ended.
+  std::mutex mutex;
+  std::string text;
+  std::atomic<bool> ended{false};
+  std::thread stream([&] {
+    httplib::Client events("127.0.0.1", running.port());
+    events.set_read_timeout(120, 0);
+    const auto deadline = Clock::now() + std::chrono::seconds(120);
+    events.Get("/api/builds/events", [&](const char* data, size_t size) {
+      std::lock_guard lock(mutex);
+      text.append(data, size);
+      ended = text.find("\"state\":\"ended\"") != std::string::npos;
+      return !ended && Clock::now() < deadline;
+    });
+  });
+  Answer created;
+  std::thread poster = postKnot(running.port(), "t3", &created);
+  // Events with rising counts arrive while it builds (the stream alone, no listing polled).
+  std::vector<json> seen;
+  const auto deadline = Clock::now() + std::chrono::seconds(60);
+  auto risen = [&] {
+    size_t rises = 0;
+    for (size_t i = 1; i < seen.size(); ++i)
+      if (seen[i]["progress"]["stage"] != seen[i - 1]["progress"]["stage"] ||
+          seen[i]["progress"]["done"] > seen[i - 1]["progress"]["done"])
+        ++rises;
+    return rises;
+  };
+  while (risen() < 3 && Clock::now() < deadline && !ended) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::lock_guard lock(mutex);
+    seen = buildEvents(text);
+  }
+  ASSERT_GE(risen(), 3u) << text;
+  const json last = seen.back();
+  EXPECT_EQ(last["ticket"], "t3");
+  EXPECT_EQ(last["state"], "building");
+  EXPECT_TRUE(last["progress"].contains("elapsed_seconds"));
+  const std::string id = last["id"];
+  const auto deleted = client.Delete(("/api/scenes/" + id).c_str());
+  ASSERT_TRUE(deleted);
+  EXPECT_EQ(deleted->status, 204) << deleted->body;
+  poster.join();
+  stream.join();
+  EXPECT_EQ(created.status, 409) << created.body;
+  ASSERT_TRUE(ended) << text;
+  const json end = buildEvents(text).back();
+  EXPECT_EQ(end, json({{"id", id}, {"name", "knot"}, {"state", "ended"}, {"ticket", "t3"}}));
 }
 
 TEST(BuildCancel, StopCancelsABuildInFlight) {

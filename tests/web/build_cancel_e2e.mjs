@@ -5,7 +5,8 @@
 // build (DELETE): the overlay goes within --cancelSeconds, the page stays on its scene, nothing of
 // the cancelled scene is left and the server serves on. The build stops at its next progress
 // report (per cast, every 64 vertices lit): the DELETE takes under 0.1 s; the bound leaves room
-// for the page's poll and a busy machine.
+// for a busy machine. The progress comes through the builds event stream (the page polls no scene
+// list meanwhile); with that stream refused, the page polls the scene list and shows it all the same.
 //
 // usage: node tests/web/build_cancel_e2e.mjs --penumbra build/penumbra [--triangles 3000] [--cancelSeconds 5]
 import { execFileSync } from 'node:child_process';
@@ -36,29 +37,73 @@ async function buildAndCancel(browser, url, base, knotFile, cancelSeconds) {
   await other.goto(startUrl, { waitUntil: 'domcontentloaded' });
   await other.waitForFunction(() => window.penumbra && window.penumbra.state().ready, null, { timeout: 60000 });
 
+  // The page's own requests: scene lists polled and builds streams opened.
+  const asked = { lists: 0, streams: 0 };
+  page.on('request', (request) => {
+    const { pathname } = new URL(request.url());
+    if (pathname === '/api/scenes' && request.method() === 'GET') ++asked.lists;
+    if (pathname === '/api/builds/events') ++asked.streams;
+  });
   await page.setInputFiles('#scene-file', { name: 'knot.scene.json', mimeType: 'application/json', buffer: fs.readFileSync(knotFile) });
-  const building = /^The server builds the discontinuity mesh: (\w+)(?: (\d+) %)? (\d+\.\d) s$/;
   await page.waitForFunction((pattern) => new RegExp(pattern).test(document.getElementById('loading-text').textContent),
     building.source, { timeout: 60000 });
   // Meanwhile the other tab opens again and lists the scene being built.
+  const otherLists = { count: 0 };
+  other.on('request', (request) => {
+    if (new URL(request.url()).pathname === '/api/scenes' && request.method() === 'GET') ++otherLists.count;
+  });
   const listed = other.reload({ waitUntil: 'domcontentloaded' })
     .then(() => other.waitForFunction(() => document.querySelector('#scene-list li[data-state="building"]'), null, { timeout: 30000 }))
     .then((item) => item.evaluate((node) => node.textContent)).catch((error) => `none: ${error.message}`);
+  await watchTheOverlay(page, '');
+  const item = await listed;
+  check(/building: \w+/.test(item), 'another tab\'s scene list shows the scene being built with its stage', item);
+  // Its entry follows the builds event stream: it changes, and no list is asked for meanwhile.
+  otherLists.count = 0;
+  const entry = () => other.evaluate(() => document.querySelector('#scene-list li[data-state="building"]')?.textContent || '');
+  const entries = [await entry()];
+  for (let i = 0; i < 4; ++i) {
+    await sleep(300);
+    entries.push(await entry());
+  }
+  check(new Set(entries).size >= 2 && entries.every((e) => /building: \w+/.test(e)) && otherLists.count === 0,
+    'the other tab\'s entry follows the build with no scene list polled', JSON.stringify({ entries, lists: otherLists.count }));
+  await other.close();
+  check(asked.streams >= 1 && asked.lists === 0, 'the build\'s progress came through the builds event stream, no scene list polled',
+    JSON.stringify(asked));
+  await cancelAndCheck(page, base, startUrl, cancelSeconds);
+
+  // The stream refused (a proxy that drops it): the page polls the scene list instead.
+  await page.route('**/api/builds/events', (route) => route.abort());
+  asked.lists = 0;
+  await page.setInputFiles('#scene-file', { name: 'knot.scene.json', mimeType: 'application/json', buffer: fs.readFileSync(knotFile) });
+  await watchTheOverlay(page, ' (the stream refused)');
+  check(asked.lists >= 3, 'without the stream the page polls the scene list for the build\'s progress', JSON.stringify(asked));
+  await cancelAndCheck(page, base, startUrl, cancelSeconds);
+  await context.close();
+}
+
+const building = /^The server builds the discontinuity mesh: (\w+)(?: (\d+) %)? (\d+\.\d) s$/;
+
+// The overlay during the build: the stage, a fraction that rises and a seconds counter that moves; Cancel offered.
+async function watchTheOverlay(page, how) {
+  await page.waitForFunction((pattern) => new RegExp(pattern).test(document.getElementById('loading-text').textContent),
+    building.source, { timeout: 60000 });
   const texts = [];
-  for (let i = 0; i < 8; ++i) {
+  for (let i = 0; i < 12; ++i) {
     texts.push(await page.evaluate(overlayText));
     await sleep(150);
   }
   const seconds = texts.map((t) => t.match(building)).filter(Boolean).map((m) => Number(m[3]));
-  check(seconds.length >= 6 && new Set(seconds).size >= 6 && seconds.every((s, i) => i === 0 || s >= seconds[i - 1]),
-    'the overlay shows the build\'s stage with a seconds counter that moves', JSON.stringify(texts.slice(0, 4)));
-  check(texts.some((t) => / \d+ % /.test(t)), 'the overlay shows the stage\'s fraction', JSON.stringify(texts.slice(-3)));
+  check(seconds.length >= 9 && new Set(seconds).size >= 9 && seconds.every((s, i) => i === 0 || s >= seconds[i - 1]),
+    `the overlay shows the build's stage with a seconds counter that moves${how}`, JSON.stringify(texts.slice(0, 4)));
+  const fractions = texts.map((t) => t.match(building)).filter((m) => m && m[2] !== undefined).map((m) => `${m[1]} ${m[2]}`);
+  check(new Set(fractions).size >= 2, `the overlay shows the stage's fraction moving${how}`, JSON.stringify(texts.slice(-3)));
   const cancelVisible = await page.evaluate(() => !document.getElementById('loading-cancel').hidden);
-  check(cancelVisible, 'the overlay offers Cancel while the server builds');
-  const item = await listed;
-  check(/building: \w+/.test(item), 'another tab\'s scene list shows the scene being built with its stage', item);
-  await other.close();
+  check(cancelVisible, `the overlay offers Cancel while the server builds${how}`);
+}
 
+async function cancelAndCheck(page, base, startUrl, cancelSeconds) {
   const clicked = performance.now();
   await page.click('#loading-cancel');
   await page.waitForFunction(() => document.getElementById('loading').hidden, null, { timeout: 60000 });
@@ -75,7 +120,6 @@ async function buildAndCancel(browser, url, base, knotFile, cancelSeconds) {
     return node && !node.hidden ? node.textContent : '';
   });
   check(!banner, 'a cancel is not an error', banner);
-  await context.close();
 }
 
 async function main() {

@@ -3,7 +3,8 @@
 // shows the server's stage and fraction as they move, with a Cancel button; Cancel stops the
 // render on the server (DELETE of its ticket; the job ends "cancelled" within --cancelSeconds),
 // the panel says it stopped and nothing is shown as an error. A render stops at its next progress
-// report: for GI the end of a level of sensors (about a second here).
+// report: for GI the end of a level of sensors (about a second here). The progress comes through
+// the scene's event stream: the page polls no render list meanwhile.
 //
 // usage: node tests/web/render_cancel_e2e.mjs --penumbra build/penumbra [--cancelSeconds 8]
 import path from 'node:path';
@@ -25,6 +26,10 @@ async function main() {
     const { page, pageErrors } = await openPage(browser, url);
     check(await until(async () => (await page.evaluate(() => window.penumbra.renderPasses())).passes.length > 0),
       'the server render is shown');
+    let polled = 0; // the page's own GET of the scene's render list
+    page.on('request', (request) => {
+      if (new URL(request.url()).pathname.endsWith('/renders') && request.method() === 'GET') ++polled;
+    });
     await page.check('#toggle-gi');
     // The fraction moves while the GI render runs; the Cancel button is there.
     const seen = new Set();
@@ -36,6 +41,7 @@ async function main() {
     }, 60);
     check(moving !== null, 'the panel shows the GI render\'s stage and a moving fraction', JSON.stringify([...seen]));
     check(await page.isVisible('#render-cancel') && await page.isVisible('#render-bar'), 'a Cancel button and a bar show while it runs');
+    check(polled === 0, 'the progress came through the scene\'s event stream, no render list polled', `${polled} polls`);
     const running = (await renders(base, sceneId)).filter((r) => r.state === 'running');
     check(running.length === 1 && running[0].progress.stage === 'sensors', 'the server lists the render running', JSON.stringify(running));
 

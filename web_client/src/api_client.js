@@ -181,4 +181,9 @@ export class ApiClient {
   eventsUrl(id) {
     return `${this.base}${this.scenePath(id)}/events`;
   }
+
+  // The scenes being built, as server-sent events (`event: build`).
+  buildEventsUrl() {
+    return `${this.base}/api/builds/events`;
+  }
 }

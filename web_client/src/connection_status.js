@@ -36,3 +36,10 @@ export class ConnectionStatus {
     return !this.root.hidden;
   }
 }
+
+// The bar on the page (page: {hub}): it follows the event stream's state.
+export function installConnectionStatus({ hub }) {
+  const status = new ConnectionStatus(document.getElementById('connection'));
+  hub.on('connection', (state) => status.set(state));
+  return status;
+}

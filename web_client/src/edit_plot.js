@@ -112,3 +112,20 @@ export class EditPlot {
     this.caption.textContent = this.words();
   }
 }
+
+// The plot on the page (page: {hub}): each edit of the page's against the full build (the one at
+// load until a rebuild, which includes the display meshing).
+export function installEditPlot({ hub }) {
+  const plot = new EditPlot(document.getElementById('edit-plot'), document.getElementById('edit-ratio'));
+  let rebuilt = false;
+  hub.on('edited', ({ result, roundTrip }) => plot.add(result.seconds ? result.seconds.total : 0, result.mesh_seconds || 0, roundTrip));
+  hub.on('built', (stats, rebuild) => {
+    if (rebuild) {
+      rebuilt = true;
+      plot.setBuild(stats.seconds.total, `rebuild of v${stats.version}`, true);
+    } else if (!rebuilt) {
+      plot.setBuild(stats.build && stats.build.seconds ? stats.build.seconds.total : null, 'at load', false);
+    }
+  });
+  return plot;
+}

@@ -1,5 +1,6 @@
 // Server-sent events (GET /events): each announced version the page does not hold is fetched
-// as a mesh delta; versions made by another client also move the objects' stand-ins. The stream
+// as a mesh delta; versions made by another client also move the objects' stand-ins; a render's
+// progress (`event: render`) goes to the render panel. The stream
 // also tells whether the server is there: a broken stream is a lost server (the browser retries
 // every second, as the server's `retry: 1000` asks), a refused one (404: the scene is gone, e.g.
 // a server restarted without it) is retried here every few seconds. Leaving the page closes the
@@ -8,7 +9,7 @@
 const REOPEN_MS = 3000;
 
 export class EventSync {
-  // handlers: {onVersion(version, data), onError(error), onConnection(state)}; state:
+  // handlers: {onVersion(version, data), onRender(job), onError(error), onConnection(state)}; state:
   // 'connected', 'reconnecting' (the server is unreachable) or 'refused' (it answers, without the scene).
   constructor(url, handlers) {
     this.url = url;
@@ -25,15 +26,12 @@ export class EventSync {
     this.source = new EventSource(this.url);
     this.source.addEventListener('open', () => this.setState('connected'));
     this.source.addEventListener('version', (event) => {
-      ++this.events;
-      let data;
-      try {
-        data = JSON.parse(event.data);
-      } catch (error) {
-        this.handlers.onError(new Error(`event stream: bad event data: ${error.message}`));
-        return;
-      }
-      this.handlers.onVersion(data.version, data);
+      const data = this.parse(event);
+      if (data) this.handlers.onVersion(data.version, data);
+    });
+    this.source.addEventListener('render', (event) => {
+      const job = this.parse(event);
+      if (job && this.handlers.onRender) this.handlers.onRender(job);
     });
     this.source.addEventListener('error', () => {
       if (this.leaving) return;
@@ -46,6 +44,17 @@ export class EventSync {
         this.setState('reconnecting');
       }
     });
+  }
+
+  // An event's JSON data (counted), or null after reporting it unreadable.
+  parse(event) {
+    ++this.events;
+    try {
+      return JSON.parse(event.data);
+    } catch (error) {
+      this.handlers.onError(new Error(`event stream: bad event data: ${error.message}`));
+      return null;
+    }
   }
 
   setState(state) {

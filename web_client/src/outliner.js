@@ -35,3 +35,12 @@ export class Outliner {
     for (const item of this.root.children) item.classList.toggle('selected', item.dataset.id === selected);
   }
 }
+
+// The outliner on the page (page: {hub, objects, select(id), selection()}): drawn again when the
+// stand-ins are, its highlight following the selection.
+export function installOutliner({ hub, objects, select, selection }) {
+  const outliner = new Outliner(document.getElementById('outliner'), (id) => select(id));
+  hub.on('standIns', () => outliner.render(objects, selection()));
+  hub.on('selection', (id) => outliner.highlight(id));
+  return outliner;
+}

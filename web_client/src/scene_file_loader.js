@@ -65,7 +65,7 @@ function importFile(api, main, mtl, options, onProgress, ticket) {
 function uploadProgress(loading, fileName, build) {
   return (sent, total, done) => {
     if (done) build.start();
-    else if (build.timer === null) loading.bytes(`Uploading ${fileName}`, sent, total);
+    else if (!build.running) loading.bytes(`Uploading ${fileName}`, sent, total);
   };
 }
 

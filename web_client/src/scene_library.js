@@ -82,6 +82,39 @@ export class SceneList {
     }));
   }
 
+  // While the list holds a build (url: the builds event stream; null: none), its entry follows the
+  // stream's `event: build`; a build that ended, or one not listed yet, asks refresh() for the
+  // list again, as does a stream refused (after a second: polling while it is down).
+  followBuilds(url, refresh) {
+    if (!url) {
+      if (this.builds) this.builds.close();
+      this.builds = null;
+      return;
+    }
+    if (this.builds) return;
+    const source = new EventSource(url);
+    this.builds = source;
+    const again = () => { // one list request at a time
+      if (!this.asking) this.asking = Promise.resolve(refresh()).finally(() => { this.asking = null; });
+    };
+    source.addEventListener('build', (event) => {
+      let build;
+      try {
+        build = JSON.parse(event.data);
+      } catch {
+        return;
+      }
+      const item = this.root.querySelector(`li[data-state="building"][data-scene="${CSS.escape(build.id)}"]`);
+      if (build.state === 'building' && item) item.replaceWith(this.building(build));
+      else again();
+    });
+    source.addEventListener('error', () => {
+      if (source.readyState !== EventSource.CLOSED || this.builds !== source) return;
+      this.builds = null;
+      setTimeout(again, 1000);
+    });
+  }
+
   // A scene the server is still building: its stage and fraction, and Cancel (DELETE).
   building(summary) {
     const item = document.createElement('li');

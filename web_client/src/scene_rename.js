@@ -1,6 +1,6 @@
 // Renaming a scene on the server (PATCH /api/scenes/ID {"name"}): what this browser keeps under the
 // scene's id and name (its file at version 0 for "Reset to file", its undo history) moves to the
-// new name, and the page's header follows when it is the scene on show.
+// new name.
 
 const KEPT = ['penumbra.source', 'penumbra.history', 'penumbra.look'];
 
@@ -17,15 +17,10 @@ function moveKept(id, from, to) {
   }
 }
 
-// Renames scene `summary` ({id, name}) to `name`; resolves to the server's summary of it.
-export async function renameScene(app, summary, name) {
-  const answer = await app.api.json('PATCH', app.api.scenePath(summary.id), { name });
+// Renames scene `summary` ({id, name}) to `name`; resolves to the server's summary of it. The page
+// on show follows by the hub's `renamed` (its caller's).
+export async function renameScene(api, summary, name) {
+  const answer = await api.json('PATCH', api.scenePath(summary.id), { name });
   moveKept(summary.id, summary.name, answer.name);
-  if (summary.id === app.sceneId) {
-    app.sceneName = answer.name;
-    app.history.storageKey = `penumbra.history.${summary.id}.${answer.name}`;
-    if (app.look) app.look.setting.key = `penumbra.look.${summary.id}.${answer.name}`;
-    document.getElementById('scene-name').textContent = `${summary.id} (${answer.name})`;
-  }
   return answer;
 }

@@ -41,8 +41,8 @@ export function installTestHook(app) {
     state() {
       const counts = app.receivers.counts();
       return {
-        ready: hook.ready, sceneId: app.sceneId, version: app.meshSync ? app.meshSync.version : null, ...counts,
-        editsSent: app.coalescer ? app.coalescer.sent : 0, editsReplaced: app.coalescer ? app.coalescer.replaced : 0,
+        ready: hook.ready, sceneId: app.state.id, version: app.meshSync ? app.meshSync.version : null, ...counts,
+        editsSent: app.edits.coalescer.sent, editsReplaced: app.edits.coalescer.replaced,
         busy: app.busy(), selected: app.gizmo ? app.gizmo.selected : null, gizmoAxis: app.gizmo ? app.gizmo.controls.axis : null,
         dragging: app.gizmo ? app.gizmo.dragging : false,
         errors: [...app.banner.errors], bannerVisible: app.banner.visible(),
@@ -220,7 +220,7 @@ export function installTestHook(app) {
         await new Promise((resolve) => setTimeout(resolve, stepMs));
         const translate = [...from.translate];
         translate[0] += dx * s / steps;
-        app.moveTo(id, { ...from, translate });
+        app.edits.moveTo(id, { ...from, translate });
         app.view.requestMotionRender();
       }
       app.view.setInteracting('drag', false);

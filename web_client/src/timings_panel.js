@@ -74,3 +74,18 @@ export class TimingsPanel {
     }));
   }
 }
+
+// The readout on the page (page: {hub, view}): each edit of the page's as its mesh is held, and the
+// full builds' times (at load, a rebuild).
+export function installTimings({ hub, view }) {
+  const timings = new TimingsPanel(document.getElementById('timings'));
+  timings.gl = view.gl;
+  timings.draw();
+  hub.on('edited', ({ result, roundTrip, bytes, phases }) => timings.edited(result, roundTrip, bytes, phases));
+  hub.on('built', (stats, rebuilt) => {
+    if (rebuilt) timings.rebuild = stats;
+    else timings.initialBuild = stats.build && stats.build.seconds ? stats.build.seconds.total : null;
+    timings.draw();
+  });
+  return timings;
+}

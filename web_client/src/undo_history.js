@@ -1,47 +1,67 @@
-// Undo / redo: each entry is one finished gesture, either a move {id, before, after} (absolute
-// transforms; undoing re-sends `before`, redoing `after`) or a structural change {frame: {redo,
-// undo}, select, label} (edit lists; undoing sends frame.undo). Kept in this browser
-// (localStorage, per scene) with the scene version it leads to, so that a reload keeps it; a
-// history whose version is not the scene's when the page opens (another client edited, the
-// server restarted) is dropped rather than applied to a scene it does not describe.
+// Undo / redo: each step is one finished gesture as a command (commands.js) that does and undoes
+// itself against the page's edit target. Kept in this browser (localStorage, per scene) with the
+// scene version it leads to, so that a reload keeps it; a history whose version is not the
+// scene's when the page opens (another client edited, the server restarted) is dropped rather
+// than applied to a scene it does not describe. Every change is announced as the hub's `history`.
+import { commandFromJson } from './commands.js';
 
 const KEEP = 200;
 
 export class UndoHistory {
-  constructor() {
+  // hub: the page's EventHub (or null: nobody is told).
+  constructor(hub = null) {
+    this.hub = hub;
     this.done = [];
     this.undone = [];
     this.storageKey = null;
   }
 
-  push(entry) {
-    this.done.push(entry);
+  // Does `command` against `target` and, once it has succeeded, records it.
+  async execute(command, target) {
+    await command.do(target);
+    this.record(command);
+  }
+
+  // Records a command already done (a drag that has moved its object).
+  record(command) {
+    this.done.push(command);
     if (this.done.length > KEEP) this.done.shift();
     this.undone = [];
+    this.changed();
   }
 
-  // The entry to apply backwards (send entry.before), or null.
-  undo() {
-    const entry = this.done.pop();
-    if (entry) this.undone.push(entry);
-    return entry || null;
+  // Undoes the last step against `target`: null when there is none, else a promise that settles
+  // once it is undone (at once for a move; a frame once the server answered).
+  undo(target) {
+    const command = this.done.pop();
+    if (!command) return null;
+    this.undone.push(command);
+    this.changed();
+    return Promise.resolve(command.undo(target));
   }
 
-  // The entry to apply again (send entry.after), or null.
-  redo() {
-    const entry = this.undone.pop();
-    if (entry) this.done.push(entry);
-    return entry || null;
+  // Does the last undone step again against `target` (null or a promise, as undo).
+  redo(target) {
+    const command = this.undone.pop();
+    if (!command) return null;
+    this.done.push(command);
+    this.changed();
+    return Promise.resolve(command.do(target));
   }
 
   // Forgets every step (the scene is no longer the one they were made on).
   clear() {
     this.done = [];
     this.undone = [];
+    this.changed();
   }
 
   canUndo() { return this.done.length > 0; }
   canRedo() { return this.undone.length > 0; }
+
+  changed() {
+    if (this.hub) this.hub.emit('history', this);
+  }
 
   // Takes back the history kept for scene `key` if it leads to `version`; from now on saves there.
   restore(key, version) {
@@ -49,8 +69,8 @@ export class UndoHistory {
     try {
       const kept = JSON.parse(localStorage.getItem(this.storageKey) || 'null');
       if (kept && kept.version === version) {
-        this.done = kept.done;
-        this.undone = kept.undone;
+        this.done = kept.done.map(commandFromJson).filter(Boolean);
+        this.undone = kept.undone.map(commandFromJson).filter(Boolean);
       }
     } catch {
       // Unreadable or no storage: start empty.

@@ -6,11 +6,10 @@ import { LookSetting, lightsSignature } from './look_setting.js';
 const $ = (id) => document.getElementById(id);
 
 export class ViewLook {
-  // app: the page (toneMap, receivers, glossy, objects, view); called once the tone map exists.
-  constructor(app, sceneId, sceneName) {
-    this.app = app;
+  // page: {toneMap, receivers, glossy, objects, view}; made once the tone map exists.
+  constructor({ toneMap, receivers, glossy, objects, view }, sceneId, sceneName) {
+    Object.assign(this, { toneMap, receivers, glossy, objects, view });
     this.setting = new LookSetting(sceneId, sceneName);
-    const { toneMap } = app;
     toneMap.ev = this.setting.ev;
     const kept = this.setting.autoFor(this.signature());
     if (kept) Object.assign(toneMap, { auto: kept, calibrated: true });
@@ -22,33 +21,33 @@ export class ViewLook {
   }
 
   signature() {
-    return lightsSignature([...this.app.objects.lightJson.values()]);
+    return lightsSignature([...this.objects.lightJson.values()]);
   }
 
   // Before a mesh's colours are made: the first whole mesh sets the automatic exposure (unless one
   // was kept for these lights).
   beforeMesh(decoded) {
-    const { toneMap } = this.app;
+    const { toneMap } = this;
     if (toneMap.calibrated) return;
     toneMap.calibrate(decoded.parts);
     this.setting.setAuto(toneMap.auto, this.signature());
-    this.app.glossy.setExposure(toneMap.exposure);
+    this.glossy.setExposure(toneMap.exposure);
   }
 
   // After a mesh was applied: lights changed since the exposure was taken → take it again from the
   // whole mesh held, with their new ambient term, and recolour.
   afterMesh() {
-    const { app } = this;
+    const { toneMap } = this;
     const signature = this.signature();
-    if (signature === this.setting.lights || app.view.interactions.has('drag')) return;
-    app.toneMap.setLights([...app.objects.lightJson.values()]);
-    app.toneMap.calibrate([...app.receivers.entries.values()].map((entry) => entry.part));
-    this.setting.setAuto(app.toneMap.auto, signature);
+    if (signature === this.setting.lights || this.view.interactions.has('drag')) return;
+    toneMap.setLights([...this.objects.lightJson.values()]);
+    toneMap.calibrate([...this.receivers.entries.values()].map((entry) => entry.part));
+    this.setting.setAuto(toneMap.auto, signature);
     this.recolour();
   }
 
   setEv(ev) {
-    this.app.toneMap.ev = ev;
+    this.toneMap.ev = ev;
     this.setting.setEv(ev);
     this.slider.value = String(ev);
     this.label();
@@ -56,10 +55,9 @@ export class ViewLook {
   }
 
   recolour() {
-    const { app } = this;
-    app.glossy.setExposure(app.toneMap.exposure);
-    app.receivers.recolourAll(app.toneMap);
-    app.view.requestRender();
+    this.glossy.setExposure(this.toneMap.exposure);
+    this.receivers.recolourAll(this.toneMap);
+    this.view.requestRender();
   }
 
   label() {
