@@ -70,10 +70,30 @@ void checkLeaseOfKey(PGconn* conn, int64_t key, LeaseToken lease) {
              Params().add(key).add(*lease), lease, "#" + std::to_string(key));
 }
 
+// A read of the whole journal (every scene restored at start) may outlast the statement timeout:
+// it runs without one (the answer timeout still ends a silent database), set again after it.
+class WithoutStatementTimeout {
+ public:
+  explicit WithoutStatementTimeout(PGconn* conn) : conn_(conn) {
+    runScript(conn_, "SET statement_timeout = 0");
+  }
+  ~WithoutStatementTimeout() {
+    try {
+      runScript(conn_, sessionTimeouts(conn_).c_str());
+    } catch (const std::exception&) {  // a lost connection: configure() sets it on reconnecting
+    }
+  }
+  WithoutStatementTimeout(const WithoutStatementTimeout&) = delete;
+  WithoutStatementTimeout& operator=(const WithoutStatementTimeout&) = delete;
+
+ private:
+  PGconn* conn_;
+};
+
 }  // namespace
 
 PostgresJournalStore::PostgresJournalStore(const std::string& uri)
-    : conn_(PQconnectdb(uri.c_str())) {
+    : conn_(connect(uri)) {
   if (!conn_) throw std::runtime_error("the journal database cannot be opened: out of memory");
   if (PQstatus(conn_) != CONNECTION_OK) {
     const std::string message = errorOf(conn_);
@@ -102,8 +122,11 @@ PostgresJournalStore::~PostgresJournalStore() { PQfinish(conn_); }
 
 void PostgresJournalStore::configure() {
   // A commit returns once its log is flushed on the database's disk, whatever the server's
-  // default; the "already exists" notices of the schema are not news.
-  runScript(conn_, "SET synchronous_commit = on; SET client_min_messages = warning");
+  // default; the "already exists" notices of the schema are not news; a statement or a lock wait
+  // that outlasts the answer timeout fails (sessionTimeouts).
+  runScript(conn_, ("SET synchronous_commit = on; SET client_min_messages = warning; " +
+                    sessionTimeouts(conn_))
+                       .c_str());
 }
 
 std::string PostgresJournalStore::connectionProblem() const {
@@ -133,6 +156,7 @@ std::string PostgresJournalStore::problem(bool ask) {
 }
 
 void PostgresJournalStore::readScenes(const std::function<void(JournalSceneRow&&)>& row) {
+  const WithoutStatementTimeout unbounded(conn_);
   eachRow(conn_, "SELECT key, id, name, base_version, source, source_crc FROM scenes ORDER BY key", {},
           [&](const PGresult* r) {
             row({int8At(r, 0, 0), bytesAt(r, 0, 1), bytesAt(r, 0, 2), int8At(r, 0, 3),
@@ -141,6 +165,7 @@ void PostgresJournalStore::readScenes(const std::function<void(JournalSceneRow&&
 }
 
 void PostgresJournalStore::readFrames(const std::function<void(JournalFrameRow&&)>& row) {
+  const WithoutStatementTimeout unbounded(conn_);
   eachRow(conn_,
           "SELECT scene, version, frame, parts, crc, parts_crc, base FROM frames ORDER BY scene, "
           "version",
@@ -152,6 +177,7 @@ void PostgresJournalStore::readFrames(const std::function<void(JournalFrameRow&&
 }
 
 void PostgresJournalStore::readSnapshots(const std::function<void(JournalSnapshotRow&&)>& row) {
+  const WithoutStatementTimeout unbounded(conn_);
   eachRow(conn_, "SELECT scene, version, source, parts, crc FROM snapshots ORDER BY scene, version", {},
           [&](const PGresult* r) {
             row({int8At(r, 0, 0), int8At(r, 0, 1), bytesAt(r, 0, 2), bytesAt(r, 0, 3),

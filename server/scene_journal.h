@@ -124,6 +124,9 @@ class SceneJournal {
   // Throws std::runtime_error naming what durabilityProblem() would (without asking the
   // database: a write that cannot commit fails anyway). Call with mutex_ held.
   void requireDurable() const;
+  // Throws when the store cannot be reached: a lost connection is opened again first (a read
+  // after the database came back). Call with mutex_ held.
+  void requireReachable() const;
   LeaseToken leaseOf(int64_t key) const;  // call with mutex_ held
 
   mutable std::mutex mutex_;
