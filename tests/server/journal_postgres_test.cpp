@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "server/scene_journal.h"
 #include "journal_answers.h"
+#include "server/scene_journal.h"
 #include "server_fixture.h"
 #include "test_journal.h"
 #include "tiny_scene.h"
