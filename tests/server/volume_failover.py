@@ -4,7 +4,8 @@
 is created through HAProxy, a seeded random NRRD volume uploaded to it (POST .../volumes) and a cube
 moved; its owner is then SIGKILLed. Checks, then exits 1 naming the first failure:
   - the other node takes the scene over within 10 s, at the same version, and serves the same
-    scene JSON, the byte-identical mesh and image, and the same volume preview;
+    scene JSON, the byte-identical mesh and image (which shows the volume: it differs from the
+    image before the upload), and the same volume preview;
   - the uploaded bytes were fetched from the database into the new owner's data directory, byte for
     byte, and the database holds them once (the `volumes` rows);
   - the scene takes edits on the new owner; deleting it deletes its volume from the database and
@@ -49,6 +50,18 @@ def random_nrrd(rng, side=10):
     return header.encode() + bytes(voxels)
 
 
+def ask(port, method, path, body=None):
+    """request(), again while it answers 503 (nothing was applied: a scene moving between nodes,
+    or HAProxy taking the busy owner for down while it renders and sending the request to the
+    other node), for up to 10 s, as a client honouring Retry-After does."""
+    deadline = time.monotonic() + 10
+    while True:
+        status, headers, answer = request(port, method, path, body, timeout=60)
+        if status != 503 or time.monotonic() > deadline:
+            return status, headers, answer
+        time.sleep(0.1)
+
+
 def views(cluster, port):
     """What the scene serves: its JSON (no version-independent noise), mesh, image, preview."""
     base = f"/api/scenes/{SCENE}"
@@ -56,17 +69,15 @@ def views(cluster, port):
     for name, path in (("scene", base), ("mesh", base + "/mesh?format=bin"),
                        ("image", base + "/image?width=64&height=48"),
                        ("preview", base + "/volumes/ball/preview?cells=16")):
-        deadline = time.monotonic() + 10
-        while True:  # 503 while a node is taken for down (its health checks wait on a render)
-            status, _, body = request(port, "GET", path, timeout=60)
-            if status not in (0, 502, 503) or time.monotonic() > deadline:
-                break
-            time.sleep(0.1)
+        status, _, body = ask(port, "GET", path)
         if status != 200:
             fail(cluster, f"GET {path} answered {status}: {body[:200]!r}")
         answers[name] = body
     scene = json.loads(answers["scene"])
     scene.pop("node", None)  # which node answers is what changed
+    for volume in scene["scene"]["objects"]:  # named absolute: in that node's data directory
+        if volume.get("type") == "volume":
+            volume["file"] = os.path.basename(volume["file"])
     answers["scene"] = scene
     return answers
 
@@ -87,20 +98,23 @@ def main():
     cluster = Cluster(args.penumbra, nodes=2, lease_seconds=1.5)
     port = cluster.haproxy_port
     with open(os.path.join(REPO, "scenes", "cubes15.scene.json"), "rb") as f:
-        status, _, body = request(port, "POST", f"/api/scenes?name={SCENE}", f.read())
+        status, _, body = ask(port, "POST", f"/api/scenes?name={SCENE}", f.read())
     if status != 201:
         fail(cluster, f"creating the scene answered {status}: {body[:200]!r}")
+    status, _, without = ask(port, "GET", f"/api/scenes/{SCENE}/image?width=64&height=48")
     nrrd = random_nrrd(rng)
-    status, _, body = request(port, "POST", f"/api/scenes/{SCENE}/volumes?id=ball&isovalue=120"
-                              "&translate=0.2,1.5,0.1", nrrd)
+    status, _, body = ask(port, "POST", f"/api/scenes/{SCENE}/volumes?id=ball&isovalue=120"
+                          "&translate=0.2,1.5,0.1", nrrd)
     if status != 201:
         fail(cluster, f"uploading the volume answered {status}: {body[:200]!r}")
     move = json.dumps({"edits": [{"op": "move", "id": "cube_0",
                                   "transform": {"translate": [rng.uniform(-1, 1), 0.5, 0.3]}}]})
-    status, _, body = request(port, "POST", f"/api/scenes/{SCENE}/edits", move)
+    status, _, body = ask(port, "POST", f"/api/scenes/{SCENE}/edits", move)
     if status != 200:
         fail(cluster, f"an edit answered {status}: {body[:200]!r}")
     before = views(cluster, port)
+    if status != 200 or before["image"] == without:
+        fail(cluster, f"the image does not show the uploaded volume (before it: {status})")
     first = owner(cluster)
     if first is None:
         fail(cluster, "no node holds the scene's lease")
@@ -129,10 +143,10 @@ def main():
     if stored != [["1", str(len(nrrd))]]:
         fail(cluster, f"the database holds volumes {stored}, not the one upload of {len(nrrd)} bytes")
 
-    status, _, body = request(port, "POST", f"/api/scenes/{SCENE}/edits", move)
+    status, _, body = ask(port, "POST", f"/api/scenes/{SCENE}/edits", move)
     if status != 200:
         fail(cluster, f"an edit on the new owner answered {status}: {body[:200]!r}")
-    status, _, body = request(port, "DELETE", f"/api/scenes/{SCENE}")
+    status, _, body = ask(port, "DELETE", f"/api/scenes/{SCENE}")
     if status != 204:
         fail(cluster, f"deleting the scene answered {status}: {body[:200]!r}")
     left = cluster.sql("SELECT (SELECT count(*) FROM volumes) + (SELECT count(*) FROM volume_chunks)")
