@@ -17,11 +17,10 @@ constexpr int kDefaultSeconds = 10;  // connect_timeout, when the URI says nothi
 
 std::string head(const char* sql) { return std::string(sql).substr(0, 40); }
 
-// Waits until the connection's socket is ready for `events`. A database silent for
-// answerSeconds: the connection is cut (libpq then sees it closed; the next use opens it again)
-// and this throws.
-void await(PGconn* conn, short events, const char* sql) {
-  const int seconds = answerSeconds(conn);
+// Waits until the connection's socket is ready for `events`. A database silent for `seconds`
+// (answerSeconds): the connection is cut (libpq then sees it closed; the next use opens it
+// again) and this throws.
+void await(PGconn* conn, short events, int seconds, const char* sql) {
   pollfd fd{PQsocket(conn), events, 0};
   int ready = 0;
   do ready = ::poll(&fd, 1, seconds * 1000);
@@ -35,17 +34,17 @@ void await(PGconn* conn, short events, const char* sql) {
 
 // Sends the statement libpq holds. Nonblocking: a large parameter to a database that stopped
 // reading waits in await, bounded, not in send().
-void flush(PGconn* conn, const char* sql) {
+void flush(PGconn* conn, int seconds, const char* sql) {
   for (;;) {
     const int left = PQflush(conn);
     if (left == 0) return;
     if (left < 0) throw std::runtime_error(head(sql) + ": " + errorOf(conn));
-    await(conn, POLLOUT | POLLIN, sql);
+    await(conn, POLLOUT | POLLIN, seconds, sql);
     if (!PQconsumeInput(conn)) throw std::runtime_error(head(sql) + ": " + errorOf(conn));
   }
 }
 
-void send(PGconn* conn, const char* sql, const Params& params, bool singleRow) {
+void send(PGconn* conn, const char* sql, const Params& params, bool singleRow, int seconds) {
   const std::vector<const char*> values = params.values();
   const std::vector<int> lengths = params.lengths(), formats = params.formats();
   if (PQsetnonblocking(conn, 1) != 0 ||
@@ -53,13 +52,13 @@ void send(PGconn* conn, const char* sql, const Params& params, bool singleRow) {
                          lengths.data(), formats.data(), 1) ||
       (singleRow && !PQsetSingleRowMode(conn)))
     throw std::runtime_error(head(sql) + ": " + errorOf(conn));
-  flush(conn, sql);
+  flush(conn, seconds, sql);
 }
 
 // The next result of the statement in flight; null after its last.
-PGresult* nextResult(PGconn* conn, const char* sql) {
+PGresult* nextResult(PGconn* conn, int seconds, const char* sql) {
   while (PQisBusy(conn)) {
-    await(conn, POLLIN, sql);
+    await(conn, POLLIN, seconds, sql);
     if (!PQconsumeInput(conn)) throw std::runtime_error(head(sql) + ": " + errorOf(conn));
   }
   return PQgetResult(conn);
@@ -127,11 +126,12 @@ std::string errorOf(PGconn* conn) {
 }
 
 Result run(PGconn* conn, const char* sql, const Params& params) {
-  send(conn, sql, params, false);
+  const int seconds = answerSeconds(conn);
+  send(conn, sql, params, false, seconds);
   Result result(nullptr, &PQclear);
   std::string error;
   // Every result is read (one for one statement), so that the connection is ready for the next.
-  while (PGresult* next = nextResult(conn, sql)) {
+  while (PGresult* next = nextResult(conn, seconds, sql)) {
     const ExecStatusType status = PQresultStatus(next);
     if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK && error.empty())
       error = head(sql) + ": " + errorOf(conn);
@@ -144,11 +144,12 @@ Result run(PGconn* conn, const char* sql, const Params& params) {
 }
 
 void runScript(PGconn* conn, const char* sql) {
+  const int seconds = answerSeconds(conn);
   if (PQsetnonblocking(conn, 1) != 0 || !PQsendQuery(conn, sql))
     throw std::runtime_error(head(sql) + ": " + errorOf(conn));
-  flush(conn, sql);
+  flush(conn, seconds, sql);
   std::string error;
-  while (PGresult* next = nextResult(conn, sql)) {
+  while (PGresult* next = nextResult(conn, seconds, sql)) {
     const Result result(next, &PQclear);
     const ExecStatusType status = PQresultStatus(next);
     if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK && error.empty())
@@ -174,10 +175,11 @@ std::string bytesAt(const PGresult* result, int row, int column) {
 
 void eachRow(PGconn* conn, const char* sql, const Params& params,
              const std::function<void(const PGresult*)>& row) {
-  send(conn, sql, params, true);
+  const int seconds = answerSeconds(conn);
+  send(conn, sql, params, true, seconds);
   std::string error;
   // Every result is read, even after an error, so that the connection is ready for the next.
-  while (PGresult* next = nextResult(conn, sql)) {
+  while (PGresult* next = nextResult(conn, seconds, sql)) {
     const Result result(next, &PQclear);
     const ExecStatusType status = PQresultStatus(next);
     if (status == PGRES_SINGLE_TUPLE && error.empty()) {
