@@ -229,9 +229,10 @@ int runServe(const Args& args) {
   const std::string tokenQuery = options.token.empty() ? "" : "&token=" + options.token;
   for (const std::string& id : ids)
     std::printf("  open %s?scene=%s%s\n", url.c_str(), id.c_str(), tokenQuery.c_str());
-  const std::string keptIn = options.journalDatabase.empty()
-                                 ? options.dataDir
-                                 : "the PostgreSQL journal, uploads in " + options.dataDir;
+  const std::string keptIn =
+      options.journalDatabase.empty()
+          ? options.dataDir
+          : "the PostgreSQL journal, uploads too (copies in " + options.dataDir + ")";
   std::printf("  (scenes and edits %s)\n", options.dataDir.empty()
                                                ? "are not kept: --ephemeral"
                                                : ("are kept in " + keptIn).c_str());

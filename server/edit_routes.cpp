@@ -74,6 +74,23 @@ class WaitingEdit {
   bool admitted_ = false;
 };
 
+// An add_volume naming another scene's upload (ID-<16 hex digits>.nrrd in the upload folder):
+// refused at its key path, since an upload is kept with its own scene (deleted with it, fetched
+// with it by the node that serves it next).
+void refuseOtherScenesUploads(const Frame& frame, const std::string& sceneId,
+                              const std::string& uploadDir) {
+  for (size_t e = 0; e < frame.edits.size(); ++e) {
+    if (frame.edits[e].op != Edit::Op::AddVolume || uploadDir.empty()) continue;
+    const std::filesystem::path file(frame.edits[e].volume.file);
+    const std::string name = file.filename().string();
+    if (file.parent_path() == uploadDir &&
+        (name.size() != sceneId.size() + 1 + 16 + 5 || name.rfind(sceneId + "-", 0) != 0))
+      throw protocol::ValidationError("edits[" + std::to_string(e) + "].volume.file",
+                                      "names a volume uploaded to another scene; a frame may add "
+                                      "only this scene's own uploads");
+  }
+}
+
 // 200: what the frame (and the frames applied with it, `coalesced_frames` in all) did.
 void sendFrameApplied(httplib::Response& res, const SceneSession::Applied& applied, size_t frames) {
   json body = protocol::frameResultToJson(applied.result, applied.snapshot->scene);
@@ -218,6 +235,7 @@ void HttpServer::registerEditRoutes() {
                       }
                       known.knownFiles = session->initialVolumeFiles();
                       frame = protocol::frameFromJson(body, &materials, &known);
+                      refuseOtherScenesUploads(frame, session->id(), known.knownDirectory);
                     } catch (const protocol::ValidationError& error) {
                       const long edit = editIndexOf(error.path());
                       sendError(

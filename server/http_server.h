@@ -197,6 +197,9 @@ class HttpServer {
   // A Host other than loopback on a loopback server, or a mutating request whose Origin is
   // neither this server's nor allowed: 403 forbidden_origin (access_control.cpp).
   bool refuseForeignOrigin(const httplib::Request& req, httplib::Response& res) const;
+  // The journal's key of a served scene; throws 503 owned_elsewhere when this node dropped it
+  // since the request found it, 404 when it was deleted.
+  int64_t journalKeyOf(const SceneSession& session) const;
   // Journal writes (no-ops when ephemeral); throw ApiError 503 when the journal fails.
   // `next`: the version the frame made (its number, and its part changes for a fast restore).
   void journalFrame(const SceneSession& session, const SceneSnapshot& next,
@@ -216,8 +219,19 @@ class HttpServer {
   // Where uploaded volume files are kept (volume_routes.cpp): the data directory's
   // `volumes/`, or a temporary folder when ephemeral; created on first use.
   std::string volumeUploadDir();
-  // Deletes the volumes uploaded to scene `sceneId` (after the scene left the journal).
+  // Deletes this node's files of the volumes uploaded to scene `sceneId` (after the scene left
+  // the journal, or this node: the journal keeps them).
   void removeUploadsOf(const std::string& sceneId);
+  // An upload kept where every restore finds it (volume_routes.cpp): with a journal, stored in it
+  // (SceneJournal::addVolume: committed, fenced, this node's copy at `path`); else a file in the
+  // upload folder. Throws ApiError 503 when it cannot be kept (owned_elsewhere: the lease lost).
+  struct KeptUpload {
+    std::string path;            // this node's file, which the engine reads
+    std::optional<int64_t> key;  // the scene's journal key, when journaled
+    std::string name;            // volumes/FILE, as the journal names it
+  };
+  KeptUpload keepUpload(SceneSession& session, const std::string& bytes);
+  void discardUpload(const KeptUpload& upload);  // its frame was refused; never throws
   void journalRemove(const SceneSession& session);
   // A frame's JSON as the journal keeps it: the volume files it adds under the data directory
   // written relative to it (so the directory may be moved), other files as resolved.

@@ -11,6 +11,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace penumbra::server {
 
@@ -34,6 +35,16 @@ struct JournalSnapshotRow {
   int64_t scene = 0;
   int64_t version = 0;
   std::string source, parts;
+  int64_t crc = 0;
+};
+
+// An uploaded volume file of a scene (its NRRD upload): named as the journal's texts name it,
+// relative to the data directory (volumes/ID-<16 hex digits>.nrrd), its bytes and their CRC-32.
+struct JournalVolumeRow {
+  int64_t scene = 0;
+  std::string name;
+  std::string bytes;  // empty in volumesOf's rows
+  int64_t size = 0;
   int64_t crc = 0;
 };
 
@@ -85,6 +96,15 @@ class JournalStore {
   virtual void putSnapshot(const JournalSnapshotRow& snapshot, size_t keep, LeaseToken lease) = 0;
   virtual void deleteScene(int64_t key, LeaseToken lease) = 0;  // with its frames and snapshots
   virtual void renameScene(int64_t key, const std::string& name, LeaseToken lease) = 0;
+
+  // Uploaded volume files, kept with their scene (deleteScene deletes them too). putVolume stores
+  // one (replacing one of the same name), a write as above; readVolume gives it back whole
+  // (nullopt: none; throws when its bytes cannot be read), volumesOf lists a scene's without their
+  // bytes; deleteVolume drops one (an upload whose frame was refused).
+  virtual void putVolume(const JournalVolumeRow& volume, LeaseToken lease) = 0;
+  virtual std::optional<JournalVolumeRow> readVolume(int64_t scene, const std::string& name) = 0;
+  virtual std::vector<JournalVolumeRow> volumesOf(int64_t scene) = 0;
+  virtual void deleteVolume(int64_t scene, const std::string& name, LeaseToken lease) = 0;
 };
 
 }  // namespace penumbra::server

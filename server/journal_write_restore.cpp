@@ -30,26 +30,27 @@ ApiError journalError(const std::string& what, const std::exception& error) {
 
 }  // namespace
 
-void HttpServer::journalFrame(const SceneSession& session, const SceneSnapshot& next,
-                              const std::string& frame) {
-  if (!journal_) return;
-  std::optional<int64_t> key;
+int64_t HttpServer::journalKeyOf(const SceneSession& session) const {
   {
     std::lock_guard lock(scenesMutex_);
     const auto it = journalKeys_.find(&session);
-    if (it != journalKeys_.end()) key = it->second;
+    if (it != journalKeys_.end()) return it->second;
   }
-  if (!key) {
-    // Dropped since the request found it (its lease lost or handed over: still journaled), or
-    // deleted.
-    if (leases_ && journal_->hasScene(session.id()))
-      throw ApiError(503, error_code::kOwnedElsewhere, "id",
-                     "scene '" + session.id() +
-                         "' is no longer served by this node; the frame was not applied, retry");
-    throw ApiError(404, error_code::kNotFound, "id", "the scene was deleted");
-  }
+  // Dropped since the request found it (its lease lost or handed over: still journaled), or
+  // deleted.
+  if (leases_ && journal_->hasScene(session.id()))
+    throw ApiError(503, error_code::kOwnedElsewhere, "id",
+                   "scene '" + session.id() +
+                       "' is no longer served by this node; nothing was applied, retry");
+  throw ApiError(404, error_code::kNotFound, "id", "the scene was deleted");
+}
+
+void HttpServer::journalFrame(const SceneSession& session, const SceneSnapshot& next,
+                              const std::string& frame) {
+  if (!journal_) return;
+  const int64_t key = journalKeyOf(session);
   try {
-    journal_->addFrame(*key, next.version, frame, partChangesText(partChangesOf(next)),
+    journal_->addFrame(key, next.version, frame, partChangesText(partChangesOf(next)),
                        next.frameBase);
   } catch (const LeaseLost& error) {
     // Another node took the scene over: this one stops serving it (the frame is undone, its
@@ -276,9 +277,12 @@ const StoredSnapshot* newestSnapshot(const StoredScene& stored, const SceneJourn
 
 // Brings one journaled scene back as far as its frames allow: from its newest snapshot that
 // verifies and loads, else from its source, then the frames after it. Null when neither builds
-// (kept in the journal, not served). Sets report.stalledAt when it stops short.
+// (kept in the journal, not served). Sets report.stalledAt when it stops short, or when
+// `volumeProblem` says its uploaded volumes could not all be put in place.
 std::shared_ptr<SceneSession> restoreScene(const StoredScene& stored, const SceneJournal& journal,
-                                           const EngineSettings& settings, RestoredScene& report) {
+                                           const EngineSettings& settings,
+                                           const std::string& volumeProblem,
+                                           RestoredScene& report) {
   std::shared_ptr<SceneSession> session;
   const StoredSnapshot* from = newestSnapshot(stored, journal, settings, session, report);
   if (from) {
@@ -292,8 +296,8 @@ std::shared_ptr<SceneSession> restoreScene(const StoredScene& stored, const Scen
       session = startSession(stored, nullptr, journal, settings);
     } catch (const std::exception& error) {  // kept in the journal, not served
       report.served = false;
-      report.problem =
-          std::string("not restored: the scene no longer builds (") + error.what() + ")";
+      report.problem = std::string("not restored: the scene no longer builds (") + error.what() +
+                       ")" + (volumeProblem.empty() ? "" : "; " + volumeProblem);
       return nullptr;
     }
   }
@@ -316,6 +320,8 @@ std::shared_ptr<SceneSession> restoreScene(const StoredScene& stored, const Scen
   }
   if (!done) replayOneByOne(*session, journal, frames, report, problem);
   if (problem.empty() && !stored.complete) problem = "the journal could not be read to its end";
+  if (!volumeProblem.empty())
+    problem = problem.empty() ? volumeProblem : problem + " (" + volumeProblem + ")";
   if (problem.empty() && !journal.logDamage().empty())
     problem = "the journal lost committed frames (" + journal.logDamage() + ")";
   if (!problem.empty()) {
@@ -384,7 +390,10 @@ std::shared_ptr<SceneSession> HttpServer::restoreStored(const SceneJournal::Stor
                                                         RestoredScene& report) {
   const auto start = std::chrono::steady_clock::now();
   report.id = stored.id;
-  std::shared_ptr<SceneSession> session = restoreScene(stored, *journal_, options_.engine, report);
+  // Its uploads first: a node restoring a scene another node served fetches them.
+  const std::string volumeProblem = journal_->fetchVolumes(stored);
+  std::shared_ptr<SceneSession> session =
+      restoreScene(stored, *journal_, options_.engine, volumeProblem, report);
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::lock_guard lock(scenesMutex_);
   if (!report.problem.empty())

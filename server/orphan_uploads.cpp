@@ -17,18 +17,21 @@ bool looksLikeUpload(const std::string& name) {
 }
 
 bool mentioned(const std::string& name, const std::vector<SceneJournal::StoredScene>& scenes) {
-  const auto in = [&](const std::string& text) { return text.find(name) != std::string::npos; };
-  for (const auto& scene : scenes) {
-    if (in(scene.source)) return true;
-    for (const auto& frame : scene.frames)
-      if (in(frame.frame)) return true;
-    for (const auto& snapshot : scene.snapshots)
-      if (in(snapshot.source)) return true;
-  }
-  return false;
+  return std::any_of(scenes.begin(), scenes.end(),
+                     [&](const auto& scene) { return namesUpload(scene, name); });
 }
 
 }  // namespace
+
+bool namesUpload(const SceneJournal::StoredScene& scene, const std::string& name) {
+  const auto in = [&](const std::string& text) { return text.find(name) != std::string::npos; };
+  if (in(scene.source)) return true;
+  for (const auto& frame : scene.frames)
+    if (in(frame.frame)) return true;
+  for (const auto& snapshot : scene.snapshots)
+    if (in(snapshot.source)) return true;
+  return false;
+}
 
 size_t removeOrphanUploads(const std::string& uploadDir, const std::vector<SceneJournal::StoredScene>& scenes) {
   if (std::any_of(scenes.begin(), scenes.end(), [](const auto& scene) { return !scene.complete; })) return 0;

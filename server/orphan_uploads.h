@@ -11,6 +11,10 @@
 
 namespace penumbra::server {
 
+// Whether `scene`'s source, one of its frames or one of its snapshots mentions `name` (an
+// upload's file name, or its name relative to the data directory).
+bool namesUpload(const SceneJournal::StoredScene& scene, const std::string& name);
+
 // Removes the files of `uploadDir` named as uploads are (ID-<16 hex digits>.nrrd) that no
 // scene source, frame or snapshot text of `scenes` mentions; returns how many. Removes nothing
 // when some scene's frames could not all be read (a file might be named by an unread one).

@@ -13,8 +13,11 @@ using namespace pg;
 namespace {
 
 // As the SQLite journal's tables (sqlite_journal_store.cpp), every number a BIGINT, and the
-// scene leases. Under a transaction-scoped advisory lock: nodes starting together on an empty
-// database would otherwise race on CREATE TABLE IF NOT EXISTS (a unique violation in pg_type).
+// scene leases. An uploaded volume's bytes are rows of volume_chunks (kVolumeChunk each: a 256 MiB
+// upload is written and read a chunk per statement, never one huge value), stored uncompressed
+// (EXTERNAL: NRRD data is raw or gzip already). Under a transaction-scoped advisory lock: nodes
+// starting together on an empty database would otherwise race on CREATE TABLE IF NOT EXISTS (a
+// unique violation in pg_type).
 constexpr const char* kSchema = R"(
 BEGIN;
 SELECT pg_advisory_xact_lock(7039390);
@@ -42,6 +45,20 @@ CREATE TABLE IF NOT EXISTS snapshots (
   crc BIGINT NOT NULL,
   PRIMARY KEY (scene, version));
 CREATE INDEX IF NOT EXISTS scenes_by_id ON scenes (id);
+CREATE TABLE IF NOT EXISTS volumes (
+  scene BIGINT NOT NULL REFERENCES scenes(key) ON DELETE CASCADE,
+  name TEXT NOT NULL,
+  size BIGINT NOT NULL,
+  crc BIGINT NOT NULL,
+  PRIMARY KEY (scene, name));
+CREATE TABLE IF NOT EXISTS volume_chunks (
+  scene BIGINT NOT NULL,
+  name TEXT NOT NULL,
+  seq BIGINT NOT NULL,
+  bytes BYTEA NOT NULL,
+  PRIMARY KEY (scene, name, seq),
+  FOREIGN KEY (scene, name) REFERENCES volumes ON DELETE CASCADE);
+ALTER TABLE volume_chunks ALTER COLUMN bytes SET STORAGE EXTERNAL;
 CREATE TABLE IF NOT EXISTS scene_leases (
   scene_id TEXT PRIMARY KEY,
   owner TEXT NOT NULL,
@@ -70,10 +87,32 @@ void checkLeaseOfKey(PGconn* conn, int64_t key, LeaseToken lease) {
              Params().add(key).add(*lease), lease, "#" + std::to_string(key));
 }
 
+// A read of the whole journal (every scene restored at start) may outlast the statement timeout:
+// it runs without one (the answer timeout still ends a silent database), set again after it.
+class WithoutStatementTimeout {
+ public:
+  explicit WithoutStatementTimeout(PGconn* conn) : conn_(conn) {
+    runScript(conn_, "SET statement_timeout = 0");
+  }
+  ~WithoutStatementTimeout() {
+    try {
+      runScript(conn_, sessionTimeouts(conn_).c_str());
+    } catch (const std::exception&) {  // a lost connection: configure() sets it on reconnecting
+    }
+  }
+  WithoutStatementTimeout(const WithoutStatementTimeout&) = delete;
+  WithoutStatementTimeout& operator=(const WithoutStatementTimeout&) = delete;
+
+ private:
+  PGconn* conn_;
+};
+
+constexpr size_t kVolumeChunk = size_t(8) << 20;
+
 }  // namespace
 
 PostgresJournalStore::PostgresJournalStore(const std::string& uri)
-    : conn_(PQconnectdb(uri.c_str())) {
+    : conn_(connect(uri)) {
   if (!conn_) throw std::runtime_error("the journal database cannot be opened: out of memory");
   if (PQstatus(conn_) != CONNECTION_OK) {
     const std::string message = errorOf(conn_);
@@ -102,8 +141,11 @@ PostgresJournalStore::~PostgresJournalStore() { PQfinish(conn_); }
 
 void PostgresJournalStore::configure() {
   // A commit returns once its log is flushed on the database's disk, whatever the server's
-  // default; the "already exists" notices of the schema are not news.
-  runScript(conn_, "SET synchronous_commit = on; SET client_min_messages = warning");
+  // default; the "already exists" notices of the schema are not news; a statement or a lock wait
+  // that outlasts the answer timeout fails (sessionTimeouts).
+  runScript(conn_, ("SET synchronous_commit = on; SET client_min_messages = warning; " +
+                    sessionTimeouts(conn_))
+                       .c_str());
 }
 
 std::string PostgresJournalStore::connectionProblem() const {
@@ -133,6 +175,7 @@ std::string PostgresJournalStore::problem(bool ask) {
 }
 
 void PostgresJournalStore::readScenes(const std::function<void(JournalSceneRow&&)>& row) {
+  const WithoutStatementTimeout unbounded(conn_);
   eachRow(conn_, "SELECT key, id, name, base_version, source, source_crc FROM scenes ORDER BY key", {},
           [&](const PGresult* r) {
             row({int8At(r, 0, 0), bytesAt(r, 0, 1), bytesAt(r, 0, 2), int8At(r, 0, 3),
@@ -141,6 +184,7 @@ void PostgresJournalStore::readScenes(const std::function<void(JournalSceneRow&&
 }
 
 void PostgresJournalStore::readFrames(const std::function<void(JournalFrameRow&&)>& row) {
+  const WithoutStatementTimeout unbounded(conn_);
   eachRow(conn_,
           "SELECT scene, version, frame, parts, crc, parts_crc, base FROM frames ORDER BY scene, "
           "version",
@@ -152,6 +196,7 @@ void PostgresJournalStore::readFrames(const std::function<void(JournalFrameRow&&
 }
 
 void PostgresJournalStore::readSnapshots(const std::function<void(JournalSnapshotRow&&)>& row) {
+  const WithoutStatementTimeout unbounded(conn_);
   eachRow(conn_, "SELECT scene, version, source, parts, crc FROM snapshots ORDER BY scene, version", {},
           [&](const PGresult* r) {
             row({int8At(r, 0, 0), int8At(r, 0, 1), bytesAt(r, 0, 2), bytesAt(r, 0, 3),
@@ -263,6 +308,57 @@ void PostgresJournalStore::renameScene(int64_t key, const std::string& name, Lea
   Transaction transaction(conn_);
   checkLeaseOfKey(conn_, key, lease);
   run(conn_, "UPDATE scenes SET name = $1 WHERE key = $2", Params().text(name).add(key));
+  transaction.commit();
+}
+
+void PostgresJournalStore::putVolume(const JournalVolumeRow& volume, LeaseToken lease) {
+  Transaction transaction(conn_);
+  checkLeaseOfKey(conn_, volume.scene, lease);
+  run(conn_, "DELETE FROM volumes WHERE scene = $1 AND name = $2",
+      Params().add(volume.scene).text(volume.name));
+  run(conn_, "INSERT INTO volumes (scene, name, size, crc) VALUES ($1, $2, $3, $4)",
+      Params()
+          .add(volume.scene)
+          .text(volume.name)
+          .add(int64_t(volume.bytes.size()))
+          .add(volume.crc));
+  for (size_t at = 0, seq = 0; at < volume.bytes.size(); at += kVolumeChunk, ++seq)
+    run(conn_, "INSERT INTO volume_chunks (scene, name, seq, bytes) VALUES ($1, $2, $3, $4)",
+        Params()
+            .add(volume.scene)
+            .text(volume.name)
+            .add(int64_t(seq))
+            .bytes(volume.bytes.substr(at, kVolumeChunk)));
+  transaction.commit();
+}
+
+std::optional<JournalVolumeRow> PostgresJournalStore::readVolume(int64_t scene,
+                                                                 const std::string& name) {
+  const Result row = run(conn_, "SELECT size, crc FROM volumes WHERE scene = $1 AND name = $2",
+                         Params().add(scene).text(name));
+  if (PQntuples(row.get()) == 0) return std::nullopt;
+  JournalVolumeRow volume{scene, name, "", int8At(row.get(), 0, 0), int8At(row.get(), 0, 1)};
+  volume.bytes.reserve(size_t(volume.size));
+  eachRow(conn_, "SELECT bytes FROM volume_chunks WHERE scene = $1 AND name = $2 ORDER BY seq",
+          Params().add(scene).text(name), [&](const PGresult* r) {
+            volume.bytes.append(PQgetvalue(r, 0, 0), size_t(PQgetlength(r, 0, 0)));
+          });
+  return volume;
+}
+
+std::vector<JournalVolumeRow> PostgresJournalStore::volumesOf(int64_t scene) {
+  std::vector<JournalVolumeRow> volumes;
+  eachRow(conn_, "SELECT name, size, crc FROM volumes WHERE scene = $1 ORDER BY name",
+          Params().add(scene), [&](const PGresult* r) {
+            volumes.push_back({scene, bytesAt(r, 0, 0), "", int8At(r, 0, 1), int8At(r, 0, 2)});
+          });
+  return volumes;
+}
+
+void PostgresJournalStore::deleteVolume(int64_t scene, const std::string& name, LeaseToken lease) {
+  Transaction transaction(conn_);
+  checkLeaseOfKey(conn_, scene, lease);
+  run(conn_, "DELETE FROM volumes WHERE scene = $1 AND name = $2", Params().add(scene).text(name));
   transaction.commit();
 }
 

@@ -1,8 +1,10 @@
 // The journal's PostgreSQL store (journal_store.h; docs/SERVER.md "Durability"): the same three
 // tables as the SQLite journal in a database named by a libpq connection URI, over one connection
-// (libpq), and the scene_leases table (scene_leases.h) whose tokens fence every write. Each write is a transaction committed with synchronous_commit on, so an acknowledged
-// frame is on the database's disk; a lost connection is opened again on the next write or health
-// check. Not thread-safe.
+// (libpq), uploaded volume files in the database too (volumes, their bytes in 8 MiB chunks: every
+// node reads them), and the scene_leases table (scene_leases.h) whose tokens fence every write.
+// Each write is a transaction committed with synchronous_commit on, so an acknowledged frame is on
+// the database's disk; a lost connection is opened again on the next write or health check. Not
+// thread-safe.
 #pragma once
 
 #include <string>
@@ -39,6 +41,11 @@ class PostgresJournalStore : public JournalStore {
   void putSnapshot(const JournalSnapshotRow& snapshot, size_t keep, LeaseToken lease) override;
   void deleteScene(int64_t key, LeaseToken lease) override;
   void renameScene(int64_t key, const std::string& name, LeaseToken lease) override;
+
+  void putVolume(const JournalVolumeRow& volume, LeaseToken lease) override;
+  std::optional<JournalVolumeRow> readVolume(int64_t scene, const std::string& name) override;
+  std::vector<JournalVolumeRow> volumesOf(int64_t scene) override;
+  void deleteVolume(int64_t scene, const std::string& name, LeaseToken lease) override;
 
  private:
   void configure();                       // the session's settings, after every (re)connection

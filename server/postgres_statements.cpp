@@ -1,11 +1,99 @@
 #include "server/postgres_statements.h"
 
 #include <endian.h>
+#include <poll.h>
+#include <sys/socket.h>
 
+#include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 
 namespace penumbra::server::pg {
+
+namespace {
+
+constexpr int kDefaultSeconds = 10;  // connect_timeout, when the URI says nothing
+
+std::string head(const char* sql) { return std::string(sql).substr(0, 40); }
+
+// Waits until the connection's socket is ready for `events`. A database silent for `seconds`
+// (answerSeconds): the connection is cut (libpq then sees it closed; the next use opens it
+// again) and this throws.
+void await(PGconn* conn, short events, int seconds, const char* sql) {
+  pollfd fd{PQsocket(conn), events, 0};
+  int ready = 0;
+  do ready = ::poll(&fd, 1, seconds * 1000);
+  while (ready < 0 && errno == EINTR);
+  if (ready > 0) return;
+  if (fd.fd >= 0) ::shutdown(fd.fd, SHUT_RDWR);
+  PQconsumeInput(conn);  // reads the end of the stream: CONNECTION_BAD
+  throw std::runtime_error(head(sql) + ": the database did not answer within " +
+                           std::to_string(seconds) + " s (the connection was cut)");
+}
+
+// Sends the statement libpq holds. Nonblocking: a large parameter to a database that stopped
+// reading waits in await, bounded, not in send().
+void flush(PGconn* conn, int seconds, const char* sql) {
+  for (;;) {
+    const int left = PQflush(conn);
+    if (left == 0) return;
+    if (left < 0) throw std::runtime_error(head(sql) + ": " + errorOf(conn));
+    await(conn, POLLOUT | POLLIN, seconds, sql);
+    if (!PQconsumeInput(conn)) throw std::runtime_error(head(sql) + ": " + errorOf(conn));
+  }
+}
+
+void send(PGconn* conn, const char* sql, const Params& params, bool singleRow, int seconds) {
+  const std::vector<const char*> values = params.values();
+  const std::vector<int> lengths = params.lengths(), formats = params.formats();
+  if (PQsetnonblocking(conn, 1) != 0 ||
+      !PQsendQueryParams(conn, sql, params.count(), params.types(), values.data(),
+                         lengths.data(), formats.data(), 1) ||
+      (singleRow && !PQsetSingleRowMode(conn)))
+    throw std::runtime_error(head(sql) + ": " + errorOf(conn));
+  flush(conn, seconds, sql);
+}
+
+// The next result of the statement in flight; null after its last.
+PGresult* nextResult(PGconn* conn, int seconds, const char* sql) {
+  while (PQisBusy(conn)) {
+    await(conn, POLLIN, seconds, sql);
+    if (!PQconsumeInput(conn)) throw std::runtime_error(head(sql) + ": " + errorOf(conn));
+  }
+  return PQgetResult(conn);
+}
+
+}  // namespace
+
+PGconn* connect(const std::string& uri) {
+  const std::string seconds = std::to_string(kDefaultSeconds);
+  const char* keys[] = {"connect_timeout", "keepalives", "keepalives_idle",
+                        "keepalives_interval", "keepalives_count", "tcp_user_timeout",
+                        "dbname", nullptr};
+  const std::string userTimeout = std::to_string(kDefaultSeconds * 1000);
+  // The URI comes last: what it sets overrides these defaults.
+  const char* values[] = {seconds.c_str(), "1", "5", "2", "3", userTimeout.c_str(), uri.c_str(),
+                          nullptr};
+  return PQconnectdbParams(keys, values, 1);
+}
+
+int answerSeconds(PGconn* conn) {
+  int seconds = kDefaultSeconds;
+  PQconninfoOption* options = PQconninfo(conn);
+  for (PQconninfoOption* option = options; option && option->keyword; ++option)
+    if (option->val && std::strcmp(option->keyword, "connect_timeout") == 0 &&
+        std::atoi(option->val) > 0)
+      seconds = std::atoi(option->val);
+  PQconninfoFree(options);
+  return seconds;
+}
+
+std::string sessionTimeouts(PGconn* conn) {
+  const std::string bound = "'" + std::to_string(answerSeconds(conn)) + "s'";
+  return "SET statement_timeout = " + bound + "; SET lock_timeout = " + bound +
+         "; SET idle_in_transaction_session_timeout = " + bound;
+}
 
 Params& Params::add(int64_t value) {
   const uint64_t big = htobe64(uint64_t(value));
@@ -38,21 +126,36 @@ std::string errorOf(PGconn* conn) {
 }
 
 Result run(PGconn* conn, const char* sql, const Params& params) {
-  const std::vector<const char*> values = params.values();
-  const std::vector<int> lengths = params.lengths(), formats = params.formats();
-  Result result(PQexecParams(conn, sql, params.count(), params.types(), values.data(),
-                             lengths.data(), formats.data(), 1),
-                &PQclear);
-  const ExecStatusType status = result ? PQresultStatus(result.get()) : PGRES_FATAL_ERROR;
-  if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK)
-    throw std::runtime_error(std::string(sql).substr(0, 40) + ": " + errorOf(conn));
+  const int seconds = answerSeconds(conn);
+  send(conn, sql, params, false, seconds);
+  Result result(nullptr, &PQclear);
+  std::string error;
+  // Every result is read (one for one statement), so that the connection is ready for the next.
+  while (PGresult* next = nextResult(conn, seconds, sql)) {
+    const ExecStatusType status = PQresultStatus(next);
+    if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK && error.empty())
+      error = head(sql) + ": " + errorOf(conn);
+    if (result) PQclear(next);
+    else result.reset(next);
+  }
+  if (!result && error.empty()) error = head(sql) + ": " + errorOf(conn);
+  if (!error.empty()) throw std::runtime_error(error);
   return result;
 }
 
 void runScript(PGconn* conn, const char* sql) {
-  const Result result(PQexec(conn, sql), &PQclear);
-  if (!result || PQresultStatus(result.get()) != PGRES_COMMAND_OK)
-    throw std::runtime_error(std::string(sql).substr(0, 40) + ": " + errorOf(conn));
+  const int seconds = answerSeconds(conn);
+  if (PQsetnonblocking(conn, 1) != 0 || !PQsendQuery(conn, sql))
+    throw std::runtime_error(head(sql) + ": " + errorOf(conn));
+  flush(conn, seconds, sql);
+  std::string error;
+  while (PGresult* next = nextResult(conn, seconds, sql)) {
+    const Result result(next, &PQclear);
+    const ExecStatusType status = PQresultStatus(next);
+    if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK && error.empty())
+      error = head(sql) + ": " + errorOf(conn);
+  }
+  if (!error.empty()) throw std::runtime_error(error);
 }
 
 int64_t int8At(const PGresult* result, int row, int column) {
@@ -72,15 +175,11 @@ std::string bytesAt(const PGresult* result, int row, int column) {
 
 void eachRow(PGconn* conn, const char* sql, const Params& params,
              const std::function<void(const PGresult*)>& row) {
-  const std::vector<const char*> values = params.values();
-  const std::vector<int> lengths = params.lengths(), formats = params.formats();
-  if (!PQsendQueryParams(conn, sql, params.count(), params.types(), values.data(), lengths.data(),
-                         formats.data(), 1) ||
-      !PQsetSingleRowMode(conn))
-    throw std::runtime_error(std::string(sql).substr(0, 40) + ": " + errorOf(conn));
+  const int seconds = answerSeconds(conn);
+  send(conn, sql, params, true, seconds);
   std::string error;
   // Every result is read, even after an error, so that the connection is ready for the next.
-  while (PGresult* next = PQgetResult(conn)) {
+  while (PGresult* next = nextResult(conn, seconds, sql)) {
     const Result result(next, &PQclear);
     const ExecStatusType status = PQresultStatus(next);
     if (status == PGRES_SINGLE_TUPLE && error.empty()) {
@@ -90,7 +189,7 @@ void eachRow(PGconn* conn, const char* sql, const Params& params,
         error = thrown.what();
       }
     } else if (status != PGRES_TUPLES_OK && status != PGRES_SINGLE_TUPLE && error.empty()) {
-      error = std::string(sql).substr(0, 40) + ": " + errorOf(conn);
+      error = head(sql) + ": " + errorOf(conn);
     }
   }
   if (!error.empty()) throw std::runtime_error(error);

@@ -1,7 +1,10 @@
 // libpq at its simplest, for the PostgreSQL journal (postgres_journal_store.h) and the scene
-// leases (scene_leases.h): statements with binary parameters and results, rows one at a time,
-// a transaction rolled back unless committed. Each error throws std::runtime_error with the
-// database's message. Stateless; a connection is used by one thread at a time.
+// leases (scene_leases.h): a connection with TCP keepalives and timeouts, statements with binary
+// parameters and results, rows one at a time, a transaction rolled back unless committed. Each
+// error throws std::runtime_error with the database's message; a database that stops answering
+// without closing the connection (a stopped or wedged server, a dead link) is an error too, after
+// the connection's answer timeout, and the connection is cut. Stateless; a connection is used by
+// one thread at a time.
 #pragma once
 
 #include <libpq-fe.h>
@@ -42,9 +45,26 @@ class Params {
   std::vector<bool> null_;
 };
 
+// Opens a connection to `uri` (PQconnectdb's status to check) with these defaults under whatever
+// the URI itself sets: connect_timeout 10 s, TCP keepalives probing an idle connection after 5 s,
+// every 2 s, 3 times (a peer that vanished is noticed in about 11 s), and tcp_user_timeout 10 s
+// (data sent and never acknowledged). Keepalives act on TCP only; answerSeconds bounds a unix
+// socket's wait too.
+PGconn* connect(const std::string& uri);
+// How long a statement waits for the database: its connect_timeout (a URI's ?connect_timeout=S),
+// the same bound as opening the connection. Also the session's statement_timeout and lock_timeout
+// (sessionTimeouts).
+int answerSeconds(PGconn* conn);
+// The session settings at answerSeconds: statement_timeout and lock_timeout (a statement running
+// longer, or waiting longer on a lock, fails) and idle_in_transaction_session_timeout (a node
+// stalled inside a transaction loses its session, and with it the locks that would hold others).
+std::string sessionTimeouts(PGconn* conn);
+
 // The connection's last error, without its trailing newline.
 std::string errorOf(PGconn* conn);
-// Runs one statement; throws std::runtime_error with the database's message unless it succeeded.
+// Runs one statement; throws std::runtime_error with the database's message unless it succeeded,
+// or when the database sent nothing for answerSeconds (the connection is then cut: the next use
+// connects again).
 Result run(PGconn* conn, const char* sql, const Params& params = {});
 // Runs statements without parameters or rows (the schema, session settings), several at once.
 void runScript(PGconn* conn, const char* sql);
@@ -63,7 +83,11 @@ class Transaction {
  public:
   explicit Transaction(PGconn* conn) : conn_(conn) { run(conn_, "BEGIN"); }
   ~Transaction() {
-    if (open_ && PQstatus(conn_) == CONNECTION_OK) PQclear(PQexec(conn_, "ROLLBACK"));
+    if (!open_ || PQstatus(conn_) != CONNECTION_OK) return;
+    try {
+      run(conn_, "ROLLBACK");
+    } catch (const std::exception&) {  // the connection is gone: so is the transaction
+    }
   }
   Transaction(const Transaction&) = delete;
   Transaction& operator=(const Transaction&) = delete;

@@ -61,6 +61,11 @@ void SceneJournal::requireDurable() const {
   if (!problem.empty()) throw std::runtime_error(problem);
 }
 
+void SceneJournal::requireReachable() const {
+  if (const std::string problem = store_->problem(false); !problem.empty())
+    throw std::runtime_error(problem);
+}
+
 namespace {
 
 SceneJournal::StoredScene storedScene(JournalSceneRow&& row) {
@@ -135,6 +140,7 @@ std::vector<SceneJournal::StoredScene> SceneJournal::load() {
 std::optional<SceneJournal::StoredScene> SceneJournal::loadScene(const std::string& id,
                                                                  int64_t lease) {
   std::lock_guard lock(mutex_);
+  requireReachable();
   std::optional<JournalSceneRow> row = store_->sceneById(id);
   if (!row) return std::nullopt;
   StoredScene scene = storedScene(std::move(*row));
@@ -159,6 +165,7 @@ std::optional<SceneJournal::StoredScene> SceneJournal::loadScene(const std::stri
 
 bool SceneJournal::hasScene(const std::string& id) {
   std::lock_guard lock(mutex_);
+  requireReachable();
   return store_->sceneById(id).has_value();
 }
 

@@ -113,6 +113,22 @@ class SceneJournal {
   // The scene's new name (scene lists and restarts show it).
   void renameScene(int64_t key, const std::string& name);
 
+  // Uploaded volume files (journal_volumes.cpp; docs/SERVER.md "Volumes on many nodes"). `name`
+  // is the file as the journal's texts name it, relative to the data directory
+  // (volumes/FILE; anything else throws). addVolume stores the bytes with scene `key` — one
+  // committed write, fenced like its frames, thrown as they are — and leaves this node's copy at
+  // DIR/name before returning.
+  void addVolume(int64_t key, const std::string& name, const std::string& bytes);
+  // Drops an upload no frame came to name (its frame was refused): the stored bytes and this
+  // node's copy.
+  void removeVolume(int64_t key, const std::string& name);
+  // Puts in DIR every stored upload of `scene` that its source, frames or snapshots name, as
+  // stored: a copy whose size and CRC match is kept, any other fetched from the store and checked.
+  // Returns what failed ("" when every one is in place); never throws.
+  std::string fetchVolumes(const StoredScene& scene);
+  // An upload's checksum: zlib's CRC-32 over its bytes.
+  static uint32_t volumeChecksum(const std::string& bytes);
+
   // The checksum journaled with a frame: zlib's CRC-32 over its version and JSON. (Its part
   // changes have their own; a mismatch there only drops them: the scene replays frame by frame.)
   static uint32_t frameChecksum(uint64_t version, const std::string& frame);
@@ -124,6 +140,9 @@ class SceneJournal {
   // Throws std::runtime_error naming what durabilityProblem() would (without asking the
   // database: a write that cannot commit fails anyway). Call with mutex_ held.
   void requireDurable() const;
+  // Throws when the store cannot be reached: a lost connection is opened again first (a read
+  // after the database came back). Call with mutex_ held.
+  void requireReachable() const;
   LeaseToken leaseOf(int64_t key) const;  // call with mutex_ held
 
   mutable std::mutex mutex_;

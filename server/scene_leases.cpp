@@ -18,12 +18,16 @@ int64_t millis(double seconds) { return int64_t(seconds * 1000); }
 }  // namespace
 
 SceneLeases::SceneLeases(const std::string& uri, std::string node, double leaseSeconds)
-    : conn_(PQconnectdb(uri.c_str())), node_(std::move(node)), leaseSeconds_(leaseSeconds) {
-  if (!conn_ || PQstatus(conn_) != CONNECTION_OK) {
-    const std::string message = conn_ ? errorOf(conn_) : "out of memory";
+    : conn_(connect(uri)), node_(std::move(node)), leaseSeconds_(leaseSeconds) {
+  try {
+    if (!conn_ || PQstatus(conn_) != CONNECTION_OK)
+      throw std::runtime_error(conn_ ? errorOf(conn_) : "out of memory");
+    runScript(conn_, sessionTimeouts(conn_).c_str());
+  } catch (const std::exception& error) {
     PQfinish(conn_);
     conn_ = nullptr;
-    throw std::runtime_error("the scene leases' database cannot be reached (" + message + ")");
+    throw std::runtime_error("the scene leases' database cannot be reached (" +
+                             std::string(error.what()) + ")");
   }
 }
 
@@ -35,6 +39,7 @@ void SceneLeases::reconnect() {
   if (PQstatus(conn_) != CONNECTION_OK)
     throw std::runtime_error("the scene leases' database cannot be reached (" + errorOf(conn_) +
                              ")");
+  runScript(conn_, sessionTimeouts(conn_).c_str());  // a new session: its timeouts again
 }
 
 std::optional<int64_t> SceneLeases::acquire(const std::string& id, Holder& holder) {

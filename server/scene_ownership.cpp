@@ -172,6 +172,9 @@ std::optional<int64_t> HttpServer::dropScene(const std::string& id, const std::s
     const auto it = scenes_.find(id);
     if (it == scenes_.end() || !it->second) return token;  // building or restoring: theirs
     session = it->second;
+    // This node's copies of its uploads go (the journal keeps them; a node that serves it next
+    // fetches them): before the id is free, so that no takeover here fetches them first.
+    removeUploadsOf(id);
     scenes_.erase(it);
     if (const auto keyIt = journalKeys_.find(session.get()); keyIt != journalKeys_.end()) {
       key = keyIt->second;

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "server/data_directory.h"
 #include "server/sqlite_db.h"
@@ -15,7 +17,9 @@ namespace {
 // Frames are keyed by (scene, version); deleting a scene deletes its frames (foreign key).
 // `parts` (PartChanges, part_changes.h), `base` (StoredFrame::base), snapshots and the checksums
 // `crc` (version and frame), `parts_crc` and `source_crc` came later: NULL in older journals' rows
-// (read as intact).
+// (read as intact). An uploaded volume is a `volumes` row (its size and CRC) and its bytes in the
+// data directory under its name, as uploads were kept before the rows (older journals' uploads
+// have no row, and stay where they are).
 constexpr const char* kSchema = R"(
 CREATE TABLE IF NOT EXISTS scenes (
   key INTEGER PRIMARY KEY AUTOINCREMENT,
@@ -40,6 +44,12 @@ CREATE TABLE IF NOT EXISTS snapshots (
   parts BLOB NOT NULL,
   crc INTEGER NOT NULL,
   PRIMARY KEY (scene, version)) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS volumes (
+  scene INTEGER NOT NULL REFERENCES scenes(key) ON DELETE CASCADE,
+  name TEXT NOT NULL,
+  size INTEGER NOT NULL,
+  crc INTEGER NOT NULL,
+  PRIMARY KEY (scene, name)) WITHOUT ROWID;
 )";
 
 // Adds `column` to `table` when a journal from before it lacks it.
@@ -62,7 +72,7 @@ SqliteStatement& bindOptional(SqliteStatement& statement, int index, std::option
 }  // namespace
 
 SqliteJournalStore::SqliteJournalStore(DataDirectory& dir)
-    : path_((std::filesystem::path(dir.path()) / "journal.sqlite3").string()) {
+    : path_((std::filesystem::path(dir.path()) / "journal.sqlite3").string()), dir_(dir.path()) {
   try {
     open();
   } catch (const SqliteError& error) {  // loud, and nothing in the file is changed or dropped
@@ -190,15 +200,80 @@ void SqliteJournalStore::putSnapshot(const JournalSnapshotRow& snapshot, size_t 
 }
 
 void SqliteJournalStore::deleteScene(int64_t key, LeaseToken) {
+  const std::vector<JournalVolumeRow> volumes = volumesOf(key);
   SqliteTransaction transaction(*db_);
-  db_->prepare("DELETE FROM scenes WHERE key = ?").bind(1, key).run();
+  db_->prepare("DELETE FROM scenes WHERE key = ?").bind(1, key).run();  // its rows cascade
   transaction.commit();
+  std::error_code ignored;  // a file left behind is removed at the next start (orphan_uploads.h)
+  for (const JournalVolumeRow& volume : volumes)
+    std::filesystem::remove(fileOf(volume.name), ignored);
 }
 
 void SqliteJournalStore::renameScene(int64_t key, const std::string& name, LeaseToken) {
   SqliteTransaction transaction(*db_);
   db_->prepare("UPDATE scenes SET name = ? WHERE key = ?").bindText(1, name).bind(2, key).run();
   transaction.commit();
+}
+
+std::string SqliteJournalStore::fileOf(const std::string& volume) const {
+  return (std::filesystem::path(dir_) / volume).string();
+}
+
+// The file first, durably, then its row: a row never names bytes that are not there.
+void SqliteJournalStore::putVolume(const JournalVolumeRow& volume, LeaseToken) {
+  const std::string file = fileOf(volume.name);
+  std::filesystem::create_directories(std::filesystem::path(file).parent_path());
+  std::filesystem::remove(file);  // one of the same name is replaced
+  writeFileDurably(file, volume.bytes);
+  try {
+    SqliteTransaction transaction(*db_);
+    db_->prepare("INSERT OR REPLACE INTO volumes (scene, name, size, crc) VALUES (?, ?, ?, ?)")
+        .bind(1, volume.scene)
+        .bindText(2, volume.name)
+        .bind(3, int64_t(volume.bytes.size()))
+        .bind(4, volume.crc)
+        .run();
+    transaction.commit();
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(file, ignored);
+    throw;
+  }
+}
+
+std::optional<JournalVolumeRow> SqliteJournalStore::readVolume(int64_t scene,
+                                                               const std::string& name) {
+  SqliteStatement row = db_->prepare("SELECT size, crc FROM volumes WHERE scene = ? AND name = ?");
+  row.bind(1, scene).bindText(2, name);
+  if (!row.step()) return std::nullopt;
+  JournalVolumeRow volume{scene, name, "", row.columnInt(0), row.columnInt(1)};
+  std::ifstream in(fileOf(name), std::ios::binary);
+  std::ostringstream bytes;
+  if (!(in && bytes << in.rdbuf()))
+    throw std::runtime_error("the uploaded volume '" + fileOf(name) + "' cannot be read");
+  volume.bytes = std::move(bytes).str();
+  return volume;
+}
+
+std::vector<JournalVolumeRow> SqliteJournalStore::volumesOf(int64_t scene) {
+  std::vector<JournalVolumeRow> volumes;
+  SqliteStatement rows =
+      db_->prepare("SELECT name, size, crc FROM volumes WHERE scene = ? ORDER BY name");
+  rows.bind(1, scene);
+  while (rows.step())
+    volumes.push_back({scene, rows.columnBytes(0), "", rows.columnInt(1), rows.columnInt(2)});
+  return volumes;
+}
+
+void SqliteJournalStore::deleteVolume(int64_t scene, const std::string& name, LeaseToken) {
+  SqliteTransaction transaction(*db_);
+  db_->prepare("DELETE FROM volumes WHERE scene = ? AND name = ?")
+      .bind(1, scene)
+      .bindText(2, name)
+      .run();
+  transaction.commit();
+  std::error_code ignored;
+  std::filesystem::remove(fileOf(name), ignored);
 }
 
 }  // namespace penumbra::server

@@ -35,11 +35,18 @@ class SqliteJournalStore : public JournalStore {
   void deleteScene(int64_t key, LeaseToken lease) override;
   void renameScene(int64_t key, const std::string& name, LeaseToken lease) override;
 
+  void putVolume(const JournalVolumeRow& volume, LeaseToken lease) override;
+  std::optional<JournalVolumeRow> readVolume(int64_t scene, const std::string& name) override;
+  std::vector<JournalVolumeRow> volumesOf(int64_t scene) override;
+  void deleteVolume(int64_t scene, const std::string& name, LeaseToken lease) override;
+
  private:
+  std::string fileOf(const std::string& volume) const;  // DIR/name
   void open();  // the connection, pragmas, quick_check and schema; throws SqliteError
   std::string checkWriteAheadLog() const;  // wal_check.h's finding, the log copied aside; or ""
 
   std::string path_;
+  std::string dir_;  // the data directory
   std::string integrity_ = "ok";
   std::string logDamage_;
   std::unique_ptr<SqliteDb> db_;

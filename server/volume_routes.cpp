@@ -1,5 +1,6 @@
-// Volumes of a served scene (docs/API.md "Volumes"): POST .../volumes uploads a NRRD file and
-// adds it as a volume object through the edit queue (one frame, journaled, a version), and
+// Volumes of a served scene (docs/API.md "Volumes"): POST .../volumes uploads a NRRD file, keeps
+// it in the journal (every node finds it: docs/SERVER.md "Volumes on many nodes") and adds it as
+// a volume object through the edit queue (one frame, journaled, a version), and
 // GET .../volumes/{vid}/preview gives a coarse sketch of its isosurface for the page.
 #include <httplib.h>
 #include <unistd.h>
@@ -90,10 +91,8 @@ std::string volumeIdFor(const httplib::Request& req, const VolumeUpload& upload,
   return id;
 }
 
-// Keeps the upload where a restart finds it (the journal names the file, relative to the data
-// directory): written and fsynced with its directory before the frame naming it is journaled.
-std::string storeUpload(const std::string& dir, const std::string& sceneId,
-                        const std::string& bytes) {
+// A fresh file name for an upload to scene `sceneId`: ID-<16 hex digits>.nrrd.
+std::string uploadFileName(const std::string& sceneId) {
   static std::mt19937_64 random{std::random_device{}()};
   static std::mutex randomMutex;
   uint64_t name = 0;
@@ -103,15 +102,13 @@ std::string storeUpload(const std::string& dir, const std::string& sceneId,
   }
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)name);
-  const std::string path = (std::filesystem::path(dir) / (sceneId + "-" + hex + ".nrrd")).string();
-  try {
-    writeFileDurably(path, bytes);
-  } catch (const std::exception& error) {
-    throw ApiError(503, error_code::kJournalFailed, "",
-                   std::string("cannot keep the uploaded volume: ") + error.what() +
-                       "; nothing was acknowledged");
-  }
-  return path;
+  return sceneId + "-" + hex + ".nrrd";
+}
+
+ApiError notKept(const std::exception& error) {
+  return ApiError(503, error_code::kJournalFailed, "",
+                  std::string("cannot keep the uploaded volume: ") + error.what() +
+                      "; nothing was acknowledged");
 }
 
 // The uploaded file read as a volume: 422 naming the body for what the scene loader refuses.
@@ -199,6 +196,45 @@ void HttpServer::removeUploadsOf(const std::string& sceneId) {
       std::filesystem::remove(entry.path(), error);
 }
 
+HttpServer::KeptUpload HttpServer::keepUpload(SceneSession& session, const std::string& bytes) {
+  KeptUpload kept;
+  const std::string file = uploadFileName(session.id());
+  if (!journal_) {  // ephemeral: a file of this run
+    kept.path = (std::filesystem::path(volumeUploadDir()) / file).string();
+    try {
+      writeFileDurably(kept.path, bytes);
+    } catch (const std::exception& error) {
+      throw notKept(error);
+    }
+    return kept;
+  }
+  kept.key = journalKeyOf(session);
+  kept.name = "volumes/" + file;
+  kept.path = (std::filesystem::path(journal_->directory()) / kept.name).string();
+  try {
+    journal_->addVolume(*kept.key, kept.name, bytes);
+  } catch (const LeaseLost& error) {
+    dropScene(session.id(), error.what());
+    throw ApiError(503, error_code::kOwnedElsewhere, "id",
+                   std::string(error.what()) + "; the volume was not added, retry");
+  } catch (const std::exception& error) {
+    throw notKept(error);
+  }
+  return kept;
+}
+
+void HttpServer::discardUpload(const KeptUpload& upload) {
+  std::error_code ignored;
+  if (!upload.key) {
+    std::filesystem::remove(upload.path, ignored);
+    return;
+  }
+  try {
+    journal_->removeVolume(*upload.key, upload.name);
+  } catch (const std::exception&) {  // kept, unnamed, until the scene is deleted
+  }
+}
+
 void HttpServer::registerVolumeRoutes() {
   httplib::Server& http = *http_;
   const std::string scenePath = std::string("/api/scenes/") + kIdPattern;
@@ -214,9 +250,8 @@ void HttpServer::registerVolumeRoutes() {
                     const std::shared_ptr<const SceneSnapshot> snapshot = session->snapshot();
                     VolumeObject volume;
                     volume.id = volumeIdFor(req, upload, snapshot->scene);
-                    const std::string stored =
-                        storeUpload(volumeUploadDir(), session->id(), upload.bytes);
-                    volume.file = stored;
+                    const KeptUpload stored = keepUpload(*session, upload.bytes);
+                    volume.file = stored.path;
                     bool kept = false;
                     try {
                       volume.data = readUpload(
@@ -234,14 +269,10 @@ void HttpServer::registerVolumeRoutes() {
                         sendJson(res, 201, body);
                       }
                     } catch (...) {
-                      std::error_code ignored;
-                      std::filesystem::remove(stored, ignored);
+                      discardUpload(stored);
                       throw;
                     }
-                    if (!kept) {
-                      std::error_code ignored;
-                      std::filesystem::remove(stored, ignored);
-                    }
+                    if (!kept) discardUpload(stored);
                   })));
 
   http.Get(scenePath + "/volumes/" + kIdPattern + "/preview",

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <libpq-fe.h>
 #include <pwd.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -11,6 +12,7 @@
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace penumbra::server::test {
 
@@ -94,6 +96,30 @@ void PostgresCluster::stop() {
     throw std::runtime_error("the test PostgreSQL did not stop: " + fileText(dir_ + "/log"));
   running_ = false;
 }
+
+void PostgresCluster::signalAll(int signal) const {
+  const pid_t postmaster = std::stoi(fileText(dir_ + "/data/postmaster.pid"));  // its first line
+  std::vector<pid_t> children;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    // /proc/PID/stat: "pid (comm) state ppid ..."; comm may hold spaces, not ')'.
+    const std::string stat = fileText(entry.path().string() + "/stat");
+    const size_t close = stat.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(stat.substr(close + 1));
+    char state = 0;
+    pid_t parent = 0;
+    if (rest >> state >> parent && parent == postmaster) children.push_back(std::stoi(name));
+  }
+  // Stopped first, so that it starts no new child; continued last.
+  if (signal == SIGSTOP) ::kill(postmaster, signal);
+  for (const pid_t child : children) ::kill(child, signal);
+  if (signal != SIGSTOP) ::kill(postmaster, signal);
+}
+
+void PostgresCluster::pause() { signalAll(SIGSTOP); }
+void PostgresCluster::resume() { signalAll(SIGCONT); }
 
 std::string PostgresCluster::uri(const std::string& database) const {
   return "postgresql://" + std::string(kSuperuser) + "@/" + database + "?host=" + dir_;

@@ -21,12 +21,18 @@ class PostgresCluster {
   // Stops the server (fast shutdown: connections are cut) and starts it again on the same files.
   void stop();
   void start();
+  // Freezes the server without closing anything (SIGSTOP to the postmaster and every process it
+  // started, the backends serving open connections included): a database that stops answering.
+  // resume() lets it go on (SIGCONT).
+  void pause();
+  void resume();
 
   ~PostgresCluster();  // stops the server, deletes the directory
 
  private:
   PostgresCluster();
   std::string uri(const std::string& database) const;
+  void signalAll(int signal) const;  // the postmaster and its children
 
   std::string dir_;  // the socket and the log; data/ holds the cluster
   int databases_ = 0;

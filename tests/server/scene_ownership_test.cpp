@@ -54,6 +54,8 @@ TEST(SceneOwnership, AWriteUnderALeaseTakenOverIsRefusedAndWritesNothing) {
   ASSERT_TRUE(token);
   const int64_t key = journal.addScene("a", "a", "{}", 0, *token);
   journal.addFrame(key, 1, "one", "", 0);
+  const std::string upload = "volumes/a-0000000000000001.nrrd";
+  journal.addVolume(key, upload, "bytes");
   EXPECT_FALSE(second.acquire("a", holder));  // held, and not expired
   EXPECT_EQ(holder.node, "first");
   EXPECT_GT(holder.secondsLeft, 20);
@@ -66,6 +68,10 @@ TEST(SceneOwnership, AWriteUnderALeaseTakenOverIsRefusedAndWritesNothing) {
   EXPECT_THROW(journal.addFrame(key, 2, "stale", "", 0), LeaseLost);
   EXPECT_THROW(journal.addSnapshot(key, 1, "{}", ""), LeaseLost);
   EXPECT_THROW(journal.removeScene(key), LeaseLost);
+  EXPECT_THROW(journal.addVolume(key, "volumes/a-0000000000000002.nrrd", "stale"), LeaseLost);
+  EXPECT_THROW(journal.removeVolume(key, upload), LeaseLost);
+  EXPECT_EQ(data.sqlText("SELECT name FROM volumes"), upload);
+  EXPECT_EQ(data.sqlText("SELECT count(*) FROM volume_chunks"), "1");
   EXPECT_EQ(data.sqlText("SELECT frame FROM frames ORDER BY version"), "one");
   EXPECT_EQ(data.sqlText("SELECT count(*) FROM snapshots"), "0");
   EXPECT_TRUE(first.renew().held.empty());  // the first node learns it lost the lease

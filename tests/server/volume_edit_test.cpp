@@ -257,6 +257,35 @@ TEST(VolumeEdits, DeletingASceneDeletesItsUploads) {
     EXPECT_EQ(entry.path().filename().string().rfind(other + "-", 0), 0u);
 }
 
+// An upload is kept with its own scene (deleted with it; fetched with it by the node that serves
+// it next): another scene's frame may not add it, and the scene's own frame may add it back.
+TEST(VolumeEdits, AFrameMayAddOnlyItsOwnScenesUploads) {
+  TempDataDir data;
+  RunningServer running(data.durable());
+  running.addBundled("volume_room");
+  const std::string other = running.server().addScene(
+      protocol::loadSceneFile(scenePath("volume_room")), "volume_room-2", "volume_room-2");
+  auto client = running.client();
+  const auto up = client.Post(("/api/scenes/" + other + "/volumes?id=puff").c_str(), smokeBytes(),
+                              "application/octet-stream");
+  ASSERT_TRUE(up);
+  ASSERT_EQ(up->status, 201) << up->body;
+  const json scene = bodyJson(client.Get(("/api/scenes/" + other).c_str()));
+  json puff;
+  for (const json& object : scene["scene"]["objects"])
+    if (object["id"] == "puff") puff = object;
+  ASSERT_TRUE(puff.is_object()) << scene.dump().substr(0, 300);
+  const auto taken =
+      postJson(client, kBase + "/edits", frame({{"op", "add_volume"}, {"volume", puff}}));
+  EXPECT_EQ(taken->status, 422) << taken->body;
+  EXPECT_EQ(bodyJson(taken)["error"]["path"], "edits[0].volume.file");
+  EXPECT_TRUE(volumeJson(client, "puff").is_null());
+  const std::string otherEdits = "/api/scenes/" + other + "/edits";
+  ASSERT_EQ(postJson(client, otherEdits, frame({{"op", "remove"}, {"id", "puff"}}))->status, 200);
+  const auto back = postJson(client, otherEdits, frame({{"op", "add_volume"}, {"volume", puff}}));
+  EXPECT_EQ(back->status, 200) << back->body;
+}
+
 // A kill between storing an upload and committing its frame leaves a file no acknowledged
 // version names; the next start removes it (and only it: the journaled upload restores).
 TEST(VolumeEdits, AnUploadNoFrameNamesIsRemovedAtStart) {
@@ -266,11 +295,14 @@ TEST(VolumeEdits, AnUploadNoFrameNamesIsRemovedAtStart) {
     RunningServer running(data.durable());
     running.addBundled("volume_room");
     auto client = running.client();
-    const auto up = client.Post((kBase + "/volumes?id=puff").c_str(), smokeBytes(), "application/octet-stream");
+    const auto up =
+        client.Post((kBase + "/volumes?id=puff").c_str(), smokeBytes(), "application/octet-stream");
     ASSERT_TRUE(up);
     ASSERT_EQ(up->status, 201) << up->body;
   }
-  ASSERT_EQ(std::distance(std::filesystem::directory_iterator(uploads), std::filesystem::directory_iterator()), 1);
+  ASSERT_EQ(std::distance(std::filesystem::directory_iterator(uploads),
+                          std::filesystem::directory_iterator()),
+            1);
   const std::filesystem::path kept = std::filesystem::directory_iterator(uploads)->path();
   const std::filesystem::path orphan = uploads / "volume_room-00000000deadbeef.nrrd";
   const std::filesystem::path foreign = uploads / "notes.txt";  // not an upload's name: left alone
