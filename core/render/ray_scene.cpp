@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/engine/parallel.h"
+#include "core/util/parallel.h"
 
 namespace penumbra {
 
@@ -102,7 +102,7 @@ void RayScene::check(const char* what) const {
 
 RayScene::RayScene(const Scene& scene) : faces_(scene.faces()), tolerance_(scene.tolerance()) {
   // Embree builds its BVH on TBB, as uninstrumented as TBB itself: a TSan build builds it on the
-  // calling thread, like the engine's loops (core/engine/parallel.h).
+  // calling thread, like the engine's loops (core/util/parallel.h).
   device_ = rtcNewDevice(kLoopsOnOneThread ? "threads=1" : nullptr);
   if (!device_) throw RayTracingError("Embree: cannot create a device");
   rtcSetDeviceErrorFunction(device_, onEmbreeError, this);
