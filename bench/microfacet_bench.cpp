@@ -13,8 +13,8 @@
 #include "bench/lib/glossy_direct.h"
 #include "bench/lib/glossy_scene.h"
 #include "core/engine/engine.h"
+#include "core/raycast/mesh_lookup.h"
 #include "core/render/dm_visibility.h"
-#include "core/render/mesh_lookup.h"
 #include "server/image_encoding.h"
 
 namespace penumbra::bench {

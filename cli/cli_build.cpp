@@ -13,7 +13,7 @@
 #include "cli/progress_bar.h"
 #include "core/engine/engine.h"
 #include "core/gi/sensor_gi.h"
-#include "core/render/ray_scene.h"
+#include "core/raycast/ray_scene.h"
 #include "core/util/parallel.h"
 #include "interchange/dm_edges.h"
 #include "interchange/glb_export.h"

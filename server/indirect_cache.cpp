@@ -3,7 +3,7 @@
 #include <chrono>
 
 #include "core/gi/sensor_gi.h"
-#include "core/render/ray_scene.h"
+#include "core/raycast/ray_scene.h"
 #include "core/util/parallel.h"
 
 namespace penumbra::server {

@@ -16,7 +16,7 @@
 #include <memory>
 
 #include "core/engine/engine.h"
-#include "core/render/ray_scene.h"
+#include "core/raycast/ray_scene.h"
 #include "core/render/renderer.h"
 #include "core/scene/camera_limits.h"
 #include "fuzz_support.h"

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/mesh/mesh.h"
-#include "core/render/camera_projection.h"
+#include "core/raycast/camera_projection.h"
 #include "core/scene/scene.h"
 #include "core/util/parallel.h"
 

@@ -12,7 +12,7 @@
 
 #include "core/gi/sensor_placement.h"
 #include "core/mesh/mesh.h"
-#include "core/render/ray_scene.h"
+#include "core/raycast/ray_scene.h"
 #include "core/util/parallel.h"
 
 namespace penumbra::gi {

@@ -5,8 +5,8 @@
 #pragma once
 
 #include "core/gi/sensor_gi.h"
-#include "core/render/camera_projection.h"
-#include "core/render/ray_scene.h"
+#include "core/raycast/camera_projection.h"
+#include "core/raycast/ray_scene.h"
 #include "core/util/parallel.h"
 
 namespace penumbra::gi {

@@ -9,11 +9,11 @@
 #include <string>
 
 #include "core/illum/ambient_fill.h"
+#include "core/raycast/light_hit.h"
+#include "core/raycast/mesh_lookup.h"
+#include "core/raycast/ray_scene.h"
 #include "core/reference/exact_irradiance.h"
 #include "core/render/dm_visibility.h"
-#include "core/render/light_hit.h"
-#include "core/render/mesh_lookup.h"
-#include "core/render/ray_scene.h"
 #include "core/render/volume_lighting.h"
 #include "core/scene/camera_limits.h"
 #include "core/util/parallel.h"

@@ -11,7 +11,7 @@
 #include "core/gi/sensor_gi.h"
 #include "core/illum/ambient_fill.h"
 #include "core/mesh/mesh.h"
-#include "core/render/camera_projection.h"
+#include "core/raycast/camera_projection.h"
 #include "core/render/microfacet_shading.h"
 #include "core/scene/scene.h"
 

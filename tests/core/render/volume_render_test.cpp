@@ -10,8 +10,8 @@
 
 #include "bench/lib/volume_fields.h"
 #include "core/engine/engine.h"
+#include "core/raycast/ray_scene.h"
 #include "core/reference/exact_irradiance.h"
-#include "core/render/ray_scene.h"
 #include "core/render/renderer.h"
 #include "core/render/volume_lighting.h"
 #include "protocol/mesh_json.h"

@@ -1,4 +1,4 @@
-#include "core/render/ray_scene.h"
+#include "core/raycast/ray_scene.h"
 
 #include <embree3/rtcore.h>
 

@@ -1,4 +1,4 @@
-#include "core/render/light_hit.h"
+#include "core/raycast/light_hit.h"
 
 namespace penumbra {
 

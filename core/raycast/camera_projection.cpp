@@ -1,4 +1,4 @@
-#include "core/render/camera_projection.h"
+#include "core/raycast/camera_projection.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "core/render/volume_geometry.h"
+#include "core/raycast/volume_geometry.h"
 
 #include <cmath>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "core/render/mesh_lookup.h"
+#include "core/raycast/mesh_lookup.h"
 
 #include <algorithm>
 #include <cmath>

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "core/render/volume_geometry.h"
+#include "core/raycast/volume_geometry.h"
 #include "core/scene/scene.h"
 
 // Embree's handles, declared here so that users need not include rtcore.h.

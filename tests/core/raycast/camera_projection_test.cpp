@@ -2,7 +2,7 @@
 // Matrices" written out element by element, GLM's clip-space functions, three.js's camera
 // formulas (PerspectiveCamera / OrthographicCamera / Matrix4.lookAt) written out here, frustum
 // corners landing on the canonical volume's corners, and pixel ↔ ray round trips.
-#include "core/render/camera_projection.h"
+#include "core/raycast/camera_projection.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "core/render/ray_scene.h"
+#include "core/raycast/ray_scene.h"
 
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
