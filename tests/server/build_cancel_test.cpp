@@ -8,7 +8,7 @@
 #include <string>
 #include <thread>
 
-#include "bench/lib/model_scene.h"
+#include "scenegen/model_scene.h"
 #include "server_fixture.h"
 
 namespace penumbra::server::test {

@@ -1,4 +1,4 @@
-#include "bench/lib/tri_mesh.h"
+#include "scenegen/tri_mesh.h"
 
 #include <algorithm>
 #include <limits>

@@ -1,7 +1,7 @@
 // A (p, q) torus knot as a closed tube of triangles. Pure; thread-safe.
 #pragma once
 
-#include "bench/lib/tri_mesh.h"
+#include "scenegen/tri_mesh.h"
 
 namespace penumbra {
 

@@ -1,4 +1,4 @@
-#include "bench/lib/scan_mesh.h"
+#include "scenegen/scan_mesh.h"
 
 #include <algorithm>
 #include <cmath>

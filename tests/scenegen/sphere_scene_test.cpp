@@ -1,7 +1,7 @@
 // The one-sphere generator: stacks × slices faces (1152 → 24 × 48), every sphere vertex at
 // the radius from the centre, the sphere closed convex and inside the room below the light;
 // a request the room cannot hold is refused.
-#include "bench/lib/sphere_scene.h"
+#include "scenegen/sphere_scene.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The dense-room generator: seeded, 6N + 6 faces, every box inside the room below
 // the light, boxes apart from each other, turned about all three axes, sizes
 // shrinking as (15/N)^(1/3).
-#include "bench/lib/dense_scene.h"
+#include "scenegen/dense_scene.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Generator of the one-sphere scene: a UV sphere of about N faces floating in the dense
-// room (bench/lib/dense_scene.h) under its 1 m² ceiling light. Pure; thread-safe.
+// room (scenegen/dense_scene.h) under its 1 m² ceiling light. Pure; thread-safe.
 #pragma once
 
 #include "core/scene/scene.h"

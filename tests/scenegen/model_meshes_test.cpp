@@ -1,4 +1,4 @@
-// The procedural model meshes (bench/lib/*_mesh.h), seeded, at several sizes: triangle count
+// The procedural model meshes (scenegen/*_mesh.h), seeded, at several sizes: triangle count
 // within ±25 % of the request, welded (no two vertices at one position, no repeated corner),
 // every directed edge at most once and — closed models — its reverse exactly once, one
 // component, positive signed volume; outward orientation checked at extreme vertices; the
@@ -13,11 +13,11 @@
 #include <set>
 #include <tuple>
 
-#include "bench/lib/blob_mesh.h"
-#include "bench/lib/bowl_mesh.h"
-#include "bench/lib/scan_mesh.h"
-#include "bench/lib/teapot_mesh.h"
-#include "bench/lib/torus_knot_mesh.h"
+#include "scenegen/blob_mesh.h"
+#include "scenegen/bowl_mesh.h"
+#include "scenegen/scan_mesh.h"
+#include "scenegen/teapot_mesh.h"
+#include "scenegen/torus_knot_mesh.h"
 
 namespace penumbra {
 namespace {

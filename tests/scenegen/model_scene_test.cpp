@@ -1,10 +1,10 @@
-// Model scenes (bench/lib/model_scene.h) through the project's own scene validation (the
+// Model scenes (scenegen/model_scene.h) through the project's own scene validation (the
 // scene JSON reader, which rebuilds the Scene and refuses degenerate or too thin faces):
 // every model floating and resting, at a few sizes; resting ones touch the floor (min y = 0
 // exactly), floating ones do not; every face at least the scene's minimum width; the
 // furnished room's objects apart from each other inside the room below the light, its
 // tables' models touching their tops, ~100 k triangles; bad requests refused.
-#include "bench/lib/model_scene.h"
+#include "scenegen/model_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -12,9 +12,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "bench/lib/dense_scene.h"
 #include "core/geom/polygon.h"
 #include "protocol/scene_json.h"
+#include "scenegen/dense_scene.h"
 
 namespace penumbra {
 namespace {

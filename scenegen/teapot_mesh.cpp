@@ -1,4 +1,4 @@
-#include "bench/lib/teapot_mesh.h"
+#include "scenegen/teapot_mesh.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
-// Generator of model scenes: one procedural tessellated model (bench/lib/*_mesh.h) in the
-// dense room (bench/lib/dense_scene.h) under its 1 m² ceiling light, floating or resting
+// Generator of model scenes: one procedural tessellated model (scenegen/*_mesh.h) in the
+// dense room (scenegen/dense_scene.h) under its 1 m² ceiling light, floating or resting
 // on the floor, or a furnished room of nine of them and two tables. Pure; thread-safe.
 #pragma once
 
@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "bench/lib/tri_mesh.h"
+#include "scenegen/tri_mesh.h"
 
 namespace penumbra {
 
@@ -29,7 +29,7 @@ inline constexpr int kMinModelTriangles = 200;  // the least of minModelTriangle
 inline constexpr int kMaxModelTriangles = 300000;
 
 // Whether the kind's mesh is closed (watertight, consistently oriented): the torus knot,
-// the blob and the scan are; the teapot (bench/lib/teapot_mesh.h) and the bowl are open.
+// the blob and the scan are; the teapot (scenegen/teapot_mesh.h) and the bowl are open.
 bool modelIsClosed(ModelKind kind);
 
 // One model's mesh, about `triangles` triangles, in its own units (not Furnished).

@@ -1,4 +1,4 @@
-#include "bench/lib/volume_fields.h"
+#include "scenegen/volume_fields.h"
 
 #include <algorithm>
 #include <cmath>

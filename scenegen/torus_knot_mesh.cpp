@@ -1,4 +1,4 @@
-#include "bench/lib/torus_knot_mesh.h"
+#include "scenegen/torus_knot_mesh.h"
 
 #include <algorithm>
 #include <cmath>

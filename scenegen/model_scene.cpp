@@ -1,17 +1,17 @@
-#include "bench/lib/model_scene.h"
+#include "scenegen/model_scene.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <tuple>
 
-#include "bench/lib/blob_mesh.h"
-#include "bench/lib/bowl_mesh.h"
-#include "bench/lib/dense_scene.h"
-#include "bench/lib/scan_mesh.h"
-#include "bench/lib/scene_parts.h"
-#include "bench/lib/teapot_mesh.h"
-#include "bench/lib/torus_knot_mesh.h"
+#include "scenegen/blob_mesh.h"
+#include "scenegen/bowl_mesh.h"
+#include "scenegen/dense_scene.h"
+#include "scenegen/scan_mesh.h"
+#include "scenegen/scene_parts.h"
+#include "scenegen/teapot_mesh.h"
+#include "scenegen/torus_knot_mesh.h"
 
 namespace penumbra {
 

@@ -2,7 +2,7 @@
 // thread-safe.
 #pragma once
 
-#include "bench/lib/tri_mesh.h"
+#include "scenegen/tri_mesh.h"
 
 namespace penumbra {
 

@@ -1,11 +1,11 @@
-#include "bench/lib/sphere_scene.h"
+#include "scenegen/sphere_scene.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "bench/lib/dense_scene.h"
-#include "bench/lib/scene_parts.h"
+#include "scenegen/dense_scene.h"
+#include "scenegen/scene_parts.h"
 
 namespace penumbra {
 

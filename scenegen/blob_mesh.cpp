@@ -1,4 +1,4 @@
-#include "bench/lib/blob_mesh.h"
+#include "scenegen/blob_mesh.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "bench/lib/cubes_scene.h"
+#include "scenegen/cubes_scene.h"
 
 #include <gtest/gtest.h>
 

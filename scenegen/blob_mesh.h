@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "bench/lib/tri_mesh.h"
+#include "scenegen/tri_mesh.h"
 
 namespace penumbra {
 

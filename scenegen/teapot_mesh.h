@@ -10,7 +10,7 @@
 // shares one control point with the body, (−2, 0, 0.9), so one vertex is shared there.
 #pragma once
 
-#include "bench/lib/tri_mesh.h"
+#include "scenegen/tri_mesh.h"
 
 namespace penumbra {
 

@@ -1,11 +1,11 @@
-#include "bench/lib/dense_scene.h"
+#include "scenegen/dense_scene.h"
 
 #include <cmath>
 #include <random>
 #include <stdexcept>
 #include <string>
 
-#include "bench/lib/scene_parts.h"
+#include "scenegen/scene_parts.h"
 
 namespace penumbra {
 

@@ -1,4 +1,4 @@
-#include "bench/lib/cubes_scene.h"
+#include "scenegen/cubes_scene.h"
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "bench/lib/scene_parts.h"
+#include "scenegen/scene_parts.h"
 
 namespace penumbra {
 

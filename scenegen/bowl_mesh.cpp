@@ -1,4 +1,4 @@
-#include "bench/lib/bowl_mesh.h"
+#include "scenegen/bowl_mesh.h"
 
 #include <algorithm>
 #include <cmath>

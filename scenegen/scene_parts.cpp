@@ -1,4 +1,4 @@
-#include "bench/lib/scene_parts.h"
+#include "scenegen/scene_parts.h"
 
 #include <algorithm>
 #include <cmath>

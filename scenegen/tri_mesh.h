@@ -1,4 +1,4 @@
-// An indexed triangle mesh for the procedural model generators (bench/lib/*_mesh.h):
+// An indexed triangle mesh for the procedural model generators (scenegen/*_mesh.h):
 // welding by exact position, its edges, signed volume and placement in a room.
 // Plain values and pure functions; thread-safe.
 #pragma once
