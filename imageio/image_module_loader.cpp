@@ -1,4 +1,4 @@
-#include "server/image_module_loader.h"
+#include "imageio/image_module_loader.h"
 
 #include <dlfcn.h>
 
@@ -7,9 +7,9 @@
 #include <system_error>
 #include <variant>
 
-#include "server/image_encoding.h"
+#include "imageio/image_encoding.h"
 
-namespace penumbra::server {
+namespace penumbra::imageio {
 
 namespace {
 
@@ -47,4 +47,4 @@ const ImageModule& imageModule() {
   return std::get<ImageModule>(loaded);
 }
 
-}  // namespace penumbra::server
+}  // namespace penumbra::imageio

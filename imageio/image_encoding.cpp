@@ -1,13 +1,13 @@
-#include "server/image_encoding.h"
+#include "imageio/image_encoding.h"
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
 
-#include "server/image_module_loader.h"
+#include "imageio/image_module_loader.h"
 
-namespace penumbra::server {
+namespace penumbra::imageio {
 
 namespace {
 
@@ -74,4 +74,4 @@ void writeImageFile(const RenderedImage& image, const std::string& path) {
   }
 }
 
-}  // namespace penumbra::server
+}  // namespace penumbra::imageio

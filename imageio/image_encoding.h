@@ -10,7 +10,7 @@
 
 #include "core/render/renderer.h"
 
-namespace penumbra::server {
+namespace penumbra::imageio {
 
 // OIIO could not create a writer or encode (message from OIIO), the image module could not be
 // loaded (message names its path), or the file could not be written.
@@ -40,4 +40,4 @@ std::vector<uint8_t> encodeImage(const RenderedImage& image, ImageFormat format)
 // a failed write leaves no half-written image).
 void writeImageFile(const RenderedImage& image, const std::string& path);
 
-}  // namespace penumbra::server
+}  // namespace penumbra::imageio

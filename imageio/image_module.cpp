@@ -1,7 +1,7 @@
 // The image module: PNG/EXR encoding with OpenImageIO behind the C interface of
 // image_module_abi.h. Built as libpenumbra_image.so so that only processes writing images load
 // OpenImageIO and its ~250 dependent libraries.
-#include "server/image_module_abi.h"
+#include "imageio/image_module_abi.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>

@@ -4,9 +4,9 @@
 
 #include <string>
 
-#include "server/image_module_abi.h"
+#include "imageio/image_module_abi.h"
 
-namespace penumbra::server {
+namespace penumbra::imageio {
 
 inline constexpr const char* kImageModuleFile = "libpenumbra_image.so";
 
@@ -20,4 +20,4 @@ struct ImageModule {
 // load is not retried.
 const ImageModule& imageModule();
 
-}  // namespace penumbra::server
+}  // namespace penumbra::imageio
