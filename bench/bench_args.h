@@ -25,7 +25,7 @@ struct BenchArgs {
   // (then --cubes only when given). build-row: --no-compare skips Monte Carlo and mesh quality.
   std::vector<int> denseCubes;
   bool compare = true;
-  // build, build-row: --model NAME,... (bench/lib/model_scene.h: teapot, torus-knot, blob,
+  // build, build-row: --model NAME,... (scenegen/model_scene.h: teapot, torus-knot, blob,
   // bowl, scan, furnished) at --triangles N,... (0: the model's default), floating or with
   // --rest on the floor: one row per model, count and thread count (then --cubes only when
   // given). build-row takes one model and one count.

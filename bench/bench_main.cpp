@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "bench/bench_args.h"
-#include "bench/lib/model_scene.h"
+#include "scenegen/model_scene.h"
 
 namespace penumbra::bench {
 

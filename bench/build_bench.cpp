@@ -13,10 +13,10 @@
 
 #include "bench/bench_args.h"
 #include "bench/child_process.h"
-#include "bench/lib/model_scene.h"
 #include "bench/report/build_report_html.h"
 #include "bench/report/build_summary.h"
 #include "protocol/json_text.h"
+#include "scenegen/model_scene.h"
 
 namespace penumbra::bench {
 

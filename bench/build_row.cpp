@@ -12,16 +12,16 @@
 #include <stdexcept>
 
 #include "bench/bench_args.h"
-#include "bench/lib/cubes_scene.h"
-#include "bench/lib/dense_scene.h"
 #include "bench/lib/mesh_sampling.h"
-#include "bench/lib/model_scene.h"
 #include "bench/lib/sample_points.h"
 #include "core/engine/engine.h"
 #include "core/reference/exact_irradiance.h"
 #include "core/reference/grid_mesh.h"
 #include "core/reference/monte_carlo.h"
 #include "protocol/build_stats_json.h"
+#include "scenegen/cubes_scene.h"
+#include "scenegen/dense_scene.h"
+#include "scenegen/model_scene.h"
 
 namespace penumbra::bench {
 

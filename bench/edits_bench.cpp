@@ -16,15 +16,15 @@
 #include <vector>
 
 #include "bench/bench_args.h"
-#include "bench/lib/cubes_scene.h"
 #include "bench/lib/dense_drag.h"
-#include "bench/lib/dense_scene.h"
 #include "bench/lib/edit_scripts.h"
 #include "bench/report/edits_report_html.h"
 #include "core/engine/engine.h"
 #include "protocol/edits_json.h"
 #include "protocol/json_text.h"
 #include "protocol/scene_json.h"
+#include "scenegen/cubes_scene.h"
+#include "scenegen/dense_scene.h"
 
 namespace penumbra::bench {
 

@@ -15,12 +15,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bench/lib/dense_scene.h"
 #include "bench/lib/direct_light_error.h"
-#include "bench/lib/model_scene.h"
 #include "core/engine/engine.h"
 #include "core/render/renderer.h"
 #include "protocol/scene_json.h"
+#include "scenegen/dense_scene.h"
+#include "scenegen/model_scene.h"
 
 using namespace penumbra;
 using nlohmann::json;

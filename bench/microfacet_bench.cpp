@@ -13,9 +13,9 @@
 #include "bench/lib/glossy_direct.h"
 #include "bench/lib/glossy_scene.h"
 #include "core/engine/engine.h"
+#include "core/raycast/mesh_lookup.h"
 #include "core/render/dm_visibility.h"
-#include "core/render/mesh_lookup.h"
-#include "server/image_encoding.h"
+#include "imageio/image_encoding.h"
 
 namespace penumbra::bench {
 namespace {
@@ -272,7 +272,7 @@ MicrofacetBenchArgs parseMicrofacetArgs(int argc, char** argv) {
 }
 
 int runMicrofacetBench(const MicrofacetBenchArgs& args) {
-  server::loadImageModule();  // fail before the work, not after
+  imageio::loadImageModule();  // fail before the work, not after
   std::filesystem::create_directories(args.outDir);
   const Scene scene = makeGlossyScene({args.roughness, args.singleScattering});
   auto start = std::chrono::steady_clock::now();

@@ -8,7 +8,7 @@
 #include "bench/microfacet_bench.h"
 #include "bench/report/html_page.h"
 #include "bench/report/svg_charts.h"
-#include "server/image_encoding.h"
+#include "imageio/image_encoding.h"
 
 namespace penumbra::bench {
 namespace {
@@ -192,16 +192,16 @@ void writeMicrofacetReport(const MicrofacetBenchArgs& args, const BenchImages& i
   srHeat.srgb = errorHeatMap(images.shadowRays, images.reference, images.mask, scale);
 
   const std::string n = std::to_string(images.samples);
-  server::writeImageFile(dmImage, dir + "dm.png");
-  server::writeImageFile(srImage, dir + "shadow_rays.png");
-  server::writeImageFile(refImage, dir + "reference.png");
-  server::writeImageFile(dmHeat, dir + "dm_error.png");
-  server::writeImageFile(srHeat, dir + "shadow_rays_error.png");
-  server::writeImageFile(grid({&dmImage, &srImage, &refImage, &dmHeat, &srHeat}, 3),
+  imageio::writeImageFile(dmImage, dir + "dm.png");
+  imageio::writeImageFile(srImage, dir + "shadow_rays.png");
+  imageio::writeImageFile(refImage, dir + "reference.png");
+  imageio::writeImageFile(dmHeat, dir + "dm_error.png");
+  imageio::writeImageFile(srHeat, dir + "shadow_rays_error.png");
+  imageio::writeImageFile(grid({&dmImage, &srImage, &refImage, &dmHeat, &srHeat}, 3),
                          dir + "comparison.png");
   const RenderedImage small[] = {middle(dmImage), middle(srImage), middle(refImage), middle(dmHeat),
                                  middle(srHeat)};
-  server::writeImageFile(grid({&small[0], &small[1], &small[2], &small[3], &small[4]}, 3),
+  imageio::writeImageFile(grid({&small[0], &small[1], &small[2], &small[3], &small[4]}, 3),
                          dir + "comparison_middle.png");
   const std::string svg = plotSvg(dm, shadowRays);
   std::ofstream(dir + "error_vs_time.svg")

@@ -25,13 +25,13 @@
 #include <string>
 #include <vector>
 
-#include "bench/lib/dense_scene.h"
 #include "core/engine/engine.h"
 #include "core/geom/clip.h"
 #include "core/geom/plane_frame.h"
 #include "core/illum/backprojection.h"
 #include "core/illum/face_lookup.h"
 #include "core/reference/exact_irradiance.h"
+#include "scenegen/dense_scene.h"
 
 namespace bg = boost::geometry;
 using BoostPoint = bg::model::d2::point_xy<double>;

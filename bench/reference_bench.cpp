@@ -10,10 +10,10 @@
 #include <random>
 
 #include "bench/bench_args.h"
-#include "bench/lib/cubes_scene.h"
 #include "bench/lib/sample_points.h"
 #include "core/reference/exact_irradiance.h"
 #include "core/reference/monte_carlo.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra::bench {
 

@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "bench/lib/volume_fields.h"
 #include "core/volume/macrocell_grid.h"
 #include "core/volume/octree_trace.h"
+#include "scenegen/volume_fields.h"
 
 namespace penumbra {
 namespace {

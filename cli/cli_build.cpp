@@ -9,17 +9,17 @@
 #include <optional>
 #include <string>
 
+#include "cli/commands.h"
+#include "cli/progress_bar.h"
 #include "core/engine/engine.h"
-#include "core/engine/parallel.h"
 #include "core/gi/sensor_gi.h"
-#include "core/render/ray_scene.h"
+#include "core/raycast/ray_scene.h"
+#include "core/util/parallel.h"
 #include "interchange/dm_edges.h"
 #include "interchange/glb_export.h"
 #include "protocol/build_stats_json.h"
 #include "protocol/mesh_json.h"
 #include "protocol/scene_json.h"
-#include "cli/commands.h"
-#include "cli/progress_bar.h"
 
 namespace penumbra::cli {
 

@@ -1,11 +1,11 @@
 #include <cstdio>
 
-#include "bench/lib/cubes_scene.h"
-#include "bench/lib/dense_scene.h"
-#include "bench/lib/model_scene.h"
-#include "bench/lib/sphere_scene.h"
-#include "protocol/scene_json.h"
 #include "cli/commands.h"
+#include "protocol/scene_json.h"
+#include "scenegen/cubes_scene.h"
+#include "scenegen/dense_scene.h"
+#include "scenegen/model_scene.h"
+#include "scenegen/sphere_scene.h"
 
 namespace penumbra::cli {
 

@@ -1,10 +1,10 @@
-// `penumbra generate --volume FIELD`: a test field (bench/lib/volume_fields) as a NRRD file,
+// `penumbra generate --volume FIELD`: a test field (scenegen/volume_fields) as a NRRD file,
 // for scenes' volume objects (SCENE_FORMAT.md) and the tests.
 #include <cstdio>
 
-#include "bench/lib/volume_fields.h"
 #include "cli/commands.h"
 #include "protocol/nrrd_volume.h"
+#include "scenegen/volume_fields.h"
 
 namespace penumbra::cli {
 

@@ -4,16 +4,16 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "cli/commands.h"
+#include "cli/progress_bar.h"
 #include "core/engine/engine.h"
 #include "core/gi/sensor_map.h"
 #include "core/render/dm_visibility.h"
 #include "core/render/renderer.h"
+#include "imageio/image_encoding.h"
 #include "protocol/json_text.h"
 #include "protocol/mesh_json.h"
 #include "protocol/scene_json.h"
-#include "cli/commands.h"
-#include "server/image_encoding.h"
-#include "cli/progress_bar.h"
 
 namespace penumbra::cli {
 
@@ -66,11 +66,11 @@ int runRender(const Args& args) {
   const auto out = args.option("out");
   if (!out) throw UsageError("render needs --out IMAGE (.png or .exr)");
   try {
-    server::imageFormatForPath(*out);  // refuse a bad extension before any work
+    imageio::imageFormatForPath(*out);  // refuse a bad extension before any work
   } catch (const std::invalid_argument& error) {
     throw UsageError(error.what());
   }
-  server::loadImageModule();  // a missing image module fails now, not after the build
+  imageio::loadImageModule();  // a missing image module fails now, not after the build
   RenderSettings settings;
   settings.width = args.intOption("width", 512, 1, RenderSettings::kMaxSize);
   settings.height = args.intOption("height", 512, 1, RenderSettings::kMaxSize);
@@ -113,7 +113,7 @@ int runRender(const Args& args) {
   });
   bar.finish();
   const auto encodeStart = std::chrono::steady_clock::now();
-  server::writeImageFile(image, *out);
+  imageio::writeImageFile(image, *out);
   const double encodeSeconds = secondsSince(encodeStart);
 
   if (args.flag("stats")) {

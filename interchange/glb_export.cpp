@@ -12,7 +12,7 @@
 #include <tiny_gltf.h>
 
 #include "core/illum/ambient_fill.h"
-#include "core/render/camera_projection.h"
+#include "core/raycast/camera_projection.h"
 #include "interchange/penumbra_extras.h"
 #include "protocol/camera_json.h"
 #include "protocol/material_json.h"

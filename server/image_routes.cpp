@@ -9,9 +9,9 @@
 
 #include "core/render/renderer.h"
 #include "core/scene/camera_limits.h"
+#include "imageio/image_encoding.h"
 #include "server/body_reader.h"
 #include "server/http_server.h"
-#include "server/image_encoding.h"
 #include "server/limits.h"
 #include "server/request_io.h"
 #include "server/response_json.h"
@@ -206,7 +206,7 @@ void HttpServer::registerImageRoutes() {
                image = render(snapshot->scene, snapshot->mesh(), settings,
                               [&job](size_t done, size_t total) { job->report(done, total); });
                job->stage("encoding");
-               bytes = format == "png" ? encodePng(image) : encodeExr(image);
+               bytes = format == "png" ? imageio::encodePng(image) : imageio::encodeExr(image);
              } catch (const RenderCancelled& why) {
                job->end(RenderJob::State::Cancelled);
                throw ApiError(409, error_code::kRenderCancelled, "",

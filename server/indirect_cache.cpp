@@ -2,9 +2,9 @@
 
 #include <chrono>
 
-#include "core/engine/parallel.h"
 #include "core/gi/sensor_gi.h"
-#include "core/render/ray_scene.h"
+#include "core/raycast/ray_scene.h"
+#include "core/util/parallel.h"
 
 namespace penumbra::server {
 

@@ -6,7 +6,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "bench/lib/dense_scene.h"
+#include "scenegen/dense_scene.h"
 
 namespace penumbra {
 

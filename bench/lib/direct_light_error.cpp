@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "core/gi/view_gbuffer.h"
+#include "core/raycast/mesh_lookup.h"
+#include "core/raycast/ray_scene.h"
 #include "core/reference/exact_irradiance.h"
-#include "core/render/mesh_lookup.h"
-#include "core/render/ray_scene.h"
 
 namespace penumbra {
 

@@ -7,10 +7,10 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/engine/parallel.h"
 #include "core/mesh/mesh.h"
-#include "core/render/camera_projection.h"
+#include "core/raycast/camera_projection.h"
 #include "core/scene/scene.h"
+#include "core/util/parallel.h"
 
 namespace penumbra {
 

@@ -7,8 +7,8 @@
 #include <random>
 #include <stdexcept>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/geom/polygon.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra {
 

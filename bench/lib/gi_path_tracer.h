@@ -11,8 +11,8 @@
 #include <functional>
 #include <random>
 
-#include "core/render/mesh_lookup.h"
-#include "core/render/ray_scene.h"
+#include "core/raycast/mesh_lookup.h"
+#include "core/raycast/ray_scene.h"
 
 namespace penumbra::bench {
 

@@ -5,7 +5,7 @@
 #include <ctime>
 #include <stdexcept>
 
-#include "core/engine/parallel.h"
+#include "core/util/parallel.h"
 
 namespace penumbra {
 

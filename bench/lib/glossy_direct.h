@@ -10,9 +10,9 @@
 #include <optional>
 #include <vector>
 
-#include "core/render/camera_projection.h"
+#include "core/raycast/camera_projection.h"
+#include "core/raycast/ray_scene.h"
 #include "core/render/microfacet_shading.h"
-#include "core/render/ray_scene.h"
 
 namespace penumbra {
 

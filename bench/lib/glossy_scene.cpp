@@ -1,6 +1,6 @@
 #include "bench/lib/glossy_scene.h"
 
-#include "bench/lib/scene_parts.h"
+#include "scenegen/scene_parts.h"
 
 namespace penumbra {
 

@@ -16,7 +16,6 @@
 #include "core/engine/build_stats.h"
 #include "core/engine/frame.h"
 #include "core/engine/frame_plan.h"
-#include "core/engine/parallel.h"
 #include "core/engine/resource_budget.h"
 #include "core/geom/plane_frame.h"
 #include "core/illum/per_light_values.h"
@@ -26,6 +25,7 @@
 #include "core/order/face_order.h"
 #include "core/overlap/overlap_cube.h"
 #include "core/scene/scene.h"
+#include "core/util/parallel.h"
 
 namespace penumbra {
 

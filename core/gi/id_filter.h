@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/engine/parallel.h"
 #include "core/geom/vec.h"
+#include "core/util/parallel.h"
 
 namespace penumbra::gi {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "core/geom/plane_frame.h"
-#include "core/render/light_hit.h"
+#include "core/raycast/light_hit.h"
 
 namespace penumbra::gi {
 

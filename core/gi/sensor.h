@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/gi/sensor_map.h"
-#include "core/render/ray_scene.h"
+#include "core/raycast/ray_scene.h"
 
 namespace penumbra::gi {
 

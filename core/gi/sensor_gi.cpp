@@ -6,7 +6,7 @@
 
 #include "core/gi/id_filter.h"
 #include "core/gi/sensor.h"
-#include "core/render/mesh_lookup.h"
+#include "core/raycast/mesh_lookup.h"
 
 namespace penumbra::gi {
 

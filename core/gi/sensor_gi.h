@@ -10,10 +10,10 @@
 #include <functional>
 #include <vector>
 
-#include "core/engine/parallel.h"
 #include "core/gi/sensor_placement.h"
 #include "core/mesh/mesh.h"
-#include "core/render/ray_scene.h"
+#include "core/raycast/ray_scene.h"
+#include "core/util/parallel.h"
 
 namespace penumbra::gi {
 

@@ -9,8 +9,8 @@
 #include <functional>
 #include <vector>
 
-#include "core/engine/parallel.h"
 #include "core/geom/vec.h"
+#include "core/util/parallel.h"
 
 namespace penumbra::gi {
 

@@ -4,10 +4,10 @@
 // front); checks and benches use this one.
 #pragma once
 
-#include "core/engine/parallel.h"
 #include "core/gi/sensor_gi.h"
-#include "core/render/camera_projection.h"
-#include "core/render/ray_scene.h"
+#include "core/raycast/camera_projection.h"
+#include "core/raycast/ray_scene.h"
+#include "core/util/parallel.h"
 
 namespace penumbra::gi {
 

@@ -12,10 +12,10 @@
 
 #include "core/geom/convex2d.h"
 #include "core/geom/plane_frame.h"
+#include "core/illum/light_class.h"
 #include "core/illum/shadow_chain.h"
 #include "core/illum/visible_contour.h"
 #include "core/illum/visible_region.h"
-#include "core/mesh/mesh.h"
 #include "core/scene/scene.h"
 
 namespace penumbra {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/dmtree/occluder_list.h"
-#include "core/mesh/mesh.h"
+#include "core/illum/light_class.h"
 #include "core/scene/scene.h"
 
 namespace penumbra {

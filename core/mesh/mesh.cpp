@@ -2,17 +2,6 @@
 
 namespace penumbra {
 
-const char* toString(LightClass c) {
-  switch (c) {
-    case LightClass::Lit: return "lit";
-    case LightClass::Penumbra: return "penumbra";
-    case LightClass::Umbra: return "umbra";
-  }
-  return "?";
-}
-
-LightClass combine(LightClass a, LightClass b) { return a == b ? a : LightClass::Penumbra; }
-
 void appendMesh(ReceiverMesh& into, const ReceiverMesh& part) {
   const uint32_t offset = uint32_t(into.positions.size());
   into.positions.insert(into.positions.end(), part.positions.begin(), part.positions.end());

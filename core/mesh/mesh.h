@@ -6,17 +6,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/illum/light_class.h"
 #include "core/scene/scene.h"
 
 namespace penumbra {
-
-// Visibility of the lights from a point (SCENE_FORMAT.md "class").
-enum class LightClass : uint8_t { Lit, Penumbra, Umbra };
-
-const char* toString(LightClass c);
-
-// Combines the classes of one point over several lights.
-LightClass combine(LightClass a, LightClass b);
 
 struct ReceiverMesh {
   FaceId face;

@@ -9,10 +9,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/engine/parallel.h"
 #include "core/geom/plane_frame.h"
 #include "core/mesh/cell_lighting.h"
 #include "core/mesh/mesh.h"
+#include "core/util/parallel.h"
 
 namespace penumbra {
 

@@ -8,7 +8,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "core/render/ray_scene.h"
+#include "core/raycast/ray_scene.h"
 
 namespace penumbra {
 

@@ -9,7 +9,7 @@
 
 #include "core/bsdf/bsdf.h"
 #include "core/geom/polygon.h"
-#include "core/render/ray_scene.h"
+#include "core/raycast/ray_scene.h"
 #include "core/scene/scene.h"
 
 namespace penumbra {

@@ -8,15 +8,15 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/engine/parallel.h"
+#include "core/illum/ambient_fill.h"
+#include "core/raycast/light_hit.h"
+#include "core/raycast/mesh_lookup.h"
+#include "core/raycast/ray_scene.h"
 #include "core/reference/exact_irradiance.h"
 #include "core/render/dm_visibility.h"
-#include "core/render/mesh_lookup.h"
-#include "core/illum/ambient_fill.h"
-#include "core/render/light_hit.h"
-#include "core/render/ray_scene.h"
 #include "core/render/volume_lighting.h"
 #include "core/scene/camera_limits.h"
+#include "core/util/parallel.h"
 
 namespace penumbra {
 

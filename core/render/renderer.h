@@ -11,7 +11,7 @@
 #include "core/gi/sensor_gi.h"
 #include "core/illum/ambient_fill.h"
 #include "core/mesh/mesh.h"
-#include "core/render/camera_projection.h"
+#include "core/raycast/camera_projection.h"
 #include "core/render/microfacet_shading.h"
 #include "core/scene/scene.h"
 
@@ -52,7 +52,7 @@ struct RenderSettings {
   int volumeShadowStrata = 4;
   uint64_t seed = 1;  // microfacet and volume estimates: per-pixel generators seeded from it
   // Threads drawing rows: 0 = every core, 1 = the calling thread only (EngineSettings::threads;
-  // a TSan build always uses 1, core/engine/parallel.h). The image is the same for any count.
+  // a TSan build always uses 1, core/util/parallel.h). The image is the same for any count.
   int threads = 0;
 };
 

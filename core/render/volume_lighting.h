@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "core/bsdf/rng.h"
+#include "core/raycast/ray_scene.h"
 #include "core/render/light_sampler.h"
-#include "core/render/ray_scene.h"
 #include "core/scene/scene.h"
 
 namespace penumbra {

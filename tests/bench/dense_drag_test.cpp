@@ -8,8 +8,8 @@
 #include <cmath>
 #include <string>
 
-#include "bench/lib/dense_scene.h"
 #include "protocol/edits_json.h"
+#include "scenegen/dense_scene.h"
 
 namespace penumbra {
 namespace {

@@ -12,9 +12,9 @@
 #include <sstream>
 #include <string>
 
-#include "bench/lib/cubes_scene.h"
 #include "protocol/edits_json.h"
 #include "protocol/scene_json.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra {
 namespace {

@@ -14,11 +14,11 @@
 #include <set>
 #include <sstream>
 
-#include "bench/lib/model_scene.h"
 #include "core/engine/engine.h"
 #include "interchange/glb_export.h"
 #include "interchange/scene_import.h"
 #include "protocol/scene_json.h"
+#include "scenegen/model_scene.h"
 
 namespace penumbra::interchange {
 namespace {

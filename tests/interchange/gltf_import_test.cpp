@@ -142,7 +142,7 @@ namespace {
 // Found by the gltf_import fuzz target: a NaN position reached the welding grid (UB).
 TEST(GltfImport, NonFiniteCoordinatesAreRefusedWithTheirPath) {
   const std::string path =
-      std::string(PENUMBRA_SOURCE_DIR) + "/bench/fuzz/crashes/gltf_import/weld-nan-position.gltf";
+      std::string(PENUMBRA_SOURCE_DIR) + "/tests/fuzz/crashes/gltf_import/weld-nan-position.gltf";
   std::ifstream in(path, std::ios::binary);
   ASSERT_TRUE(in) << path;
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -9,13 +9,13 @@
 #include <fstream>
 #include <limits>
 
-#include "bench/lib/volume_fields.h"
 #include "core/engine/engine.h"
 #include "protocol/json_text.h"
 #include "protocol/nrrd_volume.h"
 #include "protocol/scene_json.h"
 #include "protocol/validation_error.h"
 #include "protocol/volume_json.h"
+#include "scenegen/volume_fields.h"
 
 namespace penumbra::protocol {
 namespace {

@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "bench/lib/model_scene.h"
+#include "scenegen/model_scene.h"
 #include "server_fixture.h"
 
 namespace penumbra::server::test {

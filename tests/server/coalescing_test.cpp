@@ -13,8 +13,8 @@
 #include <thread>
 #include <vector>
 
-#include "bench/lib/dense_scene.h"
 #include "core/reference/exact_irradiance.h"
+#include "scenegen/dense_scene.h"
 #include "server_fixture.h"
 
 namespace penumbra::server::test {

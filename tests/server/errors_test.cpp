@@ -48,7 +48,7 @@ TEST_F(ServerErrors, MalformedJsonIs400) {
   expectUnchanged();
 }
 
-// Fuzzing found it (bench/fuzz/crashes/http_request/url-invalid-utf8.http): the 404 body
+// Fuzzing found it (tests/fuzz/crashes/http_request/url-invalid-utf8.http): the 404 body
 // names the decoded path, and dumping invalid UTF-8 threw outside any handler.
 TEST_F(ServerErrors, InvalidUtf8InTheUrlIs404AndTheServerLives) {
   for (const char* path : {"/%ff", "/%c3%28?name=%ff", "/api/%fe%ff"}) {

@@ -12,8 +12,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "bench/lib/cubes_scene.h"
 #include "protocol/scene_json.h"
+#include "scenegen/cubes_scene.h"
 #include "server/mesh_binary.h"
 #include "server/scene_session.h"
 #include "server_fixture.h"

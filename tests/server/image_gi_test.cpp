@@ -5,7 +5,7 @@
 
 #include "core/engine/engine.h"
 #include "core/render/renderer.h"
-#include "server/image_encoding.h"
+#include "imageio/image_encoding.h"
 #include "server_fixture.h"
 
 namespace penumbra::server::test {
@@ -34,7 +34,7 @@ TEST(ImageGi, SensorsImageEqualsTheInProcessRenderAndDiffersFromDirectLight) {
   gi.placement.tile = 8;
   gi.bounces = 2;
   settings.gi = gi;
-  const std::vector<uint8_t> expected = encodePng(render(engine.scene(), engine.mesh(), settings));
+  const std::vector<uint8_t> expected = imageio::encodePng(render(engine.scene(), engine.mesh(), settings));
   EXPECT_EQ(bounced->body, std::string(expected.begin(), expected.end()));
 }
 

@@ -8,7 +8,7 @@
 
 #include "core/engine/engine.h"
 #include "core/render/renderer.h"
-#include "server/image_encoding.h"
+#include "imageio/image_encoding.h"
 #include "server_fixture.h"
 
 namespace penumbra::server::test {
@@ -40,7 +40,7 @@ std::string expectedPng(const Scene& scene, const std::vector<Frame>& frames, in
          receiver->tree.occluders(receiver->tree.locate(receiver->frame.to2D(p))))
       if (e.light == light && e.face != kLightPlaneOccluder) out.push_back(e.face);
   };
-  const std::vector<uint8_t> bytes = encodePng(render(engine.scene(), engine.mesh(), settings));
+  const std::vector<uint8_t> bytes = imageio::encodePng(render(engine.scene(), engine.mesh(), settings));
   return std::string(bytes.begin(), bytes.end());
 }
 

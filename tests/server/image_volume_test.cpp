@@ -5,7 +5,7 @@
 
 #include "core/engine/engine.h"
 #include "core/render/renderer.h"
-#include "server/image_encoding.h"
+#include "imageio/image_encoding.h"
 #include "server_fixture.h"
 #include "temp_data_dir.h"
 
@@ -19,7 +19,7 @@ std::string expectedPng(const Scene& scene) {
   RenderSettings settings;
   settings.width = 48;
   settings.height = 40;
-  const std::vector<uint8_t> bytes = encodePng(render(engine.scene(), engine.mesh(), settings));
+  const std::vector<uint8_t> bytes = imageio::encodePng(render(engine.scene(), engine.mesh(), settings));
   return std::string(bytes.begin(), bytes.end());
 }
 

@@ -8,7 +8,7 @@
 #include <memory>
 #include <new>
 
-#include "bench/lib/cubes_scene.h"
+#include "scenegen/cubes_scene.h"
 #include "server/mesh_binary.h"
 #include "server/scene_session.h"
 #include "server_fixture.h"

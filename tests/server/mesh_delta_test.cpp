@@ -10,9 +10,9 @@
 #include <sstream>
 #include <tuple>
 
-#include "bench/lib/cubes_scene.h"
-#include "bench/lib/model_scene.h"
 #include "protocol/mesh_json.h"
+#include "scenegen/cubes_scene.h"
+#include "scenegen/model_scene.h"
 #include "server/gzip_encoding.h"
 #include "server/mesh_binary.h"
 #include "server/scene_session.h"

@@ -10,9 +10,9 @@
 #include <thread>
 
 #include "core/engine/engine.h"
-#include "core/engine/parallel.h"
 #include "core/gi/sensor_gi.h"
-#include "core/render/ray_scene.h"
+#include "core/raycast/ray_scene.h"
+#include "core/util/parallel.h"
 #include "server/mesh_binary.h"
 #include "server_fixture.h"
 

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/lib/cubes_scene.h"
+#include "scenegen/cubes_scene.h"
 #include "server/scene_session.h"
 
 namespace penumbra::server {

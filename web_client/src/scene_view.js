@@ -1,5 +1,5 @@
 // The 3D view: renderer (antialiased unless the GL is a software rasteriser), scene, a camera
-// made from the scene's camera (perspective or orthographic, as core/render/camera_projection.h
+// made from the scene's camera (perspective or orthographic, as core/raycast/camera_projection.h
 // reads it), OrbitControls around its target, and the camera as /image query parameters so the
 // server renders exactly this view.
 import * as THREE from 'three';

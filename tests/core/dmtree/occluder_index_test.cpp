@@ -6,8 +6,8 @@
 
 #include <random>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/engine/engine.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra {
 namespace {

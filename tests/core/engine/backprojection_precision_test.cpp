@@ -8,11 +8,11 @@
 #include <cstdio>
 #include <type_traits>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/engine/engine.h"
 #include "core/illum/backprojection.h"
 #include "core/reference/exact_irradiance.h"
 #include "protocol/scene_json.h"
+#include "scenegen/cubes_scene.h"
 #include "tests/core/engine/precise_factor.h"
 
 namespace penumbra {

@@ -6,9 +6,9 @@
 
 #include <cstdio>
 
-#include "bench/lib/scene_parts.h"
-#include "bench/lib/sphere_scene.h"
 #include "core/engine/engine.h"
+#include "scenegen/scene_parts.h"
+#include "scenegen/sphere_scene.h"
 #include "tests/core/engine/incremental_compare.h"
 #include "tests/core/engine/reference_check.h"
 

@@ -13,11 +13,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/engine/engine.h"
 #include "core/illum/face_lookup.h"
 #include "core/reference/exact_irradiance.h"
 #include "protocol/scene_json.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra {
 namespace {

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "bench/lib/dense_drag.h"
-#include "bench/lib/dense_scene.h"
 #include "core/engine/engine.h"
+#include "scenegen/dense_scene.h"
 #include "tests/core/engine/incremental_compare.h"
 #include "tests/core/engine/reference_check.h"
 

@@ -11,12 +11,12 @@
 #include <random>
 #include <string>
 
-#include "bench/lib/cubes_scene.h"
-#include "bench/lib/model_scene.h"
 #include "bench/lib/sample_points.h"
 #include "core/engine/engine.h"
+#include "core/raycast/mesh_lookup.h"
 #include "core/reference/exact_irradiance.h"
-#include "core/render/mesh_lookup.h"
+#include "scenegen/cubes_scene.h"
+#include "scenegen/model_scene.h"
 #include "tests/core/engine/incremental_compare.h"
 
 namespace penumbra {

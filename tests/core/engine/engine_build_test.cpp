@@ -8,10 +8,10 @@
 #include <map>
 #include <tuple>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/engine/engine.h"
 #include "core/reference/exact_irradiance.h"
 #include "protocol/scene_json.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra {
 namespace {

@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <random>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/engine/engine.h"
 #include "protocol/mesh_json.h"
 #include "protocol/scene_json.h"
+#include "scenegen/cubes_scene.h"
 #include "tests/core/engine/incremental_compare.h"
 #include "tests/core/engine/refused_frame.h"
 

@@ -13,10 +13,10 @@
 #include <random>
 #include <set>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/engine/engine.h"
 #include "core/engine/light_edits.h"
 #include "core/reference/exact_irradiance.h"
+#include "scenegen/cubes_scene.h"
 #include "tests/core/engine/incremental_compare.h"
 
 namespace penumbra {

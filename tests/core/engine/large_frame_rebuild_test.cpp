@@ -5,9 +5,9 @@
 // equals a fresh build of the new scene.
 #include <gtest/gtest.h>
 
-#include "bench/lib/cubes_scene.h"
 #include "bench/lib/edit_scripts.h"
 #include "core/engine/engine.h"
+#include "scenegen/cubes_scene.h"
 #include "tests/core/engine/incremental_compare.h"
 #include "tests/core/illum/random_meshes.h"
 

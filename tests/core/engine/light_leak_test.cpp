@@ -10,10 +10,10 @@
 #include <iterator>
 #include <random>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/engine/engine.h"
+#include "core/raycast/ray_scene.h"
 #include "core/reference/exact_irradiance.h"
-#include "core/render/ray_scene.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra {
 namespace {

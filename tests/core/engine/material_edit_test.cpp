@@ -5,8 +5,8 @@
 
 #include <random>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/engine/engine.h"
+#include "scenegen/cubes_scene.h"
 #include "tests/core/engine/refused_frame.h"
 
 namespace penumbra {

@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "bench/lib/dense_scene.h"
-#include "bench/lib/scene_parts.h"
 #include "core/engine/engine.h"
 #include "core/scene/mesh_topology.h"
+#include "scenegen/dense_scene.h"
+#include "scenegen/scene_parts.h"
 #include "tests/core/engine/incremental_compare.h"
 #include "tests/core/engine/model_room.h"
 #include "tests/core/engine/reference_check.h"

@@ -9,10 +9,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/engine/engine.h"
 #include "core/illum/backprojection.h"
 #include "protocol/scene_json.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra {
 namespace {

@@ -1,12 +1,12 @@
-// Test helper: models placed in the dense room (bench/lib/dense_scene.h) under its ceiling
+// Test helper: models placed in the dense room (scenegen/dense_scene.h) under its ceiling
 // light, moved off centre so no symmetry hides a mistake. Header-only; test use.
 #pragma once
 
 #include <vector>
 
-#include "bench/lib/dense_scene.h"
-#include "bench/lib/scene_parts.h"
 #include "core/scene/scene.h"
+#include "scenegen/dense_scene.h"
+#include "scenegen/scene_parts.h"
 
 namespace penumbra::testing {
 

@@ -1,4 +1,4 @@
-// A fuzz finding (bench/fuzz/crashes/edit_frame/near-coplanar-light-edge.json): a cube moved so
+// A fuzz finding (tests/fuzz/crashes/edit_frame/near-coplanar-light-edge.json): a cube moved so
 // that one face lies 6e-8 m from the plane of the light's edge makes two floor lines cross at a
 // shallow angle, and the floor's tree holds a sliver 9e-9 m wide (the length tolerance is 9e-9
 // m here) straddling both. DmTree::validate refused it (its centroid was 5e-10 m on the wrong
@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "bench/fuzz/fuzz_support.h"
+#include "tests/fuzz/fuzz_support.h"
 #include "core/engine/engine.h"
 #include "tests/core/engine/incremental_compare.h"
 #include "tests/core/engine/reference_check.h"

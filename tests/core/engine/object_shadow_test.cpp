@@ -11,10 +11,10 @@
 #include <random>
 #include <string>
 
-#include "bench/lib/dense_scene.h"
-#include "bench/lib/sphere_scene.h"
 #include "core/engine/engine.h"
 #include "core/shadow/cast_shadow.h"
+#include "scenegen/dense_scene.h"
+#include "scenegen/sphere_scene.h"
 #include "tests/core/engine/incremental_compare.h"
 #include "tests/core/engine/reference_check.h"
 

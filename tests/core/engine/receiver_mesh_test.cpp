@@ -9,8 +9,8 @@
 #include <random>
 #include <set>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/engine/engine.h"
+#include "scenegen/cubes_scene.h"
 #include "tests/core/engine/incremental_compare.h"
 
 namespace penumbra {

@@ -19,11 +19,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/engine/engine.h"
 #include "core/illum/backprojection.h"
 #include "core/illum/vertex_illumination.h"
 #include "core/reference/exact_irradiance.h"
+#include "scenegen/cubes_scene.h"
 #include "tests/core/engine/precise_factor.h"
 
 namespace penumbra {

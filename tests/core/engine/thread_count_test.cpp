@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/engine/engine.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra {
 namespace {

@@ -5,11 +5,11 @@
 // vertices carry exact values; only the cells, so the triangles between them, may differ).
 #include <gtest/gtest.h>
 
-#include "bench/lib/cubes_scene.h"
 #include "bench/lib/edit_scripts.h"
 #include "bench/lib/mesh_sampling.h"
 #include "bench/lib/sample_points.h"
 #include "core/engine/engine.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra {
 namespace {

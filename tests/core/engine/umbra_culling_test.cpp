@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <string>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/engine/engine.h"
+#include "scenegen/cubes_scene.h"
 #include "tests/core/engine/incremental_compare.h"
 #include "tests/core/engine/reference_check.h"
 

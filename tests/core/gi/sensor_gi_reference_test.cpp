@@ -11,8 +11,8 @@
 #include "core/gi/sensor.h"
 #include "core/gi/sensor_gi.h"
 #include "core/gi/view_gbuffer.h"
+#include "core/raycast/camera_projection.h"
 #include "core/reference/exact_irradiance.h"
-#include "core/render/camera_projection.h"
 #include "core/render/renderer.h"
 #include "protocol/scene_json.h"
 

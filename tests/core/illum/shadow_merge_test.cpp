@@ -7,10 +7,10 @@
 
 #include <random>
 
-#include "bench/lib/dense_scene.h"
-#include "bench/lib/sphere_scene.h"
 #include "core/illum/backprojection.h"
 #include "core/reference/exact_irradiance.h"
+#include "scenegen/dense_scene.h"
+#include "scenegen/sphere_scene.h"
 
 namespace penumbra {
 namespace {

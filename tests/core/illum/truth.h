@@ -7,10 +7,10 @@
 #include <random>
 #include <vector>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/dmtree/occluder_list.h"
 #include "core/geom/clip.h"
 #include "core/reference/exact_irradiance.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra::illum_test {
 

@@ -9,7 +9,7 @@
 #include <cstdio>
 
 #include "core/illum/backprojection.h"
-#include "core/render/ray_scene.h"
+#include "core/raycast/ray_scene.h"
 #include "tests/core/illum/truth.h"
 
 namespace penumbra {

@@ -8,10 +8,10 @@
 #include <set>
 #include <sstream>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/geom/convex2d.h"
 #include "core/geom/plane_frame.h"
 #include "protocol/scene_json.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra {
 namespace {

@@ -6,8 +6,8 @@
 #include <set>
 #include <string>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/order/face_order.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra {
 namespace {

@@ -12,11 +12,11 @@
 #include <random>
 #include <set>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/geom/clip.h"
+#include "core/raycast/ray_scene.h"
 #include "core/reference/exact_irradiance.h"
-#include "core/render/ray_scene.h"
 #include "overlap_test_support.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra {
 namespace {

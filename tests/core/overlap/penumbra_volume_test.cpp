@@ -7,10 +7,10 @@
 
 #include <random>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/geom/clip.h"
 #include "core/geom/plane_frame.h"
 #include "overlap_test_support.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra {
 namespace {

@@ -8,8 +8,8 @@
 #include <iostream>
 #include <random>
 
-#include "bench/lib/cubes_scene.h"
 #include "core/reference/exact_irradiance.h"
+#include "scenegen/cubes_scene.h"
 
 namespace penumbra {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "core/engine/engine.h"
 #include "core/illum/backprojection.h"
+#include "core/raycast/ray_scene.h"
 #include "core/reference/exact_irradiance.h"
-#include "core/render/ray_scene.h"
 
 namespace penumbra {
 namespace {

@@ -10,9 +10,9 @@
 #include <cmath>
 
 #include "core/engine/engine.h"
+#include "core/raycast/mesh_lookup.h"
+#include "core/raycast/ray_scene.h"
 #include "core/reference/exact_irradiance.h"
-#include "core/render/mesh_lookup.h"
-#include "core/render/ray_scene.h"
 #include "protocol/scene_json.h"
 
 namespace penumbra {

@@ -8,13 +8,13 @@
 #include <cmath>
 #include <random>
 
-#include "bench/lib/volume_fields.h"
 #include "core/engine/engine.h"
+#include "core/raycast/ray_scene.h"
 #include "core/reference/exact_irradiance.h"
-#include "core/render/ray_scene.h"
 #include "core/render/renderer.h"
 #include "core/render/volume_lighting.h"
 #include "protocol/mesh_json.h"
+#include "scenegen/volume_fields.h"
 
 namespace penumbra {
 namespace {
@@ -54,7 +54,7 @@ std::shared_ptr<const volume::ScalarVolume> sphereData() {
 VolumeObject sphereVolume(Transform transform = {}) {
   VolumeObject volume;
   volume.id = "blob";
-  volume.isovalue = 0.5;  // the sphere field's level set (bench/lib/volume_fields.h)
+  volume.isovalue = 0.5;  // the sphere field's level set (scenegen/volume_fields.h)
   volume.data = sphereData();
   if (transform == Transform{}) transform.translate = Vec3(-0.5, 1.0, -0.5);
   volume.transform = transform;

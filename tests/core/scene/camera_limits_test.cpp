@@ -9,7 +9,7 @@
 #include <cmath>
 #include <random>
 
-#include "core/render/camera_projection.h"
+#include "core/raycast/camera_projection.h"
 
 namespace penumbra {
 namespace {

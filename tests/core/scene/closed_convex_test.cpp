@@ -10,8 +10,8 @@
 #include <cmath>
 #include <random>
 
-#include "bench/lib/scene_parts.h"
 #include "core/scene/scene.h"
+#include "scenegen/scene_parts.h"
 
 namespace penumbra {
 namespace {

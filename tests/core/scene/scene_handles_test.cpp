@@ -5,8 +5,8 @@
 
 #include <stdexcept>
 
-#include "bench/lib/scene_parts.h"
 #include "core/scene/scene.h"
+#include "scenegen/scene_parts.h"
 
 namespace penumbra {
 namespace {

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "bench/lib/cubes_scene.h"
+#include "scenegen/cubes_scene.h"
 #include "tests/core/shadow/shadow_fixtures.h"
 
 namespace penumbra {

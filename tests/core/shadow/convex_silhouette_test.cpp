@@ -12,10 +12,10 @@
 #include <cstdio>
 #include <random>
 
-#include "bench/lib/dense_scene.h"
-#include "bench/lib/scene_parts.h"
-#include "bench/lib/sphere_scene.h"
 #include "core/engine/engine.h"
+#include "scenegen/dense_scene.h"
+#include "scenegen/scene_parts.h"
+#include "scenegen/sphere_scene.h"
 #include "tests/core/engine/reference_check.h"
 
 namespace penumbra {

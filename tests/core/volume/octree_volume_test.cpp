@@ -10,7 +10,7 @@
 #include <cstring>
 #include <random>
 
-#include "bench/lib/volume_fields.h"
+#include "scenegen/volume_fields.h"
 
 namespace penumbra {
 namespace {
