@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <optional>
+
+#include "core/engine/parallel.h"
 
 #if defined(__linux__)
 #include <sys/resource.h>
@@ -27,11 +30,14 @@ void lowerOwnPriority(int steps) {
 
 }  // namespace
 
-EditWorkers::EditWorkers(int threads, int niceness) : niceness_(std::clamp(niceness, 0, 19)) {
+EditWorkers::EditWorkers(int threads, int niceness, int heavyNiceness)
+    : niceness_(std::clamp(niceness, 0, 19)),
+      heavyNiceness_(std::clamp(niceness_ + std::max(0, heavyNiceness), 0, 19)) {
   if (threads <= 0) threads = int(std::thread::hardware_concurrency());
-  threads = std::max(2, threads);
-  threadCount_ = size_t(threads);
-  for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { serve(); });
+  threads = std::max(1, threads);
+  for (int i = 0; i < threads; ++i)
+    threads_.emplace_back([this] { serve(light_, niceness_, false); });
+  threads_.emplace_back([this] { serve(heavy_, heavyNiceness_, true); });
 }
 
 EditWorkers::~EditWorkers() {
@@ -39,36 +45,38 @@ EditWorkers::~EditWorkers() {
     std::lock_guard lock(mutex_);
     stopping_ = true;
   }
-  queued_.notify_all();
+  light_.queued.notify_all();
+  heavy_.queued.notify_all();
   for (std::thread& thread : threads_) thread.join();
 }
 
 void EditWorkers::run(const std::function<void()>& work, bool heavy) {
-  Job job{&work, heavy, nullptr, false};
+  Job job{&work, nullptr, false};
+  Lane& lane = heavy ? heavy_ : light_;
   std::unique_lock lock(mutex_);
-  jobs_.push_back(&job);
-  queued_.notify_all();  // the worker that may take it (a light job: the one kept for light work)
+  lane.jobs.push_back(&job);
+  lane.queued.notify_one();
   done_.wait(lock, [&] { return job.done; });
   if (job.error) std::rethrow_exception(job.error);
 }
 
-std::deque<EditWorkers::Job*>::iterator EditWorkers::nextRunnable() {
-  const bool heavyAllowed = heavyRunning_ + 1 < threadCount_;
-  return std::find_if(jobs_.begin(), jobs_.end(),
-                      [heavyAllowed](const Job* job) { return heavyAllowed || !job->heavy; });
+size_t EditWorkers::heavyQueued() const {
+  std::lock_guard lock(mutex_);
+  return heavy_.jobs.size();
 }
 
-void EditWorkers::serve() {
-  lowerOwnPriority(niceness_);
+void EditWorkers::serve(Lane& lane, int niceness, bool loopsHere) {
+  lowerOwnPriority(niceness);
+  // The heavy lane's engine loops stay on this thread, at its priority (TBB's shared workers
+  // run at everyone's).
+  std::optional<Parallel::OnThisThreadOnly> oneCore;
+  if (loopsHere) oneCore.emplace();
   std::unique_lock lock(mutex_);
   for (;;) {
-    queued_.wait(lock,
-                 [this] { return (stopping_ && jobs_.empty()) || nextRunnable() != jobs_.end(); });
-    if (jobs_.empty()) return;  // stopping, nothing left
-    const auto next = nextRunnable();
-    Job* job = *next;
-    jobs_.erase(next);
-    if (job->heavy) ++heavyRunning_;
+    lane.queued.wait(lock, [&] { return stopping_ || !lane.jobs.empty(); });
+    if (lane.jobs.empty()) return;  // stopping, nothing left
+    Job* job = lane.jobs.front();
+    lane.jobs.pop_front();
     lock.unlock();
     try {
       (*job->work)();
@@ -76,10 +84,6 @@ void EditWorkers::serve() {
       job->error = std::current_exception();
     }
     lock.lock();
-    if (job->heavy) {
-      --heavyRunning_;
-      queued_.notify_all();  // a heavy job waiting for a slot may start
-    }
     job->done = true;
     done_.notify_all();
   }
