@@ -28,6 +28,7 @@
 #include "server/scene_session.h"
 #include "server/static_files.h"
 #include "server/work_budget.h"
+#include "server/work_lane.h"
 
 namespace httplib {
 class Server;
@@ -262,6 +263,7 @@ class HttpServer {
   WorkBudget imageBudget_;   // working memory of the images rendering now (image_routes)
   RenderJobs renders_;       // the images rendering now and just ended, by ticket
   EditWorkers editWorkers_;  // apply edit batches: one per core, and the heavy lane (outlives http_)
+  WorkLane costlyImages_;    // draw GI and large images, below edits (outlives http_)
   std::unique_ptr<httplib::Server> http_;
   int port_ = 0;
   std::atomic<bool> stopping_{false};
