@@ -221,7 +221,23 @@ void HttpServer::registerSceneRoutes() {
             readingBody(options_.maxBodyBytes,
                         guarded([this](const httplib::Request& req, httplib::Response& res) {
                           const auto session = findScene(req.matches[1]);
-                          sendJson(res, 200, rebuildJson(session->rebuild()));
+                          // Cancelled by the scene's DELETE (it closes the session) or a stop,
+                          // at the engine's next progress report.
+                          struct Cancelled : std::runtime_error {
+                            Cancelled() : std::runtime_error("rebuild cancelled") {}
+                          };
+                          try {
+                            sendJson(res, 200, rebuildJson(session->rebuild(
+                                                   [&](const char*, size_t, size_t) {
+                                                     if (session->closed() || stopping_)
+                                                       throw Cancelled();
+                                                   })));
+                          } catch (const Cancelled&) {
+                            throw ApiError(409, error_code::kRebuildCancelled, "",
+                                           session->closed()
+                                               ? "the rebuild was cancelled: the scene was deleted"
+                                               : "the rebuild was cancelled: the server is stopping");
+                          }
                         })));
 
   http.Get(
