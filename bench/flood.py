@@ -130,26 +130,35 @@ def main():
 
         stop, lock = threading.Event(), threading.Lock()
         statuses, edits, health = {}, [], []
-        threads = [threading.Thread(target=flooder, args=(port, i, args.lights, stop, statuses, lock))
-                   for i in range(args.flooders)]
-        threads.append(threading.Thread(target=other_client, args=(
-            port, lambda s: "/api/scenes/cornell/edits", move, 0.1, stop, edits)))
-        threads.append(threading.Thread(target=other_client, args=(
-            port, lambda s: "/api/health", None, 0.05, stop, health)))
-        for t in threads:
+        # The flood's requests still running at the end (a heavy frame can take minutes) are not
+        # waited for: the server is stopped under them.
+        flood = [threading.Thread(target=flooder, args=(port, i, args.lights, stop, statuses, lock),
+                                  daemon=True) for i in range(args.flooders)]
+        others = [threading.Thread(target=other_client, args=(
+                      port, lambda s: "/api/scenes/cornell/edits", move, 0.1, stop, edits)),
+                  threading.Thread(target=other_client, args=(
+                      port, lambda s: "/api/health", None, 0.05, stop, health))]
+        for t in flood + others:
             t.start()
         time.sleep(args.seconds)
         stop.set()
-        for t in threads:
+        for t in others:
             t.join()
+        with lock:
+            got = json.dumps(statuses)
         print(f"flood: {args.flooders} flooding connections from 127.0.0.2 for {args.seconds:.0f} s; "
-              f"what they got: {json.dumps(statuses)}")
+              f"what they got: {got}")
         edit_p99 = summary("the other client's edits (cornell)", edits)
         health_p99 = summary("/api/health", health)
         print(f"edit p99 {'≤' if edit_p99 <= 250 else '>'} 250 ms, health p99 {'≤' if health_p99 <= 50 else '>'} 50 ms")
     finally:
         proc.terminate()
-        proc.wait(timeout=10)
+        try:
+            proc.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            print("flood: the server did not stop within 10 s of SIGTERM; killed")
+            proc.kill()
+            proc.wait()
 
 
 if __name__ == "__main__":

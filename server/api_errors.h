@@ -38,6 +38,7 @@ inline constexpr const char* kOwnedElsewhere = "owned_elsewhere";
 inline constexpr const char* kBuilding = "building";  // 503 + Retry-After: the scene is being built
 inline constexpr const char* kBuildCancelled = "build_cancelled";  // 409: DELETE or a stop ended it
 inline constexpr const char* kRenderCancelled = "render_cancelled";  // 409: see RenderJob
+inline constexpr const char* kRebuildCancelled = "rebuild_cancelled";  // 409: DELETE or a stop
 inline constexpr const char* kTooManyConnections = "too_many_connections";  // 503 per address
 inline constexpr const char* kRequestTimeout = "request_timeout";  // 408: a head too slow
 inline constexpr const char* kHeadersTooLarge = "headers_too_large";  // 431

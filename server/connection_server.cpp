@@ -7,6 +7,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <string_view>
+#include <thread>
 #include <vector>
 
 #include "server/api_errors.h"
@@ -20,6 +22,10 @@ using Clock = std::chrono::steady_clock;
 constexpr size_t kBufferBytes = 16 << 10;
 constexpr int kStopPollMs = 100;  // how often a connection waiting for its next request checks
                                   // for a stop
+// A connection past its address's cap may still ask for /api/health: its whole head within this
+// many bytes and milliseconds of the accept.
+constexpr size_t kHealthHeadBytes = 4096;
+constexpr int kHealthHeadMs = 200;
 
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -223,6 +229,26 @@ class ConnectionStream : public httplib::Stream {
 
 thread_local ConnectionStream* current = nullptr;
 
+// Whether the connection's first request is a GET of /api/health whose whole head arrived within
+// kHealthHeadMs (peeked, left for the request loop to read).
+bool asksForHealthAtOnce(socket_t sock) {
+  char head[kHealthHeadBytes];
+  const auto deadline = Clock::now() + std::chrono::milliseconds(kHealthHeadMs);
+  for (;;) {
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+    pollfd p{sock, POLLIN, 0};
+    if (left <= 0 || poll(&p, 1, int(left)) <= 0) return false;
+    const ssize_t n = recv(sock, head, sizeof head, MSG_PEEK | MSG_DONTWAIT);
+    if (n <= 0) return false;
+    const std::string_view text(head, size_t(n));
+    if (text.find("\r\n\r\n") != std::string_view::npos)
+      return text.rfind("GET /api/health ", 0) == 0 || text.rfind("GET /api/health?", 0) == 0;
+    if (size_t(n) == sizeof head) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));  // a head still coming
+  }
+}
+
 // An answer written by the loop itself (no request was read, or its head could not be).
 void writeRaw(socket_t sock, int status, const char* reason, const std::string& body, bool retry) {
   std::string text = "HTTP/1.1 " + std::to_string(status) + " " + reason +
@@ -268,37 +294,55 @@ size_t ConnectionServer::connectionsFrom(const std::string& address) const {
   return it == open_.end() ? 0 : it->second;
 }
 
-bool ConnectionServer::takeSlot(const std::string& address) {
+bool ConnectionServer::takeSlot(const std::string& address, bool reserve) {
   std::lock_guard lock(mutex_);
-  size_t& open = open_[address];
-  if (open >= limits_.perAddress) return false;
+  size_t& open = (reserve ? reserved_ : open_)[address];
+  if (open >= (reserve ? limits_.healthReserve : limits_.perAddress)) {
+    if (open == 0) (reserve ? reserved_ : open_).erase(address);
+    return false;
+  }
   ++open;
   return true;
 }
 
-void ConnectionServer::giveSlot(const std::string& address) {
+void ConnectionServer::giveSlot(const std::string& address, bool reserve) {
   std::lock_guard lock(mutex_);
-  if (--open_[address] == 0) open_.erase(address);
+  auto& slots = reserve ? reserved_ : open_;
+  if (--slots[address] == 0) slots.erase(address);
 }
 
 bool ConnectionServer::process_and_close_socket(socket_t sock) {
   const std::string address = peerAddress(sock);
-  if (!takeSlot(address)) {
-    writeRaw(sock, 503, "Service Unavailable",
-             jsonText(errorJson(error_code::kTooManyConnections,
-                                "already " + std::to_string(limits_.perAddress) +
-                                    " connections open from " + address +
-                                    "; close one first (or reuse it: keep-alive)",
-                                "(connection)")),
-             true);
-    closeGently(sock);
-    return false;
+  if (takeSlot(address, false)) {
+    const bool ok = serve(sock, keep_alive_max_count_);
+    giveSlot(address, false);
+    return ok;
   }
+  // Over the cap: a health check sent at once is still answered (one request, then closed), so
+  // the address's own slow or idle sockets cannot lock its health checker out.
+  if (takeSlot(address, true)) {
+    const bool health = asksForHealthAtOnce(sock);
+    const bool ok = health && serve(sock, 1);
+    giveSlot(address, true);
+    if (health) return ok;
+  }
+  writeRaw(sock, 503, "Service Unavailable",
+           jsonText(errorJson(error_code::kTooManyConnections,
+                              "already " + std::to_string(limits_.perAddress) +
+                                  " connections open from " + address +
+                                  "; close one first (or reuse it: keep-alive)",
+                              "(connection)")),
+           true);
+  closeGently(sock);
+  return false;
+}
+
+bool ConnectionServer::serve(socket_t sock, size_t requests) {
   ConnectionStream stream(sock, limits_, int(read_timeout_sec_ * 1000 + read_timeout_usec_ / 1000),
                           int(write_timeout_sec_ * 1000 + write_timeout_usec_ / 1000));
   const auto stopping = [this] { return svr_sock_ == INVALID_SOCKET; };
   bool ok = true;
-  for (size_t left = keep_alive_max_count_; left > 0; --left) {
+  for (size_t left = requests; left > 0; --left) {
     if (!stream.nextRequest(int(keep_alive_timeout_sec_ * 1000), stopping)) break;
     bool connectionClosed = false;
     current = &stream;
@@ -311,13 +355,11 @@ bool ConnectionServer::process_and_close_socket(socket_t sock) {
             sock, stream.problem().status,
             stream.problem().status == 408 ? "Request Timeout" : "Request Header Fields Too Large",
             stream.problem().body, false);
-      giveSlot(address);
       closeGently(sock);
       return false;
     }
     if (!ok || connectionClosed) break;
   }
-  giveSlot(address);
   if (stream.buffered()) {  // bytes of a request we will not answer
     closeGently(sock);
   } else {

@@ -1,6 +1,6 @@
 // cpp-httplib's server with a connection loop of our own (docs/API.md "Load", "A cap per client
 // address"): at most `perAddress` connections from one client address (past it a 503 and close,
-// before a byte is read); each request's head (request line and headers) must arrive within
+// unless one of a few more sends a whole GET /api/health at once: that is answered); each request's head (request line and headers) must arrive within
 // `headSeconds` and stay within `maxHeadBytes` and `maxHeaderLines` (else 408 / 431 and close); a
 // body must keep arriving at `minBodyBytesPerSecond` after its first `headSeconds`; pipelined
 // requests are read from one buffer kept across requests and answered in order (httplib 0.11
@@ -22,6 +22,10 @@ namespace penumbra::server {
 
 struct ConnectionLimits {
   size_t perAddress = 256;
+  // Past the cap, this many more connections of an address may each ask for GET /api/health,
+  // the whole head there within kHealthHeadMs of the accept (a health checker sends it at once);
+  // anything else, or later, is the 503.
+  size_t healthReserve = 8;
   double headSeconds = 10;
   size_t maxHeadBytes = 64 << 10;
   size_t maxHeaderLines = 128;
@@ -51,12 +55,16 @@ class ConnectionServer : public httplib::Server {
 
  private:
   bool process_and_close_socket(socket_t sock) override;
-  bool takeSlot(const std::string& address);
-  void giveSlot(const std::string& address);
+  // A slot of the address's cap (`reserve` false) or of its health reserve.
+  bool takeSlot(const std::string& address, bool reserve);
+  void giveSlot(const std::string& address, bool reserve);
+  // Serves the connection's requests (its slot taken), at most `requests` of them.
+  bool serve(socket_t sock, size_t requests);
 
   const ConnectionLimits limits_;
   mutable std::mutex mutex_;
   std::map<std::string, size_t> open_;  // client address → connections open, guarded by mutex_
+  std::map<std::string, size_t> reserved_;  // client address → health reserve slots held
 };
 
 }  // namespace penumbra::server

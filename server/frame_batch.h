@@ -16,8 +16,8 @@ std::optional<Frame> combinedFrame(const std::vector<const Frame*>& frames);
 
 // Frames whose work grows with the whole scene rather than with what they move: a light added or
 // reshaped (every receiver is cast again; a frame adding 22 lights took 20 s), a volume added or
-// changed, an object of more than kHeavyObjectFaces faces added. EditWorkers runs them on all
-// workers but one, so that other scenes' drags never wait behind them.
+// changed, an object of more than kHeavyObjectFaces faces added. EditWorkers runs them on its
+// heavy lane (one thread, lower priority), so that other scenes' drags never wait behind them.
 inline constexpr size_t kHeavyObjectFaces = 1000;
 bool isHeavyFrame(const Frame& frame);
 

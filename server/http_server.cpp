@@ -62,7 +62,8 @@ void gzipNotBrotli(const httplib::Request& req) {
 HttpServer::HttpServer(ServerOptions options)
     : options_(std::move(options)),
       imageBudget_(options_.imageMemoryBytes),
-      editWorkers_(0, options_.editNiceness),
+      editWorkers_(0, options_.editNiceness, kHeavyEditNiceness),
+      costlyImages_(kCostlyImageThreads, kCostlyImageNiceness, true),
       http_(std::make_unique<ConnectionServer>(options_.connections)) {
   if (!isLoopbackHost(options_.host) && options_.token.empty())
     throw std::invalid_argument("listening on " + options_.host +

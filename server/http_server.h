@@ -28,6 +28,7 @@
 #include "server/scene_session.h"
 #include "server/static_files.h"
 #include "server/work_budget.h"
+#include "server/work_lane.h"
 
 namespace httplib {
 class Server;
@@ -65,7 +66,8 @@ struct ServerOptions {
   size_t maxBodyBytes = kMaxBodyBytes;            // request bodies, else 413
   uint64_t imageMemoryBytes = kImageMemoryBytes;  // images rendering at once (WorkBudget)
   // Edit batches apply on one thread per core, this many nice steps below the request
-  // threads (server/edit_workers.h).
+  // threads, heavy frames on one more thread kHeavyEditNiceness steps further below
+  // (server/edit_workers.h).
   int editNiceness = kEditNiceness;
   // Every this many versions a journaled scene is snapshotted (docs/SERVER.md "Snapshots"), so
   // a restart replays at most that many frames; 0: never.
@@ -175,6 +177,8 @@ class HttpServer {
   bool isRunning() const;
   int port() const { return port_; }
   const ServerOptions& options() const { return options_; }
+  // The threads applying edit batches (a test may hold their heavy lane with work of its own).
+  EditWorkers& editWorkers() { return editWorkers_; }
 
  private:
   // One per resource, each in its own file (scene_routes.cpp, edit_routes.cpp, ...).
@@ -272,7 +276,8 @@ class HttpServer {
   MemoryTrimmer trimmer_{kTrimInterval};  // gives freed memory back after requests (outlives http_)
   WorkBudget imageBudget_;   // working memory of the images rendering now (image_routes)
   RenderJobs renders_;       // the images rendering now and just ended, by ticket
-  EditWorkers editWorkers_;  // apply edit batches, one per core at most (outlives http_)
+  EditWorkers editWorkers_;  // apply edit batches: one per core, and the heavy lane (outlives http_)
+  WorkLane costlyImages_;    // draw GI and large images, below edits (outlives http_)
   std::unique_ptr<httplib::Server> http_;
   int port_ = 0;
   std::atomic<bool> stopping_{false};

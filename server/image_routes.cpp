@@ -202,11 +202,19 @@ void HttpServer::registerImageRoutes() {
              res.set_header("X-Penumbra-Render-Ticket", job->ticket());
              RenderedImage image;
              std::vector<uint8_t> bytes;
-             try {
+             const auto draw = [&] {
                image = render(snapshot->scene, snapshot->mesh(), settings,
                               [&job](size_t done, size_t total) { job->report(done, total); });
                job->stage("encoding");
                bytes = format == "png" ? imageio::encodePng(image) : imageio::encodeExr(image);
+             };
+             try {
+               // A costly image goes to the costly lane (one core each, below edits and reads);
+               // a quick one (a page's first passes) draws here on every core.
+               if (settings.gi || *width * *height * samples > kQuickImageWork)
+                 costlyImages_.run(draw);
+               else
+                 draw();
              } catch (const RenderCancelled& why) {
                job->end(RenderJob::State::Cancelled);
                throw ApiError(409, error_code::kRenderCancelled, "",

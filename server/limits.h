@@ -30,6 +30,17 @@ inline constexpr int kMaxWaitingEdits = kRequestWorkers * 3 / 4;
 // 0: in the 10-minute load of README "Load", one edit thread per core already brought GET p99
 // from 65 to 27 ms; 5 steps gave 22 ms but 18% fewer edits/s and edit p99 806 instead of 621 ms.
 inline constexpr int kEditNiceness = 0;
+// Nice steps between the light edit workers and the heavy lane (frames relighting a whole scene,
+// isHeavyFrame): at 10 a heavy thread weighs about a tenth of a normal one, so another client's
+// drags and reads take a core from it at once (docs/BENCHMARKS.md "A flood from one client").
+inline constexpr int kHeavyEditNiceness = 10;
+// Images drawn on the request thread with every core: at most this many pixels × samples, and
+// no GI (a page's first passes). Larger ones go to the costly images' lane: this many threads
+// (more wait in order), each drawing one image on its own (they share the cores, so a short
+// image is not stuck behind a GI one), this many nice steps below the request threads.
+inline constexpr uint64_t kQuickImageWork = uint64_t(1) << 20;
+inline constexpr int kCostlyImageThreads = 8;
+inline constexpr int kCostlyImageNiceness = 10;
 // A journal snapshot every this many versions of a scene (serve --snapshot-every): a restart
 // replays at most this many frames after a build (docs/SERVER.md "Snapshots").
 inline constexpr uint64_t kSnapshotEvery = 200;

@@ -74,7 +74,14 @@ void HttpServer::registerSceneRoutes() {
                        {"journal", std::move(journal)},
                        {"allocator", jemallocIsTheAllocator() ? "jemalloc" : "glibc"},
                        {"edit_threads",
-                        {{"count", editWorkers_.threads()}, {"nice", editWorkers_.niceness()}}},
+                        {{"count", editWorkers_.threads()},
+                         {"nice", editWorkers_.niceness()},
+                         {"heavy_nice", editWorkers_.heavyNiceness()},
+                         {"heavy_queued", editWorkers_.heavyQueued()}}},
+                       {"costly_image_threads",
+                        {{"count", costlyImages_.threads()},
+                         {"nice", costlyImages_.niceness()},
+                         {"queued", costlyImages_.queued()}}},
                        {"limits",
                         {{"max_body_bytes", options_.maxBodyBytes},
                          {"max_scenes", options_.maxScenes},
@@ -214,7 +221,23 @@ void HttpServer::registerSceneRoutes() {
             readingBody(options_.maxBodyBytes,
                         guarded([this](const httplib::Request& req, httplib::Response& res) {
                           const auto session = findScene(req.matches[1]);
-                          sendJson(res, 200, rebuildJson(session->rebuild()));
+                          // Cancelled by the scene's DELETE (it closes the session) or a stop,
+                          // at the engine's next progress report.
+                          struct Cancelled : std::runtime_error {
+                            Cancelled() : std::runtime_error("rebuild cancelled") {}
+                          };
+                          try {
+                            sendJson(res, 200, rebuildJson(session->rebuild(
+                                                   [&](const char*, size_t, size_t) {
+                                                     if (session->closed() || stopping_)
+                                                       throw Cancelled();
+                                                   })));
+                          } catch (const Cancelled&) {
+                            throw ApiError(409, error_code::kRebuildCancelled, "",
+                                           session->closed()
+                                               ? "the rebuild was cancelled: the scene was deleted"
+                                               : "the rebuild was cancelled: the server is stopping");
+                          }
                         })));
 
   http.Get(

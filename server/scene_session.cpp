@@ -300,16 +300,16 @@ void SceneSession::publish(std::shared_ptr<const SceneSnapshot> next) {
   published_.notify_all();
 }
 
-RebuildReport SceneSession::rebuild() {
+RebuildReport SceneSession::rebuild(const EngineProgress& progress) {
   std::lock_guard lock(rebuildMutex_);
   const std::shared_ptr<const SceneSnapshot> served = snapshot();
   RebuildReport report;
   report.version = served->version;
   const auto start = std::chrono::steady_clock::now();
-  Engine fresh(served->scene, settings_);
+  Engine fresh(served->scene, settings_, progress);
   report.buildSeconds = secondsSince(start);
   const auto meshStart = std::chrono::steady_clock::now();
-  const Mesh mesh = fresh.mesh();
+  const Mesh mesh = fresh.mesh(progress);
   report.meshSeconds = secondsSince(meshStart);
   report.stats = fresh.stats();
   report.meshVertices = mesh.vertexCount();

@@ -100,8 +100,9 @@ class SceneSession {
   void adoptSnapshot(uint64_t version, StoredParts stored);
 
   // A full rebuild of the current version, timed. Serialised with other rebuilds,
-  // not with edits (it works on a snapshot's scene).
-  RebuildReport rebuild();
+  // not with edits (it works on a snapshot's scene). `progress` is the engine's: what it throws
+  // ends the rebuild (a cancel), nothing recorded.
+  RebuildReport rebuild(const EngineProgress& progress = {});
   std::optional<RebuildReport> lastRebuild() const;
 
   // Waits until a version newer than `after` is published, the session is closed,

@@ -33,11 +33,25 @@ class Parallel {
 
   int threads() const { return threads_; }
 
+  // While one lives, loops started on the thread that made it run on that thread alone, whatever
+  // their object's thread count: work on a low-priority thread (the server's heavy edit lane)
+  // must not spread to TBB's shared workers, which run at everyone's priority. Not copyable.
+  class OnThisThreadOnly {
+   public:
+    OnThisThreadOnly() : before_(onlyHere()) { onlyHere() = true; }
+    ~OnThisThreadOnly() { onlyHere() = before_; }
+    OnThisThreadOnly(const OnThisThreadOnly&) = delete;
+    OnThisThreadOnly& operator=(const OnThisThreadOnly&) = delete;
+
+   private:
+    bool before_;
+  };
+
   // body(i) for every i in [0, n), in any order and concurrently; items are handed out `grain`
   // at a time. Exceptions propagate to the caller (the first one thrown).
   template <class Body>
   void forEach(size_t n, const Body& body, size_t grain = 1) const {
-    if (!arena_ || n <= 1) {
+    if (!arena_ || n <= 1 || onlyHere()) {
       for (size_t i = 0; i < n; ++i) body(i);
       return;
     }
@@ -49,6 +63,11 @@ class Parallel {
   }
 
  private:
+  static bool& onlyHere() {
+    thread_local bool only = false;
+    return only;
+  }
+
   int threads_;
   std::unique_ptr<tbb::task_arena> arena_;  // pointer: the engine stays movable
 };

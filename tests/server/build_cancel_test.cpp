@@ -1,6 +1,7 @@
 // A scene being built is a job: listed with state "building" and its progress (stage, done/total,
 // fraction, elapsed), cancelled by DELETE or a stop within a bound, nothing kept of it; the
-// server serves on. The long build: a tessellated torus knot (about 1,500 triangles, seconds).
+// server serves on; a rebuild is cancelled the same way. The long build: a tessellated torus knot
+// (about 1,500 triangles, seconds).
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -23,10 +24,10 @@ using Clock = std::chrono::steady_clock;
 // even under the sanitizers.
 constexpr std::chrono::seconds kStopBound{5};
 
-std::string knotJson() {
+std::string knotJson(size_t triangles = 1500) {
   ModelSceneOptions options;
   options.kind = ModelKind::TorusKnot;
-  options.triangles = 1500;
+  options.triangles = triangles;
   return protocol::sceneToJson(makeModelScene(options)).dump();
 }
 
@@ -205,6 +206,48 @@ TEST(BuildCancel, StopCancelsABuildInFlight) {
   }
   EXPECT_LT(stopSeconds, double(kStopBound.count()));
   if (created.status) EXPECT_EQ(created.status, 409) << created.body;
+}
+
+// POST /rebuild builds the scene again, as long as its first build took: a DELETE of the scene or
+// a stop a quarter of that time in ends it at its next progress report, 409 rebuild_cancelled.
+// A smaller knot (its build and then a quarter of the rebuild run in full, twice).
+constexpr size_t kRebuiltKnotTriangles = 200;
+TEST(BuildCancel, DeleteOrStopCancelsARebuild) {
+  for (const bool byStop : {false, true}) {
+    Answer rebuilt;
+    std::thread poster;
+    double endSeconds = 0, buildSeconds = 0;
+    {
+      RunningServer running;
+      const auto buildStart = Clock::now();
+      const std::string id = running.server().addScene(
+          protocol::sceneFromJson(json::parse(knotJson(kRebuiltKnotTriangles))), "knot");
+      buildSeconds = secondsSince(buildStart);
+      poster = std::thread([&rebuilt, port = running.port(), id] {
+        httplib::Client client("127.0.0.1", port);
+        client.set_read_timeout(300, 0);
+        const auto res = client.Post(("/api/scenes/" + id + "/rebuild").c_str(), "", "application/json");
+        if (res) rebuilt = {res->status, res->body};
+      });
+      std::this_thread::sleep_for(std::chrono::duration<double>(buildSeconds / 4));
+      const auto endStart = Clock::now();
+      if (byStop) {
+        running.server().stop();
+      } else {
+        httplib::Client client = running.client();
+        EXPECT_EQ(client.Delete(("/api/scenes/" + id).c_str())->status, 204);
+      }
+      poster.join();
+      endSeconds = secondsSince(endStart);
+      if (!byStop) EXPECT_EQ(running.client().Get("/api/health")->status, 200);  // serves on
+    }
+    EXPECT_LT(endSeconds, std::min(double(kStopBound.count()), buildSeconds))
+        << (byStop ? "stop" : "DELETE") << "; the build took " << buildSeconds << " s";
+    if (!byStop || rebuilt.status) {
+      EXPECT_EQ(rebuilt.status, 409) << rebuilt.body;
+      EXPECT_NE(rebuilt.body.find("rebuild_cancelled"), std::string::npos) << rebuilt.body;
+    }
+  }
 }
 
 TEST(BuildCancel, ATicketOtherThanLettersDigitsDashOrUnderscoreIsRefused) {

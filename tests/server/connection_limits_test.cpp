@@ -1,6 +1,6 @@
 // The connection loop's limits (server/connection_server.h): one client address holds at most
 // its cap of connections (the rest answered 503 at once) while another address's /api/health
-// answers; a head that does not arrive in time is a 408 and closed; a head past its size or line
+// answers, and so does the same address's when sent whole at once; a head that does not arrive in time is a 408 and closed; a head past its size or line
 // limit is a 431 and the server's memory does not grow with what the client keeps sending;
 // pipelined requests are all answered, in order (an edit among them applied before the read that
 // follows it).
@@ -118,6 +118,37 @@ TEST(ConnectionLimits, OneAddressHoldsItsCapAndAnotherAddressStillGetsHealth) {
   }
   EXPECT_EQ(refused, count - 32);
   EXPECT_EQ(timedOut, 32);
+}
+
+// The health checker shares its address with the sockets holding the cap (a local load test, a
+// proxy): past the cap its GET /api/health, sent whole at once, is still answered at once, while
+// any other request from that address past the cap is the 503.
+TEST(ConnectionLimits, TheSameAddressStillGetsHealthPastItsCap) {
+  RunningServer running(limited());
+  std::vector<int> idle;
+  for (int i = 0; i < 200; ++i) {
+    const int fd = connectFrom("127.0.0.1", running.port());
+    ASSERT_GE(fd, 0) << "socket " << i;
+    if (i % 2) sendAll(fd, "GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ");
+    idle.push_back(fd);
+  }
+  // The first 32 hold the cap (accepted in order, before the requests below); the reserve's
+  // deadline passes for those past it.
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  auto client = running.client();
+  client.set_read_timeout(2, 0);
+  for (int i = 0; i < 5; ++i) {
+    const auto start = Clock::now();
+    const auto health = client.Get("/api/health");
+    ASSERT_TRUE(health) << "no answer with 200 sockets open from the same address";
+    EXPECT_EQ(health->status, 200) << health->body;
+    EXPECT_LT(Clock::now() - start, std::chrono::seconds(1));
+  }
+  const auto other = client.Get("/api/scenes");
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 503);
+  EXPECT_NE(other->body.find("too_many_connections"), std::string::npos) << other->body;
+  for (const int fd : idle) close(fd);
 }
 
 TEST(ConnectionLimits, AHeadPastItsLimitsIs431AndMemoryStaysFlat) {
