@@ -8,7 +8,7 @@
 // for a busy machine. The progress comes through the builds event stream (the page polls no scene
 // list meanwhile); with that stream refused, the page polls the scene list and shows it all the same.
 //
-// usage: node tests/web/build_cancel_e2e.mjs --penumbra build/penumbra [--triangles 3000] [--cancelSeconds 5]
+// usage: node tests/web/build_cancel_e2e.mjs --penumbra build/penumbra [--triangles 4500] [--cancelSeconds 5]
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
@@ -17,7 +17,7 @@ import path from 'node:path';
 import { check, repo, runWithServerAndBrowser, sleep, until, usageOnHelp } from './harness.mjs';
 
 const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'cubes15.scene.json'),
-  startupSeconds: 120, triangles: 3000, cancelSeconds: 5 };
+  startupSeconds: 120, triangles: 4500, cancelSeconds: 5 };
 
 function knotScene(penumbra, triangles) {
   const file = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'penumbra-cancel-')), 'knot.scene.json');
@@ -61,13 +61,18 @@ async function buildAndCancel(browser, url, base, knotFile, cancelSeconds) {
   // Its entry follows the builds event stream: it changes, and no list is asked for meanwhile.
   otherLists.count = 0;
   const entry = () => other.evaluate(() => document.querySelector('#scene-list li[data-state="building"]')?.textContent || '');
+  // Sampled until its stage or fraction moves (a long receiver can hold one for seconds), at most 5 s.
+  const progressOf = (e) => e.replace(/ · \d+\.\d s(Cancel)?$/, '');
   const entries = [await entry()];
-  for (let i = 0; i < 4; ++i) {
-    await sleep(300);
+  for (let i = 0; i < 25 && (entries.length < 2 || new Set([item, ...entries].map(progressOf)).size < 2); ++i) {
+    await sleep(200);
     entries.push(await entry());
   }
-  check(new Set(entries).size >= 2 && entries.every((e) => /building: \w+/.test(e)) && otherLists.count === 0,
-    'the other tab\'s entry follows the build with no scene list polled', JSON.stringify({ entries, lists: otherLists.count }));
+  // Its seconds count on between events; its stage and fraction (the text before them) come
+  // only from the stream, so they must have moved since the entry was first listed.
+  check(new Set(entries).size >= 2 && new Set([item, ...entries].map(progressOf)).size >= 2 &&
+    entries.every((e) => /building: \w+/.test(e)) && otherLists.count === 0,
+    'the other tab\'s entry follows the build with no scene list polled', JSON.stringify({ item, entries, lists: otherLists.count }));
   await other.close();
   check(asked.streams >= 1 && asked.lists === 0, 'the build\'s progress came through the builds event stream, no scene list polled',
     JSON.stringify(asked));
@@ -97,8 +102,14 @@ async function watchTheOverlay(page, how) {
   const seconds = texts.map((t) => t.match(building)).filter(Boolean).map((m) => Number(m[3]));
   check(seconds.length >= 9 && new Set(seconds).size >= 9 && seconds.every((s, i) => i === 0 || s >= seconds[i - 1]),
     `the overlay shows the build's stage with a seconds counter that moves${how}`, JSON.stringify(texts.slice(0, 4)));
-  const fractions = texts.map((t) => t.match(building)).filter((m) => m && m[2] !== undefined).map((m) => `${m[1]} ${m[2]}`);
-  check(new Set(fractions).size >= 2, `the overlay shows the stage's fraction moving${how}`, JSON.stringify(texts.slice(-3)));
+  // The fraction moves with the build's receivers, and one long receiver (the floor) can hold it
+  // for seconds: sampled on until it moves, at most 5 s more.
+  const fractionsOf = () => new Set(texts.map((t) => t.match(building)).filter((m) => m && m[2] !== undefined).map((m) => `${m[1]} ${m[2]}`));
+  for (let i = 0; i < 25 && fractionsOf().size < 2; ++i) {
+    await sleep(200);
+    texts.push(await page.evaluate(overlayText));
+  }
+  check(fractionsOf().size >= 2, `the overlay shows the stage's fraction moving${how}`, JSON.stringify(texts.slice(-3)));
   const cancelVisible = await page.evaluate(() => !document.getElementById('loading-cancel').hidden);
   check(cancelVisible, `the overlay offers Cancel while the server builds${how}`);
 }

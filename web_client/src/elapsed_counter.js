@@ -10,10 +10,11 @@ export class ElapsedCounter {
     this.timer = null;
   }
 
-  start(message) {
+  // fromSeconds: what the work had taken already when it was reported (a server's build).
+  start(message, fromSeconds = 0) {
     this.stop();
     this.message = message;
-    const since = performance.now();
+    const since = performance.now() - 1000 * fromSeconds;
     this.tick = () => this.show(`${this.message} ${((performance.now() - since) / 1000).toFixed(1)} s`);
     this.tick();
     this.timer = setInterval(this.tick, EVERY_MS);

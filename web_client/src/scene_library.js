@@ -4,6 +4,7 @@
 // (localStorage), for "Reset to file".
 
 import { describeBuild } from './build_progress.js';
+import { ElapsedCounter } from './elapsed_counter.js';
 
 const sourceKey = (id, name) => `penumbra.source.${id}.${name}`;
 
@@ -46,9 +47,12 @@ export class SceneList {
   // onDelete(summary) → promise; onRename(summary, name) → promise; pageUrl(id) → the URL that opens a scene.
   constructor(root, { onDelete, onRename, pageUrl }) {
     Object.assign(this, { root, onDelete, onRename, pageUrl });
+    this.counters = new Map(); // building scene id → its entry's seconds, counting between events
   }
 
   render(scenes, currentId) {
+    for (const counter of this.counters.values()) counter.stop();
+    this.counters.clear();
     this.root.replaceChildren(...scenes.map((summary) => {
       if (summary.state === 'building') return this.building(summary);
       const item = document.createElement('li');
@@ -122,7 +126,11 @@ export class SceneList {
     item.dataset.state = 'building';
     const info = document.createElement('span');
     info.className = 'muted';
-    info.textContent = `${summary.id} · building: ${describeBuild(summary.progress)} · ${summary.progress.elapsed_seconds.toFixed(0)} s`;
+    // The stream sends the entry when its stage or counts change; the seconds count on here.
+    this.counters.get(summary.id)?.stop();
+    const counter = new ElapsedCounter((text) => { info.textContent = text; });
+    counter.start(`${summary.id} · building: ${describeBuild(summary.progress)} ·`, summary.progress.elapsed_seconds);
+    this.counters.set(summary.id, counter);
     const cancel = document.createElement('button');
     cancel.type = 'button';
     cancel.textContent = 'Cancel';
