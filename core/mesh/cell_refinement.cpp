@@ -111,8 +111,9 @@ class Refiner {
     for (size_t l = 0; l < lights; ++l) {
       double mean = 0, largest = piece_.values[m * lights + l].factor;
       for (uint32_t i : from) {
-        mean += piece_.values[i * lights + l].factor;
-        largest = std::max(largest, piece_.values[i * lights + l].factor);
+        const double factor = piece_.values[i * lights + l].factor;  // a copy: VertexLight is packed,
+        mean += factor;                                               // std::max takes references
+        largest = std::max(largest, factor);
       }
       mean /= double(from.size());
       const double error = std::abs(piece_.values[m * lights + l].factor - mean);
