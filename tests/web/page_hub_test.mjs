@@ -10,17 +10,8 @@ import test from 'node:test';
 import { EventHub } from '../../web_client/src/event_hub.js';
 import { FrameCommand, IsovalueCommand, MoveCommand, commandFromJson } from '../../web_client/src/commands.js';
 import { UndoHistory } from '../../web_client/src/undo_history.js';
+import { seeded as rng } from './seeded_random.mjs';
 
-function rng(seed) {
-  let s = seed >>> 0;
-  return () => {
-    s = (s + 0x6d2b79f5) >>> 0;
-    let t = s;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
 
 // The browser's localStorage for node: the history saves and restores through it.
 globalThis.localStorage = {

@@ -6,17 +6,8 @@ import test from 'node:test';
 
 import { sampleSchedule } from '../../web_client/src/render_panel.js';
 import { CONVERGED_LEVELS, RATIO, noiseLevels } from '../../web_client/src/render_panel_noise.js';
+import { seeded } from './seeded_random.mjs';
 
-function seeded(seed) {
-  let s = seed >>> 0;
-  return () => {
-    s = (s + 0x6d2b79f5) >>> 0;
-    let t = s;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
 
 function gaussian(random) {
   return Math.sqrt(-2 * Math.log(1 - random())) * Math.cos(2 * Math.PI * random());
