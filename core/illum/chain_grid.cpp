@@ -1,6 +1,7 @@
 #include "core/illum/chain_grid.h"
 
 #include <cmath>
+#include <limits>
 
 namespace penumbra {
 
@@ -66,29 +67,32 @@ bool ChainGrid::cellsAlong(const Vec2& a, const Vec2& b) const {
   }
   if (!(t0 <= t1)) return false;
   const Vec2 from = a + t0 * d, to = a + t1 * d;
-  const int c0 = column(from.x), c1 = column(to.x), r0 = row(from.y), r1 = row(to.y);
-  if (c0 == c1 && r0 == r1) {  // both ends in one cell (most chain edges): all of it
-    cells_.push_back(uint32_t(r0 * size_ + c0));
-    return true;
-  }
-  // Where it crosses grid lines, each axis's in increasing t, merged: between two of
-  // these it stays in one cell.
-  crossings_.assign({t0});
+  constexpr double kNever = std::numeric_limits<double>::infinity();
+  int c = column(from.x), r = row(from.y);
+  const int c1 = column(to.x), r1 = row(to.y);
+  const auto cell = [&](int column, int row) { return uint32_t(row * size_ + column); };
+  cells_.push_back(cell(c, r));
+  // A grid walk (Amanatides & Woo): next[axis] is the t where a→b crosses the next grid line
+  // along that axis. Where both come at once (through a corner, or so close that rounding may
+  // order them either way) both neighbours are visited, so the cells stay a superset of those
+  // the segment passes; the walk ends in the cell of its end.
+  const int step[2] = {c1 > c ? 1 : -1, r1 > r ? 1 : -1};
+  double next[2], delta[2];
   for (int axis = 0; axis < 2; ++axis) {
-    const int k0 = axis == 0 ? c0 : r0, k1 = axis == 0 ? c1 : r1;
-    const size_t begin = crossings_.size();
-    for (int k = std::min(k0, k1) + 1; k <= std::max(k0, k1); ++k) {
-      const double t = (low_[axis] + k * cell_[axis] - a[axis]) / d[axis];
-      if (t > t0 && t < t1) crossings_.push_back(t);
-    }
-    if (k1 < k0) std::reverse(crossings_.begin() + long(begin), crossings_.end());
-    std::inplace_merge(crossings_.begin() + 1, crossings_.begin() + long(begin), crossings_.end());
+    const int k = axis == 0 ? c : r;
+    const bool moves = axis == 0 ? c != c1 : r != r1;
+    delta[axis] = moves ? cell_[axis] / std::abs(d[axis]) : 0;
+    next[axis] = moves ? (low_[axis] + (k + (step[axis] > 0 ? 1 : 0)) * cell_[axis] - a[axis]) / d[axis]
+                       : kNever;
   }
-  crossings_.push_back(t1);
-  for (size_t i = 0; i + 1 < crossings_.size(); ++i) {
-    const Vec2 middle = a + (0.5 * (crossings_[i] + crossings_[i + 1])) * d;
-    const uint32_t cell = uint32_t(row(middle.y) * size_ + column(middle.x));
-    if (cells_.empty() || cells_.back() != cell) cells_.push_back(cell);
+  while (c != c1 || r != r1) {
+    const double tie = 1e-9 * std::max(delta[0], delta[1]);
+    const bool stepX = c != c1 && next[0] <= next[1] + tie;
+    const bool stepY = r != r1 && (!stepX || next[1] <= next[0] + tie);
+    if (stepX && stepY) cells_.push_back(cell(c + step[0], r)), cells_.push_back(cell(c, r + step[1]));
+    if (stepX) c += step[0], next[0] = c == c1 ? kNever : next[0] + delta[0];
+    if (stepY) r += step[1], next[1] = r == r1 ? kNever : next[1] + delta[1];
+    cells_.push_back(cell(c, r));
   }
   return true;
 }

@@ -53,7 +53,6 @@ class ChainGrid {
   mutable std::vector<uint32_t> seen_;      // per chain edge: the query that last visited it
   mutable uint32_t stamp_ = 0;
   mutable std::vector<uint32_t> cells_;
-  mutable std::vector<double> crossings_;
 };
 
 }  // namespace penumbra
