@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <ostream>
 #include <stdexcept>
@@ -208,14 +209,27 @@ Mesh meshFromJson(const Json& root, const Scene& scene) {
   Mesh mesh;
   for (size_t i = 0; i < receivers.size(); ++i)
     mesh.receivers.push_back(receiverFromJson(receivers[i], indexPath("receivers", i), scene));
+  // What the mesh meets (a file written before these keys states nothing: fans, 0).
+  if (const Json* tolerance = optionalKey(root, "tolerance")) {
+    mesh.tolerance = expectNumber(*tolerance, "tolerance");
+    if (!(mesh.tolerance >= 0)) fail("tolerance", "must be at least 0 (0: not refined)");
+  }
+  if (const Json* capped = optionalKey(root, "capped_cells"))
+    mesh.cappedCells = expectIndex(*capped, "capped_cells", std::numeric_limits<uint32_t>::max());
   return mesh;
+}
+
+nlohmann::json meshFileRoot(const Mesh& mesh) {
+  return Json{{"tolerance", mesh.tolerance}, {"capped_cells", mesh.cappedCells}};
 }
 
 void saveMeshFile(const Scene& scene, const Mesh& mesh, const std::string& sceneName, const std::string& path) {
   // A receiver naming no face of the scene throws before the file is opened, as it did when the
   // whole document was made first.
   for (const ReceiverMesh& r : mesh.receivers) (void)receiverObject(scene, r);
-  writeTextFileWith(path, [&](std::ostream& out) { writeMeshJson(out, scene, mesh, sceneName); });
+  MeshJsonExtras extras;
+  extras.root = meshFileRoot(mesh);
+  writeTextFileWith(path, [&](std::ostream& out) { writeMeshJson(out, scene, mesh, sceneName, extras); });
 }
 
 Mesh loadMeshFile(const std::string& path, const Scene& scene) {

@@ -43,7 +43,14 @@ struct MeshJsonExtras {
 void writeMeshJson(std::ostream& out, const Scene& scene, const Mesh& mesh, const std::string& sceneName,
                    const MeshJsonExtras& extras);
 
-// Files are written compactly by writeMeshJson; reading uses the limits of protocol/json_text.h.
+// What a mesh file states besides the receivers: "tolerance" (the interpolation bound the
+// display mesh was refined to, relative to each light's local unshadowed level; 0: not refined)
+// and "capped_cells" (cells whose refinement stopped at the point cap short of it).
+// meshFromJson reads them back when present.
+nlohmann::json meshFileRoot(const Mesh& mesh);
+
+// Files are written compactly by writeMeshJson with meshFileRoot's members; reading uses the
+// limits of protocol/json_text.h.
 void saveMeshFile(const Scene& scene, const Mesh& mesh, const std::string& sceneName,
                   const std::string& path);
 Mesh loadMeshFile(const std::string& path, const Scene& scene);

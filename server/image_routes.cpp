@@ -230,6 +230,7 @@ void HttpServer::registerImageRoutes() {
              res.status = 200;
              res.set_header("Cache-Control", "no-store");
              res.set_header("X-Penumbra-Version", std::to_string(snapshot->version));
+             setMeshToleranceHeader(res, options_.engine.meshTolerance);
              res.set_header("X-Penumbra-Render-Seconds", std::to_string(image.seconds));
              res.set_header("X-Penumbra-Samples", std::to_string(samples));
              if (image.gi) {

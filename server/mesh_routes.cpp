@@ -48,10 +48,11 @@ std::optional<IndirectSettings> indirectFromQuery(const httplib::Request& req, c
 // The mesh JSON answer, streamed, with, per receiver, "indirect": [[r, g, b], ...] and the
 // bake's settings. The writer owns the snapshot and bake it reads: it runs after the handler.
 void sendMeshJson(httplib::Response& res, std::shared_ptr<const SceneSnapshot> snapshot, MeshSelection selection,
-                  std::shared_ptr<const IndirectBake> bake) {
+                  std::shared_ptr<const IndirectBake> bake, double tolerance) {
   res.set_header("Cache-Control", "no-store");
-  sendStreamed(res, "application/json", [snapshot, selection = std::move(selection), bake](std::ostream& out) {
+  sendStreamed(res, "application/json", [snapshot, selection = std::move(selection), bake, tolerance](std::ostream& out) {
     protocol::MeshJsonExtras indirect;
+    indirect.root["tolerance"] = tolerance;
     if (bake) {
       indirect.root["indirect"] = {{"sensor_size", bake->settings.sensorSize}, {"bounces", bake->settings.bounces}};
       indirect.receiver = [&bake](size_t r) {
@@ -126,6 +127,7 @@ void HttpServer::registerMeshRoutes() {
         IndirectCache::Found bake;
         if (indirect) bake = session->indirectCache().get(*snapshot, *indirect, options_.engine.threads);
         res.set_header("X-Penumbra-Version", std::to_string(snapshot->version));
+        setMeshToleranceHeader(res, options_.engine.meshTolerance);
         if (bake.bake) {
           res.set_header("X-Penumbra-Indirect-Seconds", std::to_string(bake.bake->seconds));
           res.set_header("X-Penumbra-Indirect-Cached", bake.cached ? "1" : "0");
@@ -133,7 +135,7 @@ void HttpServer::registerMeshRoutes() {
         }
         const MeshSelection selection = snapshot->select(since);
         if (format == "json")
-          sendMeshJson(res, snapshot, selection, bake.bake);
+          sendMeshJson(res, snapshot, selection, bake.bake, options_.engine.meshTolerance);
         else if (format == "bin")
           sendBinary(req, res, mesh_binary::encode(*snapshot, selection, bake.bake.get()), options_.meshCompression);
         else

@@ -38,6 +38,10 @@ void sendBusy(httplib::Response& res, const std::string& why) {
   res.set_header("Retry-After", "1");
 }
 
+void setMeshToleranceHeader(httplib::Response& res, double tolerance) {
+  res.set_header("X-Penumbra-Mesh-Tolerance", json(tolerance).dump());
+}
+
 json parseBody(const httplib::Request& req) {
   if (req.body.empty())
     throw ApiError(400, error_code::kMalformedJson, "(json)",

@@ -36,6 +36,10 @@ nlohmann::json parseBody(const httplib::Request& req);
 // 503 `busy` with Retry-After: 1, saying `why` (a queue or budget that is full right now).
 void sendBusy(httplib::Response& res, const std::string& why);
 
+// X-Penumbra-Mesh-Tolerance: the interpolation bound the display mesh (and an image shaded
+// from it) is refined to, relative to each light's local unshadowed level; 0: not refined.
+void setMeshToleranceHeader(httplib::Response& res, double tolerance);
+
 // Query parameters: absent → nullopt; present but not what we need → 400 naming `query.<name>`.
 std::optional<std::string> queryText(const httplib::Request& req, const char* name);
 std::optional<uint64_t> queryUnsigned(const httplib::Request& req, const char* name, uint64_t min,

@@ -254,7 +254,8 @@ void HttpServer::registerSceneRoutes() {
                    {{"receivers", snapshot->receiverCount()},
                     {"parts", snapshot->parts.size()},
                     {"vertices", snapshot->vertexCount()},
-                    {"triangles", snapshot->triangleCount()}}},
+                    {"triangles", snapshot->triangleCount()},
+                    {"tolerance", options_.engine.meshTolerance}}},
                   {"last_frame", snapshot->lastFrame ? protocol::frameResultToJson(
                                                            *snapshot->lastFrame, snapshot->scene)
                                                      : json(nullptr)},

@@ -134,6 +134,15 @@ TEST_F(MeshJson, FilesRoundTrip) {
                     ("penumbra_protocol_" + std::to_string(::getpid()) + "_mesh.json");
   saveMeshFile(scene, mesh, "base.scene.json", path.string());
   expectSameMesh(mesh, loadMeshFile(path.string(), scene));
+  // A file says which bound its mesh meets, and the reader gives it back (a mesh written
+  // without the keys, by meshToJson, states nothing: 0).
+  Mesh refined = mesh;
+  refined.tolerance = 0.0025, refined.cappedCells = 3;
+  saveMeshFile(scene, refined, "base.scene.json", path.string());
+  const Mesh loaded = loadMeshFile(path.string(), scene);
+  EXPECT_EQ(loaded.tolerance, 0.0025);
+  EXPECT_EQ(loaded.cappedCells, 3u);
+  EXPECT_EQ(meshFromJson(meshToJson(scene, refined, "s"), scene).tolerance, 0);
   std::filesystem::remove(path);
 }
 
@@ -167,6 +176,9 @@ TEST_P(MalformedMesh, IsRefusedWithKeyPath) {
 // receivers[1] is box1's face 0 (-z) in the base scene.
 const MeshCase kMeshCases[] = {
     {"WrongFormat", [](json& m) { m["format"] = "penumbra.scene"; }, "format", "penumbra.mesh"},
+    {"NegativeTolerance", [](json& m) { m["tolerance"] = -0.01; }, "tolerance", "at least 0"},
+    {"TextTolerance", [](json& m) { m["tolerance"] = "0.005"; }, "tolerance", "expected a number"},
+    {"NegativeCappedCells", [](json& m) { m["capped_cells"] = -1; }, "capped_cells", "negative"},
     {"WrongVersion", [](json& m) { m["version"] = 3; }, "version", "unsupported version 3"},
     {"MissingScene", [](json& m) { m.erase("scene"); }, "scene", "missing required key"},
     {"ReceiversNotArray", [](json& m) { m["receivers"] = 1; }, "receivers", "expected an array"},
