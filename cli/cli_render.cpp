@@ -142,9 +142,11 @@ int runRender(const Args& args) {
     std::printf("wrote %s: %dx%d, %s shading (render %.3f s, mesh %.3f s, encode %.3f s)\n", out->c_str(),
                 image.width, image.height, settings.reference ? "reference" : "mesh", image.seconds,
                 meshSeconds, encodeSeconds);
-    if (!settings.reference && engine)
+    if (!settings.reference && mesh.tolerance > 0)  // built here, or a mesh file's own statement
       std::printf("direct light interpolated within %g of the local unshadowed light (%zu cells capped)\n",
                   mesh.tolerance, mesh.cappedCells);
+    else if (!settings.reference)
+      std::printf("direct light interpolated between exact vertices, not refined (no bound)\n");
     if (image.gi)
       std::printf("gi: %zu sensors (%zu pixels interpolated), %.3f s of the render\n", image.gi->placement.sensors,
                   image.gi->placement.interpolated, image.gi->seconds);
