@@ -88,6 +88,13 @@ async function loadingOverlay(browser, url, slowFile) {
   check(!after.visible && !after.controlsDisabled && !after.move && after.top === 'CANVAS',
     'once loaded: the overlay is gone (the view takes clicks) and the buttons work', JSON.stringify(after));
   await page.unroute(/\/mesh\?format=bin$/);
+  // The legend says what the light between vertices is, as the server states it (fans by default).
+  const sceneId = await page.evaluate(() => new URL(window.location.href).searchParams.get('scene'));
+  const served = await (await fetch(`${new URL(url).origin}/api/scenes/${sceneId}/stats`)).json();
+  const bound = await page.evaluate(() => { const line = document.getElementById('mesh-bound'); return { hidden: line.hidden, text: line.textContent }; });
+  check(typeof served.mesh.tolerance === 'number' && !bound.hidden &&
+    (served.mesh.tolerance > 0 ? bound.text.includes(`${Number((served.mesh.tolerance * 100).toPrecision(3))}%`) : /not refined/.test(bound.text)),
+    'the legend states the bound the server\'s mesh meets between vertices', `${served.mesh.tolerance}: ${bound.text}`);
 
   // Loading a scene file: upload, the server's build, then the new scene's mesh download.
   await page.setInputFiles('#scene-file', { name: 'slow.scene.json', mimeType: 'application/json', buffer: fs.readFileSync(slowFile) });

@@ -19,6 +19,7 @@ import { EventSync } from './event_sync.js';
 import { installGizmo } from './gizmo_drag.js';
 import { GlossyLayer } from './glossy_layer.js';
 import { LoadingIndicator } from './loading_indicator.js';
+import { installMeshBound } from './mesh_bound.js';
 import { MeshSync } from './mesh_sync.js';
 import { receiverKey } from './mesh_binary.js';
 import { ReceiverLayer } from './receiver_layer.js';
@@ -52,6 +53,7 @@ const PANELS = [
   ['timings', installTimings],
   ['plot', installEditPlot],
   ['connection', installConnectionStatus],
+  ['meshBound', installMeshBound],
 ];
 
 class App {
