@@ -226,25 +226,39 @@ TEST(VolumeEdits, BadUploadsCreateNothing) {
   EXPECT_EQ(after["version"], 0);
   EXPECT_EQ(after["volumes"].size(), 1u);
   const std::filesystem::path uploads = std::filesystem::path(data.str()) / "volumes";
-  if (std::filesystem::exists(uploads))
+  if (std::filesystem::exists(uploads)) {
     EXPECT_TRUE(std::filesystem::is_empty(uploads)) << "a refused upload leaves no file";
+  }
 }
 
-// Deleting a scene deletes the volumes uploaded to it (the journal no longer names them); another
-// scene's uploads stay, even when its id starts with the deleted one's.
-TEST(VolumeEdits, DeletingASceneDeletesItsUploads) {
+// Two volume rooms on one durable server: "volume_room" (kBase) and `other`, whose id starts
+// with the first's.
+struct TwoVolumeRooms {
   TempDataDir data;
-  RunningServer running(data.durable());
-  running.addBundled("volume_room");
-  const std::string other = running.server().addScene(
-      protocol::loadSceneFile(scenePath("volume_room")), "volume_room-2", "volume_room-2");
-  auto client = running.client();
-  for (const std::string& id : {std::string("volume_room"), other}) {
+  RunningServer running{data.durable()};
+  std::string other;
+  TwoVolumeRooms() {
+    running.addBundled("volume_room");
+    other = running.server().addScene(protocol::loadSceneFile(scenePath("volume_room")), "volume_room-2",
+                                      "volume_room-2");
+  }
+  // Uploads the smoke volume to scene `id` as "puff".
+  void upload(httplib::Client& client, const std::string& id) {
     const auto up = client.Post(("/api/scenes/" + id + "/volumes?id=puff").c_str(), smokeBytes(),
                                 "application/octet-stream");
     ASSERT_TRUE(up);
     ASSERT_EQ(up->status, 201) << up->body;
   }
+};
+
+// Deleting a scene deletes the volumes uploaded to it (the journal no longer names them); another
+// scene's uploads stay, even when its id starts with the deleted one's.
+TEST(VolumeEdits, DeletingASceneDeletesItsUploads) {
+  TwoVolumeRooms rooms;
+  const TempDataDir& data = rooms.data;
+  const std::string& other = rooms.other;
+  auto client = rooms.running.client();
+  for (const std::string& id : {std::string("volume_room"), other}) ASSERT_NO_FATAL_FAILURE(rooms.upload(client, id));
   const std::filesystem::path uploads = std::filesystem::path(data.str()) / "volumes";
   const auto files = [&] {
     return std::distance(std::filesystem::directory_iterator(uploads),
@@ -260,16 +274,10 @@ TEST(VolumeEdits, DeletingASceneDeletesItsUploads) {
 // An upload is kept with its own scene (deleted with it; fetched with it by the node that serves
 // it next): another scene's frame may not add it, and the scene's own frame may add it back.
 TEST(VolumeEdits, AFrameMayAddOnlyItsOwnScenesUploads) {
-  TempDataDir data;
-  RunningServer running(data.durable());
-  running.addBundled("volume_room");
-  const std::string other = running.server().addScene(
-      protocol::loadSceneFile(scenePath("volume_room")), "volume_room-2", "volume_room-2");
-  auto client = running.client();
-  const auto up = client.Post(("/api/scenes/" + other + "/volumes?id=puff").c_str(), smokeBytes(),
-                              "application/octet-stream");
-  ASSERT_TRUE(up);
-  ASSERT_EQ(up->status, 201) << up->body;
+  TwoVolumeRooms rooms;
+  const std::string& other = rooms.other;
+  auto client = rooms.running.client();
+  ASSERT_NO_FATAL_FAILURE(rooms.upload(client, other));
   const json scene = bodyJson(client.Get(("/api/scenes/" + other).c_str()));
   json puff;
   for (const json& object : scene["scene"]["objects"])
