@@ -49,6 +49,21 @@ RestoreJob::Ended HttpServer::dropCancelledRestore(const std::string& id,
     return ended;
   }
   removeUploadsOf(id);  // the journal no longer names them
+  std::optional<int64_t> lease;  // given back, as a DELETE does
+  {
+    std::lock_guard lock(scenesMutex_);
+    if (const auto it = leaseTokens_.find(id); it != leaseTokens_.end()) {
+      lease = it->second;
+      leaseTokens_.erase(it);
+    }
+    lastUse_.erase(id);
+  }
+  if (lease) {
+    try {
+      leases_->release(id, *lease);
+    } catch (const std::exception&) {  // it expires by itself
+    }
+  }
   ended.deleted = true;
   return ended;
 }
