@@ -153,7 +153,7 @@ std::vector<std::string> serveScenes(server::HttpServer& server, const Args& arg
 }
 
 // A stop (SIGTERM, Ctrl-C) waits for the requests in flight, but not for ever: builds of new
-// scenes, rebuilds and renders are cancelled by the stop at their next progress report, but a
+// scenes, restores of journaled ones, rebuilds and renders are cancelled by the stop at their next progress report, but a
 // heavy frame or an import has none. Past the grace the process ends as a
 // SIGKILL would, which loses nothing acknowledged: every acknowledged version is committed in the
 // journal before its answer, and an unanswered build was never acknowledged (the kill test).

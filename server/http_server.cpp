@@ -174,7 +174,7 @@ std::shared_ptr<SceneSession> HttpServer::findScene(const std::string& id) {
     if (it != scenes_.end() || !leases_ || stopping_)
       throw ApiError(404, error_code::kNotFound, "id", "no scene with id '" + id + "'");
     scenes_.emplace(id, nullptr);  // another node's, or nobody's: restoring while taken over
-    restoring_.insert(id);
+    restoring_.emplace(id, std::make_shared<RestoreJob>(id));
   }
   return takeOver(id);
 }
@@ -214,6 +214,7 @@ void HttpServer::stop() {
   {
     std::lock_guard lock(scenesMutex_);
     for (auto& [id, job] : builds_) job->cancel();  // their requests end at the next report
+    for (auto& [id, job] : restoring_) job->cancel();  // the journal as it was: back next start
   }
   renders_.cancelAll("the server is stopping");
   http_->stop();

@@ -23,6 +23,7 @@
 #include "server/limits.h"
 #include "server/memory_trim.h"
 #include "server/render_jobs.h"
+#include "server/restore_job.h"
 #include "server/scene_journal.h"
 #include "server/scene_leases.h"
 #include "server/scene_session.h"
@@ -156,6 +157,11 @@ class HttpServer {
   bool servesScene(const std::string& id) const;
   // The job building scene `id`; null when it is not building.
   std::shared_ptr<BuildJob> findBuild(const std::string& id) const;
+  // Cancels the restore of scene `id` for its DELETE (restore_job.h) and waits until the restoring
+  // thread ended it: removed from the journal, or served (it finished first), or the removal
+  // failed (Ended::problem). Nullopt when `id` is not restoring. Throws ApiError 503 when the
+  // restore does not stop within the wait.
+  std::optional<RestoreJob::Ended> cancelRestore(const std::string& id);
 
   // Reads the journal and reserves its scenes' ids: until restore() brings one back, requests
   // for it get 503 restoring. Call before listening (restore() calls it when nobody did).
@@ -267,9 +273,15 @@ class HttpServer {
   void keepLeases();  // the renewal thread
   void renewLeasesOnce();
   // Brings one journaled scene back (journal_write_restore.cpp), its problems noted for
-  // /api/health; null when it no longer builds.
+  // /api/health; null when it no longer builds. `job`'s cancel ends it with BuildCancelled (at
+  // the engine's next report, or between frames), nothing noted.
   std::shared_ptr<SceneSession> restoreStored(const SceneJournal::StoredScene& stored,
-                                              RestoredScene& report);
+                                              RestoredScene& report, RestoreJob& job);
+  // The restoring thread after a cancelled restore of scene `id` (journal key `key`, if read):
+  // when a DELETE cancelled it, the scene leaves the journal and its uploads' copies go; a stop's
+  // cancel changes nothing. Returns what the job's waiter is told.
+  RestoreJob::Ended dropCancelledRestore(const std::string& id, std::optional<int64_t> key,
+                                         const RestoreJob& job);
   std::string freshId(const std::string& preferred);  // call with scenesMutex_ held
 
   ServerOptions options_;
@@ -291,7 +303,8 @@ class HttpServer {
   std::map<const SceneSession*, int64_t> journalKeys_;                    // guarded by scenesMutex_
   std::map<const SceneSession*, SceneStall> stalls_;                      // guarded by scenesMutex_
   std::optional<std::vector<SceneJournal::StoredScene>> pendingRestore_;  // reserved, not restored
-  std::set<std::string> restoring_;  // journal scenes not back yet (503 restoring), scenesMutex_
+  // Journal scenes not back yet (503 restoring), each with its cancellable job; scenesMutex_.
+  std::map<std::string, std::shared_ptr<RestoreJob>> restoring_;
   std::vector<JournalProblem> journalProblems_;                   // guarded by scenesMutex_
   // Snapshot damage restore passed over (RestoredScene::snapshotProblem): id → what; scenesMutex_
   std::vector<std::pair<std::string, std::string>> snapshotProblems_;

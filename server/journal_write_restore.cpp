@@ -181,7 +181,8 @@ std::vector<StoredFrame> intactTail(const StoredScene& stored, uint64_t after,
 // Every frame through the engine, meshed once at the end (SceneSession::replayJournaled):
 // possible when each frame's part changes were journaled (journals before them: no).
 bool replayAtOnce(SceneSession& session, const SceneJournal& journal,
-                  const std::vector<StoredFrame>& stored, RestoredScene& report) {
+                  const std::vector<StoredFrame>& stored, RestoredScene& report,
+                  const EngineProgress& progress) {
   std::vector<SceneSession::JournaledFrame> frames;
   for (const StoredFrame& frame : stored) {
     if (frame.parts.empty()) return false;
@@ -189,7 +190,8 @@ bool replayAtOnce(SceneSession& session, const SceneJournal& journal,
                       partChangesFromText(frame.parts), frame.base});
   }
   session.replayJournaled(
-      frames, [&](const Scene& scene) { return journaledScene(scene, journal.directory()); });
+      frames, [&](const Scene& scene) { return journaledScene(scene, journal.directory()); },
+      progress);
   report.version = session.snapshot()->version;
   report.frames = frames.size();
   report.meshedOnce = !frames.empty();
@@ -197,23 +199,28 @@ bool replayAtOnce(SceneSession& session, const SceneJournal& journal,
 }
 
 // Frame by frame through the path that served them, each meshed and published; a frame that no
-// longer applies ends the replay there (`problem`). The journal is not touched.
+// longer applies ends the replay there (`problem`). The journal is not touched. A cancel
+// (`progress` throws BuildCancelled, checked before each frame) ends it.
 void replayOneByOne(SceneSession& session, const SceneJournal& journal,
                     const std::vector<StoredFrame>& stored, RestoredScene& report,
-                    std::string& problem) {
+                    std::string& problem, const EngineProgress& progress) {
   for (const StoredFrame& frame : stored) {
+    if (progress) progress("replaying", report.frames, stored.size());
     try {
       if (frame.base && *frame.base > session.engineBase()) {  // served on a fresh build here
         if (*frame.base != report.version)
           throw std::runtime_error("it was applied on a build of version " +
                                    std::to_string(*frame.base));
         session.rebase(
-            [&](const Scene& scene) { return journaledScene(scene, journal.directory()); });
+            [&](const Scene& scene) { return journaledScene(scene, journal.directory()); },
+            progress);
       }
       const uint64_t reached =
           session.apply(storedFrame(session, journal, frame.frame)).snapshot->version;
       if (reached != frame.version)
         throw std::runtime_error("replay reached version " + std::to_string(reached));
+    } catch (const BuildCancelled&) {
+      throw;
     } catch (const std::exception& error) {
       problem =
           "frame " + std::to_string(frame.version) + " no longer applies (" + error.what() + ")";
@@ -230,15 +237,17 @@ using StoredSnapshot = SceneJournal::StoredScene::StoredSnapshot;
 // or (no snapshot) of the scene's source at its first version. Throws when it does not load.
 std::shared_ptr<SceneSession> startSession(const StoredScene& stored, const StoredSnapshot* from,
                                            const SceneJournal& journal,
-                                           const EngineSettings& settings) {
+                                           const EngineSettings& settings,
+                                           const EngineProgress& progress) {
   if (!from)
     return std::make_shared<SceneSession>(
         stored.id, stored.name, sceneFromJournaledText(stored.source, journal.directory()),
-        settings);
+        settings, progress);
   StoredParts parts = decodeStoredParts(from->parts);  // cheap checks before the build
   Scene scene = sceneFromJournaledText(from->source, journal.directory());
   scene.setHandles(std::move(parts.handles), parts.nextHandle);
-  auto session = std::make_shared<SceneSession>(stored.id, stored.name, std::move(scene), settings);
+  auto session =
+      std::make_shared<SceneSession>(stored.id, stored.name, std::move(scene), settings, progress);
   session->adoptSnapshot(from->version, std::move(parts));
   return session;
 }
@@ -248,7 +257,7 @@ std::shared_ptr<SceneSession> startSession(const StoredScene& stored, const Stor
 const StoredSnapshot* newestSnapshot(const StoredScene& stored, const SceneJournal& journal,
                                      const EngineSettings& settings,
                                      std::shared_ptr<SceneSession>& session,
-                                     RestoredScene& report) {
+                                     RestoredScene& report, const EngineProgress& progress) {
   auto note = [&](const std::string& what) {
     report.snapshotProblem += (report.snapshotProblem.empty() ? "" : "; ") + what;
   };
@@ -259,7 +268,9 @@ const StoredSnapshot* newestSnapshot(const StoredScene& stored, const SceneJourn
       continue;
     }
     try {
-      session = startSession(stored, &*it, journal, settings);
+      session = startSession(stored, &*it, journal, settings, progress);
+    } catch (const BuildCancelled&) {
+      throw;
     } catch (const std::exception& error) {
       note(name + " does not load (" + error.what() + ")");
       continue;
@@ -278,13 +289,14 @@ const StoredSnapshot* newestSnapshot(const StoredScene& stored, const SceneJourn
 // Brings one journaled scene back as far as its frames allow: from its newest snapshot that
 // verifies and loads, else from its source, then the frames after it. Null when neither builds
 // (kept in the journal, not served). Sets report.stalledAt when it stops short, or when
-// `volumeProblem` says its uploaded volumes could not all be put in place.
+// `volumeProblem` says its uploaded volumes could not all be put in place. BuildCancelled from
+// `progress` (a cancel) ends it, whatever it was doing: the caller drops what it built.
 std::shared_ptr<SceneSession> restoreScene(const StoredScene& stored, const SceneJournal& journal,
                                            const EngineSettings& settings,
                                            const std::string& volumeProblem,
-                                           RestoredScene& report) {
+                                           RestoredScene& report, const EngineProgress& progress) {
   std::shared_ptr<SceneSession> session;
-  const StoredSnapshot* from = newestSnapshot(stored, journal, settings, session, report);
+  const StoredSnapshot* from = newestSnapshot(stored, journal, settings, session, report, progress);
   if (from) {
     report.snapshot = from->version;
   } else if (!stored.sourceIntact) {
@@ -293,7 +305,9 @@ std::shared_ptr<SceneSession> restoreScene(const StoredScene& stored, const Scen
     return nullptr;
   } else {
     try {
-      session = startSession(stored, nullptr, journal, settings);
+      session = startSession(stored, nullptr, journal, settings, progress);
+    } catch (const BuildCancelled&) {
+      throw;
     } catch (const std::exception& error) {  // kept in the journal, not served
       report.served = false;
       report.problem = std::string("not restored: the scene no longer builds (") + error.what() +
@@ -309,16 +323,19 @@ std::shared_ptr<SceneSession> restoreScene(const StoredScene& stored, const Scen
   // served bytes.
   bool done = false;
   try {
-    done = replayAtOnce(*session, journal, frames, report);
+    done = replayAtOnce(*session, journal, frames, report, progress);
+  } catch (const BuildCancelled&) {
+    throw;
   } catch (const std::exception& error) {  // e.g. a frame that no longer applies: one by one
     std::fprintf(stderr, "penumbra serve: scene '%s': %s; replaying frame by frame\n",
                  stored.id.c_str(), error.what());
-    session = startSession(stored, from, journal, settings);
+    session.reset();  // its memory before the next build
+    session = startSession(stored, from, journal, settings, progress);
     report.version = session->snapshot()->version;
     report.frames = 0;
     report.meshedOnce = false;
   }
-  if (!done) replayOneByOne(*session, journal, frames, report, problem);
+  if (!done) replayOneByOne(*session, journal, frames, report, problem, progress);
   if (problem.empty() && !stored.complete) problem = "the journal could not be read to its end";
   if (!volumeProblem.empty())
     problem = problem.empty() ? volumeProblem : problem + " (" + volumeProblem + ")";
@@ -356,7 +373,11 @@ void HttpServer::reserveJournalScenes() {
   }
   std::lock_guard lock(scenesMutex_);
   for (const SceneJournal::StoredScene& stored : *pendingRestore_)
-    if (scenes_.emplace(stored.id, nullptr).second) restoring_.insert(stored.id);
+    if (scenes_.emplace(stored.id, nullptr).second) {
+      auto job = std::make_shared<RestoreJob>(stored.id);
+      if (stopping_) job->cancel();
+      restoring_.emplace(stored.id, std::move(job));
+    }
 }
 
 std::vector<RestoredScene> HttpServer::restore() {
@@ -366,34 +387,71 @@ std::vector<RestoredScene> HttpServer::restore() {
   std::vector<SceneJournal::StoredScene> journaled = std::move(*pendingRestore_);
   pendingRestore_.reset();
   for (SceneJournal::StoredScene& stored : journaled) {
+    std::shared_ptr<RestoreJob> job;
+    {
+      std::lock_guard lock(scenesMutex_);
+      if (const auto it = restoring_.find(stored.id); it != restoring_.end()) job = it->second;
+    }
+    const bool reserved = job != nullptr;  // else the id was taken already (a scene served twice)
+    if (!reserved) job = std::make_shared<RestoreJob>(stored.id);
     RestoredScene report;
-    std::shared_ptr<SceneSession> session = restoreStored(stored, report);
-    std::lock_guard lock(scenesMutex_);
-    if (restoring_.erase(stored.id) == 0) {
-      restored.push_back(std::move(report));  // the id was taken already (a scene served twice)
+    std::shared_ptr<SceneSession> session;
+    try {
+      session = restoreStored(stored, report, *job);
+    } catch (const BuildCancelled&) {  // a DELETE of the scene, or a stop
+      session.reset();  // its memory first
+      const RestoreJob::Ended ended = dropCancelledRestore(stored.id, stored.key, *job);
+      report.served = false;
+      report.problem = ended.deleted ? "deleted while it was being restored"
+                       : job->deleteWanted()
+                           ? "deleted while it was being restored, but the journal could not "
+                             "remove it (" + ended.problem + "); it comes back at the next start"
+                           : "not restored: the server is stopping (the journal is unchanged)";
+      {
+        std::lock_guard lock(scenesMutex_);
+        if (reserved) {
+          restoring_.erase(stored.id);
+          scenes_.erase(stored.id);
+        }
+      }
+      job->end(ended);
+      restored.push_back(std::move(report));
       continue;
+    } catch (...) {
+      job->end({});
+      throw;
     }
-    if (session) {
-      journalKeys_[session.get()] = stored.key;
-      if (report.stalledAt) stalls_[session.get()] = SceneStall{*report.stalledAt, report.problem};
-      if (leases_) lastUse_[stored.id] = std::chrono::steady_clock::now();
-      scenes_[stored.id] = std::move(session);
-    } else {
-      scenes_.erase(stored.id);  // not served: the id is free
+    bool served = false;
+    {
+      std::lock_guard lock(scenesMutex_);
+      if (reserved && restoring_.erase(stored.id)) {
+        if (session) {
+          served = true;
+          journalKeys_[session.get()] = stored.key;
+          if (report.stalledAt) stalls_[session.get()] = SceneStall{*report.stalledAt, report.problem};
+          if (leases_) lastUse_[stored.id] = std::chrono::steady_clock::now();
+          scenes_[stored.id] = std::move(session);
+        } else {
+          scenes_.erase(stored.id);  // not served: the id is free
+        }
+      }
     }
+    job->end({served, false, ""});
     restored.push_back(std::move(report));
   }
   return restored;
 }
 
 std::shared_ptr<SceneSession> HttpServer::restoreStored(const SceneJournal::StoredScene& stored,
-                                                        RestoredScene& report) {
+                                                        RestoredScene& report, RestoreJob& job) {
   const auto start = std::chrono::steady_clock::now();
   report.id = stored.id;
+  const EngineProgress progress = job.progress();
+  progress("restoring", 0, 0);  // a restore cancelled before it began goes no further
   // Its uploads first: a node restoring a scene another node served fetches them.
   const std::string volumeProblem = journal_->fetchVolumes(stored);
   std::shared_ptr<SceneSession> session =
-      restoreScene(stored, *journal_, options_.engine, volumeProblem, report);
+      restoreScene(stored, *journal_, options_.engine, volumeProblem, report, progress);
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::lock_guard lock(scenesMutex_);
   if (!report.problem.empty())

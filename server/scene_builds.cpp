@@ -12,7 +12,7 @@ namespace penumbra::server {
 namespace {
 
 // How long DELETE of a building scene waits for its build to stop (it stops at the engine's
-// next report: one receiver's casts or meshing at most).
+// next report or beat: a few casts, vertices or cells of a receiver).
 constexpr std::chrono::seconds kCancelWait{30};
 
 ApiError cancelledError() {

@@ -62,19 +62,27 @@ void HttpServer::stopLeases() {
 }
 
 std::shared_ptr<SceneSession> HttpServer::takeOver(const std::string& id) {
+  std::shared_ptr<RestoreJob> job;  // reserved by findScene; a DELETE or a stop cancels it
+  {
+    std::lock_guard lock(scenesMutex_);
+    if (const auto it = restoring_.find(id); it != restoring_.end()) job = it->second;
+  }
+  if (!job) job = std::make_shared<RestoreJob>(id);
   std::optional<int64_t> token;
-  auto unreserve = [&] {
+  auto unreserve = [&](RestoreJob::Ended ended = {}) {
     {
       std::lock_guard lock(scenesMutex_);
       scenes_.erase(id);
       restoring_.erase(id);
       leaseTokens_.erase(id);
     }
-    if (!token) return;
-    try {
-      leases_->release(id, *token);
-    } catch (const std::exception&) {  // it expires by itself
+    if (token) {
+      try {
+        leases_->release(id, *token);
+      } catch (const std::exception&) {  // it expires by itself
+      }
     }
+    job->end(std::move(ended));
   };
   SceneLeases::Holder holder;
   std::optional<SceneJournal::StoredScene> stored;
@@ -110,7 +118,25 @@ std::shared_ptr<SceneSession> HttpServer::takeOver(const std::string& id) {
     throw ApiError(404, error_code::kNotFound, "id", "no scene with id '" + id + "'");
   }
   RestoredScene report;
-  std::shared_ptr<SceneSession> session = restoreStored(*stored, report);
+  std::shared_ptr<SceneSession> session;
+  try {
+    session = restoreStored(*stored, report, *job);
+  } catch (const BuildCancelled&) {  // a DELETE of the scene, or a stop
+    const RestoreJob::Ended ended = dropCancelledRestore(id, stored->key, *job);
+    journal_->forgetScene(stored->key);
+    unreserve(ended);
+    if (ended.deleted)
+      throw ApiError(404, error_code::kNotFound, "id",
+                     "scene '" + id + "' was deleted while it was being restored");
+    throw ApiError(503, error_code::kRestoring, "id",
+                   "the restore of scene '" + id + "' was cancelled (" +
+                       (ended.problem.empty() ? "the server is stopping"
+                                              : "its deletion failed: " + ended.problem) +
+                       "); retry");
+  } catch (...) {
+    unreserve();
+    throw;
+  }
   if (!session) {
     journal_->forgetScene(stored->key);
     unreserve();
@@ -120,12 +146,15 @@ std::shared_ptr<SceneSession> HttpServer::takeOver(const std::string& id) {
   std::fprintf(stderr, "penumbra serve: took scene '%s' over (lease %lld), back at version %llu "
                "in %.2f s\n", id.c_str(), static_cast<long long>(*token),
                static_cast<unsigned long long>(report.version), report.seconds);
-  std::lock_guard lock(scenesMutex_);
-  restoring_.erase(id);
-  journalKeys_[session.get()] = stored->key;
-  if (report.stalledAt) stalls_[session.get()] = SceneStall{*report.stalledAt, report.problem};
-  lastUse_[id] = Clock::now();
-  scenes_[id] = session;
+  {
+    std::lock_guard lock(scenesMutex_);
+    restoring_.erase(id);
+    journalKeys_[session.get()] = stored->key;
+    if (report.stalledAt) stalls_[session.get()] = SceneStall{*report.stalledAt, report.problem};
+    lastUse_[id] = Clock::now();
+    scenes_[id] = session;
+  }
+  job->end({true, false, ""});
   return session;
 }
 

@@ -201,6 +201,16 @@ void HttpServer::registerSceneRoutes() {
                               res.status = 204;  // cancelled: nothing was journaled
                               return;
                             }
+                            // Restoring: cancelled, and its rows removed by the restoring thread
+                            // (else it was served first, and is deleted below as any scene).
+                            if (const auto ended = cancelRestore(req.matches[1]); ended && !ended->served) {
+                              if (!ended->deleted)
+                                throw ApiError(503, error_code::kJournalFailed, "",
+                                               "the journal could not record the deletion (" +
+                                                   ended->problem + "); the scene was not deleted");
+                              res.status = 204;
+                              return;
+                            }
                             const auto session = findScene(req.matches[1]);
                             journalRemove(*session);  // first: if it fails, the scene stays
                             {

@@ -174,7 +174,8 @@ SceneSession::Applied SceneSession::applyToEngine(
 }
 
 void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames,
-                                   const SceneToBuild& sceneToBuild) {
+                                   const SceneToBuild& sceneToBuild,
+                                   const EngineProgress& progress) {
   std::lock_guard edit(editMutex_);
   const std::shared_ptr<const SceneSnapshot> start = snapshot();
   if (frames.empty()) return;
@@ -192,6 +193,7 @@ void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames,
   next->removedFloor = start->removedFloor;
   FrameResult last;
   for (const JournaledFrame& journaled : frames) {
+    if (progress) progress("replaying", size_t(&journaled - frames.data()), frames.size());
     if (journaled.base && *journaled.base > baseVersion_) {  // served on a fresh build here
       if (*journaled.base != engine_->version())
         throw std::runtime_error("frame " + std::to_string(journaled.version) +
@@ -200,10 +202,11 @@ void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames,
                                  std::to_string(engine_->version()));
       const Scene scene = engine_->scene();
       std::map<PartKey, std::shared_ptr<const ReceiverMesh>> now;
-      for (MeshPart& part : meshedParts(versions, kept, keptAt, scene)) now[part.key] = part.mesh;
+      for (MeshPart& part : meshedParts(versions, kept, keptAt, scene, progress))
+        now[part.key] = part.mesh;
       kept = std::move(now);
       keptAt = engine_->version();
-      buildBase(sceneToBuild(scene), keptAt);
+      buildBase(sceneToBuild(scene), keptAt, progress);
     }
     last = engine_->apply(journaled.frame);
     engine_->compactTrees(last.changedReceivers);  // as applyToEngine: the same trees after
@@ -234,7 +237,7 @@ void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames,
   next->version = last.version;
   next->buildStats = start->buildStats;
   next->scene = engine_->scene();
-  next->parts = meshedParts(versions, kept, keptAt, next->scene);
+  next->parts = meshedParts(versions, kept, keptAt, next->scene, progress);
   next->occluders =
       std::make_shared<const OccluderIndexes>(freezeOccluders(*engine_, {}, {}).indexes);
   next->lastFrame = last;
@@ -245,10 +248,10 @@ void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames,
 std::vector<MeshPart> SceneSession::meshedParts(
     const std::map<PartKey, PartVersions>& versions,
     const std::map<PartKey, std::shared_ptr<const ReceiverMesh>>& kept, uint64_t keptAt,
-    const Scene& scene) {
+    const Scene& scene, const EngineProgress& progress) {
   std::vector<MeshPart> parts;
   size_t found = 0;
-  for (const Engine::ReceiverChunks& r : engine_->meshChunks(engine_->receiverFaces()))
+  for (const Engine::ReceiverChunks& r : engine_->meshChunks(engine_->receiverFaces(), progress))
     for (MeshPart& part : partsOf(scene, r, 0)) {
       const auto it = versions.find(part.key);
       if (it == versions.end())

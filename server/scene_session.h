@@ -73,6 +73,8 @@ class SceneSession {
   // applying them one by one published (same bytes, versions and `since` deltas) at a fraction
   // of the cost: meshing is most of a frame. Throws if a frame does not apply or the changes do
   // not fit the mesh; the session is then unusable (the caller starts again from a fresh one).
+  // `progress` sees step "replaying" before each frame, and the builds' and the meshing's steps;
+  // what it throws (a restore's cancel) ends the replay the same way.
   // A frame whose `base` is newer than the engine's is applied, as it was served, on a fresh
   // build at that version (rebase(); `sceneToBuild` as given there), and the parts kept from
   // before the build keep their bytes (the fresh engine's agree only to 1e-9).
@@ -83,15 +85,18 @@ class SceneSession {
     std::optional<uint64_t> base;  // SceneJournal's StoredFrame::base
   };
   using SceneToBuild = std::function<Scene(const Scene&)>;
-  void replayJournaled(const std::vector<JournaledFrame>& frames, const SceneToBuild& sceneToBuild);
+  void replayJournaled(const std::vector<JournaledFrame>& frames, const SceneToBuild& sceneToBuild,
+                       const EngineProgress& progress = {});
 
   // Snapshots (docs/SERVER.md "Snapshots"; scene_session_rebase.cpp). rebase() replaces the
   // engine by a fresh build of `sceneToBuild(published scene)` at the published version — the
   // scene as a journal snapshot records it — publishing nothing: the served parts keep their
   // bytes, the frames after it are applied on the new build (so a restart from the snapshot,
   // the same build then the same frames, gives them back byte for byte). Returns the version
-  // rebased at. On failure (no memory) the engine is left as it was.
-  std::shared_ptr<const SceneSnapshot> rebase(const SceneToBuild& sceneToBuild);
+  // rebased at. On failure (no memory, or `progress` throwing: the build's) the engine is left as
+  // it was.
+  std::shared_ptr<const SceneSnapshot> rebase(const SceneToBuild& sceneToBuild,
+                                              const EngineProgress& progress = {});
   // The version whose fresh build the engine came from (SceneSnapshot::frameBase).
   uint64_t engineBase();
   // On a session just built from a snapshot's scene: publishes the snapshot's version with its
@@ -136,7 +141,7 @@ class SceneSession {
   void noteApplied(const Frame& frame, const FrameResult& result, const Scene& scene);
   // With editMutex_ held: engine_ becomes a fresh build of `scene` numbered `version`, the new
   // base (rebase(), rollBackEngine's fallback).
-  void buildBase(Scene scene, uint64_t version);
+  void buildBase(Scene scene, uint64_t version, const EngineProgress& progress = {});
   struct PartVersions {
     uint64_t version = 0, shape = 0;  // MeshPart::version, MeshPart::shapeVersion
   };
@@ -145,7 +150,7 @@ class SceneSession {
   std::vector<MeshPart> meshedParts(
       const std::map<PartKey, PartVersions>& versions,
       const std::map<PartKey, std::shared_ptr<const ReceiverMesh>>& kept, uint64_t keptAt,
-      const Scene& scene);
+      const Scene& scene, const EngineProgress& progress = {});
 
   const std::string id_;
   const EngineSettings settings_;

@@ -7,8 +7,8 @@
 
 namespace penumbra::server {
 
-void SceneSession::buildBase(Scene scene, uint64_t version) {
-  auto engine = std::make_unique<Engine>(scene, settings_);  // may throw: nothing changed yet
+void SceneSession::buildBase(Scene scene, uint64_t version, const EngineProgress& progress) {
+  auto engine = std::make_unique<Engine>(scene, settings_, progress);  // may throw: nothing changed yet
   engine->setVersion(version);
   baseScene_ = std::move(scene);
   baseVersion_ = version;
@@ -17,10 +17,11 @@ void SceneSession::buildBase(Scene scene, uint64_t version) {
   engine_ = std::move(engine);
 }
 
-std::shared_ptr<const SceneSnapshot> SceneSession::rebase(const SceneToBuild& sceneToBuild) {
+std::shared_ptr<const SceneSnapshot> SceneSession::rebase(const SceneToBuild& sceneToBuild,
+                                                          const EngineProgress& progress) {
   std::lock_guard edit(editMutex_);
   std::shared_ptr<const SceneSnapshot> published = snapshot();
-  buildBase(sceneToBuild(published->scene), published->version);
+  buildBase(sceneToBuild(published->scene), published->version, progress);
   return published;
 }
 

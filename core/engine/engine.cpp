@@ -272,9 +272,11 @@ void Engine::castAndIlluminateAll(Clock::time_point start, const EngineProgress&
   std::vector<double> castSeconds(receivers_.size()), lightSeconds(receivers_.size());
   parallel_.forEach(receivers_.size(), [&](size_t r) {
     const auto castStart = Clock::now();
-    for (const ReceiverCast& cast : casts[r]) {
+    for (size_t i = 0; i < casts[r].size(); ++i) {
+      const ReceiverCast& cast = casts[r][i];
       if (castInto(cast.light, cast.occluder, receivers_[r])) shadowedBy[r].push_back(cast.occluder);
       castReport.add(1);
+      if (i % kCastsPerBeat == kCastsPerBeat - 1) castReport.beat();  // the floor takes most casts
     }
     receivers_[r].tree.shrinkToFit();
     std::vector<ReceiverCast>().swap(casts[r]);
@@ -499,10 +501,12 @@ void Engine::updateMeshMemos(const std::vector<size_t>& indices, const EnginePro
   std::vector<ReceiverMeshMemo*> memos;  // created here: the map is not changed in parallel
   for (size_t i : indices) memos.push_back(&meshMemo_[receivers_[i].face]);
   std::vector<MeshMemoCounters> counters(indices.size());
+  // Beats from inside a receiver's meshing: the floor of a dense scene is most of it.
+  const std::function<void()> beat = progress ? std::function<void()>([&] { report.beat(); }) : nullptr;
   parallel_.forEach(indices.size(), [&](size_t k) {
     const Receiver& receiver = receivers_[indices[k]];
     const MeshSource source{receiver.face, receiver.frame, receiver.tree, receiver.perLight};
-    memos[k]->update(scene_, source, meshGrid(), counters[k], parallel_);
+    memos[k]->update(scene_, source, meshGrid(), counters[k], parallel_, beat);
     report.add(1);
   });
   report.finish();

@@ -244,6 +244,8 @@ class Engine {
   // called every kVerticesPerBeat vertices.
   void illuminate(Receiver& receiver, const std::function<void()>& beat = {}) const;
   static constexpr size_t kVerticesPerBeat = 64;
+  // A receiver's casts beat the "casting" step every this many (its report counts all receivers').
+  static constexpr size_t kCastsPerBeat = 16;
   void relightVertex(Receiver& receiver, VertexId v) const;
   // relightVertex's value alone: writes v's slots only, touches no cell.
   void computeVertex(Receiver& receiver, VertexId v) const;

@@ -26,9 +26,10 @@ void shrinkToFit(ReceiverMesh& mesh) {
 // One update() call: the cells touched since the last one, then the chunks they changed.
 class MeshMemoUpdate {
  public:
-  MeshMemoUpdate(ReceiverMeshMemo& memo, const Scene& scene, const MeshSource& source, MeshMemoCounters& counters)
+  MeshMemoUpdate(ReceiverMeshMemo& memo, const Scene& scene, const MeshSource& source, MeshMemoCounters& counters,
+                 const std::function<void()>& beat)
       : memo_(memo), scene_(scene), source_(source), counters_(counters), halfEdges_(source.tree.mesh()),
-        eps_(scene.tolerance().length()), chunkSide_(memo.grid_.spacing * memo.grid_.chunkSquares) {}
+        eps_(scene.tolerance().length()), chunkSide_(memo.grid_.spacing * memo.grid_.chunkSquares), beat_(beat) {}
 
   void run(const Parallel& parallel) {
     const uint64_t stamp = HalfEdgeMesh::stampNow();
@@ -100,6 +101,7 @@ class MeshMemoUpdate {
     parallel.forEach((touched.size() + kBlock - 1) / kBlock, [&](size_t block) {
       CellLighter lighter(scene_, source_, spacing, chunkSide_, memo_.grid_.refine);
       for (size_t k = block * kBlock; k < std::min(touched.size(), (block + 1) * kBlock); ++k) {
+        if (beat_ && k % ReceiverMeshMemo::kCellsPerBeat == 0) beat_();
         const CellId c(touched[k]);
         const uint64_t fingerprint = lighter.gather(c);
         const CellMemo& slot = memo_.cells_[touched[k]];
@@ -126,6 +128,7 @@ class MeshMemoUpdate {
     const std::vector<MeshChunkKey> keys(dirty_.begin(), dirty_.end());
     std::vector<ReceiverMesh> meshes(keys.size());
     parallel.forEach(keys.size(), [&](size_t k) {
+      if (beat_) beat_();
       assembleChunk(keys[k], meshes[k]);
       shrinkToFit(meshes[k]);  // kept until the chunk changes: growth's spare room was ~20 % of it
     });
@@ -191,11 +194,12 @@ class MeshMemoUpdate {
   MeshMemoCounters& counters_;
   const HalfEdgeMesh& halfEdges_;
   const double eps_, chunkSide_;  // chunkSide_ 0: one chunk
+  const std::function<void()>& beat_;
   std::set<MeshChunkKey> dirty_;
 };
 
 void ReceiverMeshMemo::update(const Scene& scene, const MeshSource& source, MeshGrid grid, MeshMemoCounters& counters,
-                              const Parallel& parallel) {
+                              const Parallel& parallel, const std::function<void()>& beat) {
   // The memo is only valid for the same face frame, lattice, chunks and tolerance.
   const double eps = scene.tolerance().length();
   if (!sameFrame(frame_, source.frame) || grid_.spacing != grid.spacing || eps_ != eps ||
@@ -206,7 +210,7 @@ void ReceiverMeshMemo::update(const Scene& scene, const MeshSource& source, Mesh
     grid_ = grid;
     eps_ = eps;
   }
-  MeshMemoUpdate(*this, scene, source, counters).run(parallel);
+  MeshMemoUpdate(*this, scene, source, counters, beat).run(parallel);
 }
 
 size_t ReceiverMeshMemo::cappedCells() const {

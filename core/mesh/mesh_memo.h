@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <utility>
@@ -43,8 +44,12 @@ class ReceiverMeshMemo {
   // the value jumps (contact edges, cells in a light's umbra). A changed chunk is assembled again
   // from its cells' pieces in cell order, so it is bit for bit what a fresh memo gives.
   // Cells are lit on `parallel`'s threads, each into its own slot: the same bytes on any count.
+  // `beat` (may be empty) is called every kCellsPerBeat cells lit and per chunk assembled, from
+  // any of those threads, so a caller sees a large receiver's meshing go on (and may throw from
+  // it to end the update: the memo is then only fit to be dropped).
   void update(const Scene& scene, const MeshSource& source, MeshGrid grid, MeshMemoCounters& counters,
-              const Parallel& parallel);
+              const Parallel& parallel, const std::function<void()>& beat = {});
+  static constexpr size_t kCellsPerBeat = 16;
   // The non-empty chunks' meshes, in key order; an unchanged chunk keeps its object.
   const std::map<MeshChunkKey, std::shared_ptr<const ReceiverMesh>>& chunks() const { return chunks_; }
   // Live cells whose refinement stopped at its point cap short of the tolerance.
