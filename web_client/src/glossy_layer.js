@@ -59,7 +59,7 @@ export class GlossyLayer {
   }
 
   // After SceneObjects.build(scene): overlays for the glossy objects, area lights for the lights.
-  // Resolves once they are in place (the LTC tables may still be loading when it returns).
+  // Returns at once; resolves once they are in place (after the LTC tables load, on first use).
   build(scene) {
     const task = this.rebuild(scene).finally(() => { if (this.building === task) this.building = null; });
     this.building = task;
