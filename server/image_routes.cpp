@@ -139,6 +139,15 @@ std::string renderLabel(const httplib::Request& req, const char* key) {
   return label;
 }
 
+// The query's `seq`: the render's number among its page's (counting up), which orders them.
+std::optional<uint64_t> renderSeq(const httplib::Request& req, const std::string& page) {
+  const auto seq = queryUnsigned(req, "seq", 0, kMaxRenderSeq);
+  if (seq && page.empty())
+    throw ApiError(400, error_code::kBadParameter, "query.seq",
+                   "seq numbers a page's renders: give the page too");
+  return seq;
+}
+
 }  // namespace
 
 // The image's estimated working memory from the budget, or nullopt when others hold it now;
@@ -189,14 +198,15 @@ void HttpServer::registerImageRoutes() {
              settings.occluders = occluderLookup(snapshot->occluders);
              settings.gi = giFromQuery(req, *width * *height);
              // A newer view of the same page stops the renders it replaces before it waits for
-             // their memory.
+             // their memory (or, overtaken on its way by a newer one, is refused).
              const std::string page = renderLabel(req, "page");
-             renders_.cancelPage(page);
+             const auto seq = renderSeq(req, page);
+             renders_.supersede(page, seq);
              const auto share = takeImageMemory(*width * *height, settings.gi.has_value());
              if (!share)
                return sendBusy(res, "the images rendering now hold the server's image memory (" +
                                         std::to_string(imageBudget_.capacity() >> 20) + " MiB)");
-             const auto job = renders_.start(req.matches[1], renderLabel(req, "ticket"), page,
+             const auto job = renders_.start(req.matches[1], renderLabel(req, "ticket"), page, seq,
                                              ConnectionServer::clientGoneProbe());
              job->setPixels(*width * *height);
              res.set_header("X-Penumbra-Render-Ticket", job->ticket());

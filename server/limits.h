@@ -55,6 +55,9 @@ inline constexpr int kMaxImageSide = 4096;  // image width/height in [1, 4096]
 // samples × width × height at most this (a 4096² image at 1 sample, 1024² at 16).
 inline constexpr uint64_t kMaxImageSamples = 256;
 inline constexpr uint64_t kMaxImageSampleBudget = uint64_t(1) << 24;
+// A render's `seq` (its number among its page's): at most 2^53, the integers a page's JavaScript
+// counts exactly.
+inline constexpr uint64_t kMaxRenderSeq = uint64_t(1) << 53;
 // Working memory of the images rendered at once, each estimated before it starts from its
 // pixels (peak RSS on cubes15 at 2048² and 4096²: 23 bytes a pixel, 101 with sensor GI, the
 // sensor size and bounces adding little): past it 503 busy; an image that alone needs more is

@@ -3,10 +3,11 @@
 namespace penumbra::server {
 
 RenderJob::RenderJob(std::string ticket, std::string sceneId, std::string page,
-                     std::function<bool()> clientGone)
+                     std::optional<uint64_t> seq, std::function<bool()> clientGone)
     : ticket_(std::move(ticket)),
       sceneId_(std::move(sceneId)),
       page_(std::move(page)),
+      seq_(seq),
       clientGone_(std::move(clientGone)) {
   progress_.record("tracing", 0, 0);
 }
@@ -60,6 +61,7 @@ nlohmann::json RenderJob::toJson() const {
   static const char* const kStates[] = {"running", "done", "cancelled", "failed"};
   nlohmann::json out = {{"ticket", ticket_}, {"scene", sceneId_}};
   if (!page_.empty()) out["page"] = page_;
+  if (seq_) out["seq"] = *seq_;
   std::lock_guard lock(mutex_);
   out["state"] = kStates[int(state_)];
   if (!reason_.empty()) out["reason"] = reason_;

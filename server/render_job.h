@@ -3,12 +3,14 @@
 // so the fraction never overstates — then "shading" by rows, then "encoding") and how it ended.
 // The renderer's progress callback (report) throws RenderCancelled once the job was cancelled —
 // by DELETE of its ticket, a newer render from the same page, the server stopping — or its
-// client closed the request. Thread-safe.
+// client closed the request. `seq`: its place among its page's renders (RenderJobs orders by it).
+// Thread-safe.
 #pragma once
 
 #include <functional>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -26,12 +28,13 @@ class RenderJob {
   enum class State { Running, Done, Cancelled, Failed };
 
   // `clientGone`: whether the requesting client closed its connection (may be empty).
-  RenderJob(std::string ticket, std::string sceneId, std::string page,
+  RenderJob(std::string ticket, std::string sceneId, std::string page, std::optional<uint64_t> seq,
             std::function<bool()> clientGone);
 
   const std::string& ticket() const { return ticket_; }
   const std::string& sceneId() const { return sceneId_; }
   const std::string& page() const { return page_; }
+  std::optional<uint64_t> seq() const { return seq_; }
 
   // The renderer's progress (rows done of total; with GI first sensors placed, total 0).
   void report(size_t done, size_t total);
@@ -45,7 +48,7 @@ class RenderJob {
   double endedSecondsAgo() const;
   uint64_t reports() const { return progress_.reports(); }
 
-  // {"ticket", "scene", "page"?, "state": "running"|"done"|"cancelled"|"failed", "reason"?,
+  // {"ticket", "scene", "page"?, "seq"?, "state": "running"|"done"|"cancelled"|"failed", "reason"?,
   // "progress": JobProgress::toJson}.
   nlohmann::json toJson() const;
 
@@ -54,6 +57,7 @@ class RenderJob {
  private:
   void check();
   const std::string ticket_, sceneId_, page_;
+  const std::optional<uint64_t> seq_;
   const std::function<bool()> clientGone_;
   size_t pixels_ = 0;  // the image's, bounding the sensors
   JobProgress progress_;

@@ -7,19 +7,19 @@
 namespace penumbra::server {
 
 std::shared_ptr<RenderJob> RenderJobs::start(const std::string& sceneId, std::string ticket,
-                                             const std::string& page,
+                                             const std::string& page, std::optional<uint64_t> seq,
                                              std::function<bool()> clientGone) {
   std::lock_guard lock(mutex_);
   prune();
   if (ticket.empty()) {
-    do ticket = "r" + std::to_string(next_++);
+    do ticket = std::string("r").append(std::to_string(next_++));
     while (jobs_.count(ticket));
   }
   if (const auto it = jobs_.find(ticket); it != jobs_.end() && !it->second->ended())
     throw ApiError(409, error_code::kBadParameter, "query.ticket",
                    "a render with ticket '" + ticket + "' is still running");
-  cancelPageLocked(page);
-  auto job = std::make_shared<RenderJob>(ticket, sceneId, page, std::move(clientGone));
+  supersedeLocked(page, seq);
+  auto job = std::make_shared<RenderJob>(ticket, sceneId, page, seq, std::move(clientGone));
   jobs_[ticket] = job;
   return job;
 }
@@ -45,15 +45,25 @@ void RenderJobs::cancelAll(const std::string& why) {
   for (auto& [ticket, job] : jobs_) job->cancel(why);
 }
 
-void RenderJobs::cancelPage(const std::string& page) {
+void RenderJobs::supersede(const std::string& page, std::optional<uint64_t> seq) {
   std::lock_guard lock(mutex_);
-  cancelPageLocked(page);
+  supersedeLocked(page, seq);
 }
 
-void RenderJobs::cancelPageLocked(const std::string& page) {
+void RenderJobs::supersedeLocked(const std::string& page, std::optional<uint64_t> seq) {
   if (page.empty()) return;
+  // Overtaken on its way (sent just before its client aborted it, it reached us after the render
+  // that replaced it): it must not stop that one.
+  if (seq)
+    for (const auto& [ticket, job] : jobs_)
+      if (job->page() == page && job->seq() && *job->seq() >= *seq)
+        throw ApiError(409, error_code::kRenderCancelled, "query.seq",
+                       "the render was cancelled: render " + std::to_string(*job->seq()) +
+                           " of page '" + page + "' (ticket '" + ticket +
+                           "') started before it, so it is out of date");
   for (auto& [ticket, job] : jobs_)
-    if (job->page() == page && !job->ended()) job->cancel("a newer render from the same page");
+    if (job->page() == page && !job->ended() && (!seq || !job->seq() || *job->seq() < *seq))
+      job->cancel("a newer render from the same page");
 }
 
 void RenderJobs::prune() {

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <optional>
 #include <string>
 #include <thread>
@@ -74,6 +75,20 @@ std::optional<json> renderUnderway(httplib::Client& client, const std::string& t
 bool imageMemoryFree(httplib::Client& client) {
   const auto res = client.Get("/api/scenes/cubes15/image?width=16&height=16");
   return res && res->status == 200;
+}
+
+// Asks for a small image of page1 until it renders (503 busy while the render it replaces still
+// holds the image memory), for at most kStopBound; `query(attempt)`: each try's own query keys.
+// The last answer's status.
+int newerViewRenders(httplib::Client& client, const std::function<std::string(int)>& query) {
+  const auto start = Clock::now();
+  int status = 0;
+  for (int attempt = 0; Clock::now() - start < kStopBound && status != 200; ++attempt) {
+    const auto res =
+        client.Get("/api/scenes/cubes15/image?width=16&height=16&page=page1&" + query(attempt));
+    status = res ? res->status : 0;
+  }
+  return status;
 }
 
 TEST(RenderJobs, DeletingTheTicketStopsALongGiRenderAndFreesTheServer) {
@@ -156,15 +171,9 @@ TEST(RenderJobs, ANewerRenderOfThePageStopsTheOlderAndTheEventStreamSaysSo) {
   std::thread render = startRender(running.port(), giImage("older", "page1"), &older);
   ASSERT_TRUE(renderUnderway(client, "older"));
   // The newer view: a plain image, which waits for the older one's memory (503 busy until then).
-  const auto newer = Clock::now();
-  int status = 0;
-  while (Clock::now() - newer < kStopBound && status != 200) {
-    const auto res =
-        client.Get("/api/scenes/cubes15/image?width=16&height=16&page=page1&ticket=newer" +
-                   std::to_string(status));
-    status = res ? res->status : 0;
-  }
-  EXPECT_EQ(status, 200);
+  EXPECT_EQ(newerViewRenders(client,
+                             [](int attempt) { return "ticket=newer" + std::to_string(attempt); }),
+            200);
   render.join();
   EXPECT_EQ(older.status.load(), 409) << older.body;
   EXPECT_EQ(bodyJson(client.Get("/api/scenes/cubes15/renders/older"))["reason"],
@@ -173,6 +182,46 @@ TEST(RenderJobs, ANewerRenderOfThePageStopsTheOlderAndTheEventStreamSaysSo) {
   EXPECT_TRUE(sawEnd) << events;
   EXPECT_NE(events.find("event: render"), std::string::npos);
   EXPECT_NE(events.find("\"stage\":\"sensors\""), std::string::npos) << events;
+}
+
+// A page that numbers its renders (seq) is ordered by the numbers, not by arrival: a request
+// overtaken on its way (seq 1, or 2 again, arriving while seq 2 runs: sent just before the page
+// aborted it) is refused at once and stops nothing; the next number stops the running render.
+TEST(RenderJobs, APageIsOrderedByItsNumbersNotByArrival) {
+  RunningServer running(oneGiImage());
+  running.addBundled("cubes15");
+  auto client = running.client();
+  Answer current;
+  std::thread render =
+      startRender(running.port(), giImage("current", "page1") + "&seq=2", &current);
+  ASSERT_TRUE(renderUnderway(client, "current"));
+  for (const char* stale : {"seq=1&ticket=stale1", "seq=2&ticket=stale2"}) {
+    const auto res =
+        client.Get("/api/scenes/cubes15/image?width=16&height=16&page=page1&" + std::string(stale));
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 409) << res->body;
+    EXPECT_EQ(bodyJson(res)["error"]["code"], "render_cancelled") << res->body;
+    EXPECT_EQ(bodyJson(res)["error"]["path"], "query.seq") << res->body;
+  }
+  const json job = bodyJson(client.Get("/api/scenes/cubes15/renders/current"));
+  EXPECT_EQ(job["state"], "running") << job.dump();
+  EXPECT_EQ(job["seq"], 2);
+  EXPECT_EQ(client.Get("/api/scenes/cubes15/renders/stale1")->status, 404);
+  const auto unpaged = client.Get("/api/scenes/cubes15/image?width=16&height=16&seq=3");
+  ASSERT_TRUE(unpaged);
+  EXPECT_EQ(unpaged->status, 400);
+  EXPECT_EQ(bodyJson(unpaged)["error"]["path"], "query.seq");
+  // The next view: stops seq 2 (and waits for its memory: 503 busy until then).
+  EXPECT_EQ(newerViewRenders(client,
+                             [](int attempt) {
+                               return "seq=" + std::to_string(3 + attempt) + "&ticket=next" +
+                                      std::to_string(attempt);
+                             }),
+            200);
+  render.join();
+  EXPECT_EQ(current.status.load(), 409) << current.body;
+  EXPECT_EQ(bodyJson(client.Get("/api/scenes/cubes15/renders/current"))["reason"],
+            "a newer render from the same page");
 }
 
 TEST(RenderJobs, StoppingTheServerStopsARender) {

@@ -11,7 +11,7 @@
 import path from 'node:path';
 
 import { check, repo, runWithServerAndBrowser, sleep, usageOnHelp } from './harness.mjs';
-import { openPage } from './page_actions.mjs';
+import { openPage, pixelsAt } from './page_actions.mjs';
 
 const defaults = { penumbra: path.join(repo, 'build', 'penumbra'), scene: path.join(repo, 'scenes', 'cubes15.scene.json'), specks: 10,
   startupSeconds: 120 };
@@ -83,16 +83,7 @@ async function lightColour(page, base, sceneId) {
   await page.keyboard.press('a'); // the whole scene, the ceiling's light in view
   await sleep(300);
   const at = await page.evaluate((id) => window.penumbra.screenOf(window.penumbra.lightCentre(id)), light.id);
-  const png = await page.screenshot({ clip: { x: Math.round(at.x) - 1, y: Math.round(at.y) - 1, width: 3, height: 3 } });
-  const [r, g, b] = await page.evaluate(async (b64) => {
-    const img = new Image();
-    img.src = `data:image/png;base64,${b64}`;
-    await img.decode();
-    const canvas = Object.assign(document.createElement('canvas'), { width: img.width, height: img.height });
-    const ctx = canvas.getContext('2d');
-    ctx.drawImage(img, 0, 0);
-    return [...ctx.getImageData(1, 1, 1, 1).data.slice(0, 3)];
-  }, png.toString('base64'));
+  const [[r, g, b]] = await pixelsAt(page, [at]);
   check(r > 200 && g > 0.5 * r && g < 0.85 * r && b < 0.5 * r, 'a coloured light\'s polygon is drawn in its colour (orange)', JSON.stringify({ r, g, b }));
 }
 

@@ -60,3 +60,18 @@ export async function clickObject(page, id) {
   return page.evaluate(() => window.penumbra.state().selected);
 }
 
+
+// The page's pixels [r, g, b] (0..255, as shown) at page points {x, y}: one screenshot of the
+// window, decoded in the page.
+export async function pixelsAt(page, points) {
+  const png = await page.screenshot();
+  return page.evaluate(async ({ b64, points }) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${b64}`;
+    await img.decode();
+    const canvas = Object.assign(document.createElement('canvas'), { width: img.width, height: img.height });
+    const ctx = canvas.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    return points.map((p) => [...ctx.getImageData(Math.round(p.x), Math.round(p.y), 1, 1).data.slice(0, 3)]);
+  }, { b64: png.toString('base64'), points });
+}

@@ -1,13 +1,13 @@
 // The glossy part of microfacet materials (README "The page"): for each object whose material
 // physicalParameters maps, a MeshPhysicalMaterial copy of its stand-in, lit by RectAreaLights that
 // match the scene's lights, drawn over the DM's vertex colours. Conductors add their specular
-// reflection to the DM colours (additive blending); glass refracts what is behind it (three.js's
-// transmission pass) with its own DM colours drawn faintly on top. The overlays and lights are
+// reflection to the DM colours (additive blending); glass is clear, as in the server's render (its
+// albedo colours only the irradiance view): its DM colours are not drawn, and it refracts what is
+// behind it (three.js's transmission pass) through its thickness. The overlays and lights are
 // children of the stand-ins' holders, so drags move them. Rebuilt with the stand-ins.
 import * as THREE from 'three';
 import { physicalParameters } from './physical_materials.js';
 
-const GLASS_DM_OPACITY = 0.3;
 let areaLightsReady = null; // the LTC tables, loaded once and only for scenes that need them
 
 function loadAreaLights() {
@@ -28,11 +28,19 @@ function addFaceTangents(geometry, vertices, faces) {
   geometry.setAttribute('tangent', new THREE.BufferAttribute(tangents, 4));
 }
 
-function physicalMaterial(p) {
+// The distance a view ray travels through a glass stand-in, in its local units (three.js scales it
+// by the holder's): the smallest side of its bounding box, so a pane is seen through its thin side.
+function thicknessOf(geometry) {
+  if (!geometry.boundingBox) geometry.computeBoundingBox();
+  const size = geometry.boundingBox.getSize(new THREE.Vector3());
+  return Math.min(size.x, size.y, size.z);
+}
+
+function physicalMaterial(p, thickness) {
   const glass = p.transmission > 0;
   const material = new THREE.MeshPhysicalMaterial({
     color: new THREE.Color(...p.color), metalness: p.metalness, roughness: p.roughness, ior: p.ior,
-    transmission: p.transmission, thickness: 0, anisotropy: p.anisotropy, anisotropyRotation: p.anisotropyRotation,
+    transmission: p.transmission, thickness: glass ? thickness : 0, anisotropy: p.anisotropy, anisotropyRotation: p.anisotropyRotation,
     side: THREE.FrontSide, depthWrite: false, polygonOffset: true, polygonOffsetFactor: -1, polygonOffsetUnits: -1,
   });
   if (!glass) Object.assign(material, { blending: THREE.AdditiveBlending, transparent: true });
@@ -47,10 +55,23 @@ export class GlossyLayer {
     this.areaLights = new Map(); // light id → RectAreaLight
     this.exposure = 1;
     this.builds = 0;
+    this.building = null; // the build under way (its promise), or null
   }
 
   // After SceneObjects.build(scene): overlays for the glossy objects, area lights for the lights.
-  async build(scene) {
+  // Returns at once; resolves once they are in place (after the LTC tables load, on first use).
+  build(scene) {
+    const task = this.rebuild(scene).finally(() => { if (this.building === task) this.building = null; });
+    this.building = task;
+    return task;
+  }
+
+  // Resolves once no build is under way (App.idle: what the view shows follows the scene).
+  async idle() {
+    while (this.building) await this.building.catch(() => {});
+  }
+
+  async rebuild(scene) {
     const build = ++this.builds;
     this.clear();
     const materials = scene.materials || {};
@@ -59,22 +80,23 @@ export class GlossyLayer {
     if (!glossy.length) return;
     await loadAreaLights();
     if (build !== this.builds) return; // built again meanwhile
-    const glassDm = new THREE.MeshBasicMaterial({ vertexColors: true, transparent: true, opacity: GLASS_DM_OPACITY, depthWrite: false });
+    const hiddenDm = new THREE.MeshBasicMaterial({ visible: false });
     const dmMaterials = new Map();
     for (const [object, parameters] of glossy) {
       const holder = this.objects.byId.get(object.id);
       if (!holder) continue;
       const standIn = holder.children[0];
       addFaceTangents(standIn.geometry, object.vertices, object.faces);
-      const overlay = new THREE.Mesh(standIn.geometry, physicalMaterial(parameters));
+      const overlay = new THREE.Mesh(standIn.geometry, physicalMaterial(parameters, thicknessOf(standIn.geometry)));
       overlay.name = 'glossy';
       overlay.position.copy(standIn.position);
       overlay.raycast = () => {}; // picking hits the stand-in
       holder.add(overlay);
       this.overlays.set(object.id, overlay);
       if (parameters.transmission > 0) {
-        standIn.material.visible = false; // else the transmission pass would see it, not what is behind
-        dmMaterials.set(object.id, glassDm);
+        // Neither its stand-in nor its DM colours: the transmission pass would see them, not what is behind.
+        standIn.material.visible = false;
+        dmMaterials.set(object.id, hiddenDm);
       }
     }
     this.receivers.setObjectMaterials(dmMaterials);
@@ -126,7 +148,7 @@ export class GlossyLayer {
     return [...this.overlays].map(([id, mesh]) => {
       const m = mesh.material;
       return { id, kind: m.type, type: m.userData.parameters.type, metalness: m.metalness, roughness: m.roughness,
-        transmission: m.transmission, ior: m.ior, anisotropy: m.anisotropy, color: m.color.toArray(),
+        transmission: m.transmission, ior: m.ior, thickness: m.thickness, anisotropy: m.anisotropy, color: m.color.toArray(),
         additive: m.blending === THREE.AdditiveBlending, parent: mesh.parent ? mesh.parent.name : null };
     }).concat([...this.areaLights].map(([id, a]) => ({ id, kind: a.type, width: a.width, height: a.height, intensity: a.intensity })));
   }

@@ -240,16 +240,18 @@ class App {
 
   busy() {
     return this.edits.busy() || !!(this.meshSync && this.meshSync.running) || !!this.follow.resyncing
-      || !!(this.volumes && this.volumes.busy());
+      || !!(this.volumes && this.volumes.busy()) || !!this.glossy.building;
   }
 
-  // Resolves once no edit is pending or in flight and the page holds (and has timed) every version it made.
+  // Resolves once no edit is pending or in flight, the page holds (and has timed) every version it
+  // made, and the glossy layer shows the materials of the stand-ins built.
   async idle() {
     while (this.busy()) {
       await this.edits.idle();
       if (this.meshSync.running) await this.meshSync.running;
       if (this.follow.resyncing) await this.follow.resyncing;
       if (this.volumes) await this.volumes.idle();
+      await this.glossy.idle();
     }
   }
 }

@@ -8,7 +8,9 @@
 // Every pass is a render job on the server (its ticket and this page's label): while one runs a
 // counter beside the info says so ("rendering with GI… 12.3 s"), its stage and fraction and a
 // Cancel button follow it (render_panel_progress.js); a newer pass of this page stops the older
-// one on the server too.
+// one on the server too. Passes are numbered (`seq`), so a pass's request overtaken on its way by
+// the next one's (sent just before its abort, it reaches the server second) is refused there
+// instead of stopping the newer pass.
 
 import { ElapsedCounter } from './elapsed_counter.js';
 import { CONVERGED_LEVELS, RATIO, noiseLevels, pixelsOf } from './render_panel_noise.js';
@@ -108,10 +110,10 @@ export class RenderPanel {
         if (this.outcome) break;
       }
     } catch (error) {
-      // Superseded: this page's newer render (a new view) reached the server before the old
-      // request's abort did, so the server ended the old one (409 render_cancelled). Not an error.
-      const superseded = error.code === 'render_cancelled' || abort.signal.aborted;
-      if (error.name !== 'AbortError' && !superseded) this.onError(error);
+      // Aborted (a new view, Cancel), or ended by the server (409 render_cancelled: its ticket
+      // deleted elsewhere, the server stopping, which the connection bar says): not an error.
+      const ended = error.code === 'render_cancelled' || abort.signal.aborted;
+      if (error.name !== 'AbortError' && !ended) this.onError(error);
     } finally {
       if (this.abort === abort) {
         this.abort = null;
@@ -124,11 +126,12 @@ export class RenderPanel {
 
   // One render on the server, followed until it comes (null when aborted).
   async pass(width, height, camera, abort, samples, gi) {
-    const ticket = `${this.page}-${++this.tickets}`;
+    const seq = ++this.tickets;
+    const ticket = `${this.page}-${seq}`;
     this.counter.start(`rendering${gi ? ' with GI (sensors)' : ''}${samples ? `, ${samples} samples` : ''}…`);
     this.job.follow(ticket);
     const image = await this.api.image(this.sceneId, width, height, camera, abort.signal, samples, gi,
-                                       { ticket, page: this.page });
+                                       { ticket, page: this.page, seq: String(seq) });
     return abort.signal.aborted ? null : image;
   }
 

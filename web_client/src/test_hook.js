@@ -209,6 +209,12 @@ export function installTestHook(app) {
     idle() {
       return app.idle();
     },
+    // Resolves once the view has drawn a frame asked for now (what the page holds is on the screen).
+    async drawFrame() {
+      const frames = app.view.frames;
+      app.view.requestRender();
+      while (app.view.frames === frames) await new Promise((resolve) => requestAnimationFrame(resolve));
+    },
     // Moves object `id` along x by `dx` metres over `seconds`, one step every `stepMs` from a timer
     // in the page (as the gizmo would, without a pointer's delivery rate), then waits for idle:
     // measures the edit pipeline alone. Returns the steps taken.
