@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "server/limits.h"
+#include "server/part_diff.h"
 
 namespace penumbra::server {
 
@@ -12,12 +13,6 @@ namespace {
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// Equal in all but the irradiance: a client holding one needs only the other's irradiance.
-bool sameShape(const ReceiverMesh& a, const ReceiverMesh& b) {
-  return a.normal == b.normal && a.positions == b.positions && a.classes == b.classes &&
-         a.triangles == b.triangles;
 }
 
 // The engine's chunks of some receivers as parts, all at `version`.
@@ -78,13 +73,16 @@ SceneSession::Applied SceneSession::apply(
   }
 }
 
+FrameResult SceneSession::applyFrame(Engine& engine, const Frame& frame) {
+  FrameResult result = engine.apply(frame);
+  engine.compactTrees(result.changedReceivers);
+  return result;
+}
+
 SceneSession::Applied SceneSession::applyToEngine(
     const Frame& frame, const std::shared_ptr<const SceneSnapshot>& previous,
     const std::function<void(const SceneSnapshot&)>& beforePublish) {
-  FrameResult result = engine_->apply(frame);  // throws EditError before changing anything
-  // Trees the frame changed are cast afresh when mostly dead slots: bounded memory. They
-  // are among the changed receivers, so they are meshed again below anyway.
-  engine_->compactTrees(result.changedReceivers);
+  FrameResult result = applyFrame(*engine_, frame);  // throws EditError before changing anything
 
   // Build the next whole version beside the published one, then swap it in.
   auto next = std::make_shared<SceneSnapshot>();
@@ -133,31 +131,22 @@ SceneSession::Applied SceneSession::applyToEngine(
   // carry what a client must redraw, whatever the engine recomputed; its shape version only
   // when more than its irradiance did, so a light's radiance sends values, not geometry.
   // Receivers kept as they were keep their parts and versions.
-  std::map<PartKey, size_t> before;
+  std::map<PartKey, const MeshPart*> before;
   for (const ReceiverKey& key : redone) {
     const auto [begin, end] = previousRuns.at(key);
-    for (size_t i = begin; i < end; ++i) before.emplace(previous->parts[i].key, i);
+    for (size_t i = begin; i < end; ++i) before.emplace(previous->parts[i].key, &previous->parts[i]);
   }
+  std::vector<MeshPart*> meshedAgain;
   std::set<PartKey> live;  // the parts meshed again: a removed key can only come back among them
   for (size_t i : freshParts) {
-    MeshPart& part = next->parts[i];
-    live.insert(part.key);
-    const auto it = before.find(part.key);
-    if (it == before.end()) continue;
-    const MeshPart& old = previous->parts[it->second];
-    const bool sameShaped = old.mesh == part.mesh || sameShape(*old.mesh, *part.mesh);
-    if (sameShaped) part.shapeVersion = old.shapeVersion;
-    if (sameShaped && (old.mesh == part.mesh || old.mesh->irradiance == part.mesh->irradiance))
-      part.version = old.version;
-    before.erase(it);
+    meshedAgain.push_back(&next->parts[i]);
+    live.insert(next->parts[i].key);
   }
+  const std::vector<PartKey> left = carryPartVersions(std::move(before), meshedAgain);
   const double meshSeconds = secondsSince(meshStart);
-  // What is left in `before` has left; a key that came back is live again.
-  for (const auto& [key, removedAt] : previous->removed)
-    if (!live.count(key)) next->removed.emplace_back(key, removedAt);
-  for (const auto& [key, index] : before) next->removed.emplace_back(key, next->version);
+  next->removed = previous->removed;
   next->removedFloor = previous->removedFloor;
-  if (next->version > kSinceWindow) next->forgetRemovedUpTo(next->version - kSinceWindow);
+  recordRemovals(*next, live, left, next->version);
 
   // Occluder lists for images: the trees of receivers meshed again may have changed.
   FrozenOccluders frozen =
@@ -208,15 +197,13 @@ void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames,
       keptAt = engine_->version();
       buildBase(sceneToBuild(scene), keptAt, progress);
     }
-    last = engine_->apply(journaled.frame);
-    engine_->compactTrees(last.changedReceivers);  // as applyToEngine: the same trees after
+    last = applyFrame(*engine_, journaled.frame);  // the same trees as when it was served
     if (last.version != journaled.version)
       throw std::runtime_error("replay reached version " + std::to_string(last.version) +
                                ", the journal says " + std::to_string(journaled.version));
     noteApplied(journaled.frame, last, engine_->scene());
-    // As applyToEngine: a part that came back is live again; the parts that left go last.
+    // The frame's journaled part diff: a part that came back is among the changed ones.
     const std::set<PartKey> changed(journaled.changes.changed.begin(), journaled.changes.changed.end());
-    std::erase_if(next->removed, [&](const auto& entry) { return changed.count(entry.first) > 0; });
     for (const PartKey& key : changed) versions[key] = {last.version, last.version};
     for (const PartKey& key : journaled.changes.values) {
       const auto it = versions.find(key);
@@ -226,11 +213,8 @@ void SceneSession::replayJournaled(const std::vector<JournaledFrame>& frames,
                                  key.receiver.object + "' it does not hold");
       it->second.version = last.version;
     }
-    for (const PartKey& key : journaled.changes.removed) {
-      versions.erase(key);
-      next->removed.emplace_back(key, last.version);
-    }
-    if (last.version > kSinceWindow) next->forgetRemovedUpTo(last.version - kSinceWindow);
+    for (const PartKey& key : journaled.changes.removed) versions.erase(key);
+    recordRemovals(*next, changed, journaled.changes.removed, last.version);
   }
   next->id = start->id;
   next->name = start->name;

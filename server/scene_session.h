@@ -134,6 +134,10 @@ class SceneSession {
   void publish(std::shared_ptr<const SceneSnapshot> next);
   Applied applyToEngine(const Frame& frame, const std::shared_ptr<const SceneSnapshot>& previous,
                         const std::function<void(const SceneSnapshot&)>& beforePublish);
+  // One frame as every path applies it to an engine (serving, the journal's replay, the
+  // rollback's), so their trees come out the same: Engine::apply, then the trees it changed
+  // cast afresh where dead slots dominate (bounded memory; those receivers are meshed again).
+  static FrameResult applyFrame(Engine& engine, const Frame& frame);
   // Failure path of apply, the engine rollback (scene_session_rollback.cpp), with editMutex_
   // held: replaces engine_ by one equal to the engine that made `published` (or leaves it null
   // and throws).

@@ -37,8 +37,7 @@ void SceneSession::rollBackEngine(const SceneSnapshot& published) {
     try {
       auto engine = std::make_unique<Engine>(baseScene_, settings_);
       engine->setVersion(baseVersion_);
-      for (const Frame& frame : sinceBase_)  // as applyToEngine does: apply, then compact
-        engine->compactTrees(engine->apply(frame).changedReceivers);
+      for (const Frame& frame : sinceBase_) applyFrame(*engine, frame);
       if (engine->version() == published.version) {
         engine_ = std::move(engine);
         return;

@@ -1,7 +1,6 @@
 #include "core/engine/engine.h"
 
 #include <algorithm>
-#include <atomic>
 #include <mutex>
 #include <cmath>
 #include <limits>
@@ -24,45 +23,6 @@ namespace penumbra {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// A step's progress counted from several threads: the callback runs on one thread at a time,
-// with `done` rising, about every `every` items (and at the start and the end). Steps that run
-// at once share one mutex (`shared`), so the callback stays on one thread at a time across them.
-class SharedProgress {
- public:
-  SharedProgress(const EngineProgress& progress, const char* step, size_t total, size_t every,
-                 std::mutex* shared = nullptr)
-      : progress_(progress), step_(step), total_(total), every_(every), mutex_(shared ? *shared : own_) {
-    if (progress_) progress_(step_, 0, total_);
-  }
-  void add(size_t items) {
-    if (!progress_ || !items) return;
-    const size_t done = done_.fetch_add(items) + items;
-    if (done / every_ == (done - items) / every_ || done == total_) return;
-    std::lock_guard lock(mutex_);
-    if (done > reported_) progress_(step_, reported_ = done, total_);
-  }
-  // The same count again, from inside one long item (a big receiver's vertices), so the callback
-  // sees the work go on (and may throw to end it).
-  void beat() {
-    if (!progress_) return;
-    std::lock_guard lock(mutex_);
-    progress_(step_, reported_, total_);
-  }
-  void finish() {
-    std::lock_guard lock(mutex_);
-    if (progress_) progress_(step_, total_, total_);
-  }
-
- private:
-  const EngineProgress& progress_;
-  const char* step_;
-  size_t total_, every_;
-  std::atomic<size_t> done_{0};
-  std::mutex own_;
-  std::mutex& mutex_;
-  size_t reported_ = 0;
-};
 
 // One shadow a receiver takes during the build: from `light`, of `occluder` (a face or a
 // whole object).
@@ -454,28 +414,6 @@ void Engine::recountBudget() {
   for (const Receiver& receiver : receivers_) budget_.change({}, usageOf(receiver.tree, scene_.lights().size()));
 }
 
-void Engine::pruneMeshMemo() {
-  for (auto it = meshMemo_.begin(); it != meshMemo_.end();)
-    it = receiverIndex_.count(it->first) ? std::next(it) : meshMemo_.erase(it);
-}
-
-Mesh Engine::mesh(const EngineProgress& progress) {
-  const auto start = Clock::now();
-  std::vector<size_t> all(receivers_.size());
-  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  updateMeshMemos(all, progress);
-  Mesh out;
-  out.tolerance = meshGrid().refine.tolerance;
-  out.receivers.reserve(receivers_.size());
-  for (const Receiver& receiver : receivers_) {
-    out.receivers.push_back(memoMesh(receiver));
-    out.cappedCells += meshMemo_.at(receiver.face).cappedCells();
-  }
-  pruneMeshMemo();
-  stats_.seconds.triangulation = secondsSince(start);
-  return out;
-}
-
 std::vector<FaceId> Engine::receiverFaces() const {
   std::vector<FaceId> faces;
   for (const Receiver& r : receivers_) faces.push_back(r.face);
@@ -486,91 +424,72 @@ VertexIrradiance Engine::value(const Receiver& receiver, VertexId v) const {
   return sumLights(scene_, receiver.perLight[v.index]);
 }
 
-std::vector<size_t> Engine::receiverIndices(const std::vector<FaceId>& only) const {
+std::vector<MeshSource> Engine::meshSources(const std::vector<FaceId>& only) const {
   std::vector<size_t> indices;
   for (FaceId face : only)
     if (const auto it = receiverIndex_.find(face); it != receiverIndex_.end()) indices.push_back(it->second);
   std::sort(indices.begin(), indices.end());
   indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
-  return indices;
+  std::vector<MeshSource> sources;
+  sources.reserve(indices.size());
+  for (size_t i : indices) {
+    const Receiver& r = receivers_[i];
+    sources.push_back({r.face, r.frame, r.tree, r.perLight});
+  }
+  return sources;
 }
 
-void Engine::updateMeshMemos(const std::vector<size_t>& indices, const EngineProgress& progress) {
-  meshCounters_ = {};
-  SharedProgress report(progress, "triangulation", indices.size(), 1);
-  std::vector<ReceiverMeshMemo*> memos;  // created here: the map is not changed in parallel
-  for (size_t i : indices) memos.push_back(&meshMemo_[receivers_[i].face]);
-  std::vector<MeshMemoCounters> counters(indices.size());
-  // Beats from inside a receiver's meshing: the floor of a dense scene is most of it.
-  const std::function<void()> beat = progress ? std::function<void()>([&] { report.beat(); }) : nullptr;
-  parallel_.forEach(indices.size(), [&](size_t k) {
-    const Receiver& receiver = receivers_[indices[k]];
-    const MeshSource source{receiver.face, receiver.frame, receiver.tree, receiver.perLight};
-    memos[k]->update(scene_, source, meshGrid(), counters[k], parallel_, beat);
-    report.add(1);
-  });
-  report.finish();
-  for (const MeshMemoCounters& c : counters) meshCounters_ += c;
+std::vector<MeshSource> Engine::meshSources() const {
+  std::vector<MeshSource> sources;
+  sources.reserve(receivers_.size());
+  for (const Receiver& r : receivers_) sources.push_back({r.face, r.frame, r.tree, r.perLight});
+  return sources;
+}
+
+void Engine::updateDisplayMemo(const std::vector<MeshSource>& sources, const EngineProgress& progress) {
+  displayMemo_.update(scene_, sources, meshGrid(), parallel_, progress);
+}
+
+void Engine::pruneDisplayMemo() {
+  displayMemo_.keepOnly([&](FaceId face) { return receiverIndex_.count(face) > 0; });
+}
+
+Mesh Engine::mesh(const EngineProgress& progress) {
+  const auto start = Clock::now();
+  const std::vector<MeshSource> sources = meshSources();
+  updateDisplayMemo(sources, progress);
+  Mesh out = displayMemo_.assemble(sources, meshGrid().refine.tolerance);
+  pruneDisplayMemo();
+  stats_.seconds.triangulation = secondsSince(start);
+  return out;
 }
 
 Mesh Engine::mesh(const std::vector<FaceId>& only) {
-  const std::vector<size_t> indices = receiverIndices(only);
-  updateMeshMemos(indices);
-  Mesh out;
-  out.tolerance = meshGrid().refine.tolerance;
-  out.receivers.reserve(indices.size());
-  for (size_t i : indices) {
-    out.receivers.push_back(memoMesh(receivers_[i]));
-    out.cappedCells += meshMemo_.at(receivers_[i].face).cappedCells();
-  }
-  pruneMeshMemo();
+  const std::vector<MeshSource> sources = meshSources(only);
+  updateDisplayMemo(sources);
+  Mesh out = displayMemo_.assemble(sources, meshGrid().refine.tolerance);
+  pruneDisplayMemo();
   return out;
 }
 
 std::vector<Engine::ReceiverChunks> Engine::meshChunks(const std::vector<FaceId>& only, const EngineProgress& progress) {
-  const std::vector<size_t> indices = receiverIndices(only);
-  updateMeshMemos(indices, progress);
+  const std::vector<MeshSource> sources = meshSources(only);
+  updateDisplayMemo(sources, progress);
   std::vector<ReceiverChunks> out;
-  for (size_t i : indices) {
+  for (const MeshSource& source : sources) {
     ReceiverChunks& entry = out.emplace_back();
-    entry.face = receivers_[i].face;
-    for (const auto& [key, chunk] : meshMemo_.at(entry.face).chunks()) entry.chunks.push_back({key, chunk});
+    entry.face = source.face;
+    for (const auto& [key, chunk] : displayMemo_.chunksOf(source.face)) entry.chunks.push_back({key, chunk});
   }
-  pruneMeshMemo();
+  pruneDisplayMemo();
   return out;
 }
 
 ReceiverMesh Engine::meshOf(FaceId face) {
-  const auto it = receiverIndex_.find(face);
-  if (it == receiverIndex_.end()) throw std::out_of_range("Engine::meshOf: the face is not a receiver");
-  meshCounters_ = {};
-  updateMeshMemo(receivers_[it->second], meshCounters_);
-  return memoMesh(receivers_[it->second]);
-}
-
-ReceiverMesh Engine::memoMesh(const Receiver& receiver) const {
-  const ReceiverMeshMemo& memo = meshMemo_.at(receiver.face);
-  ReceiverMesh result;
-  result.face = receiver.face;
-  result.normal = receiver.frame.normal;
-  size_t vertices = 0, triangles = 0;  // reserved at once: growth would leave up to half spare
-  for (const auto& [key, chunk] : memo.chunks()) {
-    vertices += chunk->positions.size();
-    triangles += chunk->triangles.size();
-  }
-  result.positions.reserve(vertices);
-  result.irradiance.reserve(vertices);
-  result.classes.reserve(vertices);
-  result.triangles.reserve(triangles);
-  for (const auto& [key, chunk] : memo.chunks()) appendMesh(result, *chunk);
-  return result;
-}
-
-const ReceiverMeshMemo& Engine::updateMeshMemo(const Receiver& receiver, MeshMemoCounters& counters) {
-  ReceiverMeshMemo& memo = meshMemo_[receiver.face];
-  const MeshSource source{receiver.face, receiver.frame, receiver.tree, receiver.perLight};
-  memo.update(scene_, source, meshGrid(), counters, parallel_);
-  return memo;
+  if (!receiverIndex_.count(face)) throw std::out_of_range("Engine::meshOf: the face is not a receiver");
+  const std::vector<MeshSource> sources = meshSources({face});
+  updateDisplayMemo(sources);
+  return displayMemo_.meshOf(sources.front());
 }
 
 MeshGrid Engine::meshGrid() const {

@@ -20,12 +20,13 @@
 #include "core/geom/plane_frame.h"
 #include "core/illum/per_light_values.h"
 #include "core/illum/vertex_illumination.h"
+#include "core/mesh/display_mesh_memo.h"
 #include "core/mesh/mesh.h"
-#include "core/mesh/mesh_memo.h"
 #include "core/order/face_order.h"
 #include "core/overlap/overlap_cube.h"
 #include "core/scene/scene.h"
 #include "core/util/parallel.h"
+#include "core/util/shared_progress.h"
 
 namespace penumbra {
 
@@ -80,7 +81,7 @@ struct EngineSettings {
 };
 
 // Called with (step name, done, total) as a long build proceeds; may be empty.
-using EngineProgress = std::function<void(const char* step, size_t done, size_t total)>;
+using EngineProgress = StepProgress;
 
 class Engine {
  public:
@@ -167,8 +168,8 @@ class Engine {
   Mesh mesh(const std::vector<FaceId>& only);
   // One receiver's part of mesh(). Throws std::out_of_range if `face` is not a receiver.
   ReceiverMesh meshOf(FaceId face);
-  // Meshing keeps, per receiver and per cell, the cell's triangles and the inputs they
-  // came from (outline, occluder list and those faces' polygons, corner values); only
+  // Meshing keeps (DisplayMeshMemo), per receiver and per cell, the cell's triangles and the
+  // inputs they came from (outline, occluder list and those faces' polygons, corner values); only
   // cells the tree touched since the last call are looked at, and one whose inputs are
   // all equal is kept instead of lit again. A receiver's mesh is the concatenation of
   // its display chunks (EngineSettings::meshChunkSquares; vertices on a chunk border
@@ -176,7 +177,7 @@ class Engine {
   // cell order, so the result is bit for bit what a fresh mesh() gives. Counters of
   // the last mesh call:
   using MeshCacheCounters = MeshMemoCounters;
-  const MeshCacheCounters& lastMeshCounters() const { return meshCounters_; }
+  const MeshCacheCounters& lastMeshCounters() const { return displayMemo_.lastCounters(); }
   // A display chunk of a receiver's mesh: the lattice-aligned block (x, y) of its 2D
   // frame (side meshChunkSquares · meshSpacing()) and the chunk's own mesh.
   using MeshChunkKey = penumbra::MeshChunkKey;
@@ -195,7 +196,7 @@ class Engine {
   // progress: step "triangulation", per receiver.
   std::vector<ReceiverChunks> meshChunks(const std::vector<FaceId>& only, const EngineProgress& progress = {});
   // Drops the memo: the next mesh call lights every cell afresh.
-  void forgetMeshMemo() { meshMemo_.clear(); }
+  void forgetMeshMemo() { displayMemo_.clear(); }
 
   // The lattice spacing mesh() uses (0: none), and the side of its display chunks in
   // lattice squares (0: one chunk per receiver).
@@ -293,14 +294,13 @@ class Engine {
   // Counts every receiver's tree against the limits afresh (drops drift).
   void recountBudget();
 
-  void pruneMeshMemo();  // drops the memos of faces that are no longer receivers
-  // Brings a receiver's memo (cells and chunks) up to date with its tree.
-  const ReceiverMeshMemo& updateMeshMemo(const Receiver& receiver, MeshMemoCounters& counters);
-  // A receiver's up-to-date memo as one mesh: its chunks concatenated.
-  ReceiverMesh memoMesh(const Receiver& receiver) const;
-  // The listed receivers' memos brought up to date, in parallel; counters summed in order.
-  void updateMeshMemos(const std::vector<size_t>& indices, const EngineProgress& progress = {});
-  std::vector<size_t> receiverIndices(const std::vector<FaceId>& only) const;
+  // The listed receivers (Scene::faces() order, each once, non-receivers skipped) as the
+  // display memo reads them.
+  std::vector<MeshSource> meshSources(const std::vector<FaceId>& only) const;
+  std::vector<MeshSource> meshSources() const;  // every receiver
+  // Brings the display memo up to date for `sources` (counters of this call).
+  void updateDisplayMemo(const std::vector<MeshSource>& sources, const EngineProgress& progress = {});
+  void pruneDisplayMemo();  // drops the memos of faces that are no longer receivers
 
   Scene scene_;
   EngineSettings settings_;
@@ -317,8 +317,7 @@ class Engine {
   std::map<FaceId, std::set<FaceId>> castBy_;   // receiver -> occluders shadowing it
   std::map<FaceId, std::vector<VertexId>> lastRelit_;
   BuildStats stats_;
-  std::map<FaceId, ReceiverMeshMemo> meshMemo_;
-  MeshCacheCounters meshCounters_;
+  DisplayMeshMemo displayMemo_;
 };
 
 }  // namespace penumbra

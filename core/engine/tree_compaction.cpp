@@ -41,7 +41,7 @@ std::vector<FaceId> Engine::compactTrees(const std::vector<FaceId>& faces) {
     }
     receiver = std::move(fresh);
     lastRelit_[face] = receiver.tree.vertices();
-    meshMemo_.erase(face);
+    displayMemo_.forget(face);
     compacted.push_back(face);
   }
   return compacted;

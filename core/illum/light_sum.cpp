@@ -12,11 +12,11 @@ VertexIrradiance sumWith(const RadianceOf& radianceOf, std::span<const VertexLig
   bool any = false;
   for (size_t l = 0; l < lights.size(); ++l) {
     const VertexLight& light = lights[l];
-    out.comparisons += light.comparisons;
-    if (!light.applies) continue;
+    out.comparisons += light.comparisons();
+    if (!light.applies()) continue;
     const bool isDark = dark && (*dark)[l];
-    const LightClass cls = isDark ? LightClass::Umbra : light.lightClass;
-    if (!isDark) out.irradiance += radianceOf(l) * light.factor;
+    const LightClass cls = isDark ? LightClass::Umbra : light.lightClass();
+    if (!isDark) out.irradiance += radianceOf(l) * light.factor();
     out.lightClass = any ? combine(out.lightClass, cls) : cls;
     any = true;
   }

@@ -44,29 +44,29 @@ Backprojection& reusedView(const Scene& scene, size_t light, const Vec3& p, cons
 
 VertexLight fromView(const Backprojection& view, VertexCase decidedBy) {
   VertexLight out;
-  out.applies = true;
-  out.decidedBy = decidedBy;
-  out.factor = view.visibleFactor();
-  out.lightClass = view.lightClass();
-  out.comparisons = uint32_t(std::min<size_t>(view.comparisons(), VertexLight::kMaxComparisons));
+  out.setApplies(true);
+  out.setDecidedBy(decidedBy);
+  out.setFactor(view.visibleFactor());
+  out.setLightClass(view.lightClass());
+  out.setComparisons(view.comparisons());
   return out;
 }
 
 VertexLight inUmbra() {
   VertexLight out;
-  out.applies = true;
-  out.decidedBy = VertexCase::Umbra;
-  out.lightClass = LightClass::Umbra;
+  out.setApplies(true);
+  out.setDecidedBy(VertexCase::Umbra);
+  out.setLightClass(LightClass::Umbra);
   return out;
 }
 
 // Sums one light's result into the all-lights result.
 void accumulate(VertexIrradiance& total, bool& anyLight, const Light& light,
                 const VertexLight& one) {
-  if (!one.applies) return;
-  total.irradiance += light.radiance * one.factor;
-  total.lightClass = anyLight ? combine(total.lightClass, one.lightClass) : one.lightClass;
-  total.comparisons += one.comparisons;
+  if (!one.applies()) return;
+  total.irradiance += light.radiance * one.factor();
+  total.lightClass = anyLight ? combine(total.lightClass, one.lightClass()) : one.lightClass();
+  total.comparisons += one.comparisons();
   anyLight = true;
 }
 

@@ -3,8 +3,10 @@
 // for vertices on value discontinuities. Free functions on a const Scene; thread-safe.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "core/dmtree/occluder_list.h"
@@ -22,16 +24,40 @@ enum class VertexCase : uint8_t {
 };
 
 // One light at a vertex.
-// 12 bytes: one is kept per vertex and light (PerLightValues), so the factor sits at 4-byte
-// alignment (packed) and the rest shares one word. The factor over the light's whole front
-// part (Backprojection::unoccludedFactor) is not kept: nothing reads it once the vertex is lit.
-struct __attribute__((packed, aligned(4))) VertexLight {
+// 12 bytes: one is kept per vertex and light (PerLightValues). The factor is kept as two 32-bit
+// words, read and written by value, so the type needs no packing: no member sits misaligned and no
+// reference to one can be taken (a reference to a packed double was undefined behaviour). The
+// factor over the light's whole front part (Backprojection::unoccludedFactor) is not kept:
+// nothing reads it once the vertex is lit.
+class VertexLight {
+ public:
   static constexpr uint32_t kMaxComparisons = (1u << 24) - 1;  // counts saturate there
-  double factor = 0;            // ∫ cosθp·cosθL / r² dA over the visible part
-  uint32_t comparisons : 24 = 0;  // source/occluder comparisons (faces projected)
-  LightClass lightClass : 2 = LightClass::Lit;  // meaningless when !applies
-  bool applies : 1 = false;     // the light reaches p's front side at all
-  VertexCase decidedBy : 2 = VertexCase::NoLight;
+
+  // ∫ cosθp·cosθL / r² dA over the visible part.
+  double factor() const {
+    double f;
+    std::memcpy(&f, factorWords_, sizeof f);
+    return f;
+  }
+  void setFactor(double f) { std::memcpy(factorWords_, &f, sizeof f); }
+  // Source/occluder comparisons (faces projected), saturating at kMaxComparisons.
+  uint32_t comparisons() const { return comparisons_; }
+  void setComparisons(size_t n) { comparisons_ = uint32_t(std::min<size_t>(n, kMaxComparisons)); }
+  // Meaningless when !applies().
+  LightClass lightClass() const { return lightClass_; }
+  void setLightClass(LightClass c) { lightClass_ = c; }
+  // The light reaches p's front side at all.
+  bool applies() const { return applies_; }
+  void setApplies(bool a) { applies_ = a; }
+  VertexCase decidedBy() const { return decidedBy_; }
+  void setDecidedBy(VertexCase c) { decidedBy_ = c; }
+
+ private:
+  uint32_t factorWords_[2] = {0, 0};  // the factor's bytes (0.0)
+  uint32_t comparisons_ : 24 = 0;
+  LightClass lightClass_ : 2 = LightClass::Lit;
+  bool applies_ : 1 = false;
+  VertexCase decidedBy_ : 2 = VertexCase::NoLight;
 };
 static_assert(sizeof(VertexLight) == 12 && alignof(VertexLight) == 4);
 

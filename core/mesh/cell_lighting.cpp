@@ -72,8 +72,8 @@ uint64_t CellLighter::Inputs::fingerprint() const {
   f.addBytes(std::span<const uint8_t>(cornerFromCell));
   f.add(uint64_t(cornerLights.size()));
   for (const VertexLight& light : cornerLights) {
-    f.add(light.factor);
-    f.add(uint64_t(light.lightClass) | uint64_t(light.applies) << 8);
+    f.add(light.factor());
+    f.add(uint64_t(light.lightClass()) | uint64_t(light.applies()) << 8);
   }
   return f.value();
 }
@@ -171,7 +171,10 @@ uint64_t CellLighter::gather(CellId c) {
     for (size_t l = 0; l < row.size(); ++l) {
       VertexLight light = fromCell ? VertexLight{} : row[l];
       // A light the cell is in umbra of adds nothing there and darkens it (as sumLights' dark).
-      if (!fromCell && anyDark_ && dark_[l] && light.applies) light.factor = 0, light.lightClass = LightClass::Umbra;
+      if (!fromCell && anyDark_ && dark_[l] && light.applies()) {
+        light.setFactor(0);
+        light.setLightClass(LightClass::Umbra);
+      }
       inputs_.cornerLights.push_back(light);
     }
   }

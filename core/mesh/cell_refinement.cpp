@@ -93,7 +93,7 @@ class Refiner {
   double levelOf(uint32_t i, size_t l) {
     const size_t lights = piece_.lights;
     const VertexLight& value = piece_.values[i * lights + l];
-    if (value.applies && value.lightClass == LightClass::Lit) return value.factor;
+    if (value.applies() && value.lightClass() == LightClass::Lit) return value.factor();
     if (std::isnan(piece_.levels[i * lights + l])) {
       levels_.clear();
       level_(piece_.points[i], levels_);
@@ -109,14 +109,14 @@ class Refiner {
   bool fails(uint32_t m, std::span<const uint32_t> from) {
     const size_t lights = piece_.lights;
     for (size_t l = 0; l < lights; ++l) {
-      double mean = 0, largest = piece_.values[m * lights + l].factor;
+      double mean = 0, largest = piece_.values[m * lights + l].factor();
       for (uint32_t i : from) {
-        const double factor = piece_.values[i * lights + l].factor;  // a copy: VertexLight is packed,
-        mean += factor;                                               // std::max takes references
+        const double factor = piece_.values[i * lights + l].factor();
+        mean += factor;
         largest = std::max(largest, factor);
       }
       mean /= double(from.size());
-      const double error = std::abs(piece_.values[m * lights + l].factor - mean);
+      const double error = std::abs(piece_.values[m * lights + l].factor() - mean);
       if (!(error > settings_.tolerance * largest)) continue;
       double level = levelOf(m, l);
       for (uint32_t i : from) level = std::max(level, levelOf(i, l));

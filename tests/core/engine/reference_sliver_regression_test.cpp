@@ -61,9 +61,9 @@ void check(const Case& c) {
   for (const VertexId& v : vertices)
     if (receiver->frame.to3D(receiver->tree.position(v)) == c.p) found = &v;
   ASSERT_NE(found, nullptr) << "the vertex is no longer in the mesh";
-  const VertexLight& light = receiver->perLight[found->index][0];
-  EXPECT_EQ(light.decidedBy, VertexCase::Covering);
-  EXPECT_NEAR(light.factor, precise, 1e-11 * precise);
+  const VertexLight light = receiver->perLight[found->index][0];
+  EXPECT_EQ(light.decidedBy(), VertexCase::Covering);
+  EXPECT_NEAR(light.factor(), precise, 1e-11 * precise);
   const Backprojection unblocked(scene, 0, c.p, n);
   for (const Face& face : scene.faces()) {
     Backprojection one(scene, 0, c.p, n);

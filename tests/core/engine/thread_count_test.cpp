@@ -61,10 +61,12 @@ std::string engineDifference(const Engine& a, const Engine& b) {
         return "vertex value" + at;
       const auto &ls = x.perLight[v.index], &lt = y.perLight[v.index];
       if (ls.size() != lt.size()) return "per-light count" + at;
-      for (size_t l = 0; l < ls.size(); ++l)
-        if (std::memcmp(&ls[l].factor, &lt[l].factor, sizeof(double)) || ls[l].lightClass != lt[l].lightClass ||
-            ls[l].decidedBy != lt[l].decidedBy || ls[l].comparisons != lt[l].comparisons)
+      for (size_t l = 0; l < ls.size(); ++l) {
+        const double fs = ls[l].factor(), ft = lt[l].factor();
+        if (std::memcmp(&fs, &ft, sizeof(double)) || ls[l].lightClass() != lt[l].lightClass() ||
+            ls[l].decidedBy() != lt[l].decidedBy() || ls[l].comparisons() != lt[l].comparisons())
           return "per-light value" + at;
+      }
     }
     for (VertexId v : x.tree.vertices())
       for (CellId c : x.tree.cellsAround(v))

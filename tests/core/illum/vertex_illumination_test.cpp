@@ -84,25 +84,25 @@ void checkPoint(const Scene& scene, const ExactReference& reference, double peak
     for (size_t l = 0; l < lights; ++l) {
       const VertexLight mine = illuminateVertex(scene, l, p, n, n, around);
       const double lightPeak = peak / maxAbs(scene.lights()[l].radiance);
-      if (!mine.applies) {
+      if (!mine.applies()) {
         EXPECT_EQ(expected[l].unoccludedFactor, 0.0);
         continue;
       }
-      expectClose(mine.factor, expected[l].visibleFactor, lightPeak, "factor");
+      expectClose(mine.factor(), expected[l].visibleFactor, lightPeak, "factor");
       expectClose(Backprojection(scene, l, p, n).unoccludedFactor(), expected[l].unoccludedFactor, lightPeak, "unoccluded");
-      EXPECT_EQ(mine.lightClass, expected[l].lightClass)
+      EXPECT_EQ(mine.lightClass(), expected[l].lightClass)
           << "p=(" << p.x << "," << p.y << "," << p.z << ") light " << l;
       if (cells == &exact) {
         ++stats.points;
-        if (mine.lightClass == LightClass::Penumbra) {
+        if (mine.lightClass() == LightClass::Penumbra) {
           ++stats.penumbra;
-          stats.penumbraComparisons += mine.comparisons;
+          stats.penumbraComparisons += mine.comparisons();
         }
-        stats.lit += mine.lightClass == LightClass::Lit;
-        stats.umbra += mine.lightClass == LightClass::Umbra;
-        stats.umbraByFlag += mine.decidedBy == VertexCase::Umbra;
+        stats.lit += mine.lightClass() == LightClass::Lit;
+        stats.umbra += mine.lightClass() == LightClass::Umbra;
+        stats.umbraByFlag += mine.decidedBy() == VertexCase::Umbra;
         if (truth[l].empty()) {
-          EXPECT_EQ(mine.decidedBy, VertexCase::Unoccluded);
+          EXPECT_EQ(mine.decidedBy(), VertexCase::Unoccluded);
         }
       }
     }
@@ -296,15 +296,15 @@ TEST(IlluminateVertex, UmbraFlagInEveryCellDecides) {
     appendEntries(a, 0, facesOfObject(scene, c.object), {top->id});
     appendEntries(b, 0, facesOfObject(scene, c.object), {top->id});
     const VertexLight v = illuminateVertex(scene, 0, p, c.normal, c.normal, {&a, &b});
-    EXPECT_EQ(v.decidedBy, VertexCase::Umbra);
-    EXPECT_EQ(v.factor, 0.0);
-    EXPECT_EQ(v.lightClass, LightClass::Umbra);
-    EXPECT_EQ(v.comparisons, 0u);
+    EXPECT_EQ(v.decidedBy(), VertexCase::Umbra);
+    EXPECT_EQ(v.factor(), 0.0);
+    EXPECT_EQ(v.lightClass(), LightClass::Umbra);
+    EXPECT_EQ(v.comparisons(), 0u);
     EXPECT_EQ(ExactReference(scene).visibility(p, c.normal, 0).visibleFactor, 0.0);
     // The same flag with the face missing from a neighbouring cell: falls through.
     const OccluderList lit;  // no entry for the light
     const VertexLight fell = illuminateVertex(scene, 0, p, c.normal, c.normal, {&a, &lit});
-    EXPECT_EQ(fell.decidedBy, VertexCase::Unoccluded);
+    EXPECT_EQ(fell.decidedBy(), VertexCase::Unoccluded);
     ++done;
   }
   EXPECT_GT(done, 0u);
@@ -417,11 +417,11 @@ TEST(IlluminateVertexFromCell, TiltedPanelCornerHidesPartOfTheLight) {
       expectLinearApproach(scene, reference, peak, p, n, d, cell, {1e-3, 1e-4, 1e-5}, "panel");
       // Some corner limits are strictly partial (the side edge's constraint matters).
       const VertexLight lim = illuminateVertexFromCell(scene, 0, p, n, n, d, cell);
-      if (p.x != 0.5 && lim.lightClass == LightClass::Penumbra && lim.factor > 0) ++partial;
+      if (p.x != 0.5 && lim.lightClass() == LightClass::Penumbra && lim.factor() > 0) ++partial;
       // From the front the panel does not block.
       const VertexLight front = illuminateVertexFromCell(scene, 0, p, n, n, -d, cell);
-      EXPECT_EQ(front.lightClass, LightClass::Lit);
-      EXPECT_EQ(front.comparisons, 0u);
+      EXPECT_EQ(front.lightClass(), LightClass::Lit);
+      EXPECT_EQ(front.comparisons(), 0u);
     }
   }
   EXPECT_GE(partial, 3u);

@@ -33,11 +33,11 @@ CellMemo::Output randomOutput(std::mt19937_64& rng) {
         out.ownAt.push_back(Vec2(double(rng() % 100) / 3.0, -2.25));
         for (size_t l = 0; l < out.lights; ++l) {
           VertexLight light;
-          light.factor = l % 2 ? -0.0 : double(rng() % 1000) / 7.0;
-          light.comparisons = uint32_t(rng() % VertexLight::kMaxComparisons);
-          light.lightClass = LightClass(rng() % 3);
-          light.applies = rng() % 2;
-          light.decidedBy = VertexCase(rng() % 4);
+          light.setFactor(l % 2 ? -0.0 : double(rng() % 1000) / 7.0);
+          light.setComparisons(rng() % VertexLight::kMaxComparisons);
+          light.setLightClass(LightClass(rng() % 3));
+          light.setApplies(rng() % 2);
+          light.setDecidedBy(VertexCase(rng() % 4));
           out.ownLights.push_back(light);
         }
       } else {
@@ -137,25 +137,25 @@ TEST(PerLightValues, RowsSurviveResizes) {
   values.assign(3, 2);
   ASSERT_EQ(values.size(), 3u);
   ASSERT_EQ(values[1].size(), 2u);
-  EXPECT_FALSE(values[2][1].applies);  // a default entry is no light
+  EXPECT_FALSE(values[2][1].applies());  // a default entry is no light
   for (size_t v = 0; v < 3; ++v)
-    for (size_t l = 0; l < 2; ++l) values[v][l].factor = double(10 * v + l);
+    for (size_t l = 0; l < 2; ++l) values[v][l].setFactor(double(10 * v + l));
 
   values.resize(5, 2);  // more rows, same lights: rows kept, new ones default
   ASSERT_EQ(values.size(), 5u);
-  EXPECT_EQ(values[2][1].factor, 21.0);
-  EXPECT_EQ(values[4][0].factor, 0.0);
+  EXPECT_EQ(values[2][1].factor(), 21.0);
+  EXPECT_EQ(values[4][0].factor(), 0.0);
 
   values.resize(4, 3);  // a light more: each row keeps its first entries
   ASSERT_EQ(values.lightCount(), 3u);
   ASSERT_EQ(values.size(), 4u);
-  EXPECT_EQ(values[1][0].factor, 10.0);
-  EXPECT_EQ(values[1][1].factor, 11.0);
-  EXPECT_EQ(values[1][2].factor, 0.0);
+  EXPECT_EQ(values[1][0].factor(), 10.0);
+  EXPECT_EQ(values[1][1].factor(), 11.0);
+  EXPECT_EQ(values[1][2].factor(), 0.0);
 
   values.resize(2, 1);  // fewer of both
   ASSERT_EQ(values.size(), 2u);
-  EXPECT_EQ(values[1][0].factor, 10.0);
+  EXPECT_EQ(values[1][0].factor(), 10.0);
 
   values.assign(7, 0);  // no lights: rows without entries
   EXPECT_EQ(values.size(), 7u);

@@ -21,10 +21,10 @@ struct Step {
   double width = 0.1, slope = 0;  // slope: a linear value instead
   VertexLight operator()(const Vec2& q) const {
     VertexLight v;
-    v.applies = true;
-    v.lightClass = LightClass::Penumbra;
+    v.setApplies(true);
+    v.setLightClass(LightClass::Penumbra);
     const double d = glm::dot(q - centre, direction);
-    v.factor = slope != 0 ? 1 + slope * d : 1 / (1 + std::exp(-d / width));
+    v.setFactor(slope != 0 ? 1 + slope * d : 1 / (1 + std::exp(-d / width)));
     return v;
   }
 };
@@ -120,8 +120,8 @@ TEST(CellRefinement, EveryFinalEdgePassesOrIsAtTheShapeLimit) {
       const Vec2 p = r.points[key.first], q = r.points[key.second];
       if (!(glm::length(q - p) > kSettings.minEdge)) continue;
       ++edges;
-      const double mean = (f(p).factor + f(q).factor) / 2;
-      if (std::abs(f(0.5 * (p + q)).factor - mean) <= kSettings.tolerance) continue;
+      const double mean = (f(p).factor() + f(q).factor()) / 2;
+      if (std::abs(f(0.5 * (p + q)).factor() - mean) <= kSettings.tolerance) continue;
       ++refused;
       EXPECT_EQ(on.size(), 2u) << "an outline edge failing its test";
       EXPECT_LT(*std::min_element(on.begin(), on.end()), 2 * minHeight);

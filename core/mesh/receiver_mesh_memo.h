@@ -1,6 +1,7 @@
 // The display mesh of one receiver, kept per cell and per chunk between calls: what each DM-tree
 // cell emitted and the inputs it came from, so only cells touched since the last call are lit
-// again. Owned by one engine; one writer per memo, different memos may update in parallel.
+// again. Held per receiver by a DisplayMeshMemo (display_mesh_memo.h); one writer per memo,
+// different memos may update in parallel.
 #pragma once
 
 #include <cstdint>

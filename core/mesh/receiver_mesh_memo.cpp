@@ -1,4 +1,4 @@
-#include "core/mesh/mesh_memo.h"
+#include "core/mesh/receiver_mesh_memo.h"
 
 #include <algorithm>
 #include <set>
