@@ -31,6 +31,25 @@ async function meanRedGreen(page, object) {
   }, object);
 }
 
+// Another client's material edit (a POST from outside the page): the page's mesh takes the new
+// colour once it follows the version, and the old one when the other client sets it back.
+async function anotherClients(page, base, sceneId, colours) {
+  const setWhite = async (albedo) => {
+    const res = await fetch(`${base}/api/scenes/${sceneId}/edits`, { method: 'POST', headers: { 'Content-Type': 'application/json' },
+      body: JSON.stringify({ edits: [{ op: 'set_material', id: 'white', material: { albedo } }] }) });
+    const version = (await res.json()).version;
+    await page.waitForFunction((v) => window.penumbra.state().version >= v, version, { timeout: 20000 });
+    await settle(page);
+  };
+  const white = (await serverScene(base, sceneId)).scene.materials.white.albedo;
+  await setWhite([0.8, 0.1, 0]);
+  const red = await meanRedGreen(page, 'white_box');
+  await setWhite(white);
+  const back = await meanRedGreen(page, 'white_box');
+  check(red.g / red.r < 0.3 * (colours.g / colours.r) && Math.abs(back.g - colours.g) < 1e-3 * colours.g,
+    'another client\'s material edit recolours the box in the view, and its undoing colours it back', JSON.stringify({ colours, red, back }));
+}
+
 async function inspect(page, id) {
   await page.evaluate((sid) => window.penumbra.select(sid), id);
   await page.waitForSelector('#inspector input[data-key="albedo"]', { timeout: 5000 });
@@ -99,6 +118,7 @@ async function main() {
     check(JSON.stringify(undone.scene.materials.white) === JSON.stringify(before.scene.materials.white)
       && Math.abs(back.r - colours.r) < 1e-3 * colours.r && Math.abs(back.g - colours.g) < 1e-3 * colours.g,
     'one undo gives the colour back on the server and in the view', JSON.stringify({ white: undone.scene.materials.white, back }));
+    await anotherClients(page, base, sceneId, colours);
     await ownMaterial(page, base, sceneId);
     check(pageErrors.length === 0, 'nothing is logged as an error', JSON.stringify(pageErrors));
   });

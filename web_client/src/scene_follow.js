@@ -5,6 +5,8 @@
 import { receiverKey } from './mesh_binary.js';
 
 const isLight = (id) => !!id && id.startsWith('light:');
+// What the objects' looks come from: the materials and which object uses which.
+const looksOf = (scene) => JSON.stringify([scene.materials || {}, (scene.objects || []).map((o) => o.material || '')]);
 
 export class SceneFollow {
   // page: {api, state, hub, history, edits, objects, receivers, view, banner, fail, and once the
@@ -34,6 +36,7 @@ export class SceneFollow {
       if (edits.ownVersions.has(version) || edits.coalescer.busy()) return;
       // Another client's edit: follow its transforms (a changed object list reloads the page's stand-ins).
       const wrapped = await api.getScene(state.id);
+      const looksBefore = state.json ? looksOf(state.json) : null;
       state.adopt(wrapped);
       toneMap.learnObjects(wrapped.scene);
       if (objects.sameObjects(wrapped.scene)) {
@@ -41,6 +44,9 @@ export class SceneFollow {
         objects.syncTransforms(wrapped.scene, dragged);
         objects.syncLights(wrapped.scene, dragged && isLight(dragged) ? dragged.slice(6) : null);
         look.afterMesh(); // another client's new light power: the exposure follows
+        // Another client's material edit: the mesh's colours and the glossy layer (metal, glass)
+        // follow, as after one of ours (not in the middle of a drag of ours: the next version does).
+        if (!gizmo.dragging && looksOf(wrapped.scene) !== looksBefore) this.restyle(wrapped.scene);
         hub.emit('synced', wrapped.scene);
       } else {
         gizmo.select(null);
@@ -63,6 +69,16 @@ export class SceneFollow {
     this.buildStandIns(wrapped.scene);
     if (selectId) gizmo.select(selectId);
     view.requestRender();
+  }
+
+  // The objects' looks again from `scene` (its materials changed), keeping the selection.
+  restyle(scene) {
+    const { receivers, toneMap, gizmo } = this.page;
+    receivers.recolourAll(toneMap); // a material's new colour changes no irradiance
+    const selected = gizmo.selected;
+    gizmo.select(null);
+    this.buildStandIns(scene); // the glossy layer follows the stand-ins
+    if (selected) gizmo.select(selected);
   }
 
   // The objects' stand-ins, each face in its lit mesh's mean colour (ambient where none is held).
