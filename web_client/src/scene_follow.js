@@ -14,6 +14,7 @@ export class SceneFollow {
   constructor(page) {
     this.page = page;
     this.resyncing = null; // the resync under way
+    this.looksStale = false; // another client changed materials while a drag of ours was on
   }
 
   // The event stream's state changed: a stream back after a break resyncs.
@@ -45,8 +46,10 @@ export class SceneFollow {
         objects.syncLights(wrapped.scene, dragged && isLight(dragged) ? dragged.slice(6) : null);
         look.afterMesh(); // another client's new light power: the exposure follows
         // Another client's material edit: the mesh's colours and the glossy layer (metal, glass)
-        // follow, as after one of ours (not in the middle of a drag of ours: the next version does).
-        if (!gizmo.dragging && looksOf(wrapped.scene) !== looksBefore) this.restyle(wrapped.scene);
+        // follow, as after one of ours. Not in the middle of a drag of ours (the stand-ins are
+        // rebuilt): then at the next version of another client's the page follows.
+        this.looksStale = this.looksStale || looksOf(wrapped.scene) !== looksBefore;
+        if (this.looksStale && !gizmo.dragging) this.restyle(wrapped.scene);
         hub.emit('synced', wrapped.scene);
       } else {
         gizmo.select(null);
@@ -74,6 +77,7 @@ export class SceneFollow {
   // The objects' looks again from `scene` (its materials changed), keeping the selection.
   restyle(scene) {
     const { receivers, toneMap, gizmo } = this.page;
+    this.looksStale = false;
     receivers.recolourAll(toneMap); // a material's new colour changes no irradiance
     const selected = gizmo.selected;
     gizmo.select(null);
