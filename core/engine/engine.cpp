@@ -60,14 +60,29 @@ std::vector<std::vector<ReceiverCast>> castSequences(
       FaceId occluder, receiver;
     };
     std::vector<Attempt> attempts;
+    // One attempt of a face, listed as what it casts as (a face of a mesh may cast as the whole
+    // object, at this face's rank). A face that stays a face and has nothing in front of the
+    // receiver's plane casts nothing (castShadow) and is not listed: a model lying wholly
+    // behind the faces of another would list each of its faces on each of them.
+    const auto addAttempt = [&](FaceId occluder, FaceId receiver) {
+      const Face* target = findFace(scene, receiver);
+      FaceId caster = occluder;
+      if (wholeObjects && target && scene.castsWhole(occluder.object))
+        caster = castingOccluder(scene, l, occluder, *target, true);
+      if (!isWholeObject(caster) && target) {
+        const Face* face = findFace(scene, caster);
+        if (face && !reachesFrontOf(*face, *target, scene.tolerance())) return;
+      }
+      attempts.push_back({order.rank(occluder), order.rank(receiver), caster, receiver});
+    };
     for (const auto& [a, b] : pairs) {
       if (!scene.mayShadow(a, b)) {  // faces of one closed convex object
         ++stats.closedConvexPairs;
         continue;
       }
       if (!order.contains(a) || !order.contains(b)) continue;
-      attempts.push_back({order.rank(a), order.rank(b), a, b});
-      attempts.push_back({order.rank(b), order.rank(a), b, a});
+      addAttempt(a, b);
+      addAttempt(b, a);
     }
     const auto own = cubes[l]->lowestSameObjectPartner(
         [&](uint32_t object) { return castsOnItselfWhole(object); },
@@ -78,10 +93,6 @@ std::vector<std::vector<ReceiverCast>> castSequences(
         attempts.push_back({rank, order.rank(receiver), wholeObject(receiver.object), receiver});
     }
     if (wholeObjects) {
-      for (Attempt& attempt : attempts)
-        if (scene.castsWhole(attempt.occluder.object))
-          if (const Face* receiver = findFace(scene, attempt.receiver))
-            attempt.occluder = castingOccluder(scene, l, attempt.occluder, *receiver, true);
       std::sort(attempts.begin(), attempts.end(), [](const Attempt& x, const Attempt& y) {
         return std::tie(x.occluder, x.receiver, x.occluderRank, x.receiverRank) <
                std::tie(y.occluder, y.receiver, y.occluderRank, y.receiverRank);

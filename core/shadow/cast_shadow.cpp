@@ -53,10 +53,18 @@ std::optional<Plane> separatingPlane(const Wedge& w, const CastingPair& pair, do
 
 }  // namespace
 
+bool reachesFrontOf(const Face& occluder, const Face& receiver, const Tolerance& tolerance) {
+  const double eps = tolerance.length();
+  return std::any_of(occluder.polygon.begin(), occluder.polygon.end(),
+                     [&](const Vec3& p) { return receiver.plane.signedDistance(p) > eps; });
+}
+
 std::optional<CastingPair> castingPair(const Scene& scene, size_t light, const Face& occluder,
                                        const Face& receiver) {
   const Tolerance tol = scene.tolerance();
   const double eps = tol.length();
+  // clipFront keeps a side only where some vertex is beyond eps (convex_split.h).
+  if (!reachesFrontOf(occluder, receiver, tol)) return std::nullopt;
   const Polygon3& lightPolygon = scene.lights().at(light).polygon;
   const auto lightPlane = planeOf(lightPolygon);
   if (!lightPlane) return std::nullopt;

@@ -27,6 +27,10 @@ struct CastingPair {
 std::optional<CastingPair> castingPair(const Scene& scene, size_t light, const Face& occluder,
                                        const Face& receiver);
 
+// Whether some vertex of `occluder` lies more than the length tolerance in front of
+// `receiver`'s plane. Without one, O' is empty: castShadow casts nothing, whatever the light.
+bool reachesFrontOf(const Face& occluder, const Face& receiver, const Tolerance& tolerance);
+
 // What `occluder` casts on `receiver` from light `light`, in `receiverFrame`
 // (PlaneFrame::onPlane(receiver.plane, receiver.polygon[0])), or nullopt when
 // nothing of R is shadowed (R not behind O's plane, empty S' or O', or a

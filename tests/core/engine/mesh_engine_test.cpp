@@ -142,5 +142,25 @@ TEST(MeshEngine, MovesEqualRebuild) {
   expectExact(engine, "torus after moves");
 }
 
+// A model under another (a torus on a shelf below a floating sphere): the torus lies wholly
+// behind the planes of the sphere's upper faces, so none of its faces is listed on them; before,
+// each of its faces was listed, and failed, on each (a furnished room listed 10 M casts, 1.5 %
+// of which could cast). Moving it incrementally (whose casts are not so filtered) equals a
+// rebuild, so the faces left out cast nothing.
+TEST(MeshEngine, AModelBehindAnothersFacesIsNotListedOnThem) {
+  Engine engine(roomWith({test::torus("m", {0.1, 0.35, 0.2}, 0.45, 0.14, 12, 6, 0.2),
+                          test::bumpySphere("s", {0.0, 1.4, 0.1}, 0.4, 6, 0.2, 9)}));
+  const BuildStats& stats = engine.stats();
+  std::printf("%zu receivers, %zu cast attempts, %zu with a shadow\n", stats.receivers,
+              stats.castAttempts, stats.pairsWithShadow);
+  EXPECT_LT(stats.castAttempts, 4 * stats.receivers);
+  Transform transform;
+  transform.translate = Vec3(0.1, 0.05, -0.1);
+  const testing::MoveCheck check = testing::moveAndCompareWithRebuild(engine, "m", transform, 7);
+  EXPECT_FALSE(check.frame.fullRebuild);
+  EXPECT_EQ(check.diff.errors(), 0u) << check.diff.firstProblem;
+  expectExact(engine, "torus under a sphere");
+}
+
 }  // namespace
 }  // namespace penumbra
