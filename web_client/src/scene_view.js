@@ -5,12 +5,14 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { defaultCamera } from './default_camera.js';
+import { FrameCache } from './frame_cache.js';
 import { focusEye } from './placement.js';
 
 export class SceneView {
   // antialias: 'auto' (on unless the GL is software), 'on' or 'off'. dragScale: the pixel
-  // ratio a software GL draws at while the user drags or orbits ('auto': 0.25).
-  constructor(container, { antialias = 'auto', dragScale = 'auto' } = {}) {
+  // ratio a software GL draws at while the user drags or orbits ('auto': 0.25). frameCache: whether
+  // a drag's frames go through the frame cache (frame_cache.js; never when antialiased).
+  constructor(container, { antialias = 'auto', dragScale = 'auto', frameCache = true } = {}) {
     this.container = container;
     // gl_context.js made the context while the modules loaded, for the page's antialias choice.
     const early = window.penumbraGL;
@@ -29,6 +31,8 @@ export class SceneView {
     this.renderer = new THREE.WebGLRenderer(context ? { canvas, context } : { antialias: this.gl.antialias });
     this.renderer.setPixelRatio(1);
     this.renderer.outputColorSpace = THREE.SRGBColorSpace;
+    this.cache = new FrameCache(this.renderer); // a drag's frames: what changed over a picture of the rest
+    this.cacheDrags = frameCache && !this.gl.antialias;
     container.appendChild(this.renderer.domElement);
     this.scene = new THREE.Scene();
     this.scene.background = new THREE.Color(0x000000);
@@ -134,10 +138,14 @@ export class SceneView {
   }
 
   // Something (`what`: 'orbit', 'drag') starts or stops moving: the drawing resolution follows
-  // (gl.dragScale while anything moves, else full).
+  // (gl.dragScale while anything moves, else full), and a drag's frames go through the frame cache
+  // (which starts again whenever the camera moves: a press on the gizmo also starts an 'orbit').
   setInteracting(what, active) {
     if (active) this.interactions.add(what);
     else this.interactions.delete(what);
+    const cached = this.cacheDrags && this.interactions.has('drag');
+    if (cached && !this.cache.active) this.cache.begin();
+    else if (!cached) this.cache.end();
     const ratio = this.interactions.size ? this.gl.dragScale : 1;
     if (this.renderer.getPixelRatio() === ratio) return;
     this.renderer.setPixelRatio(ratio);
@@ -208,7 +216,7 @@ export class SceneView {
     this.renderPending = true;
     requestAnimationFrame(() => {
       this.renderPending = false;
-      this.renderer.render(this.scene, this.camera);
+      this.cache.render(this.scene, this.camera);
       ++this.frames;
       this.drawListeners.forEach((f) => f());
     });
