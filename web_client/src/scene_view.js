@@ -41,6 +41,7 @@ export class SceneView {
     this.listeners = [];
     this.renderPending = false;
     this.holdTimer = null;
+    this.motionPending = false; // a motion frame asked for in the event being handled
     this.motionHold = () => 0; // ms a moved object's frame may wait for the shadow update on its way
     this.frames = 0;
     this.drawListeners = [];
@@ -227,6 +228,17 @@ export class SceneView {
   // software GL a frame costs tens of milliseconds of the CPU the server shares, so a frame that
   // showed only the moved stand-in would delay the next one that shows its shadow.
   requestMotionRender() {
+    // Decided once the current event is handled: the gizmo reports a move before the move's edit
+    // is queued, and a frame drawn then would show the cube without its new shadow.
+    if (this.motionPending) return;
+    this.motionPending = true;
+    queueMicrotask(() => {
+      this.motionPending = false;
+      this.holdForShadows();
+    });
+  }
+
+  holdForShadows() {
     const hold = this.motionHold();
     if (!(hold > 0)) return this.requestRender();
     if (this.renderPending || this.holdTimer !== null) return;
