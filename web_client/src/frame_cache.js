@@ -37,19 +37,26 @@ void main() {
 
 const drawable = (o) => o.isMesh || o.isLine || o.isPoints || o.isSprite;
 
+function versionsOf(geometry) {
+  let versions = geometry.index ? geometry.index.version : 0;
+  for (const name in geometry.attributes) versions += geometry.attributes[name].version;
+  return versions;
+}
+
 // What an object's pixels depend on besides the camera: geometry (and its buffers' versions),
 // material (and its version), where it is.
 function stateOf(object) {
-  const g = object.geometry;
-  let versions = g.index ? g.index.version : 0;
-  for (const name in g.attributes) versions += g.attributes[name].version;
-  const m = object.material;
-  return { geometry: g, versions, material: m, materialVersion: m.version, matrix: object.matrixWorld.elements.slice() };
+  const { geometry, material } = object;
+  return { geometry, versions: versionsOf(geometry), material, materialVersion: material.version, matrix: object.matrixWorld.elements.slice() };
 }
 
-function sameState(a, b) {
-  if (a.geometry !== b.geometry || a.versions !== b.versions || a.material !== b.material || a.materialVersion !== b.materialVersion) return false;
-  for (let i = 0; i < 16; ++i) if (a.matrix[i] !== b.matrix[i]) return false;
+// Whether `object` is as `state` recorded it (allocates nothing: it runs for every object each frame).
+function unchanged(state, object) {
+  const { geometry, material } = object;
+  if (state.geometry !== geometry || state.material !== material || state.materialVersion !== material.version
+    || state.versions !== versionsOf(geometry)) return false;
+  const m = object.matrixWorld.elements;
+  for (let i = 0; i < 16; ++i) if (state.matrix[i] !== m[i]) return false;
   return true;
 }
 
@@ -147,12 +154,11 @@ export class FrameCache {
     let total = 0, hotTriangles = 0;
     const cold = new Set();
     for (const o of objects) {
-      const state = stateOf(o);
       const before = this.seen.get(o);
       if (!before) {
-        this.seen.set(o, state);
+        this.seen.set(o, stateOf(o));
         if (!first) this.hot.add(o);
-      } else if (!this.hot.has(o) && !sameState(before, state)) {
+      } else if (!this.hot.has(o) && !unchanged(before, o)) {
         this.hot.add(o);
       }
       const n = trianglesOf(o);
