@@ -166,6 +166,7 @@ export class FrameCache {
       if (this.hot.has(o) || !cacheable(o)) hotTriangles += n;
       else cold.add(o);
     }
+    this.forgetGone(objects);
     this.hotShare = total ? hotTriangles / total : 0;
     // The drag's first frame only records what is there: the cache starts from what then stays.
     if (first || refracting || hotTriangles > HOT_SHARE_LIMIT * total) return this.direct(scene, camera);
@@ -176,6 +177,18 @@ export class FrameCache {
     }
     this.drawOver(scene, camera, cold);
     return how;
+  }
+
+  // Drops what the drag saw of objects no longer drawn (each delta replaces a few batches: kept, a
+  // long drag would hold on to every geometry it replaced). One that comes back counts as new.
+  forgetGone(objects) {
+    if (this.seen.size <= objects.length + 64) return;
+    const present = new Set(objects);
+    for (const o of this.seen.keys()) {
+      if (present.has(o)) continue;
+      this.seen.delete(o);
+      this.hot.delete(o);
+    }
   }
 
   // The cold objects alone into the target.
