@@ -197,9 +197,19 @@ async function dragTest(page, pageErrors, base, sceneId, screenshot) {
   const floorMax = Math.max(...floorBefore.irradiance);
 
   check((await clickObject(page, cubeId)) === cubeId, `a click on ${cubeId} selects it`);
-  await dragXHandle(page, -1.3, 24, 40);
+  // Halfway, the button still down and the shadows caught up: the frame the cache draws (the
+  // unchanged objects' picture, the moved cube and the changed mesh parts over it) is the whole frame.
+  const cacheChecks = [];
+  await dragXHandle(page, -1.3, 24, 40, async () => {
+    await page.evaluate(() => window.penumbra.idle());
+    for (let i = 0; i < 2; ++i) cacheChecks.push(await page.evaluate(() => window.penumbra.cachedFrameDifference(1)));
+  });
+  check(cacheChecks.some((c) => c.how === 'cached') && cacheChecks.every((c) => c.how !== 'direct' && c.differing === 0),
+    'during the drag, a frame drawn through the frame cache equals the whole frame (each channel within 1 of 255)', JSON.stringify(cacheChecks));
   await page.evaluate(() => window.penumbra.idle());
   const after = await page.evaluate(() => window.penumbra.state());
+  check(after.frameCache.cached > 0 && !after.frameCache.active && after.pixelRatio === 1,
+    'the drag drew frames from the cache; after it the view draws whole frames at full resolution', JSON.stringify({ ...after.frameCache, pixelRatio: after.pixelRatio }));
   const server = await serverScene(base, sceneId);
   const moved = server.scene.objects.find((o) => o.id === cubeId).transform.translate;
   check(server.version > 0, 'the scene version advanced on the server', String(server.version));
@@ -321,7 +331,7 @@ async function measure(page, base, sceneId, seconds) {
   const state2 = await page.evaluate(() => window.penumbra.state());
   const timer = { timer_steps: timerSteps, ...tally(state1, state2, (Date.now() - start) / 1000) };
   const report = { scene: sceneId, cube: selected, receivers: state2.receivers, parts: state2.parts, batches: state2.batches, vertices: state2.vertices,
-    gl: state2.gl, canvas: state2.canvas, mouse_drag: mouse, timer_drag: timer };
+    gl: state2.gl, canvas: state2.canvas, frame_cache: state2.frameCache, mouse_drag: mouse, timer_drag: timer };
   console.log(JSON.stringify(report, null, 2));
   check(mouse.frames_sent > 0 && timer.frames_sent > 0 && !state2.bannerVisible, 'frames applied while dragging, no error', JSON.stringify(state2.errors));
   // Drawing alone, orbiting: this page (antialiasing as chosen by GL renderer), then a page forced the other way.

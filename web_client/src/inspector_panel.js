@@ -7,8 +7,8 @@ import { transformOf } from './scene_transform.js';
 const $ = (id) => document.getElementById(id);
 const isLight = (id) => !!id && id.startsWith('light:');
 
-// page: {hub, objects, state, editor}.
-export function installInspector({ hub, objects, state, editor }) {
+// page: {hub, objects, state, editor, view}.
+export function installInspector({ hub, objects, state, editor, view }) {
   const inspector = new Inspector($('inspector'), (id, transform) => editor.typedTransform(id, transform),
     (lightId, light) => editor.typedLight(lightId, light), {
       onRename: (id, name) => editor.rename(id, name),
@@ -23,10 +23,27 @@ export function installInspector({ hub, objects, state, editor }) {
     inspector.show(id, light || (id ? transformOf(objects.byId.get(id)) : null));
   });
   // moved: an object's transform, or a light's fields that changed ({polygon} while dragged).
-  hub.on('moved', (id, moved) => {
+  const show = (id, moved) => {
     if (inspector.id !== id) return;
     if (isLight(id)) inspector.update({ ...objects.lightJson.get(id.slice(6)), ...moved });
     else inspector.update(moved);
+  };
+  // During a drag the fields change with the view's frames, not with each step: a change of the
+  // page's text makes the browser composite a frame of its own (on a software GL ~15 ms of CPU,
+  // whatever changed), and a drag's steps come faster than its frames.
+  let pending = null;
+  view.onDraw(() => {
+    if (!pending) return;
+    const [id, moved] = pending;
+    pending = null;
+    show(id, moved);
+  });
+  hub.on('moved', (id, moved) => {
+    if (view.interactions.has('drag')) pending = [id, moved];
+    else {
+      pending = null;
+      show(id, moved);
+    }
   });
   hub.on('synced', () => {
     const { id } = inspector;

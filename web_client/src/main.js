@@ -64,10 +64,11 @@ class App {
     this.state = new SceneState(this.hub);
     this.banner = new ErrorBanner($('error-banner'), $('error-text'), $('error-close'));
     this.loading = new LoadingIndicator($('loading'), $('loading-text'), $('loading-progress'), $('controls'), $('loading-cancel'));
-    // ?antialias=on|off and ?drag_scale=0.25..1 override the choices by GL renderer (to compare frame times).
+    // ?antialias=on|off and ?drag_scale=0.25..1 override the choices by GL renderer, ?frame_cache=off
+    // draws a drag's frames whole (to compare frame times).
     const antialias = query.get('antialias');
     this.view = new SceneView($('viewport'), { antialias: ['on', 'off'].includes(antialias) ? antialias : 'auto',
-      dragScale: query.get('drag_scale') || 'auto' });
+      dragScale: query.get('drag_scale') || 'auto', frameCache: query.get('frame_cache') !== 'off' });
     this.objects = new SceneObjects(this.view.scene);
     this.receivers = new ReceiverLayer(this.view.scene);
     // Microfacet materials' glossy part over the DM colours, rebuilt with the stand-ins.

@@ -100,6 +100,18 @@ function batchMesh(entries, material) {
   return mesh;
 }
 
+// A part's display colours from the tone map, with their sum ([r, g, b]): its receiver's mean
+// colour is then a sum over its parts, not over their vertices (the floor's 30 000) each delta.
+function colourEntry(entry, toneMap, indirect) {
+  const { part } = entry;
+  const c = toneMap.colours(part.object, part.irradiance, indirect);
+  const sum = [0, 0, 0];
+  for (let i = 0; i < c.length; i += 3) { sum[0] += c[i]; sum[1] += c[i + 1]; sum[2] += c[i + 2]; }
+  entry.colours = c;
+  entry.colourSum = sum;
+  return entry;
+}
+
 export class ReceiverLayer {
   constructor(parent) {
     this.group = new THREE.Group();
@@ -111,7 +123,7 @@ export class ReceiverLayer {
     this.material = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.FrontSide });
     this.objectMaterials = new Map(); // object id → its batches' material instead (glass: glossy_layer.js)
     this.edgeMaterial = new THREE.LineBasicMaterial({ vertexColors: true, depthTest: true });
-    this.entries = new Map(); // part key → {part, colours, edges}
+    this.entries = new Map(); // part key → {part, colours, colourSum, edges}
     this.batches = new Map(); // batch key → {keys: Set of part keys, mesh}
     this.stale = new Set(); // batch keys whose mesh no longer matches their parts
     this.byReceiver = new Map(); // receiver key → Set of part keys (never empty)
@@ -130,7 +142,7 @@ export class ReceiverLayer {
     for (const removed of decoded.removedParts) this.remove(removed.key);
     for (const part of decoded.parts) {
       this.remove(part.key);
-      const entry = { part, colours: toneMap.colours(part.object, part.irradiance, this.indirectOf(part)), edges: null };
+      const entry = colourEntry({ part, edges: null }, toneMap, this.indirectOf(part));
       if (this.edgeGroup.visible) this.addEdges(entry);
       this.entries.set(part.key, entry);
       const batch = batchKey(part);
@@ -155,7 +167,7 @@ export class ReceiverLayer {
     if (!entry || entry.part.vertexCount !== values.vertexCount)
       throw new Error(`binary mesh: values for part ${values.key} (${values.vertexCount} vertices), which the page does not hold`);
     entry.part = { ...entry.part, irradiance: values.irradiance, sceneVersion: values.sceneVersion };
-    entry.colours = toneMap.colours(entry.part.object, entry.part.irradiance, this.indirectOf(entry.part));
+    colourEntry(entry, toneMap, this.indirectOf(entry.part));
     this.merged.delete(entry.part.receiverKey);
     const key = batchKey(entry.part);
     const mesh = this.batches.get(key).mesh;
@@ -181,7 +193,7 @@ export class ReceiverLayer {
   // Every part's colours again (new albedos or exposure: the irradiance is as held).
   recolourAll(toneMap) {
     for (const entry of this.entries.values()) {
-      entry.colours = toneMap.colours(entry.part.object, entry.part.irradiance, this.indirectOf(entry.part));
+      colourEntry(entry, toneMap, this.indirectOf(entry.part));
       this.stale.add(batchKey(entry.part));
     }
     this.rebuildStale();
@@ -195,10 +207,10 @@ export class ReceiverLayer {
   // Every held receiver's mean colour (as meanColour), in one pass: receiver key → [r, g, b].
   meanColours() {
     const sums = new Map();
-    for (const { part, colours: c } of this.entries.values()) {
+    for (const { part, colours: c, colourSum } of this.entries.values()) {
       let s = sums.get(part.receiverKey);
       if (!s) sums.set(part.receiverKey, (s = [0, 0, 0, 0]));
-      for (let i = 0; i < c.length; i += 3) { s[0] += c[i]; s[1] += c[i + 1]; s[2] += c[i + 2]; }
+      s[0] += colourSum[0]; s[1] += colourSum[1]; s[2] += colourSum[2];
       s[3] += c.length / 3;
     }
     const means = new Map();
@@ -212,8 +224,8 @@ export class ReceiverLayer {
     const sum = [0, 0, 0];
     let n = 0;
     for (const k of keys) {
-      const c = this.entries.get(k).colours;
-      for (let i = 0; i < c.length; i += 3) { sum[0] += c[i]; sum[1] += c[i + 1]; sum[2] += c[i + 2]; }
+      const { colours: c, colourSum } = this.entries.get(k);
+      sum[0] += colourSum[0]; sum[1] += colourSum[1]; sum[2] += colourSum[2];
       n += c.length / 3;
     }
     return n ? sum.map((x) => x / n) : null;

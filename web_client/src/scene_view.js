@@ -5,12 +5,14 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { defaultCamera } from './default_camera.js';
+import { FrameCache } from './frame_cache.js';
 import { focusEye } from './placement.js';
 
 export class SceneView {
   // antialias: 'auto' (on unless the GL is software), 'on' or 'off'. dragScale: the pixel
-  // ratio a software GL draws at while the user drags or orbits ('auto': 0.25).
-  constructor(container, { antialias = 'auto', dragScale = 'auto' } = {}) {
+  // ratio a software GL draws at while the user drags or orbits ('auto': 0.25). frameCache: whether
+  // a drag's frames go through the frame cache (frame_cache.js; never when antialiased).
+  constructor(container, { antialias = 'auto', dragScale = 'auto', frameCache = true } = {}) {
     this.container = container;
     // gl_context.js made the context while the modules loaded, for the page's antialias choice.
     const early = window.penumbraGL;
@@ -29,6 +31,8 @@ export class SceneView {
     this.renderer = new THREE.WebGLRenderer(context ? { canvas, context } : { antialias: this.gl.antialias });
     this.renderer.setPixelRatio(1);
     this.renderer.outputColorSpace = THREE.SRGBColorSpace;
+    this.cache = new FrameCache(this.renderer); // a drag's frames: what changed over a picture of the rest
+    this.cacheDrags = frameCache && !this.gl.antialias;
     container.appendChild(this.renderer.domElement);
     this.scene = new THREE.Scene();
     this.scene.background = new THREE.Color(0x000000);
@@ -37,6 +41,7 @@ export class SceneView {
     this.listeners = [];
     this.renderPending = false;
     this.holdTimer = null;
+    this.motionPending = false; // a motion frame asked for in the event being handled
     this.motionHold = () => 0; // ms a moved object's frame may wait for the shadow update on its way
     this.frames = 0;
     this.drawListeners = [];
@@ -134,10 +139,14 @@ export class SceneView {
   }
 
   // Something (`what`: 'orbit', 'drag') starts or stops moving: the drawing resolution follows
-  // (gl.dragScale while anything moves, else full).
+  // (gl.dragScale while anything moves, else full), and a drag's frames go through the frame cache
+  // (which starts again whenever the camera moves: a press on the gizmo also starts an 'orbit').
   setInteracting(what, active) {
     if (active) this.interactions.add(what);
     else this.interactions.delete(what);
+    const cached = this.cacheDrags && this.interactions.has('drag');
+    if (cached && !this.cache.active) this.cache.begin();
+    else if (!cached) this.cache.end();
     const ratio = this.interactions.size ? this.gl.dragScale : 1;
     if (this.renderer.getPixelRatio() === ratio) return;
     this.renderer.setPixelRatio(ratio);
@@ -208,7 +217,7 @@ export class SceneView {
     this.renderPending = true;
     requestAnimationFrame(() => {
       this.renderPending = false;
-      this.renderer.render(this.scene, this.camera);
+      this.cache.render(this.scene, this.camera);
       ++this.frames;
       this.drawListeners.forEach((f) => f());
     });
@@ -219,6 +228,17 @@ export class SceneView {
   // software GL a frame costs tens of milliseconds of the CPU the server shares, so a frame that
   // showed only the moved stand-in would delay the next one that shows its shadow.
   requestMotionRender() {
+    // Decided once the current event is handled: the gizmo reports a move before the move's edit
+    // is queued, and a frame drawn then would show the cube without its new shadow.
+    if (this.motionPending) return;
+    this.motionPending = true;
+    queueMicrotask(() => {
+      this.motionPending = false;
+      this.holdForShadows();
+    });
+  }
+
+  holdForShadows() {
     const hold = this.motionHold();
     if (!(hold > 0)) return this.requestRender();
     if (this.renderPending || this.holdTimer !== null) return;

@@ -47,7 +47,7 @@ export function installTestHook(app) {
         dragging: app.gizmo ? app.gizmo.dragging : false,
         errors: [...app.banner.errors], bannerVisible: app.banner.visible(),
         renders: app.renderPanel ? app.renderPanel.renders : 0, renderVersion: app.renderPanel ? app.renderPanel.lastVersion : null,
-        lastFrame: app.timings.frame, roundTrip: app.timings.roundTrip, phases: app.timings.phases || null, totals: { ...app.timings.totals }, frames: app.view.frames, meshFramesDrawn,
+        lastFrame: app.timings.frame, roundTrip: app.timings.roundTrip, phases: app.timings.phases || null, totals: { ...app.timings.totals }, frames: app.view.frames, meshFramesDrawn, frameCache: { ...app.view.cache.stats, active: app.view.cache.active }, pixelRatio: app.view.renderer.getPixelRatio(),
         mesh: app.meshSync ? { lastBytes: app.meshSync.lastBytes, totalBytes: app.meshSync.totalBytes, fetches: app.meshSync.fetches } : null,
         events: app.events ? app.events.events : 0, connection: app.events ? app.events.state : null,
         editHistory: app.plot.history.length,
@@ -232,6 +232,33 @@ export function installTestHook(app) {
       app.view.setInteracting('drag', false);
       await app.idle();
       return steps;
+    },
+    // Draws the view through the frame cache, then whole, and compares the two pictures (RGBA
+    // bytes): {how ('cached', 'rebuilt' or 'direct'), pixels, differing (pixels with a channel more
+    // than `tolerance` apart), maxDelta}. During a drag it draws what the next frame would.
+    cachedFrameDifference(tolerance = 1) {
+      const { renderer, scene, camera, cache } = app.view;
+      const gl = renderer.getContext();
+      const w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+      const read = () => {
+        const pixels = new Uint8Array(4 * w * h);
+        gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
+        return pixels;
+      };
+      const how = cache.render(scene, camera);
+      const cached = read();
+      renderer.render(scene, camera);
+      const whole = read();
+      let differing = 0, maxDelta = 0;
+      const examples = []; // [x, y (from the bottom), cached RGB, whole RGB]
+      for (let i = 0; i < cached.length; i += 4) {
+        const d = Math.max(Math.abs(cached[i] - whole[i]), Math.abs(cached[i + 1] - whole[i + 1]), Math.abs(cached[i + 2] - whole[i + 2]));
+        maxDelta = Math.max(maxDelta, d);
+        if (d <= tolerance) continue;
+        ++differing;
+        if (examples.length < 8) examples.push([(i / 4) % w, Math.floor(i / 4 / w), [...cached.slice(i, i + 3)], [...whole.slice(i, i + 3)]]);
+      }
+      return { how, hotShare: cache.hotShare, pixels: w * h, width: w, height: h, differing, maxDelta, examples };
     },
     // Draws `frames` frames back to back while orbiting the camera a little (as a user would),
     // each waited for by a 1-pixel readPixels, and puts the camera back: {msPerFrame, gl}.

@@ -2,7 +2,8 @@
 // / changed / created, receivers changed, the server's display meshing, the page's round trip
 // (edit sent → the page holds its version's mesh: the edit's answer, then the wait for the delta,
 // which overlaps the next edit) and bytes of the fetch that brought it, edits per second over the
-// last seconds, beside the full-rebuild time, and the WebGL renderer (software or not, antialiased or not).
+// last seconds, beside the full-rebuild time, the WebGL renderer (software or not, antialiased or not)
+// and how a drag's frames are drawn (resolution, frames over the frame cache's picture).
 
 const ms = (s) => (s === undefined || s === null ? '–' : `${(1000 * s).toFixed(1)} ms`);
 
@@ -15,6 +16,7 @@ export class TimingsPanel {
     this.rebuild = null;
     this.initialBuild = null;
     this.gl = null; // {renderer, software, antialias} from SceneView
+    this.view = null; // the SceneView (its frame cache's counts)
     this.stamps = [];
     this.totals = { frames: 0, roundTrip: 0, edit: 0, mesh: 0, engine: 0, meshing: 0 }; // sums, seconds
     this.draw();
@@ -36,6 +38,17 @@ export class TimingsPanel {
     this.stamps.push(now);
     while (this.stamps.length && now - this.stamps[0] > 2000) this.stamps.shift();
     this.draw();
+  }
+
+  // How the view draws a drag's frames: the resolution (below full on a software GL) and how many
+  // of the frames drawn during drags came from the frame cache (frame_cache.js).
+  dragFrames() {
+    if (!this.view) return '–';
+    const { cached, rebuilt, direct } = this.view.cache.stats;
+    const scale = this.view.gl.dragScale;
+    const resolution = scale < 1 ? `${scale}× resolution` : 'full resolution';
+    if (!this.view.cacheDrags) return `${resolution}; drawn whole${this.gl.antialias ? ' (antialiased)' : ''}`;
+    return `${resolution}; ${cached + rebuilt} of ${cached + rebuilt + direct} frames over a cached picture (${rebuilt} redrawn)`;
   }
 
   editsPerSecond() {
@@ -62,6 +75,7 @@ export class TimingsPanel {
       ['full rebuild: engine + display meshing', this.rebuild
         ? `${ms(this.rebuild.seconds.build)} + ${ms(this.rebuild.seconds.mesh)} = ${ms(this.rebuild.seconds.total)} (v${this.rebuild.version})` : '–'],
       ['WebGL', this.gl ? `${this.gl.software ? 'software GL' : 'GL'}: antialiasing ${this.gl.antialias ? 'on' : 'off'} (${this.gl.name})` : '–'],
+      ['frames while dragging', this.dragFrames()],
     ];
     this.table.replaceChildren(...rows.map(([k, value]) => {
       const tr = document.createElement('tr');
@@ -80,6 +94,7 @@ export class TimingsPanel {
 export function installTimings({ hub, view }) {
   const timings = new TimingsPanel(document.getElementById('timings'));
   timings.gl = view.gl;
+  timings.view = view;
   timings.draw();
   hub.on('edited', ({ result, roundTrip, bytes, phases }) => timings.edited(result, roundTrip, bytes, phases));
   hub.on('built', (stats, rebuilt) => {
