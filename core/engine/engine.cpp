@@ -64,15 +64,11 @@ std::vector<std::vector<ReceiverCast>> castSequences(
     // object, at this face's rank). A face that stays a face and has nothing in front of the
     // receiver's plane casts nothing (castShadow) and is not listed: a model lying wholly
     // behind the faces of another would list each of its faces on each of them.
-    const auto addAttempt = [&](FaceId occluder, FaceId receiver) {
-      const Face* target = findFace(scene, receiver);
+    const auto addAttempt = [&](FaceId occluder, const Face* face, FaceId receiver, const Face* target) {
       FaceId caster = occluder;
       if (wholeObjects && target && scene.castsWhole(occluder.object))
         caster = castingOccluder(scene, l, occluder, *target, true);
-      if (!isWholeObject(caster) && target) {
-        const Face* face = findFace(scene, caster);
-        if (face && !reachesFrontOf(*face, *target, scene.tolerance())) return;
-      }
+      if (caster == occluder && face && target && !reachesFrontOf(*face, *target, scene.tolerance())) return;
       attempts.push_back({order.rank(occluder), order.rank(receiver), caster, receiver});
     };
     for (const auto& [a, b] : pairs) {
@@ -81,8 +77,9 @@ std::vector<std::vector<ReceiverCast>> castSequences(
         continue;
       }
       if (!order.contains(a) || !order.contains(b)) continue;
-      addAttempt(a, b);
-      addAttempt(b, a);
+      const Face *faceA = findFace(scene, a), *faceB = findFace(scene, b);
+      addAttempt(a, faceA, b, faceB);
+      addAttempt(b, faceB, a, faceA);
     }
     const auto own = cubes[l]->lowestSameObjectPartner(
         [&](uint32_t object) { return castsOnItselfWhole(object); },
