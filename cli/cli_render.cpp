@@ -1,4 +1,5 @@
 // `penumbra render`: an image of a scene lit by its DM mesh (or by the exact reference).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -104,9 +105,14 @@ int runRender(const Args& args) {
   const double meshSeconds = secondsSince(meshStart);
 
   ProgressBar bar(settings.reference ? "render (reference)" : "render");
+  // GI reports every 64 sensors: a line each time a twentieth of the pixels more are sensed.
+  const size_t sensorStep = std::max<size_t>(1, size_t(settings.width) * size_t(settings.height) / 20);
+  size_t nextSensorLine = sensorStep;
   const RenderedImage image = render(scene, mesh, settings, [&](size_t done, size_t total) {
     if (total == 0) {  // GI: sensors so far, before the rows
+      if (done < nextSensorLine) return;
       std::fprintf(stderr, "gi: %zu sensors placed\n", done);
+      nextSensorLine = (done / sensorStep + 1) * sensorStep;
     } else {
       bar.update(done, total);
     }

@@ -1,6 +1,7 @@
 #include "core/gi/sensor_gi.h"
 
 #include <chrono>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -11,6 +12,8 @@
 namespace penumbra::gi {
 
 namespace {
+
+constexpr size_t kVerticesPerBeat = 64;
 
 void check(const GiSettings& s) {
   if (s.bounces < 1 || s.bounces > GiSettings::kMaxBounces)
@@ -53,7 +56,8 @@ double meanRelativeChange(const Mesh& before, const Mesh& after) {
 }  // namespace
 
 Mesh vertexIndirect(const Scene& scene, const RayScene& rays, const Mesh& mesh, int sensorSize, int bounces,
-                    const Parallel& parallel, std::vector<double>* change) {
+                    const Parallel& parallel, std::vector<double>* change, const std::function<void()>& beat) {
+  std::mutex beating;  // beats one at a time, from any thread
   const SensorMap map(sensorSize);
   Mesh indirect = mesh;
   for (ReceiverMesh& r : indirect.receivers) std::fill(r.irradiance.begin(), r.irradiance.end(), Vec3(0.0));
@@ -64,8 +68,13 @@ Mesh vertexIndirect(const Scene& scene, const RayScene& rays, const Mesh& mesh, 
     Mesh next = indirect;
     parallel.forEach(next.receivers.size(), [&](size_t r) {
       ReceiverMesh& receiver = next.receivers[r];
-      for (size_t v = 0; v < receiver.positions.size(); ++v)
+      for (size_t v = 0; v < receiver.positions.size(); ++v) {
         receiver.irradiance[v] = sensor.irradiance(receiver.positions[v], receiver.normal);
+        if (beat && v % kVerticesPerBeat == kVerticesPerBeat - 1) {
+          std::lock_guard lock(beating);
+          beat();
+        }
+      }
     });
     if (change && bounce > 1) change->push_back(meanRelativeChange(indirect, next));
     indirect = std::move(next);
@@ -82,8 +91,10 @@ IndirectImage indirectImage(const Scene& scene, const RayScene& rays, const Mesh
   // Light that surfaces send towards the view's points: direct, plus bounces − 1 bounces.
   Mesh lit = mesh;
   if (settings.bounces > 1) {
+    // Its beats report no sensors yet: they are where a cancel is seen.
+    const std::function<void()> beat = progress ? std::function<void()>([&] { progress(0); }) : nullptr;
     lit = plus(mesh, vertexIndirect(scene, rays, mesh, settings.vertexSensorSize, settings.bounces - 1,
-                                    parallel, &out.bounceChange));
+                                    parallel, &out.bounceChange, beat));
     out.vertexSensors = mesh.vertexCount() * size_t(settings.bounces - 1);
   }
   const MeshLookup lookup(scene, lit);

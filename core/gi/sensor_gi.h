@@ -51,14 +51,18 @@ struct IndirectImage {
   double seconds = 0;
 };
 
-// Throws std::invalid_argument for settings out of range. progress(sensors so far) as levels end.
+// Throws std::invalid_argument for settings out of range. progress(sensors so far) as
+// placeSensors calls it (every 64 sensors, one call at a time from any thread), and with 0 every
+// 64 vertices of the bounces before it (bounces > 1); a throw from it ends the image (a cancel).
 IndirectImage indirectImage(const Scene& scene, const RayScene& rays, const Mesh& mesh, const GBuffer& gbuffer,
                             const GiSettings& settings, const Parallel& parallel,
                             const std::function<void(size_t sensors)>& progress = {});
 
 // The indirect irradiance at every vertex of `mesh` after `bounces` bounces (1: light the DM's
 // direct light sends once), as a Mesh of the same shape. change: as IndirectImage::bounceChange.
+// beat() every 64 vertices of a receiver, one call at a time from any thread (a throw ends it).
 Mesh vertexIndirect(const Scene& scene, const RayScene& rays, const Mesh& mesh, int sensorSize, int bounces,
-                    const Parallel& parallel, std::vector<double>* change = nullptr);
+                    const Parallel& parallel, std::vector<double>* change = nullptr,
+                    const std::function<void()>& beat = {});
 
 }  // namespace penumbra::gi

@@ -1,7 +1,9 @@
 #include "core/gi/sensor_placement.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
 
 namespace penumbra::gi {
@@ -14,6 +16,8 @@ struct Tile {
 
 enum class Filled : uint8_t { No, Interpolated, Sensed };
 
+constexpr size_t kSensorsPerReport = 64;
+
 class Placement {
  public:
   Placement(int width, int height, const std::vector<int32_t>& id, const std::function<Vec3(size_t)>& sense,
@@ -21,12 +25,24 @@ class Placement {
       : w_(width), h_(height), id_(id), sense_(sense), parallel_(parallel),
         value_(size_t(width) * size_t(height), Vec3(0.0)), filled_(value_.size(), Filled::No) {}
 
-  // Senses every listed pixel not yet sensed; returns how many.
-  size_t senseAll(std::vector<size_t> pixels) {
+  // Senses every listed pixel not yet sensed; returns how many. report(sensed so far in this
+  // call) every kSensorsPerReport sensors, one call at a time and counting up, from whichever
+  // thread reaches the count: a level holds up to ~10⁵ sensors (seconds), and a report is where
+  // a render learns it was cancelled (report may throw; the throw ends the loop).
+  size_t senseAll(std::vector<size_t> pixels, const std::function<void(size_t sensed)>& report) {
     std::sort(pixels.begin(), pixels.end());
     pixels.erase(std::unique(pixels.begin(), pixels.end()), pixels.end());
     std::erase_if(pixels, [&](size_t p) { return id_[p] < 0 || filled_[p] == Filled::Sensed; });
-    parallel_.forEach(pixels.size(), [&](size_t k) { value_[pixels[k]] = sense_(pixels[k]); });
+    std::atomic<size_t> sensed{0};
+    std::mutex reporting;
+    size_t reported = 0;
+    parallel_.forEach(pixels.size(), [&](size_t k) {
+      value_[pixels[k]] = sense_(pixels[k]);
+      const size_t done = sensed.fetch_add(1) + 1;
+      if (!report || done % kSensorsPerReport != 0) return;
+      std::lock_guard lock(reporting);
+      if (done > reported) report(reported = done);
+    });
     for (size_t p : pixels) filled_[p] = Filled::Sensed;
     return pixels.size();
   }
@@ -125,13 +141,15 @@ std::vector<Vec3> placeSensors(int width, int height, const std::vector<int32_t>
   Placement placement(width, height, id, sense, parallel);
   std::vector<Tile> tiles = firstTiles(width, height, settings.tile);
   std::vector<size_t> strays;
+  const std::function<void(size_t)> withinLevel =
+      progress ? std::function<void(size_t)>([&](size_t sensed) { progress(stats.sensors + sensed); }) : nullptr;
   while (!tiles.empty()) {
     std::vector<size_t> corners;
     for (const Tile& t : tiles)
       for (size_t c : {placement.at(t.x0, t.y0), placement.at(t.x1, t.y0), placement.at(t.x0, t.y1),
                        placement.at(t.x1, t.y1)})
         corners.push_back(c);
-    stats.sensorsPerLevel.push_back(placement.senseAll(std::move(corners)));
+    stats.sensorsPerLevel.push_back(placement.senseAll(std::move(corners), withinLevel));
     stats.sensors += stats.sensorsPerLevel.back();
     if (progress) progress(stats.sensors);
     std::vector<Tile> next;
@@ -142,7 +160,7 @@ std::vector<Vec3> placeSensors(int width, int height, const std::vector<int32_t>
     tiles = std::move(next);
   }
   // Pixels inside interpolated tiles that lie on another surface than the tile's corners.
-  stats.sensorsPerLevel.push_back(placement.senseAll(std::move(strays)));
+  stats.sensorsPerLevel.push_back(placement.senseAll(std::move(strays), withinLevel));
   stats.sensors += stats.sensorsPerLevel.back();
   if (progress) progress(stats.sensors);
   return placement.take();

@@ -27,7 +27,8 @@ struct PlacementStats {
 
 // Per-pixel values on a width × height image; id[p] < 0: no surface there (value 0, no sensor).
 // sense(p) gives a pixel's value and is called concurrently, once per sensed pixel; progress
-// (sensors so far) is called after each level.
+// (sensors so far) is called every 64 sensors inside a level and after each level, one call at a
+// time but from any of the loop's threads; a throw from it ends the placement (a cancel).
 std::vector<Vec3> placeSensors(int width, int height, const std::vector<int32_t>& id,
                                const std::function<Vec3(size_t pixel)>& sense, const PlacementSettings& settings,
                                const Parallel& parallel, PlacementStats& stats,

@@ -3,7 +3,7 @@
 // shows the server's stage and fraction as they move, with a Cancel button; Cancel stops the
 // render on the server (DELETE of its ticket; the job ends "cancelled" within --cancelSeconds),
 // the panel says it stopped and nothing is shown as an error. A render stops at its next progress
-// report: for GI the end of a level of sensors (about a second here). The progress comes through
+// report: for GI every 64 sensors (tens of milliseconds). The progress comes through
 // the scene's event stream: the page polls no render list meanwhile.
 //
 // usage: node tests/web/render_cancel_e2e.mjs --penumbra build/penumbra [--cancelSeconds 8]

@@ -3,7 +3,9 @@
 // mixes across surfaces.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <stdexcept>
 #include <random>
 
 #include "core/gi/id_filter.h"
@@ -71,6 +73,38 @@ TEST(SensorPlacement, TheSameValuesOnOneAndTwoThreads) {
   EXPECT_EQ(placeSensors(w, h, id, field, {8, 0.02}, Parallel(1), one),
             placeSensors(w, h, id, field, {8, 0.02}, Parallel(2), two));
   EXPECT_EQ(one.sensors, two.sensors);
+}
+
+// A level can hold ~10⁵ sensors (seconds of work): reports come from inside it, counting up, so a
+// render's cancel (a throw from the report) lands within a few dozen sensors, not at the level's end.
+TEST(SensorPlacement, ReportsComeFromInsideALevelAndCountUp) {
+  const int w = 161, h = 161;  // tile 2: the first level alone has 81² = 6,561 corners
+  const std::vector<int32_t> id(size_t(w) * h, 0);
+  auto field = [&](size_t p) { return Vec3(1 + 0.001 * double(p % w), 1.0, 1.0); };
+  for (int threads : {1, 2}) {
+    std::vector<size_t> reports;  // one call at a time: no lock needed
+    PlacementStats stats;
+    placeSensors(w, h, id, field, {2, 0.5}, Parallel(threads), stats, [&](size_t sensors) { reports.push_back(sensors); });
+    ASSERT_EQ(stats.sensorsPerLevel.front(), size_t(81 * 81));
+    ASSERT_FALSE(reports.empty());
+    EXPECT_LT(reports.front(), stats.sensorsPerLevel.front() / 50) << threads << " threads: the first report";
+    EXPECT_TRUE(std::is_sorted(reports.begin(), reports.end())) << threads << " threads";
+    EXPECT_EQ(reports.back(), stats.sensors);
+  }
+}
+
+TEST(SensorPlacement, AThrowFromTheReportEndsTheLevelItCameFrom) {
+  const int w = 161, h = 161;
+  const std::vector<int32_t> id(size_t(w) * h, 0);
+  for (int threads : {1, 2}) {
+    std::atomic<size_t> sensed{0};
+    PlacementStats stats;
+    EXPECT_THROW(placeSensors(w, h, id, [&](size_t) { ++sensed; return Vec3(1.0); }, {2, 0.5}, Parallel(threads), stats,
+                              [](size_t) { throw std::runtime_error("cancelled"); }),
+                 std::runtime_error);
+    // The first report comes at 64 sensors; the other thread finishes at most its chunk.
+    EXPECT_LT(sensed.load(), size_t(81 * 81) / 10) << threads << " threads";
+  }
 }
 
 TEST(IdAwareGaussian, NeverMixesAcrossAnIdEdgeAndKeepsConstants) {
