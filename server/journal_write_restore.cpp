@@ -135,10 +135,7 @@ void HttpServer::journalRemove(const SceneSession& session) {
   }
   std::lock_guard lock(scenesMutex_);
   if (const auto lease = leaseTokens_.find(session.id()); lease != leaseTokens_.end()) {
-    try {
-      leases_->release(session.id(), lease->second);
-    } catch (const std::exception&) {  // it expires by itself
-    }
+    leases_->releaseOrLetExpire(session.id(), lease->second);
     leaseTokens_.erase(lease);
     lastUse_.erase(session.id());
   }

@@ -84,10 +84,7 @@ void HttpServer::abandonBuild(BuildJob& job) {
     }
   }
   if (lease) {
-    try {
-      leases_->release(job.id(), *lease);
-    } catch (const std::exception&) {  // it expires by itself
-    }
+    leases_->releaseOrLetExpire(job.id(), *lease);
   }
   job.end();
 }

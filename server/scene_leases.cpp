@@ -91,4 +91,11 @@ void SceneLeases::release(const std::string& id, int64_t token) {
       Params().text(id).text(node_).add(token));
 }
 
+void SceneLeases::releaseOrLetExpire(const std::string& id, int64_t token) noexcept {
+  try {
+    release(id, token);
+  } catch (const std::exception&) {
+  }
+}
+
 }  // namespace penumbra::server

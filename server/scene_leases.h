@@ -45,6 +45,9 @@ class SceneLeases {
   Renewal renew();
   // Gives `id`'s lease up (it expires now) if `token` is still its token.
   void release(const std::string& id, int64_t token);
+  // release, where a failure (the database out of reach) is no error: the lease then expires
+  // by itself within its length, so another node waits for it a little longer.
+  void releaseOrLetExpire(const std::string& id, int64_t token) noexcept;
 
  private:
   void reconnect();  // a lost connection opened again; throws when it cannot be

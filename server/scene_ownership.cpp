@@ -54,10 +54,7 @@ void HttpServer::stopLeases() {
       if (const auto it = scenes_.find(id); it != scenes_.end() && it->second) it->second->close();
   }
   for (const auto& [id, token] : held) {  // handed back: another node need not wait for expiry
-    try {
-      leases_->release(id, token);
-    } catch (const std::exception&) {  // they expire by themselves
-    }
+    leases_->releaseOrLetExpire(id, token);
   }
 }
 
@@ -77,10 +74,7 @@ std::shared_ptr<SceneSession> HttpServer::takeOver(const std::string& id) {
       leaseTokens_.erase(id);
     }
     if (token) {
-      try {
-        leases_->release(id, *token);
-      } catch (const std::exception&) {  // it expires by itself
-      }
+      leases_->releaseOrLetExpire(id, *token);
     }
     job->end(std::move(ended));
   };
@@ -163,7 +157,7 @@ bool HttpServer::claimNewId(const std::string& id) {
   const std::optional<int64_t> token = leases_->acquire(id, holder);
   if (!token) return false;
   if (journal_->hasScene(id)) {  // journaled, served nowhere now: a request brings it back
-    leases_->release(id, *token);
+    leases_->releaseOrLetExpire(id, *token);
     return false;
   }
   std::lock_guard lock(scenesMutex_);
@@ -278,8 +272,8 @@ void HttpServer::renewLeasesOnce() {
     if (const std::optional<int64_t> token =
             dropScene(id, renewal.wanted.count(id) ? "handed over to the node asking for it"
                                                    : "idle: its lease is given back"))
-      leases_->release(id, *token);
-  for (const auto& [id, token] : stray) leases_->release(id, token);
+      leases_->releaseOrLetExpire(id, *token);
+  for (const auto& [id, token] : stray) leases_->releaseOrLetExpire(id, token);
 }
 
 }  // namespace penumbra::server

@@ -59,10 +59,7 @@ RestoreJob::Ended HttpServer::dropCancelledRestore(const std::string& id,
     lastUse_.erase(id);
   }
   if (lease) {
-    try {
-      leases_->release(id, *lease);
-    } catch (const std::exception&) {  // it expires by itself
-    }
+    leases_->releaseOrLetExpire(id, *lease);
   }
   ended.deleted = true;
   return ended;
