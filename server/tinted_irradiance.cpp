@@ -8,12 +8,11 @@ namespace penumbra::server::mesh_binary {
 namespace {
 
 // Whether `decoded` may stand for the f32 channel `sent`: equal, or within 2 units in the last
-// place of `sent` (the spacing of f32 values just above |sent|). Why 2 suffices when the vertex
-// is truly the tint scaled: v = f32(e_k), t = f32(e_c / e_k) and the f32 product each round once
-// (half an ulp of their own value), which leaves the product within 2 ulps of the exact e_c
-// ((m_v + m_t) / 2 ≤ 1.5 before the last rounding, for significands m in [1, 2)); f32(e_c) is
-// within half an ulp of e_c, and two f32 values less than 2.5 ulps apart are at most 2 apart.
-// NaN never fits; infinity fits only itself.
+// place of `sent` (the spacing of f32 values just above |sent|). Why 2 is honest, not slack, when
+// the vertex is truly the tint scaled (e_c = e_k · t exactly): f32(v)·f32(t) is within 1.5 ulps of
+// the exact product ((m_v + m_t) / 2 ≤ 1.5 for their significands m in [1, 2)), rounding it to f32
+// adds at most half an ulp, and f32(e_c) is within half an ulp of e_c: two f32 values less than
+// 2.5 ulps apart are at most 2 apart. NaN never fits; infinity fits only itself.
 bool fits(float decoded, float sent) {
   if (decoded == sent) return true;
   const double magnitude = std::fabs(double(sent));
