@@ -5,6 +5,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "server/tinted_irradiance.h"
+
 namespace penumbra::server::mesh_binary {
 
 namespace {
@@ -62,18 +64,18 @@ void writeIndirect(Writer& out, const IndirectBake& bake, const SceneSnapshot& s
     for (int c = 0; c < 3; ++c) out.f32(e.at(v)[c]);
 }
 
-// A part's irradiance as f32: grey (r = g = b at every vertex, as under white lights) sends
-// one channel, else three.
-std::vector<float> irradianceChannels(const ReceiverMesh& r) {
-  std::vector<float> grey, rgb;
-  bool isGrey = true;
-  for (const Vec3& e : r.irradiance) {
-    const float c[3] = {float(e.x), float(e.y), float(e.z)};
-    isGrey = isGrey && c[0] == c[1] && c[1] == c[2];
-    grey.push_back(c[0]);
-    rgb.insert(rgb.end(), c, c + 3);
-  }
-  return isGrey ? grey : rgb;
+// A record's part: u32 object (its name's index), u32 face, i32 chunk x, i32 chunk y.
+void writeKey(Writer& out, uint32_t object, const PartKey& key) {
+  out.u32(object);
+  out.u32(key.receiver.face);
+  out.i32(key.x);
+  out.i32(key.y);
+}
+
+// A record's irradiance fields: u32 channels C, f32 tint[3].
+void writeTint(Writer& out, const TintedIrradiance& e) {
+  out.u32(e.channels);
+  for (float t : e.tint) out.f32(t);
 }
 
 }  // namespace
@@ -88,28 +90,29 @@ std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection
     return it->second;
   };
   std::vector<uint32_t> partObjects, valueObjects, removedObjects;
-  size_t vertices = 0, triangles = 0;
+  std::vector<TintedIrradiance> partValues, valueValues;  // each part's irradiance as sent
+  size_t vertices = 0, triangles = 0, irradianceFloats = 0;
   for (size_t i : selection.parts) {
     const MeshPart& part = snapshot.parts[i];
     partObjects.push_back(indexOf(part.key.receiver.object));
+    partValues.push_back(tintIrradiance(part.mesh->irradiance));
     vertices += part.mesh->positions.size();
     triangles += part.mesh->triangles.size();
+    irradianceFloats += partValues.back().values.size();
   }
-  std::vector<std::vector<float>> values;  // per value part its irradiance channels
-  size_t valueFloats = 0;
   for (size_t i : selection.valueParts) {
     valueObjects.push_back(indexOf(snapshot.parts[i].key.receiver.object));
-    values.push_back(irradianceChannels(*snapshot.parts[i].mesh));
-    valueFloats += values.back().size();
+    valueValues.push_back(tintIrradiance(snapshot.parts[i].mesh->irradiance));
+    irradianceFloats += valueValues.back().values.size();
   }
   for (const PartKey& key : selection.removedParts) removedObjects.push_back(indexOf(key.receiver.object));
 
   size_t namesBytes = 0;
   for (const std::string& n : names) namesBytes += 4 + (n.size() + 3) / 4 * 4;
-  Writer out(kHeaderBytes + namesBytes + selection.parts.size() * kPartRecordBytes +
-             selection.removedParts.size() * kRemovedRecordBytes + vertices * (indirect ? 37 : 25) +
-             triangles * 12 + selection.parts.size() * 4 +
-             selection.valueParts.size() * kValuePartRecordBytes + valueFloats * 4);
+  // (Each part's classes take up to 3 bytes of padding: 4 per part reserved.)
+  Writer out(kHeaderBytes + namesBytes + selection.parts.size() * (kPartRecordBytes + 4) +
+             selection.removedParts.size() * kRemovedRecordBytes + vertices * (indirect ? 25 : 13) +
+             triangles * 12 + selection.valueParts.size() * kValuePartRecordBytes + irradianceFloats * 4);
 
   out.raw(kMagic, 4);
   out.u32(kLayoutVersion);
@@ -131,46 +134,34 @@ std::string encode(const SceneSnapshot& snapshot, const MeshSelection& selection
   for (size_t k = 0; k < selection.parts.size(); ++k) {
     const MeshPart& part = snapshot.parts[selection.parts[k]];
     const ReceiverMesh& r = *part.mesh;
-    out.u32(partObjects[k]);
-    out.u32(part.key.receiver.face);
-    out.i32(part.key.x);
-    out.i32(part.key.y);
+    writeKey(out, partObjects[k], part.key);
     out.u32(r.positions.size());
     out.u32(r.triangles.size());
     out.u32(part.version);
     for (int c = 0; c < 3; ++c) out.f32(r.normal[c]);
+    writeTint(out, partValues[k]);
   }
   for (size_t k = 0; k < selection.valueParts.size(); ++k) {
     const MeshPart& part = snapshot.parts[selection.valueParts[k]];
-    out.u32(valueObjects[k]);
-    out.u32(part.key.receiver.face);
-    out.i32(part.key.x);
-    out.i32(part.key.y);
+    writeKey(out, valueObjects[k], part.key);
     out.u32(part.mesh->positions.size());
     out.u32(part.version);
-    out.u32(values[k].size() == part.mesh->positions.size() ? 1 : 3);
+    writeTint(out, valueValues[k]);
   }
-  for (size_t k = 0; k < selection.removedParts.size(); ++k) {
-    const PartKey& key = selection.removedParts[k];
-    out.u32(removedObjects[k]);
-    out.u32(key.receiver.face);
-    out.i32(key.x);
-    out.i32(key.y);
-  }
-  for (size_t i : selection.parts) {
-    const ReceiverMesh& r = *snapshot.parts[i].mesh;
+  for (size_t k = 0; k < selection.removedParts.size(); ++k)
+    writeKey(out, removedObjects[k], selection.removedParts[k]);
+  for (size_t k = 0; k < selection.parts.size(); ++k) {
+    const ReceiverMesh& r = *snapshot.parts[selection.parts[k]].mesh;
     for (const Vec3& p : r.positions)
       for (int c = 0; c < 3; ++c) out.f32(p[c]);
-    for (const Vec3& e : r.irradiance)
-      for (int c = 0; c < 3; ++c) out.f32(e[c]);
-    if (indirect) writeIndirect(out, *indirect, snapshot, i);
+    out.raw(partValues[k].values.data(), partValues[k].values.size() * sizeof(float));
+    if (indirect) writeIndirect(out, *indirect, snapshot, selection.parts[k]);
     for (LightClass c : r.classes) out.u8(classCode(c));
     out.padTo4();
     for (const auto& t : r.triangles)
       for (uint32_t index : t) out.u32(index);
   }
-  for (const std::vector<float>& channels : values)
-    out.raw(channels.data(), channels.size() * sizeof(float));
+  for (const TintedIrradiance& e : valueValues) out.raw(e.values.data(), e.values.size() * sizeof(float));
   return out.take();
 }
 

@@ -12,11 +12,13 @@ namespace penumbra::server::mesh_binary {
 
 inline constexpr char kMagic[4] = {'P', 'N', 'M', 'B'};
 // Layout 3 added values-only parts (a part whose irradiance alone changed: its new irradiance,
-// no geometry); a reader of layout 2 refuses it by the version rather than misread it.
-inline constexpr uint32_t kLayoutVersion = 3;
+// no geometry); layout 4 sends a part's irradiance as one value per vertex and a tint when its
+// vertices are one colour scaled (tinted_irradiance.h). A reader of another layout refuses it by
+// the version rather than misread it.
+inline constexpr uint32_t kLayoutVersion = 4;
 inline constexpr size_t kHeaderBytes = 44;
-inline constexpr size_t kPartRecordBytes = 40;
-inline constexpr size_t kValuePartRecordBytes = 28;
+inline constexpr size_t kPartRecordBytes = 56;
+inline constexpr size_t kValuePartRecordBytes = 40;
 inline constexpr size_t kRemovedRecordBytes = 16;
 inline constexpr uint32_t kFlagDelta = 1;  // header flags: a `since` delta, not the whole mesh
 // header flags: each part's irradiance is followed by its indirect irradiance (f32[3V]); only

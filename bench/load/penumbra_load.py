@@ -79,9 +79,18 @@ class Client:
             self.conn = None
 
 
+MESH_LAYOUT = 4  # the binary mesh layout this driver reads (docs/API.md "Binary")
+
+
 def mesh_version(data):
-    """Scene version of a binary mesh answer (docs/API.md "Binary", offset 8)."""
-    return int.from_bytes(data[8:12], "little") if len(data) >= 12 and data[:4] == b"PNMB" else None
+    """Scene version of a binary mesh answer (docs/API.md "Binary", offset 8); None if the answer
+    is not a binary mesh; a binary mesh of another layout is an error."""
+    if len(data) < 12 or data[:4] != b"PNMB":
+        return None
+    layout = int.from_bytes(data[4:8], "little")
+    if layout != MESH_LAYOUT:
+        raise ValueError(f"binary mesh layout {layout}; this driver reads layout {MESH_LAYOUT}")
+    return int.from_bytes(data[8:12], "little")
 
 
 def event_stream(host, port, scene, deadline, stats):

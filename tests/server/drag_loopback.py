@@ -14,6 +14,8 @@ import sys
 import time
 import urllib.parse
 
+MESH_LAYOUT = 4  # the binary mesh layout this tool reads (docs/API.md "Binary")
+
 
 def main():
     ap = argparse.ArgumentParser()
@@ -61,12 +63,12 @@ def main():
         result = json.loads(data)
         res, body = request("GET", f"{base}/mesh?since={version}&format=bin", headers=mesh_headers)
         t2 = time.perf_counter()
-        if res.getheader("Content-Encoding") == "gzip":
-            raw = len(gzip.decompress(body))
-        else:
-            raw = len(body)
-        if body[:4] != b"PNMB" and res.getheader("Content-Encoding") != "gzip":
+        plain = gzip.decompress(body) if res.getheader("Content-Encoding") == "gzip" else body
+        raw = len(plain)
+        if plain[:4] != b"PNMB":
             sys.exit("not a binary mesh")
+        if int.from_bytes(plain[4:8], "little") != MESH_LAYOUT:
+            sys.exit(f"binary mesh layout {int.from_bytes(plain[4:8], 'little')}; this tool reads layout {MESH_LAYOUT}")
         version = result["version"]
         step_seconds.append(t2 - t0)
         edit_seconds.append(t1 - t0)

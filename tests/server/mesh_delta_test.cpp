@@ -5,6 +5,8 @@
 // radiance edit sends values, not geometry. Also gzip Content-Encoding of the binary mesh.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <map>
 #include <random>
 #include <sstream>
@@ -229,11 +231,25 @@ TEST(MeshDelta, PartDeltasAppliedToTheWholeMeshEqualAFreshEnginesChunks) {
   EXPECT_GT(valueParts, 0u);            // radiance changes were sent as values
 }
 
+// A part's vertices' irradiance as floats, r, g, b each, of the receivers in mesh JSON, by
+// "object/face": the exact values the binary mesh stands for.
+std::map<std::string, std::vector<float>> jsonIrradiance(const json& mesh) {
+  std::map<std::string, std::vector<float>> out;
+  for (const json& r : mesh["receivers"]) {
+    std::vector<float>& e = out[r["object"].get<std::string>() + "/" + std::to_string(r["face"].get<int>())];
+    for (const json& v : r["irradiance"])
+      for (int c = 0; c < 3; ++c) e.push_back(float(v[c].get<double>()));
+  }
+  return out;
+}
+
 // A light's radiance or colour changes every vertex's value and nothing of the triangulation:
 // the binary delta has no geometry (no whole part, no vertex, no triangle), a part's irradiance
-// alone: under a white light one channel, at most a quarter of the whole mesh's bytes, in
-// colour three, at most a third; applied to the whole mesh it gives the new version's whole
-// mesh. The JSON delta's receivers are values only too.
+// alone, and under one light, white or coloured, one channel per vertex with the light's colour
+// as the tint: at most a quarter of the whole mesh's bytes. Applied to the whole mesh it gives
+// the new version's whole mesh bit for bit, whose every part is one channel with that tint too,
+// and decodes within 2 f32 ulps of the JSON mesh's exact values. The JSON delta's receivers are
+// values only too.
 TEST(MeshDelta, ARadianceEditSendsValuesNotGeometry) {
   ModelSceneOptions options;
   options.kind = ModelKind::Teapot;
@@ -246,15 +262,14 @@ TEST(MeshDelta, ARadianceEditSendsValuesNotGeometry) {
   ASSERT_TRUE(light.radiance.x == light.radiance.y &&
               light.radiance.y == light.radiance.z);  // white
   const std::vector<Vec3> radiances = {light.radiance * 1.3, Vec3(0.9, 1.1, 0.7) * light.radiance,
-                                       light.radiance * 0.6};
+                                       Vec3(12, 10, 8), light.radiance * 0.6};
   for (size_t step = 0; step < radiances.size(); ++step) {
-    const bool white =
-        radiances[step].x == radiances[step].y && radiances[step].y == radiances[step].z;
-    SCOPED_TRACE("step " + std::to_string(step) + (white ? " (white)" : " (coloured)"));
+    const Vec3 radiance = radiances[step];
+    SCOPED_TRACE("step " + std::to_string(step));
     Edit edit;
     edit.op = Edit::Op::SetLight;
     edit.id = light.id;
-    edit.radiance = radiances[step];
+    edit.radiance = radiance;
     const SceneSession::Applied applied = session.apply(Frame{{edit}});
     EXPECT_TRUE(applied.result.radianceChanged);
     const SceneSnapshot& s = *applied.snapshot;
@@ -267,9 +282,18 @@ TEST(MeshDelta, ARadianceEditSendsValuesNotGeometry) {
     EXPECT_EQ(delta.totalVertices, 0u);
     EXPECT_EQ(delta.totalTriangles, 0u);
     EXPECT_GT(delta.valueParts.size(), s.parts.size() / 2);
-    EXPECT_LE(deltaBytes.size() * (white ? 4 : 3), whole.size())
-        << deltaBytes.size() << " of " << whole.size();
-    for (const BinaryMesh::ValuePart& v : delta.valueParts) EXPECT_EQ(v.channels, white ? 1u : 3u);
+    EXPECT_LE(deltaBytes.size() * 4, whole.size()) << deltaBytes.size() << " of " << whole.size();
+    // The light's colour over its largest channel ((1, 1, 1) when white); a part no light
+    // reaches (all zero) is tinted (1, 1, 1).
+    const double peak = std::max({radiance.x, radiance.y, radiance.z});
+    const std::array<float, 3> tint = {float(radiance.x / peak), float(radiance.y / peak),
+                                       float(radiance.z / peak)};
+    auto expectTint = [&](uint32_t channels, const float (&got)[3], const std::vector<float>& e) {
+      EXPECT_EQ(channels, 1u);
+      const bool dark = std::all_of(e.begin(), e.end(), [](float x) { return x == 0.0f; });
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(got[c], dark ? 1.0f : tint[c]) << c;
+    };
+    for (const BinaryMesh::ValuePart& v : delta.valueParts) expectTint(v.channels, v.tint, v.irradiance);
     // Applied by (object, face, chunk), the held parts become the whole mesh.
     for (const BinaryMesh::ValuePart& v : delta.valueParts) {
       size_t matched = 0;
@@ -289,6 +313,26 @@ TEST(MeshDelta, ARadianceEditSendsValuesNotGeometry) {
       EXPECT_EQ(held.parts[p].irradiance, want.parts[p].irradiance) << p;
       EXPECT_EQ(held.parts[p].positions, want.parts[p].positions) << p;
       EXPECT_EQ(held.parts[p].version, want.parts[p].version) << p;
+      expectTint(want.parts[p].channels, want.parts[p].tint, want.parts[p].irradiance);
+    }
+    // A receiver is its parts one after the other: within 2 ulps of the JSON mesh's values.
+    std::map<std::string, std::vector<float>> decoded;
+    for (const BinaryMesh::Part& p : held.parts) {
+      std::vector<float>& e = decoded[held.objects.at(p.object) + "/" + std::to_string(p.face)];
+      e.insert(e.end(), p.irradiance.begin(), p.irradiance.end());
+    }
+    const auto truth = jsonIrradiance(meshJson(s, s.select(std::nullopt)));
+    ASSERT_EQ(decoded.size(), truth.size());
+    size_t inexact = 0;
+    for (const auto& [key, e] : truth) {
+      ASSERT_EQ(decoded[key].size(), e.size()) << key;
+      for (size_t k = 0; k < e.size(); ++k) {
+        EXPECT_TRUE(test::withinTwoUlps(decoded[key][k], e[k])) << key << " " << k << ": " << decoded[key][k] << " for " << e[k];
+        inexact += decoded[key][k] != e[k];
+      }
+    }
+    if (radiance.x == radiance.y && radiance.y == radiance.z) {
+      EXPECT_EQ(inexact, 0u);  // grey: exact
     }
 
     const json jsonDelta = meshJson(s, s.select(s.version - 1));

@@ -15,33 +15,20 @@
 #include "core/util/parallel.h"
 #include "server/mesh_binary.h"
 #include "server_fixture.h"
+#include "tests/server/binary_mesh_reader.h"
 
 namespace penumbra::server::test {
 namespace {
 
 // Every vertex's indirect irradiance of a binary mesh with kFlagIndirect, in part order.
 std::vector<float> binaryIndirect(const std::string& bytes) {
-  auto u32 = [&](size_t at) {
-    uint32_t v;
-    std::memcpy(&v, bytes.data() + at, 4);
-    return v;
-  };
-  EXPECT_EQ(u32(12) & mesh_binary::kFlagIndirect, mesh_binary::kFlagIndirect);
-  size_t at = mesh_binary::kHeaderBytes;
-  for (uint32_t n = 0; n < u32(20); ++n) at += 4 + (u32(at) + 3) / 4 * 4;
-  std::vector<std::pair<uint32_t, uint32_t>> sizes;  // vertices, triangles per part
-  for (uint32_t p = 0; p < u32(24); ++p, at += mesh_binary::kPartRecordBytes)
-    sizes.emplace_back(u32(at + 16), u32(at + 20));
-  at += u32(28) * mesh_binary::kRemovedRecordBytes;
+  const BinaryMesh mesh = parseBinary(bytes);
+  EXPECT_EQ(mesh.flags & mesh_binary::kFlagIndirect, mesh_binary::kFlagIndirect);
   std::vector<float> out;
-  for (const auto& [v, t] : sizes) {
-    at += 24 * size_t(v);  // positions, irradiance
-    const size_t begin = out.size();
-    out.resize(begin + 3 * size_t(v));
-    std::memcpy(out.data() + begin, bytes.data() + at, 12 * size_t(v));
-    at += 12 * size_t(v) + (v + 3) / 4 * 4 + 12 * size_t(t);
+  for (const BinaryMesh::Part& part : mesh.parts) {
+    EXPECT_EQ(part.indirect.size(), 3 * size_t(part.vertices));
+    out.insert(out.end(), part.indirect.begin(), part.indirect.end());
   }
-  EXPECT_EQ(at, bytes.size());
   return out;
 }
 

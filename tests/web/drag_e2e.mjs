@@ -144,7 +144,7 @@ async function projectionChecks(page, base, sceneId, scene) {
   }
 }
 
-// In the page: the served whole binary mesh (layout 2, parts) decoded afresh by the page's decoder
+// In the page: the served whole binary mesh (its parts) decoded afresh by the page's decoder
 // must equal what the page holds after its deltas: the same parts, receivers, vertices, and the
 // floor's merged arrays; and the decoder must refuse a buffer of another layout version.
 async function meshConsistency(page, sceneId, label) {

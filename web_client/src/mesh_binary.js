@@ -1,12 +1,13 @@
-// Decodes the server's binary mesh (docs/API.md "Binary", magic PNMB, layout 3: parts, with flag 2 their indirect light, each one display
-// chunk of one receiver, and in a delta value parts, a held part's new irradiance alone) into typed arrays viewing the response
-// buffer in place. Throws an Error naming what is malformed.
+// Decodes the server's binary mesh (docs/API.md "Binary", magic PNMB, layout 4: parts, with flag 2 their indirect light, each one display
+// chunk of one receiver, and in a delta value parts, a held part's new irradiance alone; a part's irradiance is r, g, b or one value per
+// vertex times the part's tint) into typed arrays viewing the response buffer in place (a one-channel irradiance expanded to r, g, b).
+// Throws an Error naming what is malformed.
 
 const MAGIC = 'PNMB';
-const LAYOUT_VERSION = 3;
+const LAYOUT_VERSION = 4;
 const HEADER_BYTES = 44;
-const PART_RECORD_BYTES = 40;
-const VALUE_PART_RECORD_BYTES = 28;
+const PART_RECORD_BYTES = 56;
+const VALUE_PART_RECORD_BYTES = 40;
 const REMOVED_RECORD_BYTES = 16;
 const FLAG_DELTA = 1;
 const FLAG_INDIRECT = 2; // each part's irradiance is followed by its indirect irradiance (mesh?indirect=1)
@@ -26,6 +27,27 @@ export function partKey(object, face, x, y) {
 }
 
 const pad4 = (n) => (n + 3) & ~3;
+
+// A record's channel count C (1 or 3) and tint (f32 r, g, b) at `offset`.
+function readTint(view, offset, what) {
+  const channels = view.getUint32(offset, true);
+  if (channels !== 1 && channels !== 3) throw new Error(`binary mesh: ${what} has ${channels} channels (1 or 3)`);
+  return { channels, tint: [view.getFloat32(offset + 4, true), view.getFloat32(offset + 8, true), view.getFloat32(offset + 12, true)] };
+}
+
+// A part's irradiance, r, g, b per vertex: the C·V floats at `offset` as they are (C = 3), or each
+// value times the tint, rounded to f32 as the server's bound assumes (C = 1; exact for tint 1).
+function irradianceOf(buffer, offset, { channels, tint }, v) {
+  const values = new Float32Array(buffer, offset, channels * v);
+  if (channels === 3) return values;
+  const rgb = new Float32Array(3 * v);
+  for (let i = 0; i < v; ++i) {
+    rgb[3 * i] = values[i] * tint[0];
+    rgb[3 * i + 1] = values[i] * tint[1];
+    rgb[3 * i + 2] = values[i] * tint[2];
+  }
+  return rgb;
+}
 
 export function decodeMeshBinary(buffer) {
   const view = new DataView(buffer);
@@ -68,23 +90,24 @@ export function decodeMeshBinary(buffer) {
     const object = name(u32(offset), `part ${p}`);
     const face = u32(offset + 4);
     const chunk = [i32(offset + 8), i32(offset + 12)];
+    const key = partKey(object, face, ...chunk);
     parts.push({
-      object, face, chunk, key: partKey(object, face, ...chunk), receiverKey: receiverKey(object, face),
+      object, face, chunk, key, receiverKey: receiverKey(object, face),
       vertexCount: u32(offset + 16), triangleCount: u32(offset + 20), sceneVersion: u32(offset + 24),
       normal: [view.getFloat32(offset + 28, true), view.getFloat32(offset + 32, true), view.getFloat32(offset + 36, true)],
+      ...readTint(view, offset + 40, `part ${key}`),
     });
   }
-  // Value parts: a part the page holds whose irradiance alone changed (1 channel: grey, r = g = b).
+  // Value parts: a part the page holds whose irradiance alone changed.
   const valueParts = [];
   for (let p = 0; p < header.valuePartCount; ++p, offset += VALUE_PART_RECORD_BYTES) {
     const object = name(u32(offset), `value part ${p}`);
     const face = u32(offset + 4);
     const chunk = [i32(offset + 8), i32(offset + 12)];
-    const channels = u32(offset + 24);
-    if (channels !== 1 && channels !== 3) throw new Error(`binary mesh: value part ${partKey(object, face, ...chunk)} has ${channels} channels (1 or 3)`);
+    const key = partKey(object, face, ...chunk);
     valueParts.push({
-      object, face, chunk, key: partKey(object, face, ...chunk), receiverKey: receiverKey(object, face),
-      vertexCount: u32(offset + 16), sceneVersion: u32(offset + 20), channels,
+      object, face, chunk, key, receiverKey: receiverKey(object, face),
+      vertexCount: u32(offset + 16), sceneVersion: u32(offset + 20), ...readTint(view, offset + 24, `value part ${key}`),
     });
   }
   const removedParts = [];
@@ -98,11 +121,11 @@ export function decodeMeshBinary(buffer) {
   for (const part of parts) {
     const v = part.vertexCount;
     const t = part.triangleCount;
-    need(offset, (header.indirect ? 36 : 24) * v + pad4(v) + 12 * t, `part ${part.key} arrays`);
+    need(offset, (header.indirect ? 24 : 12) * v + 4 * part.channels * v + pad4(v) + 12 * t, `part ${part.key} arrays`);
     part.positions = new Float32Array(buffer, offset, 3 * v);
     offset += 12 * v;
-    part.irradiance = new Float32Array(buffer, offset, 3 * v);
-    offset += 12 * v;
+    part.irradiance = irradianceOf(buffer, offset, part, v);
+    offset += 4 * part.channels * v;
     if (header.indirect) {
       part.indirect = new Float32Array(buffer, offset, 3 * v);
       offset += 12 * v;
@@ -119,14 +142,8 @@ export function decodeMeshBinary(buffer) {
   for (const part of valueParts) {
     const v = part.vertexCount;
     need(offset, 4 * part.channels * v, `value part ${part.key} irradiance`);
-    const values = new Float32Array(buffer, offset, part.channels * v);
+    part.irradiance = irradianceOf(buffer, offset, part, v);
     offset += 4 * part.channels * v;
-    if (part.channels === 3) {
-      part.irradiance = values;
-    } else {
-      part.irradiance = new Float32Array(3 * v);
-      for (let i = 0; i < v; ++i) part.irradiance[3 * i] = part.irradiance[3 * i + 1] = part.irradiance[3 * i + 2] = values[i];
-    }
   }
   if (offset !== buffer.byteLength) throw new Error(`binary mesh: ${buffer.byteLength - offset} bytes after the last part`);
   if (vertices !== header.totalVertices || triangles !== header.totalTriangles)
