@@ -60,7 +60,7 @@ inline BinaryMesh parseBinary(const std::string& bytes) {
   auto take = [&](void* out, size_t n) {
     if (at + n > bytes.size())
       throw std::runtime_error("binary mesh truncated at byte " + std::to_string(at));
-    std::memcpy(out, bytes.data() + at, n);
+    if (n > 0) std::memcpy(out, bytes.data() + at, n);  // an empty part's arrays: out may be null
     at += n;
   };
   auto u32 = [&] {
