@@ -20,6 +20,14 @@ struct Segment2 {
   Vec2 from{0.0}, to{0.0};
 };
 
+// Where a chain edge crosses a segment's interior, at parameter t along it: moving along the
+// segment, the winding number on its right (on it, for a segment not of the chain) changes
+// by `delta` there.
+struct WindingStep {
+  double t = 0;
+  int delta = 0;
+};
+
 class VisibleContour {
  public:
   // light: convex CCW. Shadow i is points[starts[i] .. starts[i+1]), convex CCW.
@@ -36,6 +44,10 @@ class VisibleContour {
   // 0; chain edges add their stretches inside the light that no convex shadow covers
   // and that have winding 0 on their right (the visible side).
   void subtractChain(std::span<const ChainEdge> chain);
+
+  // Tests only: false walks every stretch's winding from the light's centre (what carrying
+  // them along runs of chain edges must equal).
+  void setCarryWindings(bool carry) { carryWindings_ = carry; }
 
   // The boundary of what is left (empty when the shadows cover the light).
   std::span<const Segment2> boundary() const { return boundary_; }
@@ -85,10 +97,30 @@ class VisibleContour {
   // lines_[first, last) (strictly: no along-edge convention); false when nothing is left.
   bool insideLines(const Vec2& a, const Vec2& b, size_t first, size_t last, double& t0, double& t1) const;
   // The parameters along a→b where chain edges (those in inLight_) cross it inside the
-  // light's box, but `skip` (grid_ gives the candidates).
-  void chainCrossings(std::span<const ChainEdge> chain, const Vec2& a, const Vec2& b, size_t skip);
+  // light's box, but `skip` (grid_ gives the candidates). With `steps`, also where the
+  // winding on the right of a→b changes strictly inside it (WindingStep), and *onLine set
+  // when a chain edge's end lies exactly on a→b's line (not at a or b).
+  void chainCrossings(std::span<const ChainEdge> chain, const Vec2& a, const Vec2& b, size_t skip,
+                      std::vector<WindingStep>* steps = nullptr, bool* onLine = nullptr);
+
+  // What the convex contour kept (boundary_) as stretches between the chain's crossings, with
+  // the winding changes along each, linked where one ends where exactly one other starts.
+  void collectBoundaryStretches(std::span<const ChainEdge> chain);
+  // The chain's own boundary stretches (subtractChain): per chain edge inside the light, its
+  // stretches outside every convex shadow, and the winding changes along it.
+  void collectChainStretches(std::span<const ChainEdge> chain);
+  // Each stretch's winding (on a chain edge: on its right): walked from the origin for the
+  // first and the last stretch of a run of segments joined end to start, carried along the
+  // run in between.
+  void windStretches(std::span<const ChainEdge> chain);
+  // Links the chain edges that follow one another (EdgeStretches::next): the end of one is the
+  // start of the other, inside the light's box, and no other chain edge starts or ends there.
+  // Between a run's first and last stretches every edge then lies in the box, where
+  // chainCrossings() finds every step.
+  void linkRuns(std::span<const ChainEdge> chain);
 
   double eps_ = 0;
+  bool carryWindings_ = true;
   std::vector<Segment2> boundary_;
   std::vector<Interval> covered_;
   std::vector<Line> lines_;                  // the light's edges, then each shadow's
@@ -99,10 +131,32 @@ class VisibleContour {
   bool occluded_ = false;
   bool allCovered_ = false;                  // one convex shadow holds the whole light
   std::vector<uint32_t> inLight_;            // chain edges whose box meets the light's
+  Vec2 lightLow_{0.0}, lightHigh_{0.0};      // the light's box
   ChainGrid grid_;                           // inLight_ over the light's box
   Vec2 origin_{0.0};                         // a point of the light, and the chain's winding there
   int originWinding_ = 0;
   std::vector<double> cuts_;                 // chainCrossings()
+  // What collectBoundaryStretches() or collectChainStretches() finds: per segment its
+  // stretches_ and steps_ (sorted by t); windStretches() sets each stretch's winding.
+  struct ChainStretch {
+    double from = 0, to = 0;  // parameters along the edge
+    int winding = 0;
+  };
+  struct EdgeStretches {
+    Vec2 from{0.0}, to{0.0};  // the segment: a chain edge, or a stretch of the light or a convex shadow
+    uint32_t edge = 0;        // its chain edge (linkRuns)
+    uint32_t skip = 0;        // the chain edge windingAt leaves out (chain.size(): none)
+    uint32_t firstStretch = 0, endStretch = 0;  // stretches_[firstStretch, endStretch)
+    uint32_t firstStep = 0, endStep = 0;        // steps_[firstStep, endStep)
+    int32_t next = -1;                          // the edge after it in a run (an index here)
+    bool walkEach = false;  // a chain corner exactly on its line: each stretch walked, no run
+    bool hasPrevious = false, visited = false;
+  };
+  std::vector<EdgeStretches> edgeStretches_;
+  std::vector<ChainStretch> stretches_;
+  std::vector<WindingStep> steps_;
+  std::vector<int32_t> recordOf_;  // linkRuns(): per chain edge, its index in edgeStretches_ or -1
+  std::vector<uint32_t> run_;
   std::vector<Segment2> kept_;
 };
 
