@@ -178,6 +178,7 @@ void VisibleContour::chainCrossings(std::span<const ChainEdge> chain, const Vec2
   cuts_.clear();
   const size_t firstStep = steps ? steps->size() : 0;
   const Vec2 d = b - a, low = glm::min(a, b), high = glm::max(a, b);
+  const double nearSide = eps_ * glm::length(d);  // |cross2(d, x − a)| of a point within eps of the line
   grid_.forEachNear(a, b, [&](uint32_t j) {
     if (j == skip) return;
     const ChainEdge& c = chain[j];
@@ -197,6 +198,11 @@ void VisibleContour::chainCrossings(std::span<const ChainEdge> chain, const Vec2
     // An end exactly on a→b's line but not one of its ends (a corner on it, an edge along it):
     // whether the winding steps there is what the walk's own half-open rule says.
     if ((sideFrom == 0 && c.from != a && c.from != b) || (sideTo == 0 && c.to != a && c.to != b)) *onLine = true;
+    // Along a chain edge, an end of another within eps of its inside: they run along each
+    // other there (or meet in a T), which the crossings cannot decide (subtractChain).
+    if (skip < chain.size() && ((std::abs(sideFrom) <= nearSide && nearInside(a, b, c.from, sideFrom)) ||
+                                (std::abs(sideTo) <= nearSide && nearInside(a, b, c.to, sideTo))))
+      alongEachOther_ = true;
   });
   cuts_.push_back(0);
   cuts_.push_back(1);
@@ -246,8 +252,86 @@ bool VisibleContour::insideLines(const Vec2& a, const Vec2& b, size_t first, siz
   return t0 < t1;
 }
 
+bool VisibleContour::nearInside(const Vec2& a, const Vec2& b, const Vec2& x, double side) const {
+  if (x == a || x == b) return false;
+  const Vec2 d = b - a;
+  const double length2 = glm::dot(d, d), along = glm::dot(x - a, d);
+  return std::abs(side) <= eps_ * std::sqrt(length2) && along > 0 && along < length2;
+}
+
 void VisibleContour::subtractChain(std::span<const ChainEdge> chain) {
   if (chain.empty() || allCovered_) return;
+  savedBoundary_.assign(boundary_.begin(), boundary_.end());
+  const bool occluded = occluded_;
+  alongEachOther_ = false;
+  subtractChainOnce(chain);
+  if (!alongEachOther_) return;
+  // Chain edges run along each other near the light: each is split at the other edges' ends
+  // within eps of it, so what they share becomes the same edges, which merge (summed, or
+  // cancelled where they run against each other); then the chain is subtracted again.
+  splitAtNearEnds(chain);
+  boundary_.assign(savedBoundary_.begin(), savedBoundary_.end());
+  occluded_ = occluded;
+  subtractChainOnce(split_);
+}
+
+void VisibleContour::chooseOrigin(std::span<const ChainEdge> chain) {
+  Vec2 centre(0.0);
+  for (size_t k = 0; k < lightLines_; ++k) centre += lines_[k].from;
+  centre /= double(lightLines_);
+  // The light's centre, or where no chain edge passes within eps of it: a point on an edge
+  // has no winding number of its own (a centre on a shadow's edge, as in a grid-aligned
+  // scene). Tried towards each corner in turn, a third of the way and closer; as a last resort
+  // the centre (the walks then count from a point on the chain).
+  // (An edge within eps of x is in the grid's cell there: its box is widened by eps.)
+  const auto clear = [&](const Vec2& x) {
+    bool near = false;
+    grid_.forEachNear(x, x, [&](uint32_t i) {
+      const ChainEdge& c = chain[i];
+      const Vec2 d = c.to - c.from;
+      const double length2 = glm::dot(d, d);
+      const double along = length2 > 0 ? std::clamp(glm::dot(x - c.from, d) / length2, 0.0, 1.0) : 0.0;
+      near |= glm::length(x - (c.from + along * d)) <= eps_;
+    });
+    return !near;
+  };
+  origin_ = centre;
+  for (int tries = 0; !clear(origin_) && tries < 4 * int(lightLines_); ++tries)
+    origin_ = centre + (lines_[size_t(tries) % lightLines_].from - centre) * (1.0 / 3.0 / double(1 + tries / int(lightLines_)) + 0.0123);
+  if (!clear(origin_)) origin_ = centre;
+}
+
+void VisibleContour::splitAtNearEnds(std::span<const ChainEdge> chain) {
+  split_.clear();
+  std::vector<uint8_t>& near = nearLight_;
+  near.assign(chain.size(), 0);
+  for (uint32_t i : inLight_) near[i] = 1;
+  for (uint32_t i = 0; i < chain.size(); ++i) {
+    const ChainEdge& c = chain[i];
+    if (!near[i]) {
+      split_.push_back(c);
+      continue;
+    }
+    const Vec2 d = c.to - c.from;
+    ends_.clear();
+    grid_.forEachNear(c.from, c.to, [&](uint32_t j) {
+      if (j == i) return;
+      for (const Vec2& x : {chain[j].from, chain[j].to})
+        if (nearInside(c.from, c.to, x, cross2(d, x - c.from))) ends_.push_back({glm::dot(x - c.from, d), x});
+    });
+    std::sort(ends_.begin(), ends_.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    Vec2 from = c.from;
+    for (const auto& [along, x] : ends_) {
+      if (x == from) continue;
+      split_.push_back({from, x, c.count});
+      from = x;
+    }
+    split_.push_back({from, c.to, c.count});
+  }
+  mergeChainEdges(split_);
+}
+
+void VisibleContour::subtractChainOnce(std::span<const ChainEdge> chain) {
   Vec2 lightLow = lines_[0].from, lightHigh = lightLow;
   for (size_t k = 0; k < lightLines_; ++k) {
     lightLow = glm::min(lightLow, lines_[k].from);
@@ -259,9 +343,7 @@ void VisibleContour::subtractChain(std::span<const ChainEdge> chain) {
     if (!boxesApart(glm::min(chain[i].from, chain[i].to), glm::max(chain[i].from, chain[i].to), lightLow, lightHigh, eps_))
       inLight_.push_back(i);
   grid_.build(chain, inLight_, lightLow - Vec2(eps_), lightHigh + Vec2(eps_), eps_);
-  origin_ = Vec2(0.0);
-  for (size_t k = 0; k < lightLines_; ++k) origin_ += lines_[k].from;
-  origin_ /= double(lightLines_);
+  chooseOrigin(chain);
   originWinding_ = chainWinding(chain, origin_, Vec2(0.6, 0.8), chain.size());
 
   // The light's and convex shadows' stretches, cut by the chain, where it covers nothing.

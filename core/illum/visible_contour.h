@@ -103,6 +103,16 @@ class VisibleContour {
   void chainCrossings(std::span<const ChainEdge> chain, const Vec2& a, const Vec2& b, size_t skip,
                       std::vector<WindingStep>* steps = nullptr, bool* onLine = nullptr);
 
+  // origin_: a point of the light that no chain edge passes within eps of (its centre if none does).
+  void chooseOrigin(std::span<const ChainEdge> chain);
+  // subtractChain() for a chain whose edges near the light do not run along each other
+  // (else alongEachOther_ is set).
+  void subtractChainOnce(std::span<const ChainEdge> chain);
+  // The chain with each edge near the light split at the other edges' ends within eps of its
+  // inside, merged (mergeChainEdges), into split_.
+  void splitAtNearEnds(std::span<const ChainEdge> chain);
+  // Whether x, at cross2(b − a, x − a) = side, lies within eps of segment a→b's inside.
+  bool nearInside(const Vec2& a, const Vec2& b, const Vec2& x, double side) const;
   // What the convex contour kept (boundary_) as stretches between the chain's crossings, with
   // the winding changes along each, linked where one ends where exactly one other starts.
   void collectBoundaryStretches(std::span<const ChainEdge> chain);
@@ -158,6 +168,13 @@ class VisibleContour {
   std::vector<int32_t> recordOf_;  // linkRuns(): per chain edge, its index in edgeStretches_ or -1
   std::vector<uint32_t> run_;
   std::vector<Segment2> kept_;
+  // subtractChain(): chain edges running along each other were found; the boundary before the
+  // chain; the chain split where they do (splitAtNearEnds()).
+  bool alongEachOther_ = false;
+  std::vector<Segment2> savedBoundary_;
+  std::vector<ChainEdge> split_;
+  std::vector<uint8_t> nearLight_;
+  std::vector<std::pair<double, Vec2>> ends_;
 };
 
 }  // namespace penumbra
