@@ -50,6 +50,34 @@ TEST(MeshEngine, FloatingNonConvexMeshesMatchReference) {
   }
 }
 
+// A table as one mesh of 48 faces, its edges parallel to the light's: four slabs side by side
+// make the top (faces touching along their sides), four legs touch its underside (T-corners,
+// edges along each other seen from below); floating, moved under the light's centre, and
+// standing on the floor. Every DM vertex matches the exact reference.
+TEST(MeshEngine, AnAxisAlignedTableOfTouchingBoxesMatchesReference) {
+  for (int variant = 0; variant < 3; ++variant) {
+    Object table;
+    table.id = "m";
+    table.material = "white";
+    const double y = variant == 2 ? 0.0 : 0.6;
+    for (int i = 0; i < 2; ++i)
+      for (int k = 0; k < 2; ++k)
+        addBox(table, Vec3(-0.5 + 0.5 * i, y + 0.7, -0.3 + 0.3 * k),
+               Vec3(-0.5 + 0.5 * (i + 1), y + 0.75, -0.3 + 0.3 * (k + 1)));
+    for (double x : {-0.45, 0.4})
+      for (double z : {-0.25, 0.2}) addBox(table, Vec3(x, y, z), Vec3(x + 0.05, y + 0.7, z + 0.05));
+    if (variant == 1)
+      for (Vec3& v : table.vertices) v += Vec3(0.2, 0, -0.1);  // the light's centre above its middle
+    Engine engine(roomWith({table}));
+    const uint32_t handle = engine.scene().handleOf(*engine.scene().findObject("m"));
+    ASSERT_NE(engine.scene().meshTopology(handle), nullptr);
+    const testing::ReferenceCheck c = testing::checkAgainstReference(engine, "table");
+    EXPECT_GT(c.vertices, 700u) << variant;
+    EXPECT_EQ(c.valueErrors, 0u) << variant;
+    EXPECT_EQ(c.classErrors, 0u) << variant;
+  }
+}
+
 // The bumpy sphere with every corner below height `floorY` lifted onto it: a flat base
 // lying in the floor's plane when the sphere dips below it.
 Object flattenedOnto(Object o, double floorY) {
