@@ -183,6 +183,17 @@ void VisibleContour::chainCrossings(std::span<const ChainEdge> chain, const Vec2
     if (j == skip) return;
     const ChainEdge& c = chain[j];
     if (boxesApart(low, high, glm::min(c.from, c.to), glm::max(c.from, c.to), 0)) return;
+    const double sideFrom = cross2(d, c.from - a), sideTo = cross2(d, c.to - a);
+    if (steps) {
+      // An end exactly on a→b's line but not one of its ends (a corner on it, an edge along
+      // it): whether the winding steps there is what the walk's own half-open rule says.
+      if ((sideFrom == 0 && c.from != a && c.from != b) || (sideTo == 0 && c.to != a && c.to != b)) *onLine = true;
+      // Along a chain edge, an end of another within eps of its inside: they run along each
+      // other there (or meet in a T), which the crossings cannot decide (subtractChain).
+      if (skip < chain.size() && ((std::abs(sideFrom) <= nearSide && nearInside(a, b, c.from, sideFrom)) ||
+                                  (std::abs(sideTo) <= nearSide && nearInside(a, b, c.to, sideTo))))
+        alongEachOther_ = true;
+    }
     // a + t d = c.from + u (c.to − c.from), both parameters strictly inside.
     const Vec2 e = c.to - c.from;
     const double denominator = cross2(d, e);
@@ -192,17 +203,7 @@ void VisibleContour::chainCrossings(std::span<const ChainEdge> chain, const Vec2
     // The winding's step: c crosses a→b's line, sides half-open as in windingAt (an end on
     // the line counts as right of it), so a chain corner on the line counts once. Coming from
     // the left, c's covered (left) side lies ahead along a→b.
-    if (!steps) return;
-    const double sideFrom = cross2(d, c.from - a), sideTo = cross2(d, c.to - a);
-    if (t > 0 && t < 1 && (sideFrom > 0) != (sideTo > 0)) steps->push_back({t, sideFrom > 0 ? c.count : -c.count});
-    // An end exactly on a→b's line but not one of its ends (a corner on it, an edge along it):
-    // whether the winding steps there is what the walk's own half-open rule says.
-    if ((sideFrom == 0 && c.from != a && c.from != b) || (sideTo == 0 && c.to != a && c.to != b)) *onLine = true;
-    // Along a chain edge, an end of another within eps of its inside: they run along each
-    // other there (or meet in a T), which the crossings cannot decide (subtractChain).
-    if (skip < chain.size() && ((std::abs(sideFrom) <= nearSide && nearInside(a, b, c.from, sideFrom)) ||
-                                (std::abs(sideTo) <= nearSide && nearInside(a, b, c.to, sideTo))))
-      alongEachOther_ = true;
+    if (steps && t > 0 && t < 1 && (sideFrom > 0) != (sideTo > 0)) steps->push_back({t, sideFrom > 0 ? c.count : -c.count});
   });
   cuts_.push_back(0);
   cuts_.push_back(1);
