@@ -217,11 +217,11 @@ int VisibleContour::windingAt(std::span<const ChainEdge> chain, const Vec2& x, s
   const Vec2 path = x - origin_;
   double sideOfOrigin = 0;
   if (skip < chain.size()) {
-    sideOfOrigin = cross2(chain[skip].to - chain[skip].from, origin_ - chain[skip].from);
-    if (sideOfOrigin == 0) {  // the path runs along the edge: count along a ray across it
-      const Vec2 d = chain[skip].to - chain[skip].from;
-      return chainWinding(chain, x, Vec2(d.y, -d.x), skip);
-    }
+    const Vec2 d = chain[skip].to - chain[skip].from;
+    sideOfOrigin = cross2(d, origin_ - chain[skip].from);
+    // The path runs along the edge's line, or within eps of it (past the edge's end corner,
+    // where the other edges there would be counted by the rounding): count along a ray across it.
+    if (std::abs(sideOfOrigin) <= eps_ * glm::length(d)) return chainWinding(chain, x, Vec2(d.y, -d.x), skip);
   }
   int w = originWinding_;
   grid_.forEachNear(origin_, x, [&](uint32_t j) {
