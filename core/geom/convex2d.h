@@ -23,6 +23,11 @@ Polygon2 counterClockwise(Polygon2 polygon);
 // reliable direction, and its neighbours bound the polygon to within ~eps.
 Polygon2 withoutDuplicateVertices(const Polygon2& polygon, double eps);
 
+// Whether boxes [minA, maxA] and [minB, maxB] are more than eps apart along some axis.
+inline bool boxesApart(const Vec2& minA, const Vec2& maxA, const Vec2& minB, const Vec2& maxB, double eps) {
+  return minA.x > maxB.x + eps || minB.x > maxA.x + eps || minA.y > maxB.y + eps || minB.y > maxA.y + eps;
+}
+
 // Signed distance of p from the directed line a→b (positive on its left).
 double lineDistance(const Vec2& a, const Vec2& b, const Vec2& p);
 

@@ -5,15 +5,6 @@
 
 namespace penumbra {
 
-namespace {
-
-bool boxesApart(const Vec2& minA, const Vec2& maxA, const Vec2& minB, const Vec2& maxB, double eps) {
-  return minA.x > maxB.x + eps || minB.x > maxA.x + eps || minA.y > maxB.y + eps ||
-         minB.y > maxA.y + eps;
-}
-
-}  // namespace
-
 void VisibleRegion::closeNext(size_t begin) {
   if (nextPoints_.size() - begin < 3) {  // as subtract(): no area
     nextPoints_.resize(begin);
