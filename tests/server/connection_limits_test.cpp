@@ -122,20 +122,44 @@ TEST(ConnectionLimits, OneAddressHoldsItsCapAndAnotherAddressStillGetsHealth) {
 
 // The health checker shares its address with the sockets holding the cap (a local load test, a
 // proxy): past the cap its GET /api/health, sent whole at once, is still answered at once, while
-// any other request from that address past the cap is the 503.
+// any other request from that address past the cap is the 503. Each step waits for what the
+// server did rather than for a fixed time, so a slow machine (the sanitizers, a loaded CI) changes
+// how long it takes, not what it checks.
 TEST(ConnectionLimits, TheSameAddressStillGetsHealthPastItsCap) {
-  RunningServer running(limited());
-  std::vector<int> idle;
-  for (int i = 0; i < 200; ++i) {
+  ServerOptions options = limited();
+  options.connections.headSeconds = 60;  // the cap's holders stay for the whole test
+  RunningServer running(options);
+  auto client = running.client();
+  client.set_read_timeout(30, 0);
+  // 32 slow heads hold the cap: /api/scenes is the 503 once the server has taken all of them.
+  std::vector<int> holders, pastCap;
+  for (int i = 0; i < 32; ++i) {
     const int fd = connectFrom("127.0.0.1", running.port());
     ASSERT_GE(fd, 0) << "socket " << i;
-    if (i % 2) sendAll(fd, "GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ");
-    idle.push_back(fd);
+    sendAll(fd, "GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ");
+    holders.push_back(fd);
   }
-  // The first 32 hold the cap (accepted in order, before the requests below); the reserve's
-  // deadline passes for those past it.
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  auto client = running.client();
+  const auto capDeadline = Clock::now() + std::chrono::seconds(30);
+  for (;;) {
+    const auto probe = client.Get("/api/scenes");
+    ASSERT_TRUE(probe);
+    if (probe->status == 503) break;
+    ASSERT_LT(Clock::now(), capDeadline) << "the 32 slow heads never held the cap";
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  // 168 more, idle or slow, past the cap: each is the 503 once the reserve's deadline passes.
+  for (int i = 0; i < 168; ++i) {
+    const int fd = connectFrom("127.0.0.1", running.port());
+    ASSERT_GE(fd, 0) << "socket " << 32 + i;
+    if (i % 2) sendAll(fd, "GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ");
+    pastCap.push_back(fd);
+  }
+  int refused = 0;
+  for (const int fd : pastCap) {
+    const std::string answer = readUntilClosed(fd, 30);
+    refused += answer.rfind("HTTP/1.1 503", 0) == 0;
+  }
+  EXPECT_EQ(refused, 168);
   client.set_read_timeout(2, 0);
   for (int i = 0; i < 5; ++i) {
     const auto start = Clock::now();
@@ -148,7 +172,8 @@ TEST(ConnectionLimits, TheSameAddressStillGetsHealthPastItsCap) {
   ASSERT_TRUE(other);
   EXPECT_EQ(other->status, 503);
   EXPECT_NE(other->body.find("too_many_connections"), std::string::npos) << other->body;
-  for (const int fd : idle) close(fd);
+  for (const int fd : holders) close(fd);
+  for (const int fd : pastCap) close(fd);
 }
 
 TEST(ConnectionLimits, AHeadPastItsLimitsIs431AndMemoryStaysFlat) {
