@@ -94,11 +94,10 @@ void splitIntoClusters(std::vector<uint32_t>& order, size_t begin, size_t end, c
 
 }  // namespace
 
-MeshTopology MeshTopology::of(std::span<const Face> faces, double onPlane, size_t maxElements) {
+MeshTopology MeshTopology::of(std::span<const Face> faces, double onPlane) {
   MeshTopology mesh;
   mesh.welded = ConvexSolid::of(faces);
   const ConvexSolid& w = mesh.welded;
-  if (w.vertices.size() > maxElements || w.edges.size() > maxElements) return mesh;  // too large: not used
   std::vector<std::pair<uint32_t, uint32_t>> edgeUses, vertexUses;
   std::vector<int> balance(w.edges.size(), 0);  // forward minus backward runs
   mesh.cornerEdge.assign(w.corners.size(), kNoEdge);

@@ -61,8 +61,7 @@ struct MeshTopology {
   ConvexSolid box;
 
   // From the object's world faces (Scene::facesOfObject order) and the scene's onPlane().
-  // Past `maxElements` welded corners or edges only `welded` is filled (the caller drops it).
-  static MeshTopology of(std::span<const Face> faces, double onPlane, size_t maxElements = SIZE_MAX);
+  static MeshTopology of(std::span<const Face> faces, double onPlane);
 };
 
 }  // namespace penumbra

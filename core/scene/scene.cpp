@@ -14,8 +14,6 @@ namespace penumbra {
 
 namespace {
 
-// ElementRef indices are 16 bits: a mesh with more corners or edges casts face by face.
-constexpr size_t kMaxMeshElements = 0xffff;
 // Meshes with fewer faces cast face by face: cheap there, and the face-by-face contour's
 // tolerance conventions (edges along each other) hold in the near-degenerate fixtures of
 // small objects (a cube with a corner 1 µm off, coincident copies), where the chain's
@@ -23,15 +21,13 @@ constexpr size_t kMaxMeshElements = 0xffff;
 constexpr size_t kMinMeshFaces = 32;
 
 // The object's solid if it is closed convex; else its mesh (object_shadow.h), unless it
-// has fewer than kMinMeshFaces faces or is too large to cast whole.
+// has fewer than kMinMeshFaces faces.
 Scene::ObjectShape shapeOf(const Object& object, const std::vector<Face>& faces, const Tolerance& tolerance) {
   Scene::ObjectShape shape;
   if (isClosedConvex(object, faces, tolerance)) {
     shape.convex = std::make_shared<const ConvexSolid>(ConvexSolid::of(faces));
   } else if (faces.size() >= kMinMeshFaces) {
-    auto mesh = std::make_shared<MeshTopology>(MeshTopology::of(faces, tolerance.onPlane(), kMaxMeshElements));
-    if (mesh->welded.vertices.size() <= kMaxMeshElements && mesh->welded.edges.size() <= kMaxMeshElements)
-      shape.mesh = std::move(mesh);
+    shape.mesh = std::make_shared<MeshTopology>(MeshTopology::of(faces, tolerance.onPlane()));
   }
   return shape;
 }

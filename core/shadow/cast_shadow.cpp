@@ -21,12 +21,12 @@ std::vector<Wedge> allWedges(const CastingPair& pair, double eps) {
   wedges.reserve(2 * s.size() * o.size());
   for (size_t i = 0; i < s.size(); ++i)
     for (size_t j = 0; j < o.size(); ++j)
-      if (auto w = vertexEdgeWedge({ElementRef::Kind::Vertex, uint16_t(i)}, {ElementRef::Kind::Edge, uint16_t(j)},
+      if (auto w = vertexEdgeWedge({ElementRef::Kind::Vertex, uint32_t(i)}, {ElementRef::Kind::Edge, uint32_t(j)},
                                    s[i], o[j], o[(j + 1) % o.size()], eps))
         wedges.push_back(*w);
   for (size_t i = 0; i < s.size(); ++i)
     for (size_t j = 0; j < o.size(); ++j)
-      if (auto w = edgeVertexWedge({ElementRef::Kind::Edge, uint16_t(i)}, {ElementRef::Kind::Vertex, uint16_t(j)},
+      if (auto w = edgeVertexWedge({ElementRef::Kind::Edge, uint32_t(i)}, {ElementRef::Kind::Vertex, uint32_t(j)},
                                    s[i], s[(i + 1) % s.size()], o[j], eps))
         wedges.push_back(*w);
   return wedges;

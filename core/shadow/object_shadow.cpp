@@ -16,8 +16,6 @@ namespace penumbra {
 
 namespace {
 
-constexpr size_t kMaxElements = 0xffff;  // ElementRef indices are 16 bits
-
 // The plane through three points, or nullopt when they are (nearly) on one line.
 std::optional<Plane> planeThrough(const Vec3& a, const Vec3& b, const Vec3& c, double eps) {
   const Vec3 normal = glm::cross(b - a, c - a);
@@ -64,7 +62,7 @@ bool castsAsOneOccluder(const Scene& scene, size_t light, uint32_t handle, const
   const ConvexSolid* solid = scene.convexSolid(handle);
   const MeshTopology* mesh = solid ? nullptr : scene.meshTopology(handle);
   if (mesh) solid = &mesh->box;
-  if (!solid || solid->vertices.size() > kMaxElements || solid->edges.size() > kMaxElements) return false;
+  if (!solid) return false;
   const Plane lightPlane = scene.lights().at(light).plane();
   const double onPlane = scene.tolerance().onPlane();
   if (mesh) {
@@ -216,7 +214,7 @@ void addContactLines(const Polygon3& s, std::span<const Face> faces, const MeshT
   const double eps = tol.length(), onPlane = tol.onPlane();
   const auto light = std::find_if_not(s.begin(), s.end(), onReceiver);
   if (light == s.end()) return;
-  const ElementRef lightVertex{ElementRef::Kind::Vertex, uint16_t(light - s.begin())};
+  const ElementRef lightVertex{ElementRef::Kind::Vertex, uint32_t(light - s.begin())};
   const ConvexSolid& w = mesh.welded;
   thread_local Polygon3 front;
   for (uint32_t f = 0; f < faces.size(); ++f) {
@@ -232,7 +230,7 @@ void addContactLines(const Polygon3& s, std::span<const Face> faces, const MeshT
       if (!(std::abs(receiver.signedDistance(a)) <= onPlane && std::abs(receiver.signedDistance(b)) <= onPlane))
         continue;
       const uint32_t edge = mesh.cornerEdge[w.faceStarts[f]];  // a label only: the face's first edge
-      add(vertexEdgeWedge(lightVertex, {ElementRef::Kind::Edge, uint16_t(edge == MeshTopology::kNoEdge ? 0 : edge)},
+      add(vertexEdgeWedge(lightVertex, {ElementRef::Kind::Edge, uint32_t(edge == MeshTopology::kNoEdge ? 0 : edge)},
                           *light, a, b, eps),
           true);
     }
@@ -264,7 +262,7 @@ void meshSilhouetteWedges(const Polygon3& s, std::span<const Face> faces, const 
       Vec3 from = w.vertices[a], to = w.vertices[b];
       if (!(ahead[a] > 0)) from += (ahead[a] / (ahead[a] - ahead[b])) * (to - from);
       else if (!(ahead[b] > 0)) to += (ahead[b] / (ahead[b] - ahead[a])) * (from - to);
-      add(vertexEdgeWedge({ElementRef::Kind::Vertex, uint16_t(i)}, {ElementRef::Kind::Edge, uint16_t(e)}, s[i], from,
+      add(vertexEdgeWedge({ElementRef::Kind::Vertex, uint32_t(i)}, {ElementRef::Kind::Edge, uint32_t(e)}, s[i], from,
                           to, eps));
     }
   }
@@ -276,7 +274,7 @@ void meshSilhouetteWedges(const Polygon3& s, std::span<const Face> faces, const 
       if (!(ahead[v] > onPlane)) continue;
       double from = 0, to = 1;
       if (mesh.regularVertex[v] && !silhouetteStretch(faces, mesh, v, p, q, onPlane, from, to)) continue;
-      add(edgeVertexWedge({ElementRef::Kind::Edge, uint16_t(i)}, {ElementRef::Kind::Vertex, uint16_t(v)},
+      add(edgeVertexWedge({ElementRef::Kind::Edge, uint32_t(i)}, {ElementRef::Kind::Vertex, uint32_t(v)},
                           p + from * (q - p), p + to * (q - p), w.vertices[v], eps));
     }
   }
@@ -347,7 +345,7 @@ std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, u
     if (onReceiver(s[i])) continue;  // its rays never come back to the receiver
     for (const Support& support : supports[i]) {
       const auto& [a, b] = solid.edges[support.edge];
-      add(vertexEdgeWedge({ElementRef::Kind::Vertex, uint16_t(i)}, {ElementRef::Kind::Edge, uint16_t(support.edge)},
+      add(vertexEdgeWedge({ElementRef::Kind::Vertex, uint32_t(i)}, {ElementRef::Kind::Edge, uint32_t(support.edge)},
                           s[i], solid.vertices[a], solid.vertices[b], eps));
     }
   }
@@ -356,7 +354,7 @@ std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, u
     if (onReceiver(p) && onReceiver(q)) continue;
     for (uint32_t v = 0; v < solid.vertices.size(); ++v)
       if (mayBeSilhouetteVertex(faces, solid.vertices[v], p, q, tol))
-        add(edgeVertexWedge({ElementRef::Kind::Edge, uint16_t(i)}, {ElementRef::Kind::Vertex, uint16_t(v)}, p, q,
+        add(edgeVertexWedge({ElementRef::Kind::Edge, uint32_t(i)}, {ElementRef::Kind::Vertex, uint32_t(v)}, p, q,
                             solid.vertices[v], eps));
   }
   return finish(light, handle, receiver, segments, std::move(penumbra), std::move(umbra));

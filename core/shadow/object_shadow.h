@@ -58,8 +58,8 @@ namespace penumbra {
 // Whether object `handle` casts on `receiver` from light `light` as one occluder: it is
 // closed convex (Scene::isClosedConvex) or has a mesh (Scene::meshTopology), each vertex
 // of the solid (of the mesh's box) lies more than onPlane() in front of the receiver's
-// plane and of the light's plane (no contact line, no light point inside or behind it),
-// and it has at most 65,535 vertices and edges. Otherwise its faces cast one by one
+// plane and of the light's plane (no contact line, no light point inside or behind it).
+// Otherwise its faces cast one by one
 // (castShadow): a mesh on its own faces (self-shadowing) always does.
 bool castsAsOneOccluder(const Scene& scene, size_t light, uint32_t handle, const Face& receiver);
 

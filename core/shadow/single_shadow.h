@@ -19,7 +19,7 @@ namespace penumbra {
 struct ElementRef {
   enum class Kind : uint8_t { Vertex, Edge };
   Kind kind = Kind::Vertex;
-  uint16_t index = 0;
+  uint32_t index = 0;
   bool operator==(const ElementRef&) const = default;
   auto operator<=>(const ElementRef&) const = default;
 };

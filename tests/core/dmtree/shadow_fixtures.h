@@ -60,8 +60,8 @@ inline void addRegionSegments(SingleShadow& s, const Polygon2& poly, SegmentKind
     seg.a = poly[i];
     seg.b = poly[(i + 1) % poly.size()];
     seg.kind = kind;
-    seg.lightElement = {ElementRef::Kind::Vertex, uint16_t(i % 4)};
-    seg.occluderElement = {ElementRef::Kind::Edge, uint16_t(i)};
+    seg.lightElement = {ElementRef::Kind::Vertex, uint32_t(i % 4)};
+    seg.occluderElement = {ElementRef::Kind::Edge, uint32_t(i)};
     s.segments.push_back(seg);
   }
 }
@@ -89,8 +89,8 @@ inline SingleShadow randomShadow(Rng& rng, const Polygon2& receiver, uint32_t id
   for (int k = 0; k < internal; ++k) {
     CriticalSegment seg;
     seg.kind = SegmentKind::Internal;
-    seg.lightElement = {ElementRef::Kind::Edge, uint16_t(k)};
-    seg.occluderElement = {ElementRef::Kind::Vertex, uint16_t(k)};
+    seg.lightElement = {ElementRef::Kind::Edge, uint32_t(k)};
+    seg.occluderElement = {ElementRef::Kind::Vertex, uint32_t(k)};
     if (!s.umbra.empty()) {
       // EV-like: from the umbra boundary outwards to the penumbra boundary.
       const size_t i = rng() % s.umbra.size();

@@ -12,8 +12,11 @@
 #include <string>
 
 #include "core/engine/engine.h"
+#include "core/scene/convex_solid.h"
+#include "core/scene/mesh_topology.h"
 #include "core/shadow/cast_shadow.h"
 #include "scenegen/dense_scene.h"
+#include "scenegen/model_scene.h"
 #include "scenegen/sphere_scene.h"
 #include "tests/core/engine/incremental_compare.h"
 #include "tests/core/engine/reference_check.h"
@@ -115,6 +118,51 @@ TEST(ObjectShadow, RegionsHoldEveryFacesRegions) {
   }
   EXPECT_GT(checkedFaces, 200u);
   EXPECT_GE(trialsWithUmbra, 3u);
+}
+
+// A mesh past 65,535 edges (element indices were 16 bits: such a mesh cast face by face)
+// casts whole, and every segment's elements are the ones that make it: its two ends lie in
+// the plane of its light vertex and occluder edge (VE) or of its light edge and occluder
+// vertex (EV). A truncated index names another edge or vertex, off that plane.
+TEST(ObjectShadow, AMeshPastSixteenBitElementIndicesCastsWholeWithItsOwnElements) {
+  const Scene scene = makeModelScene({.kind = ModelKind::TorusKnot, .triangles = 50000});
+  const uint32_t handle = scene.handleOf(*scene.findObject("torus_knot"));
+  const MeshTopology* mesh = scene.meshTopology(handle);
+  ASSERT_NE(mesh, nullptr);
+  ASSERT_GT(mesh->welded.edges.size(), 0xffffu);
+  const Face& floor = faceNamed(scene, "floor");
+  ASSERT_TRUE(castsAsOneOccluder(scene, 0, handle, floor));
+  const PlaneFrame frame = PlaneFrame::onPlane(floor.plane, floor.polygon[0]);
+  const auto shadow = castObjectShadow(scene, 0, handle, floor, frame);
+  ASSERT_TRUE(shadow);
+  const Polygon3& light = scene.lights()[0].polygon;
+  const ConvexSolid& w = mesh->welded;
+  // Whether both ends of s lie within 1e-7 of the plane through x, y, z.
+  auto onPlaneOf = [&](const CriticalSegment& s, const Vec3& x, const Vec3& y, const Vec3& z) {
+    const Vec3 normal = glm::normalize(glm::cross(y - x, z - x));
+    return std::abs(glm::dot(normal, frame.to3D(s.a) - x)) < 1e-7 &&
+           std::abs(glm::dot(normal, frame.to3D(s.b) - x)) < 1e-7;
+  };
+  size_t checked = 0, pastSixteenBits = 0;
+  for (const CriticalSegment& s : shadow->segments) {
+    if (s.kind == SegmentKind::Contact) continue;
+    const uint32_t o = s.occluderElement.index;
+    bool found = false;
+    if (s.occluderElement.kind == ElementRef::Kind::Edge) {
+      ASSERT_LT(o, w.edges.size());
+      for (const Vec3& corner : light)
+        found = found || onPlaneOf(s, corner, w.vertices[w.edges[o].first], w.vertices[w.edges[o].second]);
+    } else {
+      ASSERT_LT(o, w.vertices.size());
+      for (size_t i = 0; i < light.size(); ++i)
+        found = found || onPlaneOf(s, light[i], light[(i + 1) % light.size()], w.vertices[o]);
+    }
+    EXPECT_TRUE(found) << "segment " << checked << ": occluder element " << o;
+    ++checked;
+    pastSixteenBits += o > 0xffffu;
+  }
+  EXPECT_GT(checked, 100u);
+  EXPECT_GT(pastSixteenBits, 0u);
 }
 
 void expectExactAndSmaller(const Scene& scene, const std::string& label) {
