@@ -164,10 +164,46 @@ void SegmentCollector::addWhole(const Vec2& a, const Vec2& b, SegmentKind kind, 
 
 void SegmentCollector::keep(const CriticalSegment& segment) {
   if (alongBoundary(receiver_, segment.a, segment.b, eps_)) return;
-  const bool duplicate = std::any_of(segments_.begin(), segments_.end(), [&](const CriticalSegment& other) {
+  if (keptAlready(segment)) return;
+  segments_.push_back(segment);
+  if (segments_.size() == kIndexFrom)
+    for (uint32_t i = 0; i < segments_.size(); ++i) index(i);
+  else if (segments_.size() > kIndexFrom)
+    index(uint32_t(segments_.size() - 1));
+}
+
+bool SegmentCollector::keptAlready(const CriticalSegment& segment) const {
+  auto same = [&](const CriticalSegment& other) {
     return other.kind == segment.kind && samePoints(other, segment, eps_);
-  });
-  if (!duplicate) segments_.push_back(segment);
+  };
+  if (segments_.size() < kIndexFrom) return std::any_of(segments_.begin(), segments_.end(), same);
+  // A segment with the same ends has one within eps of segment.a: in a cell next to a's.
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy) {
+      const auto it = byCell_.find(cellKey(segment.a, dx, dy));
+      if (it == byCell_.end()) continue;
+      for (const uint32_t i : it->second)
+        if (same(segments_[i])) return true;
+    }
+  return false;
+}
+
+uint64_t SegmentCollector::cellKey(const Vec2& p, int dx, int dy) const {
+  // Far-off coordinates share the outermost cells: more candidates, never a missed one.
+  auto cell = [&](double x, int d) {
+    double c = std::floor(x / (2 * eps_));
+    if (!(c > -2e9)) c = -2e9;  // NaN too
+    if (!(c < 2e9)) c = 2e9;
+    return uint32_t(int32_t(c) + d);
+  };
+  return uint64_t(cell(p.x, dx)) << 32 | cell(p.y, dy);
+}
+
+void SegmentCollector::index(uint32_t segment) {
+  const CriticalSegment& s = segments_[segment];
+  byCell_[cellKey(s.a, 0, 0)].push_back(segment);
+  const uint64_t b = cellKey(s.b, 0, 0);
+  if (b != cellKey(s.a, 0, 0)) byCell_[b].push_back(segment);
 }
 
 }  // namespace penumbra

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <optional>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -54,7 +55,9 @@ std::optional<std::pair<double, double>> alongBoundary(const Polygon2& polygon, 
 // A shadow's segments as they are found: each chord is split into its parts along the
 // penumbra (kind Penumbra), along the umbra (Umbra) and the rest (Internal, kept only
 // when asked); pieces along the receiver's own boundary (already in its tree), no
-// longer than eps, or equal to an earlier piece of the same kind are dropped.
+// longer than eps, or equal to an earlier piece of the same kind are dropped. Past
+// kIndexFrom kept segments the earlier ones are found through a grid of their ends (a
+// whole mesh's shadow has thousands: a scan over them all made keeping quadratic).
 class SegmentCollector {
  public:
   SegmentCollector(const Polygon2& receiver, const Polygon2& penumbra, const Polygon2& umbra, double eps)
@@ -70,12 +73,19 @@ class SegmentCollector {
 
  private:
   void keep(const CriticalSegment& segment);
+  // Whether a kept segment of the same kind has the same ends within eps.
+  bool keptAlready(const CriticalSegment& segment) const;
+  uint64_t cellKey(const Vec2& p, int dx, int dy) const;
+  void index(uint32_t segment);
 
+  static constexpr size_t kIndexFrom = 32;
   const Polygon2& receiver_;
   const Polygon2& penumbra_;
   const Polygon2& umbra_;
   double eps_;
   std::vector<CriticalSegment> segments_;
+  // Grid cells of side 2·eps → the kept segments with an end in them (both ends listed).
+  std::unordered_map<uint64_t, std::vector<uint32_t>> byCell_;
 };
 
 }  // namespace penumbra
