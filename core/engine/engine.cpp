@@ -11,6 +11,7 @@
 #include <string>
 #include <tuple>
 
+#include "core/engine/cube_grid.h"
 #include "core/engine/seconds_since.h"
 #include "core/geom/clip.h"
 #include "core/illum/face_lookup.h"
@@ -215,10 +216,13 @@ void Engine::buildOrdersAndCubes(const EngineProgress& progress) {
 
   // Shadow overlap cubes (§2.2).
   start = Clock::now();
-  OverlapCubeSettings cubeSettings;
-  cubeSettings.grid = settings_.overlapGrid;
   cubes_.resize(lightCount);
-  parallel_.forEach(lightCount, [&](size_t l) { cubes_[l] = std::make_unique<OverlapCube>(scene_, l, cubeSettings); });
+  parallel_.forEach(lightCount, [&](size_t l) {
+    OverlapCubeSettings cubeSettings;
+    cubeSettings.grid = settings_.overlapGrid > 0 ? settings_.overlapGrid
+                                                  : overlapGridFor(scene_, l, settings_.closedObjectsAsOne);
+    cubes_[l] = std::make_unique<OverlapCube>(scene_, l, cubeSettings);
+  });
   for (const auto& cube : cubes_) stats_.tiles += cube->tileCount();
   stats_.seconds.cube = secondsSince(start);
 }

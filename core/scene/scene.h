@@ -186,7 +186,7 @@ class Scene {
   // A closed convex object's solid (convex_solid.h), nullptr for any other handle.
   const ConvexSolid* convexSolid(uint32_t handle) const;
   // Any other object's mesh (mesh_topology.h), nullptr for a closed convex object, a
-  // mesh of under 32 faces or past 65,535 corners or edges, or an unknown handle.
+  // mesh of under 32 faces, or an unknown handle.
   const MeshTopology* meshTopology(uint32_t handle) const;
   // Whether the object may cast on a receiver as one occluder (object_shadow.h).
   bool castsWhole(uint32_t handle) const { return convexSolid(handle) || meshTopology(handle); }
