@@ -21,7 +21,8 @@ commands:
                                        with the ambient fill; default S: the page's exposure), exact
                                        _RADIANCE and _IRRADIANCE; lights emissive; the camera
            [--indirect [--sensor-size N] [--bounces B]]  .glb: the indirect light instead of the fill (sensors of N², 8)
-           [--grid G]                  overlap-cube tiles per side (default: from the face count)
+           [--grid G]                  overlap-cube tiles per side (default: from the face count,
+                                       a model casting whole counting as ≤ 1,024)
            [--threads N]               build threads (also replay, serve); default: every core
            [--mesh-tolerance F]        display mesh refined until interpolation is within F of the
                                        local unshadowed light (also render, replay, serve); default
