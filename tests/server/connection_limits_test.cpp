@@ -12,6 +12,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <fstream>
 #include <string>
@@ -132,6 +133,8 @@ TEST(ConnectionLimits, TheSameAddressStillGetsHealthPastItsCap) {
   auto client = running.client();
   client.set_read_timeout(30, 0);
   // 32 slow heads hold the cap: /api/scenes is the 503 once the server has taken all of them.
+  // Each gets a byte every 200 ms, so none waits out the server's 5 s read timeout while the
+  // machine is slow (its head may take 60 s).
   std::vector<int> holders, pastCap;
   for (int i = 0; i < 32; ++i) {
     const int fd = connectFrom("127.0.0.1", running.port());
@@ -139,12 +142,26 @@ TEST(ConnectionLimits, TheSameAddressStillGetsHealthPastItsCap) {
     sendAll(fd, "GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ");
     holders.push_back(fd);
   }
+  struct Trickle {
+    std::atomic<bool> done{false};
+    std::thread thread;
+    ~Trickle() {
+      done = true;
+      if (thread.joinable()) thread.join();
+    }
+  } trickle;
+  trickle.thread = std::thread([&] {
+    while (!trickle.done) {
+      for (const int fd : holders) sendAll(fd, "a");
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+  });
   const auto capDeadline = Clock::now() + std::chrono::seconds(30);
   for (;;) {
     const auto probe = client.Get("/api/scenes");
     ASSERT_TRUE(probe);
     if (probe->status == 503) break;
-    ASSERT_LT(Clock::now(), capDeadline) << "the 32 slow heads never held the cap";
+    ASSERT_LT(Clock::now(), capDeadline) << "the 32 slow heads never held the cap: " << probe->status;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   // 168 more, idle or slow, past the cap: each is the 503 once the reserve's deadline passes.
@@ -172,6 +189,8 @@ TEST(ConnectionLimits, TheSameAddressStillGetsHealthPastItsCap) {
   ASSERT_TRUE(other);
   EXPECT_EQ(other->status, 503);
   EXPECT_NE(other->body.find("too_many_connections"), std::string::npos) << other->body;
+  trickle.done = true;
+  trickle.thread.join();
   for (const int fd : holders) close(fd);
   for (const int fd : pastCap) close(fd);
 }
