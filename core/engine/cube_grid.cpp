@@ -1,7 +1,5 @@
 #include "core/engine/cube_grid.h"
 
-#include <algorithm>
-
 #include "core/overlap/overlap_cube.h"
 #include "core/shadow/object_shadow.h"
 

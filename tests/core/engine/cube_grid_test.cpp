@@ -28,8 +28,8 @@ TEST(CubeGrid, AModelCastingWholeOnItselfCountsAsAThousandFaces) {
   const int counted = OverlapCube::gridForFaceCount(faces - model + kMeshFacesCounted);
   EXPECT_EQ(overlapGridFor(floating, 0, true), counted);
   EXPECT_LT(counted, OverlapCube::gridForFaceCount(faces) / 2);
-  // Face by face, or reaching the light's plane (1 m up: the teapot's top at the ceiling's
-  // 3 m and above), every face counts.
+  // Face by face, or reaching the light's plane (1.8 m up: the teapot's top past the ceiling
+  // light's 3 m), every face counts.
   EXPECT_EQ(overlapGridFor(floating, 0, false), OverlapCube::gridForFaceCount(faces));
   const Scene atTheLight = withModelAt(floating, "teapot", Vec3(0.0, 1.8, 0.0));
   EXPECT_EQ(overlapGridFor(atTheLight, 0, true), OverlapCube::gridForFaceCount(faces));
