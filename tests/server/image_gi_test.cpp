@@ -18,6 +18,8 @@ TEST(ImageGi, SensorsImageEqualsTheInProcessRenderAndDiffersFromDirectLight) {
   const std::string base = "/api/scenes/" + id + "/image?width=40&height=40&samples=1";
   const auto direct = client.Get(base.c_str());
   const auto bounced = client.Get((base + "&gi=sensors&sensor_size=16&tile=8&bounces=2").c_str());
+  ASSERT_TRUE(direct && bounced) << "no answer: " << httplib::to_string(direct.error()) << ", "
+                                 << httplib::to_string(bounced.error());
   ASSERT_EQ(direct->status, 200) << direct->body;
   ASSERT_EQ(bounced->status, 200) << bounced->body;
   EXPECT_NE(direct->body, bounced->body);

@@ -22,6 +22,11 @@ namespace penumbra::server::test {
 
 using nlohmann::json;
 
+// How long a test's client waits for an answer. A GI image or an indirect bake that takes 7-8 s in
+// Release took past 30 s under ASan on a loaded 2-core CI machine: the request failed with no
+// answer, not with a wrong one. Tests of timeouts set their own.
+inline constexpr time_t kClientReadSeconds = 180;
+
 inline std::string scenePath(const std::string& name) {
   return std::string(PENUMBRA_SOURCE_DIR) + "/scenes/" + name + ".scene.json";
 }
@@ -59,7 +64,7 @@ class RunningServer {
   int port() const { return port_; }
   httplib::Client client() const {
     httplib::Client client("127.0.0.1", port_);
-    client.set_read_timeout(30, 0);
+    client.set_read_timeout(kClientReadSeconds, 0);
     return client;
   }
   // Serves a bundled scene under the id `name`.
