@@ -15,6 +15,7 @@
 #include "bench/lib/mesh_sampling.h"
 #include "bench/lib/sample_points.h"
 #include "core/engine/engine.h"
+#include "core/engine/seconds_since.h"
 #include "core/reference/exact_irradiance.h"
 #include "core/reference/grid_mesh.h"
 #include "core/reference/monte_carlo.h"
@@ -28,10 +29,6 @@ namespace penumbra::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // CPU seconds (user + system) of this process so far: on a shared machine the
 // wall clock measures the neighbours too.

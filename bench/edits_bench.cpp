@@ -20,6 +20,7 @@
 #include "bench/lib/edit_scripts.h"
 #include "bench/report/edits_report_html.h"
 #include "core/engine/engine.h"
+#include "core/engine/seconds_since.h"
 #include "protocol/edits_json.h"
 #include "protocol/json_text.h"
 #include "protocol/scene_json.h"
@@ -32,10 +33,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using nlohmann::json;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // The middle value (the mean of the two middle ones for an even count); 0 if empty.
 double median(std::vector<double> values) {

@@ -17,6 +17,7 @@
 #include "bench/report/html_page.h"
 #include "bench/report/svg_charts.h"
 #include "core/engine/engine.h"
+#include "core/engine/seconds_since.h"
 #include "core/gi/sensor_gi.h"
 #include "core/gi/view_gbuffer.h"
 #include "core/raycast/camera_projection.h"
@@ -26,10 +27,6 @@ using namespace penumbra;
 using nlohmann::json;
 
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 double largest(const Vec3& v) { return std::max({v.x, v.y, v.z}); }
 

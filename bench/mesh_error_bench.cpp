@@ -17,6 +17,7 @@
 
 #include "bench/lib/direct_light_error.h"
 #include "core/engine/engine.h"
+#include "core/engine/seconds_since.h"
 #include "core/render/renderer.h"
 #include "protocol/scene_json.h"
 #include "scenegen/dense_scene.h"
@@ -26,10 +27,6 @@ using namespace penumbra;
 using nlohmann::json;
 
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 std::vector<std::string> list(const std::string& text) {
   std::vector<std::string> out;

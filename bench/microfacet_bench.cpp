@@ -13,6 +13,7 @@
 #include "bench/lib/glossy_direct.h"
 #include "bench/lib/glossy_scene.h"
 #include "core/engine/engine.h"
+#include "core/engine/seconds_since.h"
 #include "core/raycast/mesh_lookup.h"
 #include "core/render/dm_visibility.h"
 #include "imageio/image_encoding.h"
@@ -31,10 +32,6 @@ std::vector<int> intList(const std::string& text) {
   }
   if (out.empty()) throw std::invalid_argument("empty list");
   return out;
-}
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // The estimators being measured: a name, the estimator, its sample ladder, a seed base.

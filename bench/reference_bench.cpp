@@ -11,6 +11,7 @@
 
 #include "bench/bench_args.h"
 #include "bench/lib/sample_points.h"
+#include "core/engine/seconds_since.h"
 #include "core/reference/exact_irradiance.h"
 #include "core/reference/monte_carlo.h"
 #include "scenegen/cubes_scene.h"
@@ -18,10 +19,6 @@
 namespace penumbra::bench {
 
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 }  // namespace
 

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/engine/seconds_since.h"
 #include "core/volume/macrocell_grid.h"
 #include "core/volume/octree_trace.h"
 #include "scenegen/volume_fields.h"
@@ -23,10 +24,6 @@ namespace penumbra {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 std::vector<int> intList(const std::string& text) {
   std::vector<int> out;
   std::stringstream list(text);

@@ -8,6 +8,7 @@
 #include "cli/commands.h"
 #include "cli/progress_bar.h"
 #include "core/engine/engine.h"
+#include "core/engine/seconds_since.h"
 #include "core/gi/sensor_map.h"
 #include "core/render/dm_visibility.h"
 #include "core/render/renderer.h"
@@ -21,10 +22,6 @@ namespace penumbra::cli {
 namespace {
 
 constexpr size_t kMaxCameraBytes = size_t(1) << 20;
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // --camera is inline JSON (starts with '{') or a file holding it. It is validated by the scene
 // reader itself (as the scene's "camera"), so errors name the same key paths: camera.fov_y_deg.

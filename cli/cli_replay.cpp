@@ -20,6 +20,7 @@
 #include "cli/progress_bar.h"
 #include "core/engine/engine.h"
 #include "core/engine/light_edits.h"
+#include "core/engine/seconds_since.h"
 #include "core/engine/volume_edits.h"
 #include "core/illum/face_lookup.h"
 #include "core/illum/vertex_illumination.h"
@@ -39,10 +40,6 @@ using nlohmann::json;
 constexpr size_t kVerifyAllMaxFaces = 200;  // smaller scenes are verified every frame
 constexpr double kRelative = 1e-9;          // DESIGN.md invariant 1/3
 constexpr double kOfPeak = 1e-12;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // Plays a frame on the scene model the way Engine::apply checks it (edits in
 // order, each on the result of the previous), throwing EditError.

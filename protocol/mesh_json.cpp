@@ -15,8 +15,8 @@ namespace penumbra::protocol {
 
 namespace {
 
-constexpr const char* kFormat = "penumbra.mesh";
-constexpr int kVersion = 1;
+constexpr const char* kMeshFormat = "penumbra.mesh";
+constexpr int kMeshVersion = 1;
 
 LightClass lightClassFromJson(const Json& value, const std::string& path) {
   const std::string name = expectString(value, path);
@@ -116,7 +116,7 @@ Json receiverToJson(const Scene& scene, const ReceiverMesh& r) {
 Json meshToJson(const Scene& scene, const Mesh& mesh, const std::string& sceneName) {
   Json receivers = Json::array();
   for (const ReceiverMesh& r : mesh.receivers) receivers.push_back(receiverToJson(scene, r));
-  return Json{{"format", kFormat}, {"version", kVersion}, {"scene", sceneName}, {"receivers", std::move(receivers)}};
+  return Json{{"format", kMeshFormat}, {"version", kMeshVersion}, {"scene", sceneName}, {"receivers", std::move(receivers)}};
 }
 
 namespace {
@@ -186,7 +186,7 @@ void writeMeshJson(std::ostream& out, const Scene& scene, const Mesh& mesh, cons
                    const MeshJsonExtras& extras) {
   // Members sorted as a JSON object dumps them, so the text is meshToJson's (with the extras).
   MemberWriters own;
-  own["format"] = [&] { out << compactText(kFormat); };
+  own["format"] = [&] { out << compactText(kMeshFormat); };
   own["receivers"] = [&] {
     out << '[';
     for (size_t k = 0; k < mesh.receivers.size(); ++k) {
@@ -197,13 +197,13 @@ void writeMeshJson(std::ostream& out, const Scene& scene, const Mesh& mesh, cons
     out << ']';
   };
   own["scene"] = [&] { out << compactText(sceneName); };
-  own["version"] = [&] { out << kVersion; };
+  own["version"] = [&] { out << kMeshVersion; };
   writeObject(out, std::move(own), extras.root);
   out << '\n';
 }
 
 Mesh meshFromJson(const Json& root, const Scene& scene) {
-  expectHeader(root, kFormat, kVersion);
+  expectHeader(root, kMeshFormat, kMeshVersion);
   expectString(requireKey(root, "scene", ""), "scene");
   const Json& receivers = expectArray(requireKey(root, "receivers", ""), "receivers");
   Mesh mesh;

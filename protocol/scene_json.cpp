@@ -19,8 +19,8 @@ namespace penumbra::protocol {
 
 namespace {
 
-constexpr const char* kFormat = "penumbra.scene";
-constexpr int kVersion = 1;
+constexpr const char* kSceneFormat = "penumbra.scene";
+constexpr int kSceneVersion = 1;
 
 // "2.3e-03": planarity errors span many orders of magnitude.
 std::string relativeError(double value) {
@@ -261,7 +261,7 @@ Json lightToJson(const Light& light) {
 }
 
 Scene sceneFromJson(const Json& root, const VolumeFiles* volumeFiles) {
-  expectHeader(root, kFormat, kVersion);
+  expectHeader(root, kSceneFormat, kSceneVersion);
 
   const Json& lightsJson = expectArray(requireKey(root, "lights", ""), "lights");
   if (lightsJson.empty()) fail("lights", "at least one light is required");
@@ -354,8 +354,8 @@ Json objectToJson(const Object& object) {
 
 Json sceneToJson(const Scene& scene) {
   Json out = Json::object();
-  out["format"] = kFormat;
-  out["version"] = kVersion;
+  out["format"] = kSceneFormat;
+  out["version"] = kSceneVersion;
 
   Json lights = Json::array();
   for (const Light& light : scene.lights()) {

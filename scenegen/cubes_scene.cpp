@@ -25,7 +25,7 @@ constexpr double kLightDrop = 1 * kUnit;     // light just below the ceiling
 constexpr double kTiltDeg = 25.0;
 constexpr double kMaxObjectTop = 2.0;        // stacks stay well below the lights
 constexpr double kGap = 4 * kUnit;           // clearance between footprints and walls
-constexpr int kPlacementTries = 20000;
+constexpr int kCubePlacementTries = 20000;
 
 // Footprint of an object standing in the room: a disc that contains it.
 struct Footprint {
@@ -45,10 +45,6 @@ double segmentDistance(double px, double pz, double ax, double az, double bx, do
   const double t =
       std::clamp(((px - ax) * abx + (pz - az) * abz) / std::max(abx * abx + abz * abz, 1e-300), 0.0, 1.0);
   return std::hypot(px - (ax + t * abx), pz - (az + t * abz));
-}
-
-double uniform(std::mt19937_64& rng, double lo, double hi) {
-  return std::uniform_real_distribution<double>(lo, hi)(rng);
 }
 
 // A multiple of kUnit in [lo, hi] (both multiples of kUnit).
@@ -108,7 +104,7 @@ Scene makeCubesScene(const CubesSceneOptions& options) {
   auto placeOnFloor = [&](double radius) -> Footprint {
     const double range = half - radius - kGap;
     if (range <= 0) throw std::runtime_error("makeCubesScene: object larger than the room");
-    for (int attempt = 0; attempt < kPlacementTries; ++attempt) {
+    for (int attempt = 0; attempt < kCubePlacementTries; ++attempt) {
       const Footprint f{uniform(rng, -range, range), uniform(rng, -range, range), radius};
       const bool clear = std::all_of(footprints.begin(), footprints.end(), [&](const Footprint& o) {
         return std::hypot(f.x - o.x, f.z - o.z) >= f.radius + o.radius + kGap;
@@ -207,7 +203,7 @@ Scene makeCubesScene(const CubesSceneOptions& options) {
       if (!blocks(footprints[k])) continue;
       const double range = half - footprints[k].radius - kGap;
       bool moved = false;
-      for (int attempt = 0; attempt < kPlacementTries && !moved; ++attempt) {
+      for (int attempt = 0; attempt < kCubePlacementTries && !moved; ++attempt) {
         const Footprint f{uniform(moveRng, -range, range), uniform(moveRng, -range, range),
                           footprints[k].radius};
         bool clear = !blocks(f);

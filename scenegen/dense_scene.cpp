@@ -11,16 +11,12 @@ namespace penumbra {
 
 namespace {
 
-constexpr int kPlacementTries = 100000;
+constexpr int kDensePlacementTries = 100000;
 
 struct Sphere {
   Vec3 centre{0.0};
   double radius = 0;
 };
-
-double uniform(std::mt19937_64& rng, double lo, double hi) {
-  return std::uniform_real_distribution<double>(lo, hi)(rng);
-}
 
 // A free spot for a sphere of `radius`: kDenseGap clear of the room, the light's
 // plane and every placed sphere (rejection sampling; the fill stays ~10%).
@@ -28,7 +24,7 @@ Vec3 placeSphere(std::mt19937_64& rng, double radius, const std::vector<Sphere>&
   const double margin = radius + kDenseGap;
   const double range = kDenseHalfSide - margin, low = margin, high = kDenseLightY - margin;
   if (range <= 0 || high <= low) throw std::invalid_argument("makeDenseScene: box larger than the room");
-  for (int attempt = 0; attempt < kPlacementTries; ++attempt) {
+  for (int attempt = 0; attempt < kDensePlacementTries; ++attempt) {
     const Vec3 c(uniform(rng, -range, range), uniform(rng, low, high), uniform(rng, -range, range));
     bool clear = true;
     for (const Sphere& s : placed)

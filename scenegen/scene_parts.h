@@ -2,12 +2,18 @@
 // square ceiling lights. Pure functions on values; thread-safe.
 #pragma once
 
+#include <random>
 #include <string>
 #include <vector>
 
 #include "core/scene/scene.h"
 
 namespace penumbra {
+
+// A uniform double in [lo, hi) from the generator's seeded engine.
+inline double uniform(std::mt19937_64& rng, double lo, double hi) {
+  return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
 
 // Appends an axis-aligned box (8 vertices, 6 outward quads) to an object.
 void addBox(Object& object, const Vec3& lo, const Vec3& hi);

@@ -1,3 +1,4 @@
+#include "core/engine/seconds_since.h"
 #include "server/connection_server.h"
 
 #include <arpa/inet.h>
@@ -26,10 +27,6 @@ constexpr int kStopPollMs = 100;  // how often a connection waiting for its next
 // many bytes and milliseconds of the accept.
 constexpr size_t kHealthHeadBytes = 4096;
 constexpr int kHealthHeadMs = 200;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 std::string peerAddress(socket_t sock) {
   sockaddr_storage address{};

@@ -13,7 +13,7 @@ namespace {
 
 // How long DELETE of a building scene waits for its build to stop (it stops at the engine's
 // next report or beat: a few casts, vertices or cells of a receiver).
-constexpr std::chrono::seconds kCancelWait{30};
+constexpr std::chrono::seconds kBuildCancelWait{30};
 
 ApiError cancelledError() {
   return ApiError(409, error_code::kBuildCancelled, "",
@@ -145,10 +145,10 @@ bool HttpServer::cancelBuild(const std::string& id) {
     job = it->second;
   }
   job->cancel();
-  if (!job->waitEnded(kCancelWait))
+  if (!job->waitEnded(kBuildCancelWait))
     throw ApiError(503, error_code::kBuilding, "id",
                    "the build of scene '" + id + "' did not stop within " +
-                       std::to_string(kCancelWait.count()) + " s; it stops at its next step");
+                       std::to_string(kBuildCancelWait.count()) + " s; it stops at its next step");
   return true;
 }
 

@@ -12,7 +12,7 @@ namespace {
 
 // How long a DELETE of a restoring scene waits for the restore to stop (it stops at the engine's
 // next report, or before the next journaled frame: one frame's work at most).
-constexpr std::chrono::seconds kCancelWait{30};
+constexpr std::chrono::seconds kRestoreCancelWait{30};
 
 }  // namespace
 
@@ -25,11 +25,11 @@ std::optional<RestoreJob::Ended> HttpServer::cancelRestore(const std::string& id
     job = it->second;
   }
   job->cancelAndDelete();
-  std::optional<RestoreJob::Ended> ended = job->waitEnded(kCancelWait);
+  std::optional<RestoreJob::Ended> ended = job->waitEnded(kRestoreCancelWait);
   if (!ended)
     throw ApiError(503, error_code::kRestoring, "id",
                    "the restore of scene '" + id + "' did not stop within " +
-                       std::to_string(kCancelWait.count()) + " s; it stops at its next step");
+                       std::to_string(kRestoreCancelWait.count()) + " s; it stops at its next step");
   return ended;
 }
 

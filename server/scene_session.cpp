@@ -1,3 +1,4 @@
+#include "core/engine/seconds_since.h"
 #include "server/scene_session.h"
 
 #include <map>
@@ -10,10 +11,6 @@
 namespace penumbra::server {
 
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // The engine's chunks of some receivers as parts, all at `version`.
 std::vector<MeshPart> partsOf(const Scene& scene, const Engine::ReceiverChunks& receiver, uint64_t version) {

@@ -8,7 +8,6 @@
 namespace penumbra::bsdf {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Squared "projected roughness × tan θ": (αx² ωx² + αy² ωy²) / ωz².

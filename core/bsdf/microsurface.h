@@ -3,10 +3,13 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <numbers>
 
 namespace penumbra::bsdf {
 
 using Vec3 = glm::dvec3;
+
+inline constexpr double kPi = std::numbers::pi;
 
 enum class Ndf { GGX, Beckmann };
 

@@ -9,8 +9,6 @@
 namespace penumbra::bsdf {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // The walk's state: the side of the interface the ray is on (+1 outside, -1 inside a
 // dielectric) and, in that side's frame (world mirrored through the origin for -1, so +z
 // points into the ray's medium), the direction the light arrived from at the next vertex, and

@@ -55,14 +55,14 @@ uint64_t splitmix64(uint64_t x) {
 // A 53-bit uniform double in [0, 1).
 double uniform01(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
 
-struct LightSampler {
+struct ReferenceLightSampler {
   Vec3 origin{0.0};                  // fan apex (vertex 0)
   std::vector<Vec3> edgeA, edgeB;    // per fan triangle: v_k − v0, v_k+1 − v_k
   std::vector<double> cumulative;    // area fractions, cumulative[0] = 0, back() = 1
   double area = 0;
   Plane plane;
 
-  LightSampler(const Polygon3& poly, const Plane& lightPlane) : plane(lightPlane) {
+  ReferenceLightSampler(const Polygon3& poly, const Plane& lightPlane) : plane(lightPlane) {
     origin = poly[0];
     cumulative.push_back(0);
     for (size_t k = 1; k + 1 < poly.size(); ++k) {
@@ -137,7 +137,7 @@ struct FactorEstimate {
   double resolution = 0;      // the largest unoccluded sample weight (see top)
 };
 
-FactorEstimate sampleUniform(const RayScene& rays, const LightSampler& light, const Vec3& p,
+FactorEstimate sampleUniform(const RayScene& rays, const ReferenceLightSampler& light, const Vec3& p,
                              const Vec3& n, int samples, std::mt19937_64& rng) {
   const int count = std::max(samples, 2);
   // Welford's update: numerically stable mean and variance.
@@ -153,7 +153,7 @@ FactorEstimate sampleUniform(const RayScene& rays, const LightSampler& light, co
   return {mean, m2 / (double(count) * (count - 1)), largest / count};
 }
 
-FactorEstimate sampleStratified(const RayScene& rays, const LightSampler& light, const Vec3& p,
+FactorEstimate sampleStratified(const RayScene& rays, const ReferenceLightSampler& light, const Vec3& p,
                                 const Vec3& n, int samples, std::mt19937_64& rng) {
   const int perReplica = std::max(samples / kReplicas, 1);
   const int gx = std::max(1, int(std::sqrt(double(perReplica))));
@@ -198,7 +198,7 @@ MonteCarloEstimate MonteCarloEstimator::estimate(const Vec3& p, const Vec3& n,
     // domain): no sample is wasted, and a grazing sliver is still resolved.
     const Polygon3 front = frontPart(light.polygon, p, n);
     if (front.size() < 3) continue;
-    const LightSampler sampler(front, light.plane());
+    const ReferenceLightSampler sampler(front, light.plane());
     if (sampler.empty()) continue;
     const FactorEstimate factor =
         options.stratified

@@ -9,8 +9,6 @@ namespace penumbra::volume {
 
 namespace {
 
-glm::ivec3 octant(int child) { return {(child >> 2) & 1, (child >> 1) & 1, child & 1}; }
-
 template <class T>
 class Tracer {
  public:

@@ -9,8 +9,6 @@ namespace penumbra::volume {
 
 namespace {
 
-glm::ivec3 octant(int child) { return {(child >> 2) & 1, (child >> 1) & 1, child & 1}; }
-
 // 8 values consolidate into one when identical (lossless) or, lossy, when their variance is
 // at most the threshold; the result is their (rounded) mean.
 template <class T>

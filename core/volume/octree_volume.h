@@ -13,6 +13,9 @@
 
 namespace penumbra::volume {
 
+// The offset of child `child` (index x << 2 | y << 1 | z) from its parent's origin, in child sizes.
+inline glm::ivec3 octant(int child) { return {(child >> 2) & 1, (child >> 1) & 1, child & 1}; }
+
 template <class T>
 struct OctNode {
   std::array<T, 8> childScalars{};  // the value of a scalar-leaf child (else its average)

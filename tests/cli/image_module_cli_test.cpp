@@ -14,8 +14,8 @@
 
 namespace {
 
-const std::string kBinary = std::string(PENUMBRA_BINARY_DIR) + "/penumbra";
-const std::string kCornell = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/cornell.scene.json";
+using penumbra::cli_test::kBinary;
+using penumbra::cli_test::kCornell;
 const std::string kObj = std::string(PENUMBRA_SOURCE_DIR) + "/tests/interchange/data/cornell_mm.obj";
 
 using penumbra::cli_test::tempPath;

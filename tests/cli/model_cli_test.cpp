@@ -15,32 +15,23 @@
 
 namespace {
 
-const std::string kBinary = std::string(PENUMBRA_BINARY_DIR) + "/penumbra";
+using penumbra::cli_test::kBinary;
 
+using penumbra::cli_test::runCaptured;
 using penumbra::cli_test::tempPath;
-
-// Exit status and what the command wrote to stdout and stderr.
-std::pair<int, std::string> run(const std::string& arguments) {
-  const std::string out = tempPath("output.txt");
-  const int status = std::system((kBinary + " " + arguments + " >" + out + " 2>&1").c_str());
-  std::ifstream in(out);
-  std::string text((std::istreambuf_iterator<char>(in)), {});
-  std::filesystem::remove(out);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
-}
 
 TEST(ModelCli, GenerateWritesAValidSceneAndSaysWhatItWrote) {
   const std::string scene = tempPath("teapot.scene.json");
-  auto [status, text] = run("generate --model teapot --triangles 1000 --rest --out " + scene);
+  auto [status, text] = runCaptured("generate --model teapot --triangles 1000 --rest --out " + scene);
   EXPECT_EQ(status, 0) << text;
   EXPECT_NE(text.find("992 model triangles"), std::string::npos) << text;
   EXPECT_NE(text.find("resting on the floor"), std::string::npos) << text;
   EXPECT_NE(text.find("open"), std::string::npos) << text;
-  std::tie(status, text) = run("validate " + scene);
+  std::tie(status, text) = runCaptured("validate " + scene);
   EXPECT_EQ(status, 0) << text;
 
   std::tie(status, text) =
-      run("generate --model torus-knot --triangles 300 --seed 2 --out " + scene);
+      runCaptured("generate --model torus-knot --triangles 300 --seed 2 --out " + scene);
   EXPECT_EQ(status, 0) << text;
   EXPECT_NE(text.find("floating, closed"), std::string::npos) << text;
   std::filesystem::remove(scene);
@@ -49,7 +40,7 @@ TEST(ModelCli, GenerateWritesAValidSceneAndSaysWhatItWrote) {
 // `build --stats` says where the display triangles go: per scene object, summing to the mesh's.
 TEST(ModelCli, BuildStatsSplitTheDisplayMeshByObject) {
   const std::string scene = tempPath("knot.scene.json"), mesh = tempPath("knot.mesh.json");
-  auto [status, text] = run("generate --model torus-knot --triangles 300 --rest --out " + scene);
+  auto [status, text] = runCaptured("generate --model torus-knot --triangles 300 --rest --out " + scene);
   ASSERT_EQ(status, 0) << text;
   const std::string stats = tempPath("stats.json");
   ASSERT_EQ(std::system((kBinary + " build " + scene + " --out " + mesh + " --threads 1 --stats >" + stats +
@@ -87,7 +78,7 @@ TEST(ModelCli, BadOptionsExit2NamingTheOption) {
   };
   for (const auto& [arguments, named] : cases) {
     const auto [status, text] =
-        run(std::string(arguments) + (std::string(arguments).ends_with("--out ") ? scene : ""));
+        runCaptured(std::string(arguments) + (std::string(arguments).ends_with("--out ") ? scene : ""));
     EXPECT_EQ(status, 2) << arguments << ": " << text;
     EXPECT_NE(text.find(named), std::string::npos) << arguments << ": " << text;
   }

@@ -17,14 +17,10 @@ namespace {
 
 using nlohmann::json;
 
-const std::string kBinary = std::string(PENUMBRA_BINARY_DIR) + "/penumbra";
+using penumbra::cli_test::kBinary;
 
+using penumbra::cli_test::runQuiet;
 using penumbra::cli_test::tempPath;
-
-int run(const std::string& arguments) {
-  const int status = std::system((kBinary + " " + arguments + " 2>/dev/null >/dev/null").c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 // Form factor from a point to the rectangle whose corner is straight above it at
 // height h, with sides x and z (signed: odd in both).
@@ -76,7 +72,7 @@ TEST(ReferenceCli, MeshMatchesClosedFormWithParallelOccluder) {
   const std::string meshPath = tempPath("parallel.mesh.json");
   std::ofstream(scenePath) << scene.dump(2);
 
-  ASSERT_EQ(run("reference " + scenePath + " --grid 12 --out " + meshPath), 0);
+  ASSERT_EQ(runQuiet("reference " + scenePath + " --grid 12 --out " + meshPath), 0);
   json mesh;
   std::ifstream(meshPath) >> mesh;
   ASSERT_EQ(mesh["format"], "penumbra.mesh");
@@ -143,13 +139,13 @@ TEST(ReferenceCli, RefusesBadSceneWithKeyPathAndExitTwo) {
   std::ifstream err(errPath);
   const std::string message((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
   EXPECT_NE(message.find("objects[0].faces[0]"), std::string::npos) << message;
-  EXPECT_EQ(run("reference " + scenePath + " --grid 4 --out " + tempPath("never.mesh.json")), 2);
+  EXPECT_EQ(runQuiet("reference " + scenePath + " --grid 4 --out " + tempPath("never.mesh.json")), 2);
 }
 
 TEST(ReferenceCli, UsageErrorsExitTwo) {
-  EXPECT_EQ(run("no-such-command"), 2);
-  EXPECT_EQ(run("reference"), 2);
-  EXPECT_EQ(run("reference x.json --grid zero --out y"), 2);
+  EXPECT_EQ(runQuiet("no-such-command"), 2);
+  EXPECT_EQ(runQuiet("reference"), 2);
+  EXPECT_EQ(runQuiet("reference x.json --grid zero --out y"), 2);
 }
 
 }  // namespace

@@ -13,15 +13,11 @@
 
 namespace {
 
-const std::string kBinary = std::string(PENUMBRA_BINARY_DIR) + "/penumbra";
-const std::string kCornell = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/cornell.scene.json";
+using penumbra::cli_test::kBinary;
+using penumbra::cli_test::kCornell;
 
+using penumbra::cli_test::runQuiet;
 using penumbra::cli_test::tempPath;
-
-int run(const std::string& arguments) {
-  const int status = std::system((kBinary + " " + arguments + " 2>/dev/null >/dev/null").c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 struct Decoded {
   int width = 0, height = 0, channels = 0;
@@ -46,7 +42,7 @@ Decoded decode(const std::string& path) {
 TEST(RenderCli, CornellPngDecodesAtTheRequestedSizeWithTheLightWhite) {
   const std::string out = tempPath("cornell.png");
   std::filesystem::remove(out);
-  ASSERT_EQ(run("render " + kCornell + " --out " + out + " --width 64 --height 48"), 0);
+  ASSERT_EQ(runQuiet("render " + kCornell + " --out " + out + " --width 64 --height 48"), 0);
   const Decoded image = decode(out);
   EXPECT_EQ(image.format, "png");
   ASSERT_EQ(image.width, 64);
@@ -67,7 +63,7 @@ TEST(RenderCli, CornellPngDecodesAtTheRequestedSizeWithTheLightWhite) {
 
 TEST(RenderCli, ExrHoldsLinearRadianceAndTheReferenceOptionRuns) {
   const std::string out = tempPath("cornell.exr");
-  ASSERT_EQ(run("render " + kCornell + " --out " + out + " --width 40 --height 30 --reference"), 0);
+  ASSERT_EQ(runQuiet("render " + kCornell + " --out " + out + " --width 40 --height 30 --reference"), 0);
   const Decoded image = decode(out);
   EXPECT_EQ(image.format, "openexr");
   ASSERT_EQ(image.width, 40);
@@ -90,30 +86,30 @@ TEST(RenderCli, CameraOptionInlineOrFileAndAStoredMesh) {
   const std::string cameraFile = tempPath("camera.json");
   std::ofstream(cameraFile) << camera;
   const std::string mesh = tempPath("cornell.mesh.json");
-  ASSERT_EQ(run("build " + kCornell + " --out " + mesh), 0);
+  ASSERT_EQ(runQuiet("build " + kCornell + " --out " + mesh), 0);
   const std::string inlineOut = tempPath("inline.png"), fileOut = tempPath("file.png");
-  ASSERT_EQ(run("render " + kCornell + " --out " + inlineOut + " --width 32 --height 32 --camera '" + camera + "' --mesh " + mesh), 0);
-  ASSERT_EQ(run("render " + kCornell + " --out " + fileOut + " --width 32 --height 32 --camera " + cameraFile), 0);
+  ASSERT_EQ(runQuiet("render " + kCornell + " --out " + inlineOut + " --width 32 --height 32 --camera '" + camera + "' --mesh " + mesh), 0);
+  ASSERT_EQ(runQuiet("render " + kCornell + " --out " + fileOut + " --width 32 --height 32 --camera " + cameraFile), 0);
   const Decoded a = decode(inlineOut), b = decode(fileOut);
   ASSERT_EQ(a.width, 32);
   // Same camera, same mesh (built the same way): the same image.
   EXPECT_EQ(a.pixels, b.pixels);
   // A view from above differs from the scene's own camera.
   const std::string defaultOut = tempPath("default.png");
-  ASSERT_EQ(run("render " + kCornell + " --out " + defaultOut + " --width 32 --height 32"), 0);
+  ASSERT_EQ(runQuiet("render " + kCornell + " --out " + defaultOut + " --width 32 --height 32"), 0);
   EXPECT_NE(decode(defaultOut).pixels, a.pixels);
 }
 
 TEST(RenderCli, RefusesBadSizesCamerasAndExtensionsWithStatus2) {
   const std::string out = tempPath("refused.png");
   std::filesystem::remove(out);
-  EXPECT_EQ(run("render " + kCornell + " --out " + out + " --width 0"), 2);
-  EXPECT_EQ(run("render " + kCornell + " --out " + out + " --height 8193"), 2);
-  EXPECT_EQ(run("render " + kCornell + " --out " + tempPath("refused.jpg")), 2);
-  EXPECT_EQ(run("render " + kCornell), 2);
-  EXPECT_EQ(run("render " + kCornell + " --out " + out + " --camera '{\"position\": [0, 0, 0], \"target\": [0, 0, 0]}'"), 2);
-  EXPECT_EQ(run("render " + kCornell + " --out " + out + " --camera '{\"position\": [0, 1, 1], \"target\": [0, 0, 0], \"fov_y_deg\": 200}'"), 2);
-  EXPECT_EQ(run("render " + kCornell + " --out " + out + " --camera '{not json'"), 2);
+  EXPECT_EQ(runQuiet("render " + kCornell + " --out " + out + " --width 0"), 2);
+  EXPECT_EQ(runQuiet("render " + kCornell + " --out " + out + " --height 8193"), 2);
+  EXPECT_EQ(runQuiet("render " + kCornell + " --out " + tempPath("refused.jpg")), 2);
+  EXPECT_EQ(runQuiet("render " + kCornell), 2);
+  EXPECT_EQ(runQuiet("render " + kCornell + " --out " + out + " --camera '{\"position\": [0, 0, 0], \"target\": [0, 0, 0]}'"), 2);
+  EXPECT_EQ(runQuiet("render " + kCornell + " --out " + out + " --camera '{\"position\": [0, 1, 1], \"target\": [0, 0, 0], \"fov_y_deg\": 200}'"), 2);
+  EXPECT_EQ(runQuiet("render " + kCornell + " --out " + out + " --camera '{not json'"), 2);
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 

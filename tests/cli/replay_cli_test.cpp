@@ -17,7 +17,7 @@ namespace {
 
 using nlohmann::json;
 
-const std::string kBinary = std::string(PENUMBRA_BINARY_DIR) + "/penumbra";
+using penumbra::cli_test::kBinary;
 const std::string kScene = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/cubes15.scene.json";
 const std::string kScripts = std::string(PENUMBRA_SOURCE_DIR) + "/bench/edits/";
 

@@ -14,20 +14,11 @@
 
 namespace {
 
-const std::string kBinary = std::string(PENUMBRA_BINARY_DIR) + "/penumbra";
+using penumbra::cli_test::kBinary;
 const std::string kVolumeRoom = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/volume_room.scene.json";
 
+using penumbra::cli_test::runCaptured;
 using penumbra::cli_test::tempPath;
-
-// Exit status and what the command wrote to stdout and stderr.
-std::pair<int, std::string> run(const std::string& arguments) {
-  const std::string out = tempPath("output.txt");
-  const int status = std::system((kBinary + " " + arguments + " >" + out + " 2>&1").c_str());
-  std::ifstream in(out);
-  std::string text((std::istreambuf_iterator<char>(in)), {});
-  std::filesystem::remove(out);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
-}
 
 std::string sceneNaming(const std::string& file) {
   return R"({"format": "penumbra.scene", "version": 1,
@@ -39,15 +30,15 @@ std::string sceneNaming(const std::string& file) {
 
 TEST(VolumeCli, GenerateWritesAVolumeASceneCanName) {
   const std::string nrrd = tempPath("smoke.nrrd"), scene = tempPath("smoke.scene.json");
-  const auto [status, text] = run("generate --volume smoke --size 20 --type ushort --out " + nrrd);
+  const auto [status, text] = runCaptured("generate --volume smoke --size 20 --type ushort --out " + nrrd);
   ASSERT_EQ(status, 0) << text;
   EXPECT_NE(text.find("smoke 20³ ushort"), std::string::npos) << text;
   std::ofstream(scene) << sceneNaming(std::filesystem::path(nrrd).filename().string());
-  const auto [valid, says] = run("validate " + scene);
+  const auto [valid, says] = runCaptured("validate " + scene);
   EXPECT_EQ(valid, 0) << says;
   EXPECT_NE(says.find("1 volumes"), std::string::npos) << says;
-  EXPECT_EQ(run("generate --volume fog --out " + nrrd).first, 2);
-  EXPECT_EQ(run("generate --volume smoke --type int --out " + nrrd).first, 2);
+  EXPECT_EQ(runCaptured("generate --volume fog --out " + nrrd).first, 2);
+  EXPECT_EQ(runCaptured("generate --volume smoke --type int --out " + nrrd).first, 2);
   std::filesystem::remove(nrrd);
   std::filesystem::remove(scene);
 }
@@ -55,7 +46,7 @@ TEST(VolumeCli, GenerateWritesAVolumeASceneCanName) {
 TEST(VolumeCli, TheBundledVolumeSceneRenders) {
   const std::string png = tempPath("room.png");
   const auto [status, text] =
-      run("render " + kVolumeRoom + " --out " + png + " --width 48 --height 48");
+      runCaptured("render " + kVolumeRoom + " --out " + png + " --width 48 --height 48");
   EXPECT_EQ(status, 0) << text;
   EXPECT_GT(std::filesystem::file_size(png), 100u);
   std::filesystem::remove(png);
@@ -68,7 +59,7 @@ TEST(VolumeCli, ABrokenVolumeFileExitsTwoWithTheKeyPath) {
   std::ofstream(scene) << sceneNaming(std::filesystem::path(nrrd).filename().string());
   for (const std::string& arguments :
        {"validate " + scene, "render " + scene + " --out " + tempPath("x.png")}) {
-    const auto [status, text] = run(arguments);
+    const auto [status, text] = runCaptured(arguments);
     EXPECT_EQ(status, 2) << text;
     EXPECT_NE(text.find("objects[1].file: 'cli_test_"), std::string::npos) << text;
     EXPECT_NE(text.find("data truncated or corrupt"), std::string::npos) << text;
@@ -92,12 +83,12 @@ TEST(VolumeCli, ReplayPlaysVolumeEdits) {
          "\n"
       << R"({"edits":[{"op":"remove","id":"smoke"}]})"
          "\n";
-  const auto [status, text] = run("replay " + kVolumeRoom + " " + script + " --verify");
+  const auto [status, text] = runCaptured("replay " + kVolumeRoom + " " + script + " --verify");
   EXPECT_EQ(status, 0) << text;
   std::ofstream(script, std::ios::app)
       << R"({"edits":[{"op":"set_volume","id":"puff","isovalue":1e9}]})"
          "\n";
-  const auto [refused, says] = run("replay " + kVolumeRoom + " " + script);
+  const auto [refused, says] = runCaptured("replay " + kVolumeRoom + " " + script);
   EXPECT_EQ(refused, 2) << says;
   EXPECT_NE(says.find("line 5: edits[0].isovalue: "), std::string::npos) << says;
   std::filesystem::remove_all(dir);

@@ -20,7 +20,7 @@ using testing::writeFile;
 
 constexpr double kPi = 3.14159265358979323846;
 const std::string kLamp = "mtllib n.mtl\no lamp\nusemtl lamp\nv -0.5 3 -0.5\nv 0.5 3 -0.5\nv 0.5 3 0.5\nv -0.5 3 0.5\nf 1 2 3 4\n";
-const std::string kMtl = "newmtl grey\nKd 0.5 0.5 0.5\nnewmtl lamp\nKe 5 5 5\n";
+const std::string kNormalsMtl = "newmtl grey\nKd 0.5 0.5 0.5\nnewmtl lamp\nKe 5 5 5\n";
 
 // A UV sphere of radius r at `centre`: positions, and triangles counter-clockwise from outside.
 void uvSphere(const Vec3& centre, double r, int rings, int segments, std::vector<Vec3>& points,
@@ -44,7 +44,7 @@ void uvSphere(const Vec3& centre, double r, int rings, int segments, std::vector
   for (int j = 0; j < segments; ++j) triangles.push_back({bottom, at(rings - 1, j), at(rings - 1, j + 1)});
 }
 
-const Object& objectNamed(const Scene& scene, const std::string& id) {
+const Object& namedObject(const Scene& scene, const std::string& id) {
   const auto index = scene.findObject(id);
   EXPECT_TRUE(index) << id;
   return scene.objects()[*index];
@@ -69,9 +69,9 @@ TEST(NormalsImport, ObjVertexNormalsOfASphereComeBackAtEveryCorner) {
         << "//" << t[2] + 1 << "\n";
   const auto dir = scratchDir();
   writeFile(dir / "n.obj", obj.str());
-  writeFile(dir / "n.mtl", kMtl);
+  writeFile(dir / "n.mtl", kNormalsMtl);
   const ImportResult result = importObjFile((dir / "n.obj").string(), {});
-  const Object& ball = objectNamed(result.scene, "ball");
+  const Object& ball = namedObject(result.scene, "ball");
   ASSERT_EQ(ball.normals.size(), ball.faces.size());
   size_t corners = 0;
   for (size_t f = 0; f < ball.faces.size(); ++f)
@@ -100,9 +100,9 @@ TEST(NormalsImport, ACubeWithFaceNormalsStaysSharpAndAFaceWithoutVnIsFlat) {
       "f 8 12 11 7\n";
   const auto dir = scratchDir();
   writeFile(dir / "n.obj", kLamp + cube);
-  writeFile(dir / "n.mtl", kMtl);
+  writeFile(dir / "n.mtl", kNormalsMtl);
   const ImportResult result = importObjFile((dir / "n.obj").string(), {});
-  const Object& box = objectNamed(result.scene, "box");
+  const Object& box = namedObject(result.scene, "box");
   ASSERT_EQ(box.normals.size(), box.faces.size());
   for (const Face& face : result.scene.faces()) {
     if (result.scene.object(face.id.object).id != "box") continue;
@@ -141,7 +141,7 @@ TEST(NormalsImport, GltfNormalsFollowANonUniformNodeScale) {
                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR);
   w.node("egg", primitive, Vec3(2, 1, 1), Vec3(0, 1, 0));
   const ImportResult result = importSceneBytes(w.write(true), "egg.glb", {}, {});
-  const Object& egg = objectNamed(result.scene, "egg");
+  const Object& egg = namedObject(result.scene, "egg");
   ASSERT_EQ(egg.normals.size(), egg.faces.size());
   // On the ellipsoid x²/4 + y² + z² = r² (centred at (0, 1, 0)) the normal is (x/4, y, z):
   // the file's normals are unit radial in float, so within float precision of it.

@@ -77,7 +77,7 @@ struct MalformedFrame {
   const char* word;  // must appear in problem()
 };
 
-const std::vector<MalformedFrame>& cases() {
+const std::vector<MalformedFrame>& frameCases() {
   static const std::vector<MalformedFrame> all = {
       {"RootNotObject", [](json& f) { f = json::array(); }, "", "expected an object"},
       {"MissingEdits", [](json& f) { f.erase("edits"); }, "edits", "missing required key"},
@@ -196,7 +196,7 @@ const std::vector<MalformedFrame>& cases() {
 class MalformedFrameTest : public ::testing::TestWithParam<size_t> {};
 
 TEST_P(MalformedFrameTest, RefusedWithExactKeyPath) {
-  const MalformedFrame& c = cases()[GetParam()];
+  const MalformedFrame& c = frameCases()[GetParam()];
   json frame = baseFrame();
   c.mutate(frame);
   const auto known = materials();
@@ -209,8 +209,8 @@ TEST_P(MalformedFrameTest, RefusedWithExactKeyPath) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, MalformedFrameTest, ::testing::Range<size_t>(0, cases().size()),
-                         [](const auto& info) { return std::string(cases()[info.param].name); });
+INSTANTIATE_TEST_SUITE_P(Cases, MalformedFrameTest, ::testing::Range<size_t>(0, frameCases().size()),
+                         [](const auto& info) { return std::string(frameCases()[info.param].name); });
 
 TEST(EditsJson, ReadsEveryOpWithDefaults) {
   const auto known = materials();

@@ -36,7 +36,7 @@ json cubeCornerNormals() {
   return lists;
 }
 
-const std::vector<MalformedCase>& cases() {
+const std::vector<MalformedCase>& sceneCases() {
   static const std::vector<MalformedCase> all = {
       // Document root and header.
       {"RootNotObject", [](json& s) { s = json::array({s}); }, "", "expected an object"},
@@ -248,7 +248,7 @@ TEST_P(MalformedScene, IsRefusedWithKeyPath) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, MalformedScene, ::testing::ValuesIn(cases()),
+INSTANTIATE_TEST_SUITE_P(Cases, MalformedScene, ::testing::ValuesIn(sceneCases()),
                          [](const ::testing::TestParamInfo<MalformedCase>& info) { return info.param.name; });
 
 TEST(MalformedSceneTable, BaseSceneIsValid) {

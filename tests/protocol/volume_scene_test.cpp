@@ -232,7 +232,7 @@ TEST_F(VolumeSceneTest, KeysAreValidatedWithTheirPaths) {
     Json keys;
     std::string path, words;
   };
-  const Case cases[] = {
+  const Case volumeCases[] = {
       {{{"file", nullptr}}, "objects[1].file", "missing"},
       {{{"file", ""}}, "objects[1].file", ""},
       {{{"file", 3}}, "objects[1].file", "string"},
@@ -247,7 +247,7 @@ TEST_F(VolumeSceneTest, KeysAreValidatedWithTheirPaths) {
       {{{"file", "missing.nrrd"}}, "objects[1].file", "no such file"},
       {{{"file", "."}}, "objects[1].file", "no such file"},
   };
-  for (const Case& c : cases) {
+  for (const Case& c : volumeCases) {
     const ValidationError error = refusal(c.keys);
     EXPECT_EQ(error.path(), c.path) << c.keys.dump() << ": " << error.what();
     EXPECT_NE(std::string(error.what()).find(c.words), std::string::npos) << error.what();
@@ -276,7 +276,7 @@ TEST_F(VolumeSceneTest, HostileFilesGiveClearErrors) {
   struct Case {
     std::string name, text, words;
   };
-  std::vector<Case> cases = {
+  std::vector<Case> volumeCases = {
       {"truncated", nrrdHeader("uchar", "4 4 4", "raw") + full.substr(0, 10), "fread got only"},
       {"short-float", nrrdHeader("float", "4 4 4", "raw") + full, "fread got only"},
       {"gzip-garbage", nrrdHeader("uchar", "4 4 4", "gzip") + "this is not gzip at all", ""},
@@ -303,8 +303,8 @@ TEST_F(VolumeSceneTest, HostileFilesGiveClearErrors) {
     const float value = k == 5 ? std::numeric_limits<float>::quiet_NaN() : 1.0f;
     nanFloats.append(reinterpret_cast<const char*>(&value), sizeof value);
   }
-  cases.push_back({"nan-voxel", nanFloats, "voxel 5 is not a finite number"});
-  for (const Case& c : cases) {
+  volumeCases.push_back({"nan-voxel", nanFloats, "voxel 5 is not a finite number"});
+  for (const Case& c : volumeCases) {
     writeText(c.name + ".nrrd", c.text);
     const ValidationError error = refusal({{"file", c.name + ".nrrd"}});
     EXPECT_EQ(error.path(), "objects[1].file") << c.name;

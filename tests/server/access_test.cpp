@@ -17,7 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void expectError(const httplib::Result& res, int status, const std::string& code) {
+void expectAccessError(const Reply& res, int status, const std::string& code) {
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, status) << res->body;
   EXPECT_EQ(bodyJson(res)["error"]["code"], code) << res->body;
@@ -43,17 +43,17 @@ TEST(Access, EveryMutatingRequestNeedsTheToken) {
   const std::string scene = sceneText("cornell");
   const std::string frame = moveFrame("short_block", 0, 0, 0).dump();
   const std::string edits = "/api/scenes/" + id + "/edits";
-  expectError(client.Post("/api/scenes", scene, "application/json"), 401, "unauthorized");
-  expectError(client.Post(edits.c_str(), frame, "application/json"), 401, "unauthorized");
-  expectError(client.Delete(("/api/scenes/" + id).c_str()), 401, "unauthorized");
-  expectError(client.Post(("/api/scenes/" + id + "/rebuild").c_str(), "", "application/json"), 401,
+  expectAccessError(client.Post("/api/scenes", scene, "application/json"), 401, "unauthorized");
+  expectAccessError(client.Post(edits.c_str(), frame, "application/json"), 401, "unauthorized");
+  expectAccessError(client.Delete(("/api/scenes/" + id).c_str()), 401, "unauthorized");
+  expectAccessError(client.Post(("/api/scenes/" + id + "/rebuild").c_str(), "", "application/json"), 401,
               "unauthorized");
-  expectError(client.Put("/api/scenes", scene, "application/json"), 401, "unauthorized");
-  expectError(client.Post(("/api/scenes/" + id + "/volumes").c_str(), "NRRD0004\n",
+  expectAccessError(client.Put("/api/scenes", scene, "application/json"), 401, "unauthorized");
+  expectAccessError(client.Post(("/api/scenes/" + id + "/volumes").c_str(), "NRRD0004\n",
                           "application/octet-stream"),
               401, "unauthorized");
   httplib::Headers wrong = {{"Authorization", "Bearer s3cre"}};
-  expectError(client.Post(edits.c_str(), wrong, frame, "application/json"), 401, "unauthorized");
+  expectAccessError(client.Post(edits.c_str(), wrong, frame, "application/json"), 401, "unauthorized");
   // Nothing changed; reads need no token.
   const json got = bodyJson(client.Get(("/api/scenes/" + id).c_str()));
   EXPECT_EQ(got["version"], 0);
@@ -76,13 +76,13 @@ TEST(Access, SceneAndBodyLimitsAreOptions) {
   EXPECT_EQ(client.Post("/api/scenes", scene, "application/json")->status, 201);
   EXPECT_EQ(client.Post("/api/scenes", scene, "application/json")->status, 201);
   const auto third = client.Post("/api/scenes", scene, "application/json");
-  expectError(third, 429, "too_many_scenes");
+  expectAccessError(third, 429, "too_many_scenes");
   EXPECT_NE(bodyJson(third)["error"]["message"].get<std::string>().find("--max-scenes"),
             std::string::npos);
   // One byte over the limit: refused before it is parsed, naming the limit.
   const std::string big = scene + std::string((size_t(1) << 20) + 1 - scene.size(), ' ');
   const auto tooBig = client.Post("/api/scenes", big, "application/json");
-  expectError(tooBig, 413, "payload_too_large");
+  expectAccessError(tooBig, 413, "payload_too_large");
   EXPECT_NE(bodyJson(tooBig)["error"]["message"].get<std::string>().find("1048576"),
             std::string::npos);
 }

@@ -14,10 +14,9 @@
 namespace penumbra::server::test {
 namespace {
 
-using Key = std::pair<std::string, uint32_t>;
-
-std::map<Key, json> receiversByKey(const json& mesh) {
-  std::map<Key, json> out;
+// Receivers by (object, face), as served (with "scene_version").
+std::map<ReceiverKey, json> servedReceiversByKey(const json& mesh) {
+  std::map<ReceiverKey, json> out;
   for (const json& r : mesh["receivers"])
     out[{r["object"].get<std::string>(), r["face"].get<uint32_t>()}] = r;
   return out;
@@ -109,7 +108,7 @@ TEST(ServerApi, MeshSinceCarriesOnlyChangedReceivers) {
   EXPECT_GT(changed, 0u);
   EXPECT_LT(changed, all) << "the moved block's shadow cannot change every receiver of the box";
 
-  auto merged = receiversByKey(before);
+  auto merged = servedReceiversByKey(before);
   bool movedBlockListed = false;
   for (const json& r : delta["receivers"]) {
     EXPECT_EQ(r["scene_version"], 1);
@@ -117,7 +116,7 @@ TEST(ServerApi, MeshSinceCarriesOnlyChangedReceivers) {
     movedBlockListed |= r["object"] == "tall_block";
   }
   EXPECT_TRUE(movedBlockListed);
-  const auto expected = receiversByKey(whole);
+  const auto expected = servedReceiversByKey(whole);
   ASSERT_EQ(merged.size(), expected.size());
   for (const auto& [key, receiver] : expected) {
     json a = merged.at(key), b = receiver;

@@ -25,13 +25,13 @@ ServerOptions withBodyLimit() {
   return options;
 }
 
-std::string createTinyScene(httplib::Client& client) {
+std::string createTinyScene(TestClient& client) {
   const auto created = postJson(client, "/api/scenes?name=tiny", tinyScene());
   EXPECT_TRUE(created && created->status == 201);
   return bodyJson(created)["id"];
 }
 
-uint64_t versionOf(httplib::Client& client, const std::string& id) {
+uint64_t versionOf(TestClient& client, const std::string& id) {
   return bodyJson(client.Get(("/api/scenes/" + id).c_str()))["version"];
 }
 
@@ -40,7 +40,7 @@ std::string paddedFrame(size_t padding) {
   return moveFrame("box", 0.1, 0.5, 0).dump() + std::string(padding, ' ');
 }
 
-void expect413(const httplib::Result& res) {
+void expect413(const Reply& res) {
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 413);
   const json error = bodyJson(res)["error"];
@@ -49,7 +49,7 @@ void expect413(const httplib::Result& res) {
 }
 
 // Sends `body` chunked (no Content-Length) in 64 KiB pieces.
-httplib::Result postChunked(httplib::Client& client, const std::string& path,
+Reply postChunked(TestClient& client, const std::string& path,
                             const std::string& body) {
   return client.Post(
       path.c_str(),

@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/engine/seconds_since.h"
 #include "scenegen/model_scene.h"
 #include "server_fixture.h"
 
@@ -31,13 +32,9 @@ std::string knotJson(size_t triangles = 1500) {
   return protocol::sceneToJson(makeModelScene(options)).dump();
 }
 
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 // The list entry of the build with `ticket`, once it has counted some work; nullopt if the build
 // ended first or 60 s passed.
-std::optional<json> buildWithTicket(httplib::Client& client, const std::string& ticket) {
+std::optional<json> buildWithTicket(TestClient& client, const std::string& ticket) {
   const auto deadline = Clock::now() + std::chrono::seconds(60);
   while (Clock::now() < deadline) {
     const json list = bodyJson(client.Get("/api/scenes"));
@@ -48,15 +45,15 @@ std::optional<json> buildWithTicket(httplib::Client& client, const std::string& 
   return std::nullopt;
 }
 
-struct Answer {
+struct BuildAnswer {
   int status = 0;  // 0: none (the connection closed)
   std::string body;
 };
 
 // Starts POST /api/scenes of the knot on a thread; its answer lands in `answer`.
-std::thread postKnot(int port, const std::string& ticket, Answer* answer) {
+std::thread postKnot(int port, const std::string& ticket, BuildAnswer* answer) {
   return std::thread([port, ticket, answer, body = knotJson()] {
-    httplib::Client client("127.0.0.1", port);
+    TestClient client("127.0.0.1", port);
     client.set_read_timeout(300, 0);
     const auto res = client.Post(("/api/scenes?name=knot&ticket=" + ticket).c_str(), body,
                                  "application/json");
@@ -67,8 +64,8 @@ std::thread postKnot(int port, const std::string& ticket, Answer* answer) {
 TEST(BuildCancel, ProgressRisesThenDeleteStopsTheBuildAndFreesTheId) {
   RunningServer running;
   running.addBundled("cubes15");
-  httplib::Client client = running.client();
-  Answer created;
+  TestClient client = running.client();
+  BuildAnswer created;
   std::thread poster = postKnot(running.port(), "t1", &created);
 
   // Progress is visible and rises, in the list and at the scene's own URL.
@@ -139,13 +136,13 @@ std::vector<json> buildEvents(const std::string& text) {
 
 TEST(BuildCancel, TheBuildsEventStreamFollowsProgressAndTheEnd) {
   RunningServer running;
-  httplib::Client client = running.client();
+  TestClient client = running.client();
   // GET /api/builds/events, collected on a thread until it reports the build ended.
   std::mutex mutex;
   std::string text;
   std::atomic<bool> ended{false};
   std::thread stream([&] {
-    httplib::Client events("127.0.0.1", running.port());
+    TestClient events("127.0.0.1", running.port());
     events.set_read_timeout(120, 0);
     const auto deadline = Clock::now() + std::chrono::seconds(120);
     events.Get("/api/builds/events", [&](const char* data, size_t size) {
@@ -155,7 +152,7 @@ TEST(BuildCancel, TheBuildsEventStreamFollowsProgressAndTheEnd) {
       return !ended && Clock::now() < deadline;
     });
   });
-  Answer created;
+  BuildAnswer created;
   std::thread poster = postKnot(running.port(), "t3", &created);
   // Events with rising counts arrive while it builds (the stream alone, no listing polled).
   std::vector<json> seen;
@@ -191,12 +188,12 @@ TEST(BuildCancel, TheBuildsEventStreamFollowsProgressAndTheEnd) {
 }
 
 TEST(BuildCancel, StopCancelsABuildInFlight) {
-  Answer created;
+  BuildAnswer created;
   std::thread poster;
   double stopSeconds = 0;
   {
     RunningServer running;
-    httplib::Client client = running.client();
+    TestClient client = running.client();
     poster = postKnot(running.port(), "t2", &created);
     ASSERT_TRUE(buildWithTicket(client, "t2")) << "no building scene listed";
     const auto stopStart = Clock::now();
@@ -214,7 +211,7 @@ TEST(BuildCancel, StopCancelsABuildInFlight) {
 constexpr size_t kRebuiltKnotTriangles = 200;
 TEST(BuildCancel, DeleteOrStopCancelsARebuild) {
   for (const bool byStop : {false, true}) {
-    Answer rebuilt;
+    BuildAnswer rebuilt;
     std::thread poster;
     double endSeconds = 0, buildSeconds = 0;
     {
@@ -224,7 +221,7 @@ TEST(BuildCancel, DeleteOrStopCancelsARebuild) {
           protocol::sceneFromJson(json::parse(knotJson(kRebuiltKnotTriangles))), "knot");
       buildSeconds = secondsSince(buildStart);
       poster = std::thread([&rebuilt, port = running.port(), id] {
-        httplib::Client client("127.0.0.1", port);
+        TestClient client("127.0.0.1", port);
         client.set_read_timeout(300, 0);
         const auto res = client.Post(("/api/scenes/" + id + "/rebuild").c_str(), "", "application/json");
         if (res) rebuilt = {res->status, res->body};
@@ -234,7 +231,7 @@ TEST(BuildCancel, DeleteOrStopCancelsARebuild) {
       if (byStop) {
         running.server().stop();
       } else {
-        httplib::Client client = running.client();
+        TestClient client = running.client();
         EXPECT_EQ(client.Delete(("/api/scenes/" + id).c_str())->status, 204);
       }
       poster.join();
@@ -255,7 +252,7 @@ TEST(BuildCancel, DeleteOrStopCancelsARebuild) {
 
 TEST(BuildCancel, ATicketOtherThanLettersDigitsDashOrUnderscoreIsRefused) {
   RunningServer running;
-  httplib::Client client = running.client();
+  TestClient client = running.client();
   const auto res =
       client.Post("/api/scenes?ticket=a%20b", sceneText("cubes15"), "application/json");
   ASSERT_TRUE(res);

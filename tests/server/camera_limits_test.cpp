@@ -15,13 +15,13 @@
 namespace penumbra::server::test {
 namespace {
 
-std::string addTiny(httplib::Client& client, const json& scene = tinyScene()) {
+std::string addTinyScene(TestClient& client, const json& scene = tinyScene()) {
   const auto res = postJson(client, "/api/scenes?name=tiny", scene);
   EXPECT_EQ(res->status, 201) << res->body;
   return bodyJson(res)["id"];
 }
 
-size_t sceneCount(httplib::Client& client) {
+size_t sceneCount(TestClient& client) {
   return bodyJson(client.Get("/api/scenes"))["scenes"].size();
 }
 
@@ -70,7 +70,7 @@ std::string vec3(std::mt19937& rng) {
 TEST(CameraLimits, IssueReproducersAre400NamingTheParameterAndTheServerLives) {
   RunningServer running;
   auto client = running.client();
-  const std::string id = addTiny(client);
+  const std::string id = addTinyScene(client);
   const std::string image = "/api/scenes/" + id + "/image?width=16&height=12";
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"&near=1e-12&far=1e12", "query.near"},
@@ -139,7 +139,7 @@ TEST(CameraLimits, ExtremeDoublesInImageQueriesAndSceneCamerasNeverCrashTheServe
   TempDataDir data;
   auto running = std::make_unique<RunningServer>(data.durable());
   auto client = running->client();
-  const std::string id = addTiny(client);
+  const std::string id = addTinyScene(client);
   std::mt19937 rng(36);
   const char* keys[] = {"position", "target", "up", "fov_y_deg", "ortho_height", "near", "far"};
   size_t ok = 0, refused = 0;
@@ -246,7 +246,7 @@ TEST(NumericLimits, CoordinatesTransformsAndRadianceBeyondTheirBoundsAre422Namin
   EXPECT_EQ(sceneCount(client), 0u);
 
   // The same bounds on edits: nothing applied, version 0.
-  const std::string id = addTiny(client);
+  const std::string id = addTinyScene(client);
   const std::string edits = "/api/scenes/" + id + "/edits";
   const std::vector<std::pair<json, std::string>> frames = {
       {moveFrame("box", 0, 1e300, 0), "edits[0].transform.translate"},

@@ -48,19 +48,19 @@ struct SlowFirstFrame {
   }
 };
 
-struct Answer {
+struct CoalescedAnswer {
   int status = 0;
   json body;
 };
 
 // Sends `first`, then (while it applies) `others`, each on its own connection; returns the
 // answers of `others` in order, then first's.
-std::vector<Answer> sendTogether(RunningServer& running, const json& first, const std::vector<json>& others) {
-  std::vector<Answer> answers(others.size() + 1);
+std::vector<CoalescedAnswer> sendTogether(RunningServer& running, const json& first, const std::vector<json>& others) {
+  std::vector<CoalescedAnswer> answers(others.size() + 1);
   const auto send = [&](size_t slot, const json& frame) {
-    httplib::Client client = running.client();
+    TestClient client = running.client();
     const auto res = client.Post(kEdits.c_str(), frame.dump(), "application/json");
-    if (res) answers[slot] = Answer{res->status, json::parse(res->body)};
+    if (res) answers[slot] = CoalescedAnswer{res->status, json::parse(res->body)};
   };
   std::thread alone(send, others.size(), first);
   std::this_thread::sleep_for(std::chrono::milliseconds(100));  // `first` is applying
@@ -120,7 +120,7 @@ TEST(Coalescing, FramesThatQueuedTogetherAreOneVersionAndAllApplyExactly) {
   ASSERT_EQ(referenceMismatches(server.running), 0u);  // the check holds before any edit
   std::vector<json> frames;
   for (int box = 1; box <= 5; ++box) frames.push_back(server.slide(box, 0.001 * box));
-  const std::vector<Answer> answers = sendTogether(server.running, server.slide(0, 0.004), frames);
+  const std::vector<CoalescedAnswer> answers = sendTogether(server.running, server.slide(0, 0.004), frames);
   ASSERT_EQ(answers.back().status, 200);  // box_0's, alone
   EXPECT_EQ(answers.back().body["version"], 1);
   EXPECT_EQ(answers.back().body["coalesced_frames"], 1);
@@ -145,7 +145,7 @@ TEST(Coalescing, ARefusedFrameInABatchFailsAloneWithItsOwnPath) {
   SlowFirstFrame server;
   json unknown = server.slide(2, 0.001);
   unknown["edits"][0]["id"] = "no_such_box";
-  const std::vector<Answer> answers =
+  const std::vector<CoalescedAnswer> answers =
       sendTogether(server.running, server.slide(0, 0.001), {server.slide(1, 0.002), unknown, server.slide(2, 0.003)});
   ASSERT_EQ(answers[0].status, 200) << answers[0].body.dump();
   ASSERT_EQ(answers[2].status, 200) << answers[2].body.dump();
@@ -159,7 +159,7 @@ TEST(Coalescing, ARefusedFrameInABatchFailsAloneWithItsOwnPath) {
 
 TEST(Coalescing, FramesOnTheSameObjectAreAppliedOneByOne) {
   SlowFirstFrame server;
-  const std::vector<Answer> answers =
+  const std::vector<CoalescedAnswer> answers =
       sendTogether(server.running, server.slide(0, 0.001), {server.slide(1, 0.001), server.slide(1, 0.003)});
   ASSERT_EQ(answers[0].status, 200);
   ASSERT_EQ(answers[1].status, 200);

@@ -11,7 +11,7 @@ namespace {
 
 const std::string kBad = "\xff";  // never valid in UTF-8
 
-json expectError(const httplib::Result& res, int status, const std::string& code,
+json expectContainedError(const Reply& res, int status, const std::string& code,
                  const std::string& path) {
   if (!res) ADD_FAILURE() << "no response: " << httplib::to_string(res.error());
   if (!res) return {};
@@ -45,25 +45,25 @@ class Containment : public ::testing::Test {
   }
 
   RunningServer running_;
-  httplib::Client client_ = running_.client();
+  TestClient client_ = running_.client();
 };
 
 TEST_F(Containment, NotFoundWithInvalidUtf8PathAnswers404) {
   // The 404 body names the decoded path: it used to throw outside any try (terminate).
-  const json body = expectError(client_.Get("/%ff"), 404, "not_found", "(url)");
+  const json body = expectContainedError(client_.Get("/%ff"), 404, "not_found", "(url)");
   EXPECT_NE(body["error"]["message"].get<std::string>().find("\xEF\xBF\xBD"), std::string::npos);
-  expectError(client_.Get("/api/%ff/%fe%80"), 404, "not_found", "(url)");
-  expectError(client_.Get("/api/scenes/%ff"), 404, "not_found", "(url)");
+  expectContainedError(client_.Get("/api/%ff/%fe%80"), 404, "not_found", "(url)");
+  expectContainedError(client_.Get("/api/scenes/%ff"), 404, "not_found", "(url)");
   expectAllServed(1);
 }
 
 TEST_F(Containment, InvalidUtf8QueryIs400AndCreatesNothing) {
   const std::string scene = sceneText("cornell");
-  expectError(client_.Post("/api/scenes?name=%ff", scene, "application/json"), 400, "invalid_utf8",
+  expectContainedError(client_.Post("/api/scenes?name=%ff", scene, "application/json"), 400, "invalid_utf8",
               "query.name");
-  expectError(client_.Get("/api/scenes/cornell/mesh?since=%ff"), 400, "invalid_utf8",
+  expectContainedError(client_.Get("/api/scenes/cornell/mesh?since=%ff"), 400, "invalid_utf8",
               "query.since");
-  expectError(client_.Post("/api/scenes?format=obj&n%ffme=1", "v 0 0 0", "text/plain"), 400,
+  expectContainedError(client_.Post("/api/scenes?format=obj&n%ffme=1", "v 0 0 0", "text/plain"), 400,
               "invalid_utf8", "query.n\xEF\xBF\xBDme");
   expectAllServed(1);
 }
@@ -72,13 +72,13 @@ TEST_F(Containment, InvalidUtf8InJsonBodyIs400NamingTheKeyPath) {
   const auto post = [&](const std::string& body) {
     return client_.Post("/api/scenes/cornell/edits", body, "application/json");
   };
-  expectError(post(R"({"edits": [{"op": "move", "id": "tall)" + kBad + R"("}]})"), 400,
+  expectContainedError(post(R"({"edits": [{"op": "move", "id": "tall)" + kBad + R"("}]})"), 400,
               "invalid_utf8", "edits[0].id");
-  expectError(post(R"({"edits": [{"op": "move", "i)" + kBad + R"(": 1}]})"), 400, "invalid_utf8",
+  expectContainedError(post(R"({"edits": [{"op": "move", "i)" + kBad + R"(": 1}]})"), 400, "invalid_utf8",
               "edits[0]");
   std::string scene = sceneText("cornell");
   scene.replace(scene.find("\"tall_block\""), 12, "\"tall" + kBad + "\"");
-  const json body = expectError(client_.Post("/api/scenes", scene, "application/json"), 400,
+  const json body = expectContainedError(client_.Post("/api/scenes", scene, "application/json"), 400,
                                 "invalid_utf8", "objects[6].id");
   EXPECT_EQ(bodyJson(client_.Get("/api/scenes/cornell"))["version"], 0);
   expectAllServed(1);
@@ -102,7 +102,7 @@ httplib::MultipartFormDataItems objForm(const std::string& fileName, const std::
 // The file name is the request's: refused. Names inside the file are the file's: replaced
 // (U+FFFD) and counted in the import report, so every later GET of the scene is valid JSON.
 TEST_F(Containment, ObjUploadWithInvalidUtf8FileNameIs400AndNamesInsideAreReplaced) {
-  expectError(
+  expectContainedError(
       client_.Post("/api/scenes?format=obj&scale=0.001", objForm("fl" + kBad + "or.obj", "floor")),
       400, "invalid_utf8", "(form).file.filename");
   EXPECT_EQ(sceneCount(), 1u);

@@ -16,7 +16,7 @@
 namespace penumbra::server::test {
 namespace {
 
-std::string addTiny(httplib::Client& client, const std::string& name) {
+std::string addNamedTiny(TestClient& client, const std::string& name) {
   const auto res = postJson(client, "/api/scenes?name=" + name, tinyScene());
   EXPECT_EQ(res->status, 201) << res->body;
   return bodyJson(res)["id"];
@@ -75,7 +75,7 @@ class HeldHeavyLane {
 TEST(EditFairness, AnotherScenesDragsNeverQueueBehindAHeavyFrame) {
   RunningServer server;
   auto client = server.client();
-  const std::string a = addTiny(client, "a"), b = addTiny(client, "b");
+  const std::string a = addNamedTiny(client, "a"), b = addNamedTiny(client, "b");
   HeldHeavyLane lane(server.server().editWorkers());
 
   std::atomic<int> heavyStatus{0};

@@ -7,7 +7,7 @@
 namespace penumbra::server::test {
 namespace {
 
-void expectError(const httplib::Result& res, int status, const std::string& code,
+void expectError(const Reply& res, int status, const std::string& code,
                  const std::string& path) {
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, status) << res->body;
@@ -31,12 +31,12 @@ class ServerErrors : public ::testing::Test {
     EXPECT_EQ(bodyJson(client_.Get(base_.c_str()))["version"], 0);
     EXPECT_EQ(client_.Get((base_ + "/mesh").c_str())->body, before_);
   }
-  httplib::Result postEdits(const std::string& body) {
+  Reply postEdits(const std::string& body) {
     return client_.Post((base_ + "/edits").c_str(), body, "application/json");
   }
 
   RunningServer running_;
-  httplib::Client client_ = running_.client();
+  TestClient client_ = running_.client();
   std::string id_, base_, before_;
 };
 

@@ -47,7 +47,7 @@ class StreamReader {
   bool done() const { return done_; }
 
  private:
-  httplib::Client client_;
+  TestClient client_;
   std::string until_;
   std::mutex mutex_;
   std::string text_;

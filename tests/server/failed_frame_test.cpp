@@ -16,7 +16,7 @@ namespace {
 TEST(FailedFrame, ThinCubeMoveIsNotAppliedAndLaterEditsWork) {
   RunningServer running;
   running.addBundled("cubes15");
-  httplib::Client client = running.client();
+  TestClient client = running.client();
   const std::string base = "/api/scenes/cubes15";
   const auto get = [&](const std::string& path) {
     const auto res = client.Get(path.c_str());

@@ -24,7 +24,7 @@ httplib::MultipartFormDataItems cornellForm() {
           {"mtl", dataText("cornell_mm.mtl"), "cornell_mm.mtl", "text/plain"}};
 }
 
-size_t sceneCount(httplib::Client& client) {
+size_t sceneCount(TestClient& client) {
   return bodyJson(client.Get("/api/scenes"))["scenes"].size();
 }
 

@@ -17,7 +17,7 @@ namespace penumbra::server::test {
 using Answers = std::map<std::string, std::string>;  // query → body
 
 // The scene's whole binary mesh, as the page loads it.
-inline std::string meshBin(httplib::Client& client, const std::string& id) {
+inline std::string meshBin(TestClient& client, const std::string& id) {
   const auto res = client.Get(("/api/scenes/" + id + "/mesh?format=bin").c_str());
   EXPECT_TRUE(res && res->status == 200);
   return res ? res->body : "";
@@ -25,7 +25,7 @@ inline std::string meshBin(httplib::Client& client, const std::string& id) {
 
 // The binary mesh (and, with `wholeJson`, the JSON one) and every delta since 0..last, binary
 // and JSON.
-inline Answers served(httplib::Client& client, const std::string& id, uint64_t last, bool wholeJson) {
+inline Answers served(TestClient& client, const std::string& id, uint64_t last, bool wholeJson) {
   Answers out;
   std::vector<std::string> queries = {"?format=bin"};
   if (wholeJson) queries.push_back("");

@@ -25,12 +25,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-json sceneJson(httplib::Client& client, const std::string& id) {
+json sceneJson(TestClient& client, const std::string& id) {
   return bodyJson(client.Get(("/api/scenes/" + id).c_str()));
 }
 
 // Seeded moves of the box; the mesh served at each version (index = version).
-std::vector<std::string> dragBox(httplib::Client& client, const std::string& id, int frames,
+std::vector<std::string> dragBox(TestClient& client, const std::string& id, int frames,
                                  uint32_t seed, std::vector<std::string> meshes = {}) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> where(-1.5, 1.5);
@@ -45,7 +45,7 @@ std::vector<std::string> dragBox(httplib::Client& client, const std::string& id,
   return meshes;
 }
 
-std::string addTiny(httplib::Client& client) {
+std::string addTiny(TestClient& client) {
   const auto res = postJson(client, "/api/scenes?name=tiny", tinyScene());
   EXPECT_EQ(res->status, 201) << res->body;
   return bodyJson(res)["id"];

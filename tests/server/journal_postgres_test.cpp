@@ -21,7 +21,7 @@
 namespace penumbra::server::test {
 namespace {
 
-httplib::Result moveBox(httplib::Client& client, const std::string& id, std::mt19937& rng) {
+Reply moveBox(TestClient& client, const std::string& id, std::mt19937& rng) {
   std::uniform_real_distribution<double> where(-1.5, 1.5);
   return postJson(client, "/api/scenes/" + id + "/edits",
                   moveFrame("box", where(rng), 0.5, where(rng)));

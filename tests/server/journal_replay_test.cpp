@@ -20,7 +20,7 @@ namespace {
 
 // A frame of each kind the restore must replay (unit cubes standing on the floor, clear of the
 // others); returns the last acknowledged version.
-uint64_t play(httplib::Client& client, const std::string& id) {
+uint64_t play(TestClient& client, const std::string& id) {
   const std::string edits = "/api/scenes/" + id + "/edits";
   const json scene = bodyJson(client.Get(("/api/scenes/" + id).c_str()))["scene"];
   json cube4;

@@ -29,7 +29,7 @@ ServerOptions snapshotting(const TestJournal& data, uint64_t every) {
 
 // Frames of each kind (as journal_replay_test): parts leave and come back, a relit scene, a
 // rebuilding light edit; returns the last acknowledged version.
-uint64_t playMixed(httplib::Client& client, const std::string& id) {
+uint64_t playMixed(TestClient& client, const std::string& id) {
   const std::string edits = "/api/scenes/" + id + "/edits";
   const json scene = bodyJson(client.Get(("/api/scenes/" + id).c_str()))["scene"];
   json cube4;
@@ -64,7 +64,7 @@ uint64_t playMixed(httplib::Client& client, const std::string& id) {
 // Unlike plain drags, these give a fresh build meshes that differ from the incremental ones in
 // the last bits: a restart that did not build afresh where the server did, or did not keep the
 // served bytes of the parts no later frame changed, would fail the byte comparisons.
-uint64_t playRandom(httplib::Client& client, const std::string& id, int frames, uint32_t seed) {
+uint64_t playRandom(TestClient& client, const std::string& id, int frames, uint32_t seed) {
   const std::string edits = "/api/scenes/" + id + "/edits";
   const json scene = bodyJson(client.Get(("/api/scenes/" + id).c_str()))["scene"];
   std::vector<json> cubes, removed;

@@ -19,7 +19,7 @@ namespace penumbra::server::test {
 namespace {
 
 // Seeded moves of the first cubes near where they stand; returns the acknowledged version.
-uint64_t drag(httplib::Client& client, const std::string& id, int frames, uint32_t seed) {
+uint64_t drag(TestClient& client, const std::string& id, int frames, uint32_t seed) {
   const json scene = bodyJson(client.Get(("/api/scenes/" + id).c_str()))["scene"];
   std::map<std::string, json> start;
   for (const json& object : scene["objects"])

@@ -11,18 +11,6 @@
 namespace penumbra::server::test {
 namespace {
 
-using Key = std::pair<std::string, uint32_t>;
-
-std::map<Key, json> receiversByKey(const json& mesh) {
-  std::map<Key, json> out;
-  for (const json& r : mesh["receivers"]) {
-    json copy = r;
-    copy.erase("scene_version");
-    out[{r["object"].get<std::string>(), r["face"].get<uint32_t>()}] = copy;
-  }
-  return out;
-}
-
 // A light like Cornell's ceiling light, `scale` of its size, centred at (cx, y, cz).
 json lampPolygon(double cx, double y, double cz, double scale) {
   const double hx = 0.65 * scale, hz = 0.525 * scale;

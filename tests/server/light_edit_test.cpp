@@ -17,18 +17,6 @@
 namespace penumbra::server::test {
 namespace {
 
-using Key = std::pair<std::string, uint32_t>;
-
-std::map<Key, json> receiversByKey(const json& mesh) {
-  std::map<Key, json> out;
-  for (const json& r : mesh["receivers"]) {
-    json copy = r;
-    copy.erase("scene_version");
-    out[{r["object"].get<std::string>(), r["face"].get<uint32_t>()}] = copy;
-  }
-  return out;
-}
-
 // Cornell's ceiling light scaled about its centre by `scale` and lowered by `drop`.
 json grownLight(double scale, double drop) {
   const double cx = 2.78, cz = 2.795, hx = 0.65 * scale, hz = 0.525 * scale, y = 5.48 - drop;

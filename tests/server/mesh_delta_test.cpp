@@ -29,7 +29,7 @@ using test::BinaryMesh;
 using test::parseBinary;
 
 // Receiver JSON by "object/face", without the served-only "scene_version".
-std::map<std::string, std::string> receiversByKey(const json& mesh) {
+std::map<std::string, std::string> receiverTextsByKey(const json& mesh) {
   std::map<std::string, std::string> out;
   for (json r : mesh["receivers"]) {
     r.erase("scene_version");
@@ -110,7 +110,7 @@ TEST(MeshDelta, DeltasAppliedToTheWholeMeshEqualAFreshMeshAfterEachFrame) {
   SceneSession session("t", "cubes8", scene);
   Engine reference(scene);
   const auto first = session.snapshot();
-  std::map<std::string, std::string> held = receiversByKey(meshJson(*first, first->select(std::nullopt)));
+  std::map<std::string, std::string> held = receiverTextsByKey(meshJson(*first, first->select(std::nullopt)));
 
   std::mt19937_64 rng(17);
   bool added = false;
@@ -153,14 +153,14 @@ TEST(MeshDelta, DeltasAppliedToTheWholeMeshEqualAFreshMeshAfterEachFrame) {
 
     reference.forgetMeshMemo();
     const json fresh = protocol::meshToJson(reference.scene(), reference.mesh(), "cubes8");
-    const auto want = receiversByKey(fresh);
+    const auto want = receiverTextsByKey(fresh);
     ASSERT_EQ(held.size(), want.size());
     for (const auto& [key, text] : want) {
       ASSERT_TRUE(held.count(key)) << key;
       EXPECT_EQ(held.at(key), text) << key;
     }
     // The served whole mesh is that fresh mesh too.
-    EXPECT_EQ(receiversByKey(meshJson(s, s.select(std::nullopt))), want);
+    EXPECT_EQ(receiverTextsByKey(meshJson(s, s.select(std::nullopt))), want);
     if (HasFailure()) return;
   }
   // Dragging one cube re-meshes a few receivers, not the scene, and of their cells
@@ -419,7 +419,7 @@ TEST(MeshDelta, MeshJsonIsStreamedInChunks) {
 
   // Clients that read a little and close: the writer stops, the server serves on.
   for (int attempt = 0; attempt < 5; ++attempt) {
-    httplib::Client leaving("127.0.0.1", running.port());
+    test::TestClient leaving("127.0.0.1", running.port());
     size_t seen = 0;
     const auto cut = leaving.Get(path.c_str(), [&](const char*, size_t length) {
       seen += length;

@@ -105,7 +105,7 @@ TEST(MeshIndirect, EditsAndReadsDoNotWaitForABake) {
   RunningServer running;
   const std::string id = running.addBundled("cubes15");
   const std::string url = "/api/scenes/" + id + "/mesh?format=bin&indirect=1&sensor_size=16";
-  std::optional<httplib::Result> baking, sharing;
+  std::optional<Reply> baking, sharing;
   std::thread first([&] { baking.emplace(running.client().Get(url.c_str())); });
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   std::thread second([&] { sharing.emplace(running.client().Get(url.c_str())); });

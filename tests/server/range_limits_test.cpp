@@ -11,7 +11,7 @@
 namespace penumbra::server::test {
 namespace {
 
-int statusWithRange(httplib::Client& client, const std::string& range) {
+int statusWithRange(TestClient& client, const std::string& range) {
   const auto res = client.Get("/api/health", httplib::Headers{{"Range", range}});
   return res ? res->status : -1;
 }

@@ -38,15 +38,15 @@ ServerOptions oneGiImage() {
   return options;
 }
 
-struct Answer {
+struct RenderAnswer {
   std::atomic<int> status{0};  // 0: none yet (or the connection closed)
   std::string body;
   Clock::time_point at;
 };
 
-std::thread startRender(int port, const std::string& path, Answer* answer, int readTimeout = 120) {
+std::thread startRender(int port, const std::string& path, RenderAnswer* answer, int readTimeout = 120) {
   return std::thread([=] {
-    httplib::Client client("127.0.0.1", port);
+    TestClient client("127.0.0.1", port);
     client.set_read_timeout(readTimeout, 0);
     const auto res = client.Get(path.c_str());
     answer->at = Clock::now();
@@ -58,7 +58,7 @@ std::thread startRender(int port, const std::string& path, Answer* answer, int r
 }
 
 // The render's entry once it has placed some sensors; nullopt after 60 s.
-std::optional<json> renderUnderway(httplib::Client& client, const std::string& ticket) {
+std::optional<json> renderUnderway(TestClient& client, const std::string& ticket) {
   const auto deadline = Clock::now() + std::chrono::seconds(60);
   while (Clock::now() < deadline) {
     const auto res = client.Get(("/api/scenes/cubes15/renders/" + ticket).c_str());
@@ -72,7 +72,7 @@ std::optional<json> renderUnderway(httplib::Client& client, const std::string& t
 }
 
 // Whether a small plain image renders (200) at once: the GI render's memory was given back.
-bool imageMemoryFree(httplib::Client& client) {
+bool imageMemoryFree(TestClient& client) {
   const auto res = client.Get("/api/scenes/cubes15/image?width=16&height=16");
   return res && res->status == 200;
 }
@@ -80,7 +80,7 @@ bool imageMemoryFree(httplib::Client& client) {
 // Asks for a small image of page1 until it renders (503 busy while the render it replaces still
 // holds the image memory), for at most kStopBound; `query(attempt)`: each try's own query keys.
 // The last answer's status.
-int newerViewRenders(httplib::Client& client, const std::function<std::string(int)>& query) {
+int newerViewRenders(TestClient& client, const std::function<std::string(int)>& query) {
   const auto start = Clock::now();
   int status = 0;
   for (int attempt = 0; Clock::now() - start < kStopBound && status != 200; ++attempt) {
@@ -95,7 +95,7 @@ TEST(RenderJobs, DeletingTheTicketStopsALongGiRenderAndFreesTheServer) {
   RunningServer running(oneGiImage());
   running.addBundled("cubes15");
   auto client = running.client();
-  Answer answer;
+  RenderAnswer answer;
   std::thread render = startRender(running.port(), giImage("long"), &answer);
   const auto underway = renderUnderway(client, "long");
   ASSERT_TRUE(underway) << "the render never reported its sensors";
@@ -133,7 +133,7 @@ TEST(RenderJobs, ClosingTheRequestStopsTheRender) {
   RunningServer running(oneGiImage());
   running.addBundled("cubes15");
   auto client = running.client();
-  Answer answer;
+  RenderAnswer answer;
   // The client gives up after 1 s and closes its connection.
   std::thread render = startRender(running.port(), giImage("impatient"), &answer, 1);
   render.join();
@@ -158,7 +158,7 @@ TEST(RenderJobs, ANewerRenderOfThePageStopsTheOlderAndTheEventStreamSaysSo) {
   std::string events;
   std::atomic<bool> sawEnd{false};
   std::thread stream([&] {
-    httplib::Client events_client("127.0.0.1", running.port());
+    TestClient events_client("127.0.0.1", running.port());
     events_client.set_read_timeout(60, 0);
     const auto deadline = Clock::now() + std::chrono::seconds(60);
     events_client.Get("/api/scenes/cubes15/events", [&](const char* data, size_t size) {
@@ -167,7 +167,7 @@ TEST(RenderJobs, ANewerRenderOfThePageStopsTheOlderAndTheEventStreamSaysSo) {
       return !sawEnd && Clock::now() < deadline;
     });
   });
-  Answer older;
+  RenderAnswer older;
   std::thread render = startRender(running.port(), giImage("older", "page1"), &older);
   ASSERT_TRUE(renderUnderway(client, "older"));
   // The newer view: a plain image, which waits for the older one's memory (503 busy until then).
@@ -191,7 +191,7 @@ TEST(RenderJobs, APageIsOrderedByItsNumbersNotByArrival) {
   RunningServer running(oneGiImage());
   running.addBundled("cubes15");
   auto client = running.client();
-  Answer current;
+  RenderAnswer current;
   std::thread render =
       startRender(running.port(), giImage("current", "page1") + "&seq=2", &current);
   ASSERT_TRUE(renderUnderway(client, "current"));
@@ -225,7 +225,7 @@ TEST(RenderJobs, APageIsOrderedByItsNumbersNotByArrival) {
 }
 
 TEST(RenderJobs, StoppingTheServerStopsARender) {
-  Answer answer;
+  RenderAnswer answer;
   std::thread render;
   Clock::time_point stopped;
   {

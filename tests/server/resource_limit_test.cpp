@@ -17,7 +17,7 @@ ServerOptions withTreeNodeLimit(size_t nodes) {
 
 TEST(ResourceLimit, SceneOverTheTreeNodeLimitIsRefusedAndNothingIsCreated) {
   RunningServer running(withTreeNodeLimit(500));  // cubes15 needs ~3,700 nodes
-  httplib::Client client = running.client();
+  TestClient client = running.client();
   const auto res =
       client.Post("/api/scenes?name=big", sceneText("cubes15"), "application/json");
   ASSERT_TRUE(res);
@@ -43,7 +43,7 @@ TEST(ResourceLimit, FrameOverTheLimitIsNotAppliedAndTheSceneKeepsServing) {
   ASSERT_GT(built, 0u);
   RunningServer running(withTreeNodeLimit(built + 1));
   running.addBundled("cubes15");
-  httplib::Client client = running.client();
+  TestClient client = running.client();
   const std::string meshBefore = client.Get("/api/scenes/cubes15/mesh?format=bin")->body;
   bool refused = false;
   for (int i = 0; i < 10 && !refused; ++i) {

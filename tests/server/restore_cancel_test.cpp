@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/engine/seconds_since.h"
 #include "journal_answers.h"
 #include "scenegen/cubes_scene.h"
 #include "server_fixture.h"
@@ -24,10 +25,6 @@ using Clock = std::chrono::steady_clock;
 
 // What SIGTERM must meet: the server ended within 5 s.
 constexpr double kStopBoundSeconds = 5;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 class RestoreCancel : public ::testing::TestWithParam<JournalBackend> {
  protected:
@@ -49,7 +46,7 @@ class RestoreCancel : public ::testing::TestWithParam<JournalBackend> {
     const auto start = Clock::now();
     id_ = first.server().addScene(makeCubesScene(cubes), "cubes150", "cubes150");
     buildSeconds_ = secondsSince(start);
-    httplib::Client client = first.client();
+    TestClient client = first.client();
     const json scene = bodyJson(client.Get(("/api/scenes/" + id_).c_str()))["scene"];
     json transform;
     for (const json& object : scene["objects"])
@@ -77,12 +74,12 @@ class RestoreCancel : public ::testing::TestWithParam<JournalBackend> {
       restoring = std::thread([&server, &reports] { reports = server.server().restore(); });
     } else {
       restoring = std::thread([&status, port = server.port(), id = id_] {
-        httplib::Client client("127.0.0.1", port);
+        TestClient client("127.0.0.1", port);
         client.set_read_timeout(120, 0);
         if (const auto res = client.Get(("/api/scenes/" + id).c_str())) status = res->status;
       });
     }
-    httplib::Client client = server.client();
+    TestClient client = server.client();
     const auto deadline = Clock::now() + std::chrono::seconds(30);
     while (bodyJson(client.Get("/api/health"))["restoring"] != 1 && Clock::now() < deadline)
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -124,7 +121,7 @@ TEST_P(RestoreCancel, ADeleteEndsTheRestoreAndTheSceneLeavesTheJournal) {
   {
     RunningServer second(options(data));
     std::thread restoring = startRestore(second, reports, status);
-    httplib::Client client = second.client();
+    TestClient client = second.client();
     const auto start = Clock::now();
     const auto deleted = client.Delete(("/api/scenes/" + id_).c_str());
     deleteSeconds = secondsSince(start);
@@ -150,7 +147,7 @@ TEST_P(RestoreCancel, ADeleteEndsTheRestoreAndTheSceneLeavesTheJournal) {
   EXPECT_EQ(data.sqlText("SELECT COUNT(*) FROM frames"), "0");
   RunningServer third(options(data));
   third.server().restore();
-  httplib::Client client = third.client();
+  TestClient client = third.client();
   EXPECT_EQ(client.Get(("/api/scenes/" + id_).c_str())->status, 404);
 }
 
@@ -181,7 +178,7 @@ TEST_P(RestoreCancel, AStopEndsTheRestoreWithinItsBoundAndTheNextStartRestoresEv
     EXPECT_TRUE(restored.served);
     EXPECT_EQ(restored.problem, "");
   }
-  httplib::Client client = third.client();
+  TestClient client = third.client();
   client.set_read_timeout(120, 0);
   const auto back = client.Get(("/api/scenes/" + id_).c_str());  // on request, on PostgreSQL
   ASSERT_TRUE(back);

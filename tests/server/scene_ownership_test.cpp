@@ -33,7 +33,7 @@ ServerOptions node(const TestJournal& data, const std::string& name, double leas
 }
 
 // Asks `client` for scene `id` until it serves it (503 owned_elsewhere meanwhile); the answer.
-httplib::Result waitServed(httplib::Client& client, const std::string& id, double seconds) {
+Reply waitServed(TestClient& client, const std::string& id, double seconds) {
   const auto deadline =
       std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
   for (;;) {

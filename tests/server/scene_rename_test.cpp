@@ -12,12 +12,12 @@
 namespace penumbra::server::test {
 namespace {
 
-httplib::Result patchName(httplib::Client& client, const std::string& id, const json& body) {
+Reply patchName(TestClient& client, const std::string& id, const json& body) {
   return client.Patch(("/api/scenes/" + id).c_str(), body.dump(), "application/json");
 }
 
 // `frames` moves of cube_0 along x; returns the last acknowledged version.
-uint64_t moves(httplib::Client& client, const std::string& id, int frames) {
+uint64_t moves(TestClient& client, const std::string& id, int frames) {
   const json scene = bodyJson(client.Get(("/api/scenes/" + id).c_str()))["scene"];
   json transform;
   for (const json& object : scene["objects"])

@@ -7,6 +7,7 @@
 #include <zlib.h>
 
 #include <chrono>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -17,6 +18,7 @@
 #include "protocol/json_text.h"
 #include "protocol/scene_json.h"
 #include "server/http_server.h"
+#include "test_client.h"
 
 namespace penumbra::server::test {
 
@@ -62,8 +64,8 @@ class RunningServer {
 
   HttpServer& server() { return server_; }
   int port() const { return port_; }
-  httplib::Client client() const {
-    httplib::Client client("127.0.0.1", port_);
+  TestClient client() const {
+    TestClient client("127.0.0.1", port_);
     client.set_read_timeout(kClientReadSeconds, 0);
     return client;
   }
@@ -78,9 +80,21 @@ class RunningServer {
   std::thread listener_;
 };
 
-inline json bodyJson(const httplib::Result& result) {
+inline json bodyJson(const Reply& result) {
   if (!result) throw std::runtime_error("no HTTP response: " + httplib::to_string(result.error()));
   return json::parse(result->body);
+}
+
+// A mesh's receivers by (object, face), without the served-only "scene_version".
+using ReceiverKey = std::pair<std::string, uint32_t>;
+inline std::map<ReceiverKey, json> receiversByKey(const json& mesh) {
+  std::map<ReceiverKey, json> out;
+  for (const json& r : mesh["receivers"]) {
+    json copy = r;
+    copy.erase("scene_version");
+    out[{r["object"].get<std::string>(), r["face"].get<uint32_t>()}] = copy;
+  }
+  return out;
 }
 
 inline json moveFrame(const std::string& id, double x, double y, double z, double rotateY = 0) {
@@ -91,13 +105,13 @@ inline json moveFrame(const std::string& id, double x, double y, double z, doubl
                  {"transform", {{"translate", {x, y, z}}, {"rotate_deg", {0, rotateY, 0}}}}}})}};
 }
 
-inline httplib::Result postJson(httplib::Client& client, const std::string& path, const json& body) {
+inline Reply postJson(TestClient& client, const std::string& path, const json& body) {
   return client.Post(path.c_str(), body.dump(), "application/json");
 }
 
 // Each frame POSTed to scene `base` (/api/scenes/ID) is refused with 422 naming its key path; then
 // the scene is still at version 0 with the lights `original`.
-inline void expectLightFramesRefused(httplib::Client& client, const std::string& base,
+inline void expectLightFramesRefused(TestClient& client, const std::string& base,
                                      const std::vector<std::pair<json, std::string>>& cases,
                                      const json& original) {
   for (const auto& [frame, path] : cases) {

@@ -34,14 +34,14 @@ json moveVolume(double x) {
                 {"transform", {{"translate", {x, 1.0, 3.3}}, {"scale", {2.1, 2.1, 2.1}}}}});
 }
 
-json volumeJson(httplib::Client& client, const std::string& id) {
+json volumeJson(TestClient& client, const std::string& id) {
   const json wrapped = bodyJson(client.Get(kBase.c_str()));
   for (const json& object : wrapped["scene"]["objects"])
     if (object["id"] == id) return object;
   return nullptr;
 }
 
-std::string image(httplib::Client& client) {
+std::string image(TestClient& client) {
   const auto res = client.Get((kBase + kImage).c_str());
   EXPECT_EQ(res->status, 200) << res->body;
   return res->body;
@@ -243,7 +243,7 @@ struct TwoVolumeRooms {
                                       "volume_room-2");
   }
   // Uploads the smoke volume to scene `id` as "puff".
-  void upload(httplib::Client& client, const std::string& id) {
+  void upload(TestClient& client, const std::string& id) {
     const auto up = client.Post(("/api/scenes/" + id + "/volumes?id=puff").c_str(), smokeBytes(),
                                 "application/octet-stream");
     ASSERT_TRUE(up);

@@ -14,8 +14,6 @@
 namespace penumbra::bsdf {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 struct Estimate {
   double mean = 0, sigma = 0;  // sigma: standard error of the mean
 };

@@ -10,8 +10,6 @@
 namespace penumbra::bsdf {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // ∫_0^{2π} max(0, A cos ψ + B) dψ (A >= 0): the azimuthal part of eq. 4 for an isotropic D.
 double clampedCosineAroundAzimuth(double a, double b) {
   if (b >= a) return 2 * kPi * b;

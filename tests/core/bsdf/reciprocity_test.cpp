@@ -21,8 +21,6 @@
 namespace penumbra::bsdf {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 struct Mean {
   double value = 0, sigma = 0;
 };

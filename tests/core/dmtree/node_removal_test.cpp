@@ -10,6 +10,7 @@
 #include <map>
 
 #include "core/dmtree/dm_tree.h"
+#include "core/engine/seconds_since.h"
 #include "tests/core/dmtree/shadow_fixtures.h"
 
 namespace penumbra {
@@ -17,8 +18,6 @@ namespace {
 
 using namespace dmtree_test;
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 DmTree freshTree(const Polygon2& receiver, const std::vector<SingleShadow>& shadows, bool culling = true) {
   DmTree tree(receiver, kTol);

@@ -13,6 +13,7 @@
 #include "core/engine/engine.h"
 #include "core/illum/face_lookup.h"
 #include "core/reference/exact_irradiance.h"
+#include "protocol/scene_json.h"
 #include "tests/core/engine/incremental_compare.h"
 
 namespace penumbra::testing {
@@ -24,6 +25,12 @@ inline nlohmann::json cubes15Json() {
 
 // Limits at `factor` × the baseline's tree nodes and vertices: a build or frame that
 // would run away throws ResourceLimitError instead of eating the machine.
+// cubes15's tree usage, built once: the unit the bounded settings are multiples of.
+inline TreeUsage baselineUsage() {
+  static const TreeUsage usage = Engine(protocol::sceneFromJson(cubes15Json())).resourceUsage();
+  return usage;
+}
+
 inline EngineSettings boundedSettings(const TreeUsage& baseline, size_t factor) {
   EngineSettings settings;
   settings.limits.treeNodes = factor * baseline.nodes;

@@ -14,13 +14,9 @@
 namespace penumbra {
 namespace {
 
+using testing::baselineUsage;
 using testing::boundedSettings;
 using testing::cubes15Json;
-
-TreeUsage baselineUsage() {
-  static const TreeUsage usage = Engine(protocol::sceneFromJson(cubes15Json())).resourceUsage();
-  return usage;
-}
 
 Edit moveEdit(const Scene& scene, const std::string& id, const Transform& transform) {
   (void)scene.findObject(id).value();

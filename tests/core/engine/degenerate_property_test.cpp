@@ -19,11 +19,12 @@
 namespace penumbra {
 namespace {
 
+using testing::baselineUsage;
 #if defined(__SANITIZE_ADDRESS__)
-constexpr int kScenes = 6;  // sanitizer builds run ~10x slower
+constexpr int kDegenerateScenes = 6;  // sanitizer builds run ~10x slower
 constexpr int kFrames = 6;
 #else
-constexpr int kScenes = 24;
+constexpr int kDegenerateScenes = 24;
 constexpr int kFrames = 24;
 #endif
 
@@ -48,11 +49,6 @@ Transform nearDegenerate(Transform t, std::mt19937_64& rng) {
     t.translate[axis(rng)] += (coin(rng) ? 1 : -1) * logUniform(rng, 1e-12, 1e-5);
   if (kind == 2 || kind == 3) t.rotateDeg[axis(rng)] += (coin(rng) ? 1 : -1) * logUniform(rng, 1e-10, 1e-4);
   return t;
-}
-
-TreeUsage baselineUsage() {
-  static const TreeUsage usage = Engine(protocol::sceneFromJson(testing::cubes15Json())).resourceUsage();
-  return usage;
 }
 
 // cubes15 perturbed by seed: nullopt and the key path if the validator refuses it.
@@ -87,7 +83,7 @@ std::optional<Scene> perturbedScene(int seed, std::string& refusedAt) {
 
 TEST(DegenerateProperty, PerturbedScenesBuildBoundedOrAreRefusedWithAKeyPath) {
   size_t built = 0, refused = 0;
-  for (int seed = 1; seed <= kScenes; ++seed) {
+  for (int seed = 1; seed <= kDegenerateScenes; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::string path;
     const std::optional<Scene> scene = perturbedScene(seed, path);
@@ -103,7 +99,7 @@ TEST(DegenerateProperty, PerturbedScenesBuildBoundedOrAreRefusedWithAKeyPath) {
       ADD_FAILURE() << "accepted scene ran past 4x the unperturbed tree: " << error.what();
     }
   }
-  EXPECT_GT(built, size_t(kScenes) / 2);
+  EXPECT_GT(built, size_t(kDegenerateScenes) / 2);
   std::printf("perturbed cubes15: %zu built, %zu refused with a key path\n", built, refused);
 }
 
@@ -112,7 +108,7 @@ TEST(DegenerateProperty, PerturbedScenesBuildBoundedOrAreRefusedWithAKeyPath) {
 // (values agree to ~8 digits). Not investigated yet; run with --gtest_also_run_disabled_tests.
 TEST(DegenerateProperty, DISABLED_PerturbedScenesMatchTheExactReference) {
   size_t mismatches = 0;
-  for (int seed = 1; seed <= kScenes; ++seed) {
+  for (int seed = 1; seed <= kDegenerateScenes; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::string path;
     const std::optional<Scene> scene = perturbedScene(seed, path);

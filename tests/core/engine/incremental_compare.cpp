@@ -314,13 +314,14 @@ Edit randomEdit(const Scene& scene, std::mt19937_64& rng, int& nextNewId) {
   return edit;
 }
 
+}  // namespace
+
 Vec3 centroid(const Polygon3& polygon) {
   Vec3 c(0.0);
   for (const Vec3& p : polygon) c += p;
   return c / double(polygon.size());
 }
 
-// The polygon scaled by `scale` about its centroid and moved by `by`.
 Polygon3 scaledMoved(const Polygon3& polygon, double scale, const Vec3& by) {
   const Vec3 c = centroid(polygon);
   Polygon3 out;
@@ -328,7 +329,14 @@ Polygon3 scaledMoved(const Polygon3& polygon, double scale, const Vec3& by) {
   return out;
 }
 
-}  // namespace
+Edit moveEditBy(const Engine& engine, const std::string& id, const Vec3& by) {
+  Edit edit;
+  edit.op = Edit::Op::Move;
+  edit.id = id;
+  edit.transform = engine.scene().objects()[*engine.scene().findObject(id)].transform;
+  edit.transform.translate += by;
+  return edit;
+}
 
 Edit randomLightEdit(const Scene& scene, std::mt19937_64& rng, int& nextLightId) {
   const std::vector<Light>& lights = scene.lights();

@@ -12,6 +12,13 @@
 
 namespace penumbra::testing {
 
+// The mean of the polygon's vertices.
+Vec3 centroid(const Polygon3& polygon);
+// The polygon scaled by `scale` about its centroid and moved by `by`.
+Polygon3 scaledMoved(const Polygon3& polygon, double scale, const Vec3& by);
+// A move of object `id` by `by` from where it is in the engine's scene.
+Edit moveEditBy(const Engine& engine, const std::string& id, const Vec3& by);
+
 struct EngineDiff {
   size_t vertices = 0;        // vertices compared, both directions
   size_t matchedVertices = 0; // of those, with a vertex of the other engine at the same point

@@ -17,39 +17,31 @@
 namespace penumbra {
 namespace {
 
+using testing::moveEditBy;
 using testing::expectRefusedUnchanged;
 using testing::sceneText;
 
 
-Edit moveEdit(const Engine& engine, const std::string& id, const Vec3& by) {
-  Edit edit;
-  edit.op = Edit::Op::Move;
-  edit.id = id;
-  edit.transform = engine.scene().objects()[*engine.scene().findObject(id)].transform;
-  edit.transform.translate += by;
-  return edit;
-}
-
 TEST(IncrementalFrame, InvalidFramesChangeNothing) {
   Engine engine(makeCubesScene(mixedCubesOptions(4)));
-  engine.apply(Frame{{moveEdit(engine, "cube_0", Vec3(0.1, 0, 0))}});  // a state that is not a fresh build
+  engine.apply(Frame{{moveEditBy(engine, "cube_0", Vec3(0.1, 0, 0))}});  // a state that is not a fresh build
 
   Edit unknown;
   unknown.op = Edit::Op::Remove;
   unknown.id = "no_such_object";
-  expectRefusedUnchanged(engine, Frame{{moveEdit(engine, "cube_0", Vec3(0.05, 0, 0)), unknown}}, 1, "id");
+  expectRefusedUnchanged(engine, Frame{{moveEditBy(engine, "cube_0", Vec3(0.05, 0, 0)), unknown}}, 1, "id");
 
   Edit duplicate;
   duplicate.op = Edit::Op::Add;
   duplicate.object = engine.scene().objects()[*engine.scene().findObject("cube_1")];
-  expectRefusedUnchanged(engine, Frame{{moveEdit(engine, "cube_0", Vec3(0.05, 0, 0)), duplicate}}, 1, "object.id");
+  expectRefusedUnchanged(engine, Frame{{moveEditBy(engine, "cube_0", Vec3(0.05, 0, 0)), duplicate}}, 1, "object.id");
 
-  Edit zeroScale = moveEdit(engine, "cube_1", Vec3(0.0));
+  Edit zeroScale = moveEditBy(engine, "cube_1", Vec3(0.0));
   zeroScale.transform.scale = Vec3(0.0);
   expectRefusedUnchanged(engine, Frame{{zeroScale}}, 0, "transform");
 
   // Far outside the room: the overlap cubes could not find its shadows.
-  expectRefusedUnchanged(engine, Frame{{moveEdit(engine, "cube_0", Vec3(100, 0, 0))}}, 0, "transform");
+  expectRefusedUnchanged(engine, Frame{{moveEditBy(engine, "cube_0", Vec3(100, 0, 0))}}, 0, "transform");
 }
 
 TEST(IncrementalFrame, MoveRelightsLocallyAndUndoRestores) {
@@ -57,7 +49,7 @@ TEST(IncrementalFrame, MoveRelightsLocallyAndUndoRestores) {
   size_t total = 0;
   for (const auto& r : many.receivers()) total += r.tree.vertexCount();
 
-  const FrameResult moved = many.apply(Frame{{moveEdit(many, "cube_3", Vec3(0.02, 0, 0.01))}});
+  const FrameResult moved = many.apply(Frame{{moveEditBy(many, "cube_3", Vec3(0.02, 0, 0.01))}});
   EXPECT_EQ(moved.version, 1u);
   EXPECT_EQ(moved.treeRebuilds, 0u);
   EXPECT_GT(moved.verticesRelit, 0u);
@@ -69,7 +61,7 @@ TEST(IncrementalFrame, MoveRelightsLocallyAndUndoRestores) {
   EXPECT_TRUE(std::any_of(moved.changedReceivers.begin(), moved.changedReceivers.end(),
                           [&](FaceId f) { return f.object == handle; }));
 
-  const FrameResult back = many.apply(Frame{{moveEdit(many, "cube_3", Vec3(-0.02, 0, -0.01))}});
+  const FrameResult back = many.apply(Frame{{moveEditBy(many, "cube_3", Vec3(-0.02, 0, -0.01))}});
   EXPECT_EQ(back.version, 2u);
   const Engine rebuilt(many.scene());
   const testing::EngineDiff diff = testing::compareEngines(many, rebuilt, testing::peakIrradiance(rebuilt), 100, 1);
@@ -129,7 +121,7 @@ TEST(IncrementalFrame, EditsOfOneIdWithinAFrameFollowEachOther) {
   const std::vector<Frame> frames = {
       Frame{{remove, addBack}},                                                        // same id, new object
       Frame{{addNew, moveNew}},                                                        // added, then moved
-      Frame{{moveEdit(engine, "cube_1", Vec3(0.03, 0, 0)), moveEdit(engine, "cube_1", Vec3(0, 0, 0.03))}},
+      Frame{{moveEditBy(engine, "cube_1", Vec3(0.03, 0, 0)), moveEditBy(engine, "cube_1", Vec3(0, 0, 0.03))}},
       Frame{{removeNew, addNew, removeNew}},                                           // net: gone
   };
   for (size_t f = 0; f < frames.size(); ++f) {
@@ -144,7 +136,7 @@ TEST(IncrementalFrame, EditsOfOneIdWithinAFrameFollowEachOther) {
   }
   EXPECT_FALSE(engine.scene().findObject("cube_new"));
   // A later edit of the frame names an id an earlier one removed: refused, nothing changed.
-  expectRefusedUnchanged(engine, Frame{{remove, moveEdit(engine, "cube_2", Vec3(0.01, 0, 0))}}, 1, "id");
+  expectRefusedUnchanged(engine, Frame{{remove, moveEditBy(engine, "cube_2", Vec3(0.01, 0, 0))}}, 1, "id");
 }
 
 }  // namespace

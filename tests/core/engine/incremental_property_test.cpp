@@ -23,9 +23,9 @@ namespace penumbra {
 namespace {
 
 #if defined(__SANITIZE_ADDRESS__)
-constexpr size_t kScenes = 8;  // sanitizer builds run ~10x slower: a smaller sweep
+constexpr size_t kIncrementalScenes = 8;  // sanitizer builds run ~10x slower: a smaller sweep
 #else
-constexpr size_t kScenes = 40;
+constexpr size_t kIncrementalScenes = 40;
 #endif
 constexpr size_t kEditsPerScene = 26;
 #if defined(__SANITIZE_ADDRESS__)
@@ -163,7 +163,7 @@ struct Tally {
 
 TEST(IncrementalProperty, EditsEqualRebuildAndRelightSoundly) {
   Tally tally;
-  for (uint64_t seed = 1; seed <= kScenes; ++seed) {
+  for (uint64_t seed = 1; seed <= kIncrementalScenes; ++seed) {
     SCOPED_TRACE("scene seed " + std::to_string(seed));
     Engine engine(makeCubesScene(mixedCubesOptions(seed)));
     std::mt19937_64 rng(seed * 7919);
@@ -179,7 +179,7 @@ TEST(IncrementalProperty, EditsEqualRebuildAndRelightSoundly) {
     }
   }
   tally.print();
-  EXPECT_GE(tally.edits, kScenes * kEditsPerScene);
+  EXPECT_GE(tally.edits, kIncrementalScenes * kEditsPerScene);
   tally.expectSound();
   EXPECT_LE(tally.relit, 20 * tally.changed) << "relighting far more than what changes";
 }

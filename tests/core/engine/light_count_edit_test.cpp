@@ -15,18 +15,11 @@
 namespace penumbra {
 namespace {
 
+using testing::moveEditBy;
+using testing::scaledMoved;
 using testing::expectRefusedUnchanged;
 using testing::meshText;
 
-
-Polygon3 scaledMoved(const Polygon3& polygon, double scale, const Vec3& by) {
-  Vec3 c(0.0);
-  for (const Vec3& p : polygon) c += p;
-  c /= double(polygon.size());
-  Polygon3 out;
-  for (const Vec3& p : polygon) out.push_back(c + scale * (p - c) + by);
-  return out;
-}
 
 Edit addLight(const std::string& id, const Polygon3& polygon, const Vec3& radiance) {
   Edit edit;
@@ -40,15 +33,6 @@ Edit removeLight(const std::string& id) {
   Edit edit;
   edit.op = Edit::Op::RemoveLight;
   edit.id = id;
-  return edit;
-}
-
-Edit moveEdit(const Engine& engine, const std::string& id, const Vec3& by) {
-  Edit edit;
-  edit.op = Edit::Op::Move;
-  edit.id = id;
-  edit.transform = engine.scene().objects()[*engine.scene().findObject(id)].transform;
-  edit.transform.translate += by;
   return edit;
 }
 
@@ -67,7 +51,7 @@ void expectEqualsRebuild(Engine& engine, uint64_t seed, bool fresh) {
 
 TEST(LightCountEdit, AddedLightEqualsAFreshBuildAndRemovingItRestoresTheMesh) {
   Engine engine(makeCubesScene(CubesSceneOptions{6, 3}));
-  engine.apply(Frame{{moveEdit(engine, "cube_1", Vec3(0.05, 0, 0))}});  // not a fresh build
+  engine.apply(Frame{{moveEditBy(engine, "cube_1", Vec3(0.05, 0, 0))}});  // not a fresh build
   Engine fresh(engine.scene());
   const std::string before = meshText(fresh);  // a full rebuild's mesh of this scene
   const Light first = engine.scene().lights()[0];
@@ -83,10 +67,10 @@ TEST(LightCountEdit, AddedLightEqualsAFreshBuildAndRemovingItRestoresTheMesh) {
   expectEqualsRebuild(engine, 1, true);
 
   // Object frames after it run incrementally with both lights.
-  const FrameResult moved = engine.apply(Frame{{moveEdit(engine, "cube_2", Vec3(-0.1, 0, 0.05))}});
+  const FrameResult moved = engine.apply(Frame{{moveEditBy(engine, "cube_2", Vec3(-0.1, 0, 0.05))}});
   EXPECT_FALSE(moved.fullRebuild);
   expectEqualsRebuild(engine, 2, false);
-  Edit back = moveEdit(engine, "cube_2", Vec3(0.0));
+  Edit back = moveEditBy(engine, "cube_2", Vec3(0.0));
   back.transform = fresh.scene().objects()[*fresh.scene().findObject("cube_2")].transform;
   engine.apply(Frame{{back}});
 
@@ -102,7 +86,7 @@ TEST(LightCountEdit, RemovedLightEqualsAFreshBuild) {
   ASSERT_EQ(engine.scene().lights().size(), 2u);
   const Light second = engine.scene().lights()[1];
   const FrameResult result =
-      engine.apply(Frame{{moveEdit(engine, "cube_0", Vec3(0.03, 0, 0)), removeLight("light")}});
+      engine.apply(Frame{{moveEditBy(engine, "cube_0", Vec3(0.03, 0, 0)), removeLight("light")}});
   EXPECT_TRUE(result.fullRebuild);
   ASSERT_EQ(engine.scene().lights().size(), 1u);
   EXPECT_EQ(engine.scene().lights()[0].id, second.id);
@@ -119,10 +103,10 @@ TEST(LightCountEdit, RemovedLightEqualsAFreshBuild) {
 
 TEST(LightCountEdit, BadAddAndRemoveChangeNothing) {
   Engine engine(makeCubesScene(CubesSceneOptions{4, 2}));
-  engine.apply(Frame{{moveEdit(engine, "cube_0", Vec3(0.05, 0, 0))}});
+  engine.apply(Frame{{moveEditBy(engine, "cube_0", Vec3(0.05, 0, 0))}});
   const Light light = engine.scene().lights()[0];
   const Polygon3 small = scaledMoved(light.polygon, 0.5, Vec3(0.5, 0, 0));
-  const Edit move = moveEdit(engine, "cube_0", Vec3(0.02, 0, 0));
+  const Edit move = moveEditBy(engine, "cube_0", Vec3(0.02, 0, 0));
 
   // remove_light: an unknown id, an object's id, the last light (also after a valid edit).
   expectRefusedUnchanged(engine, Frame{{move, removeLight("lamp")}}, 1, "id");

@@ -16,6 +16,9 @@
 namespace penumbra {
 namespace {
 
+using testing::centroid;
+using testing::moveEditBy;
+using testing::scaledMoved;
 using testing::expectRefusedUnchanged;
 using testing::meshText;
 using testing::sceneText;
@@ -25,20 +28,6 @@ using testing::sceneText;
 // tolerance are computed anew, as a loaded file's are.
 Scene freshScene(const Scene& scene) {
   return Scene(scene.lights(), scene.materials(), scene.objects(), scene.camera());
-}
-
-Vec3 centroid(const Polygon3& polygon) {
-  Vec3 sum(0.0);
-  for (const Vec3& p : polygon) sum += p;
-  return sum / double(polygon.size());
-}
-
-// The light's polygon scaled about its centroid and moved.
-Polygon3 scaledMoved(const Polygon3& polygon, double scale, const Vec3& by) {
-  const Vec3 c = centroid(polygon);
-  Polygon3 out;
-  for (const Vec3& p : polygon) out.push_back(c + scale * (p - c) + by);
-  return out;
 }
 
 Edit setLight(const std::string& id, std::optional<Polygon3> polygon,
@@ -51,18 +40,9 @@ Edit setLight(const std::string& id, std::optional<Polygon3> polygon,
   return edit;
 }
 
-Edit moveEdit(const Engine& engine, const std::string& id, const Vec3& by) {
-  Edit edit;
-  edit.op = Edit::Op::Move;
-  edit.id = id;
-  edit.transform = engine.scene().objects()[*engine.scene().findObject(id)].transform;
-  edit.transform.translate += by;
-  return edit;
-}
-
 TEST(LightEdit, MovedAndResizedLightEqualsAFreshBuild) {
   Engine engine(makeCubesScene(CubesSceneOptions{6, 3}));
-  engine.apply(Frame{{moveEdit(engine, "cube_1", Vec3(0.05, 0, 0))}});  // not a fresh build
+  engine.apply(Frame{{moveEditBy(engine, "cube_1", Vec3(0.05, 0, 0))}});  // not a fresh build
   const Light light = engine.scene().lights()[0];
   const Polygon3 grown = scaledMoved(light.polygon, 1.6, Vec3(0.4, -0.2, 0.3));
   const Bounds before = engine.scene().bounds();
@@ -151,10 +131,10 @@ TEST(LightEdit, MixedFramesEqualARebuild) {
   ASSERT_EQ(engine.scene().lights().size(), 2u);
   const Light second = engine.scene().lights()[1];
   const std::vector<Frame> frames = {
-      Frame{{moveEdit(engine, "cube_0", Vec3(0.04, 0, 0)),
+      Frame{{moveEditBy(engine, "cube_0", Vec3(0.04, 0, 0)),
              setLight("light_2", std::nullopt, Vec3(1, 2, 3))}},
       Frame{{setLight("light_2", scaledMoved(second.polygon, 0.7, Vec3(-0.2, 0, 0.1)), Vec3(5.0)),
-             moveEdit(engine, "cube_0", Vec3(-0.04, 0, 0.02))}},
+             moveEditBy(engine, "cube_0", Vec3(-0.04, 0, 0.02))}},
       Frame{{setLight("light", std::nullopt, Vec3(0.0))}},  // switched off
   };
   for (size_t f = 0; f < frames.size(); ++f) {
@@ -172,9 +152,9 @@ TEST(LightEdit, MixedFramesEqualARebuild) {
 
 TEST(LightEdit, BadLightEditsChangeNothing) {
   Engine engine(makeCubesScene(CubesSceneOptions{4, 2}));
-  engine.apply(Frame{{moveEdit(engine, "cube_0", Vec3(0.05, 0, 0))}});
+  engine.apply(Frame{{moveEditBy(engine, "cube_0", Vec3(0.05, 0, 0))}});
   const Polygon3 square = engine.scene().lights()[0].polygon;
-  const Edit move = moveEdit(engine, "cube_0", Vec3(0.02, 0, 0));
+  const Edit move = moveEditBy(engine, "cube_0", Vec3(0.02, 0, 0));
 
   expectRefusedUnchanged(engine, Frame{{move, setLight("lamp", std::nullopt, Vec3(1.0))}}, 1, "id");
   expectRefusedUnchanged(engine, Frame{{setLight("cube_0", std::nullopt, Vec3(1.0))}}, 0,

@@ -17,9 +17,9 @@ namespace penumbra {
 namespace {
 
 #if defined(__SANITIZE_ADDRESS__)
-constexpr uint64_t kScenes = 2;
+constexpr uint64_t kThreadScenes = 2;
 #else
-constexpr uint64_t kScenes = 3;
+constexpr uint64_t kThreadScenes = 3;
 #endif
 
 // The same bytes (not only equal values: -0 and +0 differ).
@@ -105,7 +105,7 @@ Engine engineOn(const Scene& scene, int threads) {
 }
 
 TEST(ThreadCount, OneAndTwoThreadsBuildAndMeshTheSameBytes) {
-  for (uint64_t seed = 1; seed <= kScenes; ++seed) {
+  for (uint64_t seed = 1; seed <= kThreadScenes; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const Scene scene = makeCubesScene(sceneOptions(seed));
     Engine one = engineOn(scene, 1), two = engineOn(scene, 2);
@@ -118,7 +118,7 @@ TEST(ThreadCount, OneAndTwoThreadsBuildAndMeshTheSameBytes) {
 }
 
 TEST(ThreadCount, AFrameAndARemeshOfItsReceiversAgreeAcrossThreadCounts) {
-  for (uint64_t seed = 1; seed <= kScenes; ++seed) {
+  for (uint64_t seed = 1; seed <= kThreadScenes; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const Scene scene = makeCubesScene(sceneOptions(seed));
     Engine one = engineOn(scene, 1), two = engineOn(scene, 2);

@@ -20,7 +20,7 @@ namespace {
 
 double luminance(const Vec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
-Object upQuad(const std::string& id, double half, double y) {
+Object upFacingQuad(const std::string& id, double half, double y) {
   Object object;
   object.id = id;
   // Counter-clockwise seen from above: faces +y.
@@ -42,7 +42,7 @@ Scene plateScene() {
   camera.fovYDeg = 60;
   camera.near = 0.05;
   camera.far = 20;
-  return Scene({light}, {}, {upQuad("floor", 4, 0), upQuad("plate", 1, 1)}, camera);
+  return Scene({light}, {}, {upFacingQuad("floor", 4, 0), upFacingQuad("plate", 1, 1)}, camera);
 }
 
 const Scene& cornell() {
