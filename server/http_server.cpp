@@ -116,6 +116,14 @@ HttpServer::HttpServer(ServerOptions options)
           sendInternalError(req, res, "unknown exception");
         } catch (const std::bad_alloc&) {
           sendInternalError(req, res, "out of memory", true);
+        } catch (const JournalUnavailable& e) {  // any route that needed the journal: 503
+          try {
+            sendError(res, ApiError(503, error_code::kJournalFailed, "",
+                                    std::string("the journal cannot be reached (") + e.what() +
+                                        "); nothing was applied, retry"));
+          } catch (...) {
+            sendInternalError(req, res, e.what());
+          }
         } catch (const std::exception& e) {
           sendInternalError(req, res, e.what());
         } catch (...) {

@@ -59,6 +59,14 @@ class LeaseLost : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The journal cannot be reached or written durably now (its database's connection lost, the
+// database frozen or stopped, the data directory gone): whatever request needed it is answered
+// 503 `journal_failed` with nothing applied, never 500.
+class JournalUnavailable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class JournalStore {
  public:
   virtual ~JournalStore() = default;

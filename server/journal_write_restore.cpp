@@ -48,7 +48,12 @@ int64_t HttpServer::journalKeyOf(const SceneSession& session) const {
 void HttpServer::journalFrame(const SceneSession& session, const SceneSnapshot& next,
                               const std::string& frame) {
   if (!journal_) return;
-  const int64_t key = journalKeyOf(session);
+  int64_t key = -1;
+  try {
+    key = journalKeyOf(session);  // asks the journal when the scene was dropped meanwhile
+  } catch (const JournalUnavailable& error) {
+    throw journalError("the frame; it was not applied", error);
+  }
   try {
     journal_->addFrame(key, next.version, frame, partChangesText(partChangesOf(next)),
                        next.frameBase);

@@ -58,12 +58,12 @@ std::string SceneJournal::durabilityProblem() const {
 void SceneJournal::requireDurable() const {
   std::string problem = dir_->problem();
   if (problem.empty()) problem = store_->problem(false);
-  if (!problem.empty()) throw std::runtime_error(problem);
+  if (!problem.empty()) throw JournalUnavailable(problem);
 }
 
 void SceneJournal::requireReachable() const {
   if (const std::string problem = store_->problem(false); !problem.empty())
-    throw std::runtime_error(problem);
+    throw JournalUnavailable(problem);
 }
 
 namespace {
