@@ -218,7 +218,16 @@ void HttpServer::registerEditRoutes() {
       scenePath + "/edits",
       readingBody(options_.maxBodyBytes,
                   guarded([this](const httplib::Request& req, httplib::Response& res) {
-                    const auto session = findScene(req.matches[1]);
+                    std::shared_ptr<SceneSession> session;
+                    try {  // a frame refused before its turn: nothing applied, said as for a failed one
+                      session = findScene(req.matches[1]);
+                    } catch (const ApiError& error) {
+                      sendError(res, error, {{"applied", false}});
+                      return;
+                    } catch (const JournalUnavailable& error) {
+                      sendError(res, journalUnavailableError(error), {{"applied", false}});
+                      return;
+                    }
                     refuseIfStalled(*session);  // before anything is read: the scene takes no edits
                     const json body = parseBody(req);
                     Frame frame;

@@ -118,9 +118,7 @@ HttpServer::HttpServer(ServerOptions options)
           sendInternalError(req, res, "out of memory", true);
         } catch (const JournalUnavailable& e) {  // any route that needed the journal: 503
           try {
-            sendError(res, ApiError(503, error_code::kJournalFailed, "",
-                                    std::string("the journal cannot be reached (") + e.what() +
-                                        "); nothing was applied, retry"));
+            sendError(res, journalUnavailableError(e));
           } catch (...) {
             sendInternalError(req, res, e.what());
           }

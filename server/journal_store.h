@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "server/journal_unavailable.h"
+
 namespace penumbra::server {
 
 // A checksum column of a row from before checksums reads as nullopt (journal_store rows below).
@@ -55,14 +57,6 @@ using LeaseToken = std::optional<int64_t>;
 
 // A write refused because another node took the scene's lease over (a newer token).
 class LeaseLost : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-// The journal cannot be reached or written durably now (its database's connection lost, the
-// database frozen or stopped, the data directory gone): whatever request needed it is answered
-// 503 `journal_failed` with nothing applied, never 500.
-class JournalUnavailable : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };

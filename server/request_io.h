@@ -11,6 +11,7 @@
 
 #include "core/geom/vec.h"
 #include "server/api_errors.h"
+#include "server/journal_unavailable.h"
 #include "server/utf8_boundary.h"
 
 namespace httplib {
@@ -52,8 +53,16 @@ std::optional<Vec3> queryVec3(const httplib::Request& req, const char* name);
 void sendInternalError(const httplib::Request& req, httplib::Response& res, const char* what,
                        bool outOfMemory = false) noexcept;
 
+// 503 `journal_failed` for a request that needed the journal while it could not be reached.
+inline ApiError journalUnavailableError(const JournalUnavailable& error) {
+  return ApiError(503, error_code::kJournalFailed, "",
+                  std::string("the journal cannot be reached (") + error.what() +
+                      "); nothing was applied, retry");
+}
+
 // Wraps a handler: query and form text that is not UTF-8 → 400 before it runs; ApiError →
-// its status; std::bad_alloc → 507; anything else → 500. Never throws, never a crash.
+// its status; the journal unreachable → 503; std::bad_alloc → 507; anything else → 500. Never
+// throws, never a crash.
 template <typename Handler>
 auto guarded(Handler handler) {
   return [handler](const httplib::Request& req, httplib::Response& res) noexcept {
@@ -63,6 +72,12 @@ auto guarded(Handler handler) {
     } catch (const ApiError& error) {
       try {
         sendError(res, error);
+      } catch (...) {
+        sendInternalError(req, res, "cannot write the error", true);
+      }
+    } catch (const JournalUnavailable& error) {
+      try {
+        sendError(res, journalUnavailableError(error));
       } catch (...) {
         sendInternalError(req, res, "cannot write the error", true);
       }
