@@ -1,4 +1,3 @@
-#include "core/engine/seconds_since.h"
 #include "server/connection_server.h"
 
 #include <arpa/inet.h>
@@ -12,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/engine/seconds_since.h"
 #include "server/api_errors.h"
 #include "server/request_io.h"
 

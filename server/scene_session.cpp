@@ -1,10 +1,10 @@
-#include "core/engine/seconds_since.h"
 #include "server/scene_session.h"
 
 #include <map>
 #include <set>
 #include <stdexcept>
 
+#include "core/engine/seconds_since.h"
 #include "server/limits.h"
 #include "server/part_diff.h"
 
