@@ -7,7 +7,10 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <stdexcept>
+
+#include "server/journal_unavailable.h"
 
 namespace penumbra::server::pg {
 
@@ -16,6 +19,28 @@ namespace {
 constexpr int kDefaultSeconds = 10;  // connect_timeout, when the URI says nothing
 
 std::string head(const char* sql) { return std::string(sql).substr(0, 40); }
+
+// SQLSTATEs that say the database cannot serve now, not that the statement is wrong: class 08
+// (the connection), 53 (out of disk, memory or connections), 58 (the server's I/O), a shutdown or
+// a start under way (57P01-57P03), a statement or lock wait cut by the session's timeouts (57014,
+// 55P03, 25P03).
+bool unavailableState(const std::string& state) {
+  const std::string cls = state.substr(0, 2);
+  return cls == "08" || cls == "53" || cls == "58" || state == "57P01" || state == "57P02" ||
+         state == "57P03" || state == "57014" || state == "55P03" || state == "25P03";
+}
+
+// Throws JournalUnavailable when the connection is lost or `state` says the database cannot
+// serve now, else std::runtime_error: the journal's callers answer the first 503, retryable.
+[[noreturn]] void fail(PGconn* conn, const std::string& message, const std::string& state = "") {
+  if (PQstatus(conn) != CONNECTION_OK || unavailableState(state)) throw JournalUnavailable(message);
+  throw std::runtime_error(message);
+}
+
+std::string stateOf(const PGresult* result) {
+  const char* state = PQresultErrorField(result, PG_DIAG_SQLSTATE);
+  return state ? state : "";
+}
 
 // Waits until the connection's socket is ready for `events`. A database silent for `seconds`
 // (answerSeconds): the connection is cut (libpq then sees it closed; the next use opens it
@@ -28,7 +53,7 @@ void await(PGconn* conn, short events, int seconds, const char* sql) {
   if (ready > 0) return;
   if (fd.fd >= 0) ::shutdown(fd.fd, SHUT_RDWR);
   PQconsumeInput(conn);  // reads the end of the stream: CONNECTION_BAD
-  throw std::runtime_error(head(sql) + ": the database did not answer within " +
+  throw JournalUnavailable(head(sql) + ": the database did not answer within " +
                            std::to_string(seconds) + " s (the connection was cut)");
 }
 
@@ -38,9 +63,9 @@ void flush(PGconn* conn, int seconds, const char* sql) {
   for (;;) {
     const int left = PQflush(conn);
     if (left == 0) return;
-    if (left < 0) throw std::runtime_error(head(sql) + ": " + errorOf(conn));
+    if (left < 0) fail(conn, head(sql) + ": " + errorOf(conn));
     await(conn, POLLOUT | POLLIN, seconds, sql);
-    if (!PQconsumeInput(conn)) throw std::runtime_error(head(sql) + ": " + errorOf(conn));
+    if (!PQconsumeInput(conn)) fail(conn, head(sql) + ": " + errorOf(conn));
   }
 }
 
@@ -51,7 +76,7 @@ void send(PGconn* conn, const char* sql, const Params& params, bool singleRow, i
       !PQsendQueryParams(conn, sql, params.count(), params.types(), values.data(),
                          lengths.data(), formats.data(), 1) ||
       (singleRow && !PQsetSingleRowMode(conn)))
-    throw std::runtime_error(head(sql) + ": " + errorOf(conn));
+    fail(conn, head(sql) + ": " + errorOf(conn));
   flush(conn, seconds, sql);
 }
 
@@ -59,7 +84,7 @@ void send(PGconn* conn, const char* sql, const Params& params, bool singleRow, i
 PGresult* nextResult(PGconn* conn, int seconds, const char* sql) {
   while (PQisBusy(conn)) {
     await(conn, POLLIN, seconds, sql);
-    if (!PQconsumeInput(conn)) throw std::runtime_error(head(sql) + ": " + errorOf(conn));
+    if (!PQconsumeInput(conn)) fail(conn, head(sql) + ": " + errorOf(conn));
   }
   return PQgetResult(conn);
 }
@@ -129,33 +154,37 @@ Result run(PGconn* conn, const char* sql, const Params& params) {
   const int seconds = answerSeconds(conn);
   send(conn, sql, params, false, seconds);
   Result result(nullptr, &PQclear);
-  std::string error;
+  std::string error, state;
   // Every result is read (one for one statement), so that the connection is ready for the next.
   while (PGresult* next = nextResult(conn, seconds, sql)) {
     const ExecStatusType status = PQresultStatus(next);
-    if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK && error.empty())
+    if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK && error.empty()) {
       error = head(sql) + ": " + errorOf(conn);
+      state = stateOf(next);
+    }
     if (result) PQclear(next);
     else result.reset(next);
   }
   if (!result && error.empty()) error = head(sql) + ": " + errorOf(conn);
-  if (!error.empty()) throw std::runtime_error(error);
+  if (!error.empty()) fail(conn, error, state);
   return result;
 }
 
 void runScript(PGconn* conn, const char* sql) {
   const int seconds = answerSeconds(conn);
   if (PQsetnonblocking(conn, 1) != 0 || !PQsendQuery(conn, sql))
-    throw std::runtime_error(head(sql) + ": " + errorOf(conn));
+    fail(conn, head(sql) + ": " + errorOf(conn));
   flush(conn, seconds, sql);
-  std::string error;
+  std::string error, state;
   while (PGresult* next = nextResult(conn, seconds, sql)) {
     const Result result(next, &PQclear);
     const ExecStatusType status = PQresultStatus(next);
-    if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK && error.empty())
+    if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK && error.empty()) {
       error = head(sql) + ": " + errorOf(conn);
+      state = stateOf(next);
+    }
   }
-  if (!error.empty()) throw std::runtime_error(error);
+  if (!error.empty()) fail(conn, error, state);
 }
 
 int64_t int8At(const PGresult* result, int row, int column) {
@@ -177,22 +206,25 @@ void eachRow(PGconn* conn, const char* sql, const Params& params,
              const std::function<void(const PGresult*)>& row) {
   const int seconds = answerSeconds(conn);
   send(conn, sql, params, true, seconds);
-  std::string error;
+  std::string error, state;
+  std::exception_ptr thrownByRow;  // rethrown as it was, after the statement's last result
   // Every result is read, even after an error, so that the connection is ready for the next.
   while (PGresult* next = nextResult(conn, seconds, sql)) {
     const Result result(next, &PQclear);
     const ExecStatusType status = PQresultStatus(next);
-    if (status == PGRES_SINGLE_TUPLE && error.empty()) {
+    if (status == PGRES_SINGLE_TUPLE && error.empty() && !thrownByRow) {
       try {
         row(next);
-      } catch (const std::exception& thrown) {
-        error = thrown.what();
+      } catch (...) {
+        thrownByRow = std::current_exception();
       }
     } else if (status != PGRES_TUPLES_OK && status != PGRES_SINGLE_TUPLE && error.empty()) {
       error = head(sql) + ": " + errorOf(conn);
+      state = stateOf(next);
     }
   }
-  if (!error.empty()) throw std::runtime_error(error);
+  if (!error.empty()) fail(conn, error, state);
+  if (thrownByRow) std::rethrow_exception(thrownByRow);
 }
 
 }  // namespace penumbra::server::pg

@@ -1,10 +1,12 @@
 // libpq at its simplest, for the PostgreSQL journal (postgres_journal_store.h) and the scene
 // leases (scene_leases.h): a connection with TCP keepalives and timeouts, statements with binary
 // parameters and results, rows one at a time, a transaction rolled back unless committed. Each
-// error throws std::runtime_error with the database's message; a database that stops answering
-// without closing the connection (a stopped or wedged server, a dead link) is an error too, after
-// the connection's answer timeout, and the connection is cut. Stateless; a connection is used by
-// one thread at a time.
+// error throws with the database's message: JournalUnavailable (journal_unavailable.h) when the
+// database cannot serve now (the connection lost, a timeout, a shutdown, no disk or memory there),
+// std::runtime_error for any other. A database that stops answering without closing the
+// connection (a stopped or wedged server, a dead link) is unavailable after the connection's
+// answer timeout, and the connection is cut. Stateless; a connection is used by one thread at a
+// time.
 #pragma once
 
 #include <libpq-fe.h>
@@ -62,9 +64,9 @@ std::string sessionTimeouts(PGconn* conn);
 
 // The connection's last error, without its trailing newline.
 std::string errorOf(PGconn* conn);
-// Runs one statement; throws std::runtime_error with the database's message unless it succeeded,
-// or when the database sent nothing for answerSeconds (the connection is then cut: the next use
-// connects again).
+// Runs one statement; throws with the database's message unless it succeeded, or when the
+// database sent nothing for answerSeconds (JournalUnavailable; the connection is then cut: the
+// next use connects again).
 Result run(PGconn* conn, const char* sql, const Params& params = {});
 // Runs statements without parameters or rows (the schema, session settings), several at once.
 void runScript(PGconn* conn, const char* sql);

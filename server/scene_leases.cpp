@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "server/journal_unavailable.h"
 #include "server/postgres_statements.h"
 
 namespace penumbra::server {
@@ -37,7 +38,7 @@ void SceneLeases::reconnect() {
   if (PQstatus(conn_) == CONNECTION_OK) return;
   PQreset(conn_);
   if (PQstatus(conn_) != CONNECTION_OK)
-    throw std::runtime_error("the scene leases' database cannot be reached (" + errorOf(conn_) +
+    throw JournalUnavailable("the scene leases' database cannot be reached (" + errorOf(conn_) +
                              ")");
   runScript(conn_, sessionTimeouts(conn_).c_str());  // a new session: its timeouts again
 }

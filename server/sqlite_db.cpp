@@ -16,16 +16,37 @@ SqliteDb::SqliteDb(const std::string& path) {
 
 SqliteDb::~SqliteDb() { sqlite3_close(db_); }
 
+namespace {
+
+[[noreturn]] void raise(int code, const std::string& message) {
+  switch (code & 0xff) {  // the primary code of an extended one
+    case SQLITE_IOERR:
+    case SQLITE_FULL:
+    case SQLITE_CANTOPEN:
+    case SQLITE_READONLY:
+    case SQLITE_BUSY:
+    case SQLITE_LOCKED:
+    case SQLITE_NOLFS:
+    case SQLITE_PROTOCOL:
+      throw SqliteUnavailable(message);
+    default:
+      throw SqliteError(message);
+  }
+}
+
+}  // namespace
+
 void SqliteDb::fail(const std::string& what) const {
-  throw SqliteError(what + ": " + sqlite3_errmsg(db_));
+  raise(sqlite3_extended_errcode(db_), what + ": " + sqlite3_errmsg(db_));
 }
 
 void SqliteDb::exec(const std::string& sql) {
   char* message = nullptr;
-  if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &message) != SQLITE_OK) {
+  if (const int code = sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &message);
+      code != SQLITE_OK) {
     const std::string text = message ? message : sqlite3_errmsg(db_);
     sqlite3_free(message);
-    throw SqliteError(sql.substr(0, 40) + ": " + text);
+    raise(code, sql.substr(0, 40) + ": " + text);
   }
 }
 
@@ -74,7 +95,7 @@ bool SqliteStatement::step() {
   if (rc == SQLITE_DONE) return false;
   const std::string message = sqlite3_errmsg(db_->handle());
   sqlite3_reset(stmt_);
-  throw SqliteError("step: " + message);
+  raise(rc, "step: " + message);
 }
 
 void SqliteStatement::run() {

@@ -1,5 +1,7 @@
 // A small RAII wrapper over SQLite's C API (libsqlite3): a connection and prepared statements,
-// every failure a SqliteError with SQLite's message. Not thread-safe: callers serialise use.
+// every failure thrown with SQLite's message: SqliteUnavailable when the file cannot be used now
+// (I/O error, disk full, read-only, locked or busy past the timeout), SqliteError for any other.
+// Not thread-safe: callers serialise use.
 #pragma once
 
 #include <sqlite3.h>
@@ -9,10 +11,17 @@
 #include <string>
 #include <string_view>
 
+#include "server/journal_unavailable.h"
+
 namespace penumbra::server {
 
 struct SqliteError : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+
+// The journal's file cannot be used now: its requests answer 503, retryable.
+struct SqliteUnavailable : JournalUnavailable {
+  using JournalUnavailable::JournalUnavailable;
 };
 
 class SqliteStatement;
@@ -31,6 +40,7 @@ class SqliteDb {
   std::string queryText(const std::string& sql);
   SqliteStatement prepare(const std::string& sql);
   void setBusyTimeout(int milliseconds);
+  // Throws for the connection's last error: SqliteUnavailable or SqliteError (see the top).
   [[noreturn]] void fail(const std::string& what) const;
   sqlite3* handle() const { return db_; }
 

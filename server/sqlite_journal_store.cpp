@@ -75,6 +75,8 @@ SqliteJournalStore::SqliteJournalStore(DataDirectory& dir)
     : path_((std::filesystem::path(dir.path()) / "journal.sqlite3").string()), dir_(dir.path()) {
   try {
     open();
+  } catch (const SqliteUnavailable& error) {  // the file or its directory, not its contents
+    throw std::runtime_error("the journal '" + path_ + "' cannot be opened (" + error.what() + ")");
   } catch (const SqliteError& error) {  // loud, and nothing in the file is changed or dropped
     throw std::runtime_error("the journal '" + path_ + "' cannot be opened (" + error.what() +
                              "): it is damaged. Nothing was changed; keep a copy, then repair it "
