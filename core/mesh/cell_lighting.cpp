@@ -79,13 +79,14 @@ uint64_t CellLighter::Inputs::fingerprint() const {
 }
 
 CellLighter::CellLighter(const Scene& scene, const MeshSource& source, double spacing,
-                         double chunkSide, const RefineSettings& refine)
+                         double chunkSide, const RefineSettings& refine, SharedPointValues* shared)
     : scene_(scene),
       source_(source),
       eps_(scene.tolerance().length()),
       spacing_(spacing),
       chunkSide_(chunkSide),
       refine_(refine),
+      shared_(shared),
       dark_(scene.lights().size()) {
   if (const Face* face = findFace(scene, source.face); face && !face->cornerNormals.empty()) face_ = face;
 }
@@ -107,6 +108,15 @@ Vec3 CellLighter::shadingAt(const Vec3& p) const {
 bool CellLighter::onContact(const Vec3& p) const {
   for (const Face* face : listFaces_)
     if (face && std::abs(face->plane.signedDistance(p)) <= eps_) return true;
+  return false;
+}
+
+bool CellLighter::onOutline(const Vec2& q) const {
+  const Polygon2& loop = inputs_.outline;
+  for (size_t i = 0; i < loop.size(); ++i) {
+    const Vec2 a = loop[i], d = loop[(i + 1) % loop.size()] - a;
+    if (std::abs(cross2(d, q - a)) <= eps_ * glm::length(d)) return true;
+  }
   return false;
 }
 
@@ -204,10 +214,16 @@ void CellLighter::lightsAt(const Vec2& q, const OccluderList& list, const Vec3& 
   // (A refinement point at the centre itself has no direction to take a limit along: it lies
   // inside the cell, where the exact value is the limit.)
   const bool limit = (corner < polygon.size() || onContact(p)) && glm::length(centre - p) > eps_;
+  // Lit from the list alone (no limit from this cell): a neighbour with the same list asks the
+  // same of a point on their common edge.
+  const bool shareable = shared_ && !limit && onOutline(q);
+  if (shareable && shared_->find(q, &list, out)) return;
+  const size_t first = out.size();
   oneCell_.assign(1, &list);
   for (size_t l = 0; l < lights; ++l)
     out.push_back(limit ? illuminateVertexFromCell(scene_, l, p, normal, shading, centre - p, list)
                         : illuminateVertex(scene_, l, p, normal, shading, oneCell_));
+  if (shareable) shared_->keep(q, &list, std::span(out).subspan(first));
 }
 
 void CellLighter::levelsAt(const Vec2& q, std::vector<double>& out) const {

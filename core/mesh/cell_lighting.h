@@ -15,6 +15,7 @@
 #include "core/illum/vertex_illumination.h"
 #include "core/mesh/cell_memo.h"
 #include "core/mesh/cell_refinement.h"
+#include "core/mesh/shared_point_values.h"
 
 namespace penumbra {
 
@@ -37,8 +38,9 @@ class CellLighter {
  public:
   // spacing: the lattice (0: none); chunkSide: a chunk's side (0: one chunk); refine: how far
   // each piece's triangles are refined (RefineSettings::tolerance 0: a fan each).
+  // shared: values at points of cells' outlines kept for the neighbouring cells (null: none).
   CellLighter(const Scene& scene, const MeshSource& source, double spacing, double chunkSide,
-              const RefineSettings& refine = {});
+              const RefineSettings& refine = {}, SharedPointValues* shared = nullptr);
 
   // Gathers cell c's inputs and returns their fingerprint.
   uint64_t gather(CellId c);
@@ -52,6 +54,8 @@ class CellLighter {
   void addOwnRing(uint32_t handle);
   // Whether a face of the gathered cell's list has its plane through p (listFaces_).
   bool onContact(const Vec3& p) const;
+  // Whether q lies within eps of the gathered cell's outline (where a neighbour may ask too).
+  bool onOutline(const Vec2& q) const;
   // The value from each light of a point of the gathered cell's closure, as seen from the
   // cell (centre: its centroid), appended to output_.ownLights.
   void appendLightsAt(const Vec2& q, const OccluderList& list, const Vec3& centre) {
@@ -91,6 +95,7 @@ class CellLighter {
   const MeshSource& source_;
   const double eps_, spacing_, chunkSide_;
   const RefineSettings refine_;
+  SharedPointValues* shared_;
   PieceRefinement refinement_;  // reused from piece to piece
   Inputs inputs_;
   uint64_t fingerprint_ = 0;

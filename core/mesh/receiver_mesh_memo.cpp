@@ -98,8 +98,9 @@ class MeshMemoUpdate {
     constexpr size_t kBlock = 64;
     std::vector<CellMemo> results(touched.size());
     const double spacing = memo_.grid_.spacing;
+    SharedPointValues shared(source_.perLight.lightCount());
     parallel.forEach((touched.size() + kBlock - 1) / kBlock, [&](size_t block) {
-      CellLighter lighter(scene_, source_, spacing, chunkSide_, memo_.grid_.refine);
+      CellLighter lighter(scene_, source_, spacing, chunkSide_, memo_.grid_.refine, &shared);
       for (size_t k = block * kBlock; k < std::min(touched.size(), (block + 1) * kBlock); ++k) {
         if (beat_ && k % ReceiverMeshMemo::kCellsPerBeat == 0) beat_();
         const CellId c(touched[k]);
