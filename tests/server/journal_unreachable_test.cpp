@@ -116,10 +116,12 @@ TEST(JournalUnreachable, EveryRouteOnAFrozenDatabaseAnswersWithoutA500AndChanges
         EXPECT_EQ(bodyJson(reply)["error"]["code"], "journal_failed") << reply->body;
       }
       if (route.what.rfind("POST edits", 0) == 0 || route.what.rfind("PATCH", 0) == 0 ||
-          route.what.rfind("POST /api/scenes", 0) == 0)
+          route.what.rfind("POST /api/scenes", 0) == 0) {
         EXPECT_GE(reply->status, 500) << "a write succeeded without its journal: " << reply->body;
-      if (route.what.rfind("POST edits", 0) == 0 && reply->status == 503)
+      }
+      if (route.what.rfind("POST edits", 0) == 0 && reply->status == 503) {
         EXPECT_EQ(bodyJson(reply)["error"]["applied"], false) << reply->body;
+      }
     }
   }
 
