@@ -13,8 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "server/journal_unavailable.h"
-
 namespace penumbra::server {
 
 // A checksum column of a row from before checksums reads as nullopt (journal_store rows below).

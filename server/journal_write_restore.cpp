@@ -13,6 +13,7 @@
 #include "protocol/volume_json.h"
 #include "server/api_errors.h"
 #include "server/http_server.h"
+#include "server/journal_unavailable.h"
 #include "server/journaled_text.h"
 #include "server/orphan_uploads.h"
 #include "server/part_changes.h"

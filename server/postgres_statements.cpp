@@ -31,7 +31,7 @@ bool unavailableState(const std::string& state) {
 }
 
 // Throws JournalUnavailable when the connection is lost or `state` says the database cannot
-// serve now, else std::runtime_error: the journal's callers answer the first 503, retryable.
+// serve now (its callers answer 503, retryable), else std::runtime_error (a 500).
 [[noreturn]] void fail(PGconn* conn, const std::string& message, const std::string& state = "") {
   if (PQstatus(conn) != CONNECTION_OK || unavailableState(state)) throw JournalUnavailable(message);
   throw std::runtime_error(message);

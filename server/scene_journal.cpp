@@ -6,6 +6,7 @@
 
 #include "server/data_directory.h"
 #include "server/journal_store.h"
+#include "server/journal_unavailable.h"
 #include "server/postgres_journal_store.h"
 #include "server/sqlite_journal_store.h"
 
