@@ -7,6 +7,7 @@
 #include "core/geom/clip.h"
 #include "core/illum/face_lookup.h"
 #include "core/illum/lambert.h"
+#include "core/illum/mesh_box_chain.h"
 #include "core/illum/shadow_merge.h"
 #include "core/illum/visible_contour.h"
 #include "core/scene/convex_solid.h"
@@ -217,6 +218,17 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
     }
     return corner[v];
   };
+  const double onPlane = tolerance_.onPlane();
+  chainFaces.clear();
+  chainClusters.clear();
+  // A point of a box over which the whole mesh is usable: the faces behind all of the box
+  // come summed, the point decides those whose plane crosses it (mesh_box_chain.h).
+  const MeshBoxChain* box = towards ? nullptr : meshBoxChain(mesh, p_, n_, lightPolygon_, lightPlane_, tolerance_);
+  if (box && box->usable) {
+    for (const uint32_t i : box->crossing)
+      if (mesh.clusterPlanes[i].signedDistance(p_) < -onPlane) chainFaces.push_back(mesh.clusterFaces[i]);
+    return appendChain(handle, mesh, chainFaces, {}, box->behindAll);
+  }
   const std::vector<Plane>& sides = lightCone();
   auto missesCone = [&](const MeshTopology::Cluster& c) {
     const double r = c.radius + tolerance_.length(), h = lightPlane_.signedDistance(c.centre);
@@ -234,9 +246,6 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
   // Faces whose plane holds p count only as limits (with `towards`); the rest go one by
   // one, but for those with no corner ahead of p's plane, past the light's or short of p's
   // height, which cannot block (occlude() would say so).
-  const double onPlane = tolerance_.onPlane();
-  chainFaces.clear();
-  chainClusters.clear();
   bool othersBlock = false;
   for (size_t c = 0; c < mesh.clusters.size(); ++c) {
     const MeshTopology::Cluster& cluster = mesh.clusters[c];
@@ -276,8 +285,14 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
     for (uint32_t f : chainFaces) occlude(faces[f]);
     return true;
   }
+  return appendChain(handle, mesh, chainFaces, chainClusters, {});
+}
+
+bool Backprojection::appendChain(uint32_t handle, const MeshTopology& mesh, std::span<const uint32_t> faces,
+                                 std::span<const uint32_t> clusters,
+                                 std::span<const std::pair<uint32_t, int>> summedEdges) {
   ++comparisons_;
-  if (!appendShadowChain(mesh, chainFaces, chainClusters, p_, lightPlane_, pHeight_, frame_, tolerance_.area(),
+  if (!appendShadowChain(mesh, faces, clusters, summedEdges, p_, lightPlane_, pHeight_, frame_, tolerance_.area(),
                          chain_))
     return false;
   chainObjects_.push_back(handle);

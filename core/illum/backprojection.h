@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/geom/convex2d.h"
@@ -104,6 +105,9 @@ class Backprojection {
   // Lambert's sum about the shading normal over `boundary` clipped to its front half-space.
   double shadedBoundarySum(std::span<const Segment2> boundary) const;
   bool occludeMesh(uint32_t handle, const MeshTopology& mesh, std::span<const Face> faces, const Vec3* towards);
+  // The mesh's chain of the given blocking faces into chain_ (appendShadowChain).
+  bool appendChain(uint32_t handle, const MeshTopology& mesh, std::span<const uint32_t> faces,
+                   std::span<const uint32_t> clusters, std::span<const std::pair<uint32_t, int>> summedEdges);
   // Inward side planes of the cone from p over front_ (no margin), made on first use.
   const std::vector<Plane>& lightCone();
 

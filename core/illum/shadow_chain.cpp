@@ -6,7 +6,8 @@
 namespace penumbra {
 
 bool appendShadowChain(const MeshTopology& mesh, std::span<const uint32_t> chainFaces,
-                       std::span<const uint32_t> chainClusters, const Vec3& p,
+                       std::span<const uint32_t> chainClusters,
+                       std::span<const std::pair<uint32_t, int>> summedEdges, const Vec3& p,
                        const Plane& lightPlane, double pHeight, const PlaneFrame& frame, double minArea,
                        std::vector<ChainEdge>& out) {
   const ConvexSolid& w = mesh.welded;
@@ -20,6 +21,10 @@ bool appendShadowChain(const MeshTopology& mesh, std::span<const uint32_t> chain
   if (projected.size() < w.vertices.size()) projected.resize(w.vertices.size()), projectedStamp.resize(w.vertices.size(), 0);
   if (++stamp == 0) std::fill(projectedStamp.begin(), projectedStamp.end(), 0), stamp = 1;
   touched.clear();
+  for (const auto& [e, count] : summedEdges) {
+    if (net[e] == 0) touched.push_back(e);
+    net[e] += count;
+  }
   for (const uint32_t c : chainClusters) {  // a whole cluster: its sum, inner edges cancelled
     for (uint32_t i = mesh.clusterChainStarts[c]; i < mesh.clusterChainStarts[c + 1]; ++i) {
       const auto [e, count] = mesh.clusterChain[i];
@@ -27,14 +32,7 @@ bool appendShadowChain(const MeshTopology& mesh, std::span<const uint32_t> chain
       net[e] += count;
     }
   }
-  for (const uint32_t f : chainFaces) {
-    for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
-      const uint32_t e = mesh.cornerEdge[k];
-      if (e == MeshTopology::kNoEdge) continue;
-      if (net[e] == 0) touched.push_back(e);
-      net[e] += mesh.cornerForward[k] ? 1 : -1;
-    }
-  }
+  for (const uint32_t f : chainFaces) addFaceEdges(mesh, f, net, touched);
   auto project = [&](uint32_t v) -> const Vec2& {
     if (projectedStamp[v] != stamp) {
       const Vec3& x = w.vertices[v];

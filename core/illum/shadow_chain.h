@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/geom/plane.h"
@@ -30,14 +31,16 @@ struct ChainEdge {
   int count = 1;  // faces running the edge this way, net
 };
 
-// Appends the chain of the mesh's faces `chainFaces` and of every face of the clusters
-// `chainClusters` (MeshTopology::clusters; faces p lies strictly behind, whose corners all
-// lie ahead of p's plane with a height over the light's plane in (0, pHeight), p's own) to
-// `out`, in `frame` on the light's plane, oriented with the covered side on the left; an
-// edge between a selected and an unselected face stays in the chain. Returns whether the
-// selected faces project with positive area.
+// Appends the chain of the mesh's faces `chainFaces`, of every face of the clusters
+// `chainClusters` (MeshTopology::clusters) and of the faces summed in `summedEdges` (edges
+// with net counts, as sumFaceEdges() gives them) — faces p lies strictly behind, whose
+// corners all lie ahead of p's plane with a height over the light's plane in (0, pHeight),
+// p's own — to `out`, in `frame` on the light's plane, oriented with the covered side on
+// the left; an edge between a selected and an unselected face stays in the chain. Returns
+// whether the selected faces project with positive area.
 bool appendShadowChain(const MeshTopology& mesh, std::span<const uint32_t> chainFaces,
-                       std::span<const uint32_t> chainClusters, const Vec3& p,
+                       std::span<const uint32_t> chainClusters,
+                       std::span<const std::pair<uint32_t, int>> summedEdges, const Vec3& p,
                        const Plane& lightPlane, double pHeight, const PlaneFrame& frame, double minArea,
                        std::vector<ChainEdge>& out);
 

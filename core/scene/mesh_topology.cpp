@@ -1,6 +1,7 @@
 #include "core/scene/mesh_topology.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace penumbra {
@@ -34,25 +35,12 @@ void groupBy(const std::vector<std::pair<uint32_t, uint32_t>>& pairs, size_t key
 
 // Each cluster's faces' edges with their net direction counts (MeshTopology::clusterChain).
 void sumClusterChains(MeshTopology& mesh) {
-  const ConvexSolid& w = mesh.welded;
-  std::vector<int> net(w.edges.size(), 0);
+  std::vector<int> net(mesh.welded.edges.size(), 0);
   std::vector<uint32_t> touched;
   mesh.clusterChainStarts.assign(1, 0);
   for (const MeshTopology::Cluster& cluster : mesh.clusters) {
-    touched.clear();
-    for (uint32_t i = cluster.first; i < cluster.last; ++i) {
-      const uint32_t f = mesh.clusterFaces[i];
-      for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
-        const uint32_t e = mesh.cornerEdge[k];
-        if (e == MeshTopology::kNoEdge) continue;
-        if (net[e] == 0) touched.push_back(e);
-        net[e] += mesh.cornerForward[k] ? 1 : -1;
-      }
-    }
-    for (uint32_t e : touched) {
-      if (net[e] != 0) mesh.clusterChain.push_back({e, net[e]});
-      net[e] = 0;
-    }
+    sumFaceEdges(mesh, std::span(mesh.clusterFaces).subspan(cluster.first, cluster.last - cluster.first), net,
+                 touched, mesh.clusterChain);
     mesh.clusterChainStarts.push_back(uint32_t(mesh.clusterChain.size()));
   }
 }
@@ -94,8 +82,20 @@ void splitIntoClusters(std::vector<uint32_t>& order, size_t begin, size_t end, c
 
 }  // namespace
 
+void sumFaceEdges(const MeshTopology& mesh, std::span<const uint32_t> faces, std::vector<int>& net,
+                  std::vector<uint32_t>& touched, std::vector<std::pair<uint32_t, int>>& out) {
+  touched.clear();
+  for (const uint32_t f : faces) addFaceEdges(mesh, f, net, touched);
+  for (const uint32_t e : touched) {  // an edge whose balance passed through 0 is listed twice
+    if (net[e] != 0) out.push_back({e, net[e]});
+    net[e] = 0;
+  }
+}
+
 MeshTopology MeshTopology::of(std::span<const Face> faces, double onPlane) {
+  static std::atomic<uint64_t> made{0};
   MeshTopology mesh;
+  mesh.serial = ++made;
   mesh.welded = ConvexSolid::of(faces);
   const ConvexSolid& w = mesh.welded;
   std::vector<std::pair<uint32_t, uint32_t>> edgeUses, vertexUses;

@@ -59,9 +59,28 @@ struct MeshTopology {
   // The axis-aligned box around the corners as a closed convex solid (a conservative
   // stand-in for the mesh where only a superset of its shadow is needed).
   ConvexSolid box;
+  // Distinct for every topology made (a memo's key: core/illum/mesh_box_chain.h), kept by copies.
+  uint64_t serial = 0;
 
   // From the object's world faces (Scene::facesOfObject order) and the scene's onPlane().
   static MeshTopology of(std::span<const Face> faces, double onPlane);
 };
+
+// Adds face f's edges to their net direction counts (+1 run from edge.first to .second, −1
+// back), listing in `touched` each edge whose count leaves 0.
+inline void addFaceEdges(const MeshTopology& mesh, uint32_t f, std::vector<int>& net, std::vector<uint32_t>& touched) {
+  for (uint32_t k = mesh.welded.faceStarts[f]; k < mesh.welded.faceStarts[f + 1]; ++k) {
+    const uint32_t e = mesh.cornerEdge[k];
+    if (e == MeshTopology::kNoEdge) continue;
+    if (net[e] == 0) touched.push_back(e);
+    net[e] += mesh.cornerForward[k] ? 1 : -1;
+  }
+}
+
+// The edges of `faces` with their net direction counts (run both ways they cancel), appended
+// to `out` as (edge, count ≠ 0) in the order the faces first run them. `net` holds one zero
+// per edge of the mesh and is left so; `touched` is scratch.
+void sumFaceEdges(const MeshTopology& mesh, std::span<const uint32_t> faces, std::vector<int>& net,
+                  std::vector<uint32_t>& touched, std::vector<std::pair<uint32_t, int>>& out);
 
 }  // namespace penumbra

@@ -13,34 +13,12 @@
 namespace penumbra {
 namespace {
 
-Light ceilingLight(double half) {
-  Light light;
-  light.id = "light";
-  light.polygon = {{-half, 3, -half}, {half, 3, -half}, {half, 3, half}, {-half, 3, half}};
-  light.radiance = Vec3(10);
-  return light;
-}
-
 Object floorQuad() {
   Object o;
   o.id = "floor";
   o.vertices = {{-4, 0, -4}, {-4, 0, 4}, {4, 0, 4}, {4, 0, -4}};
   o.faces = {{0, 1, 2, 3}};
   return o;
-}
-
-struct Case {
-  const char* name;
-  Object mesh;
-};
-
-std::vector<Case> cases(uint64_t seed) {
-  return {
-      {"bumpy sphere", test::bumpySphere("m", {0.1, 1.2, -0.05}, 0.5, 10, 0.3, seed)},
-      {"torus", test::torus("m", {0.0, 1.3, 0.1}, 0.45, 0.15, 24, 10, 0.5 + 0.1 * double(seed % 5))},
-      {"open bowl", test::bowl("m", {0.0, 1.4, 0.0}, 0.5, 12, 0.2, seed)},
-      {"flipped faces", test::withFlips(test::bumpySphere("m", {0.0, 1.2, 0.0}, 0.45, 8, 0.25, seed), 0.2, seed)},
-  };
 }
 
 double visibleOneByOne(const Scene& scene, uint32_t handle, const Vec3& p, const Vec3& n) {
@@ -52,8 +30,8 @@ double visibleOneByOne(const Scene& scene, uint32_t handle, const Vec3& p, const
 TEST(MeshChain, EqualsFaceByFaceAndReferenceOnSeededMeshes) {
   size_t penumbra = 0, umbra = 0, checked = 0;
   for (uint64_t seed = 1; seed <= 6; ++seed)
-    for (Case& c : cases(seed)) {
-      const Scene scene({ceilingLight(0.5 + 0.1 * double(seed))}, {}, {floorQuad(), c.mesh});
+    for (test::NamedMesh& c : test::seededMeshes(seed)) {
+      const Scene scene({test::ceilingLight(0.5 + 0.1 * double(seed))}, {}, {floorQuad(), c.mesh});
       const uint32_t handle = scene.handleOf(1);
       ASSERT_NE(scene.meshTopology(handle), nullptr) << c.name;
       const ExactReference reference(scene);
@@ -93,7 +71,7 @@ TEST(MeshChain, CombinesWithConvexShadows) {
   board.id = "board";
   board.vertices = {{-0.2, 2.2, -0.6}, {-0.2, 2.2, 0.3}, {0.5, 2.2, 0.3}, {0.5, 2.2, -0.6}};
   board.faces = {{0, 1, 2, 3}};
-  const Scene scene({ceilingLight(0.7)}, {}, {floorQuad(), test::torus("m", {0.1, 1.2, 0.0}, 0.4, 0.12, 20, 8, 0.7), board});
+  const Scene scene({test::ceilingLight(0.7)}, {}, {floorQuad(), test::torus("m", {0.1, 1.2, 0.0}, 0.4, 0.12, 20, 8, 0.7), board});
   const uint32_t mesh = scene.handleOf(1);
   const Face& boardFace = scene.facesOfObject(scene.handleOf(2))[0];
   const ExactReference reference(scene);
@@ -109,7 +87,7 @@ TEST(MeshChain, CombinesWithConvexShadows) {
 }
 
 TEST(MeshTopology, RegularEdgesAndCornersOfClosedAndOpenMeshes) {
-  const Scene scene({ceilingLight(0.5)}, {},
+  const Scene scene({test::ceilingLight(0.5)}, {},
                     {floorQuad(), test::torus("t", {0, 1, 0}, 0.4, 0.1, 12, 6, 0.3), test::bowl("b", {2, 1, 2}, 0.4, 8, 0.0, 1)});
   const MeshTopology& closed = *scene.meshTopology(scene.handleOf(1));
   EXPECT_EQ(std::count(closed.regularEdge.begin(), closed.regularEdge.end(), 1), long(closed.regularEdge.size()));
@@ -136,7 +114,7 @@ TEST(MeshChain, NearDegenerateMeshesEqualFaceByFace) {
     moved.vertices[seed * 7].x += 1e-6;
     Object copy = moved;
     copy.id = "copy";
-    const Scene scene({ceilingLight(0.6)}, {}, {floorQuad(), flat, moved, copy});
+    const Scene scene({test::ceilingLight(0.6)}, {}, {floorQuad(), flat, moved, copy});
     const ExactReference reference(scene);
     std::mt19937_64 rng(seed * 104729);
     std::uniform_real_distribution<double> u(-1.0, 1.0);

@@ -81,4 +81,28 @@ inline Object withFlips(Object o, double fraction, uint64_t seed) {
   return o;
 }
 
+// A square light of half-side `half` at height 3, facing down onto the meshes below.
+inline Light ceilingLight(double half) {
+  Light light;
+  light.id = "light";
+  light.polygon = {{-half, 3, -half}, {half, 3, -half}, {half, 3, half}, {-half, 3, half}};
+  light.radiance = Vec3(10);
+  return light;
+}
+
+// The chain tests' seeded meshes, floating 0.5–1.9 m over the floor under ceilingLight():
+// closed non-convex, closed of genus 1, open, and inconsistently oriented.
+struct NamedMesh {
+  const char* name;
+  Object mesh;
+};
+inline std::vector<NamedMesh> seededMeshes(uint64_t seed) {
+  return {
+      {"bumpy sphere", bumpySphere("m", {0.1, 1.2, -0.05}, 0.5, 10, 0.3, seed)},
+      {"torus", torus("m", {0.0, 1.3, 0.1}, 0.45, 0.15, 24, 10, 0.5 + 0.1 * double(seed % 5))},
+      {"open bowl", bowl("m", {0.0, 1.4, 0.0}, 0.5, 12, 0.2, seed)},
+      {"flipped faces", withFlips(bumpySphere("m", {0.0, 1.2, 0.0}, 0.45, 8, 0.25, seed), 0.2, seed)},
+  };
+}
+
 }  // namespace penumbra::test

@@ -1,0 +1,142 @@
+#include "core/illum/mesh_box_chain.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <span>
+
+namespace penumbra {
+
+namespace {
+
+// |n|·h: how far a plane with normal n moves across a box of half-extent h.
+double reach(const Vec3& n, const Vec3& half) {
+  return std::abs(n.x) * half.x + std::abs(n.y) * half.y + std::abs(n.z) * half.z;
+}
+
+std::array<Vec3, 8> boxCorners(const Vec3& low, const Vec3& high) {
+  std::array<Vec3, 8> corners;
+  for (int i = 0; i < 8; ++i) corners[i] = Vec3(i & 1 ? high.x : low.x, i & 2 ? high.y : low.y, i & 4 ? high.z : low.z);
+  return corners;
+}
+
+// Whether the cluster's ball (with a margin) lies outside the cone from every point of the
+// box over the light (all of it in front of the light): for some light edge a→b, the plane
+// through it and p has the ball on its outer side for every p of the box. With m(p) =
+// (b − a) × (p − a), inward up to one sign that p's side of the light fixes, the ball is out
+// when s·m(p)·(c − a) + r·|m(p)| < 0: linear plus convex in p, so largest at a corner of the
+// box, where it is tested.
+bool outsideEveryCone(const MeshTopology::Cluster& cluster, const std::array<Vec3, 8>& box,
+                      std::span<const Vec3> light, const Plane& lightPlane, double margin) {
+  if (light.size() < 3) return false;
+  Vec3 inner{0.0};
+  for (const Vec3& v : light) inner += v;
+  inner /= double(light.size());
+  const double r = cluster.radius + margin;
+  for (size_t i = 0; i < light.size(); ++i) {
+    const Vec3 a = light[i], edge = light[(i + 1) % light.size()] - a;
+    // The sign that turns m(p) inward for p in front of the light: the light's centre is
+    // inside, (b − a) × (p − a) · (inner − a) has one sign over the front half-space.
+    const Vec3 front = a + lightPlane.normal;  // a point in front of the light
+    const double s = glm::dot(glm::cross(edge, front - a), inner - a) < 0 ? -1.0 : 1.0;
+    const bool out = std::all_of(box.begin(), box.end(), [&](const Vec3& p) {
+      const Vec3 m = glm::cross(edge, p - a);
+      return s * glm::dot(m, cluster.centre - a) + r * glm::length(m) < 0;
+    });
+    if (out) return true;
+  }
+  return false;
+}
+
+bool sameBits(const void* a, const void* b, size_t size) { return std::memcmp(a, b, size) == 0; }
+
+struct MemoEntry {
+  uint64_t serial = 0;
+  std::array<int64_t, 3> cell{};
+  Vec3 n{0.0};
+  std::vector<Vec3> light;
+  Plane lightPlane;
+  double sceneSize = 0;
+  uint64_t lastUse = 0;
+  MeshBoxChain chain;
+};
+
+}  // namespace
+
+MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const Vec3& high, const Vec3& n,
+                              std::span<const Vec3> light, const Plane& lightPlane, const Tolerance& tolerance) {
+  MeshBoxChain out;
+  const Vec3 centre = 0.5 * (low + high), half = 0.5 * (high - low);
+  const double margin = tolerance.length(), onPlane = tolerance.onPlane();
+  // Every corner ahead of the receiver's plane through any point of the box, beyond the
+  // light's plane, and below 0.999 of the box's least height over it (the margin a point's
+  // own pass asks of each corner: pHeight − h > 1e-3 · pHeight).
+  const double receiverTop = glm::dot(n, centre) + reach(n, half);
+  const double leastHeight = lightPlane.signedDistance(centre) - reach(lightPlane.normal, half);
+  double highest = -INFINITY;
+  for (const Vec3& v : mesh.welded.vertices) {
+    const double h = lightPlane.signedDistance(v);
+    if (!(glm::dot(n, v) - receiverTop > margin) || !(h > 0)) return out;
+    highest = std::max(highest, h);
+  }
+  if (!(0.999 * leastHeight - highest > margin)) return out;
+  out.usable = true;
+  thread_local std::vector<uint32_t> behindFaces, touched;
+  thread_local std::vector<int> net;
+  behindFaces.clear();
+  net.assign(mesh.welded.edges.size(), 0);
+  const auto corners = boxCorners(low, high);
+  for (const MeshTopology::Cluster& cluster : mesh.clusters) {
+    if (outsideEveryCone(cluster, corners, light, lightPlane, margin)) continue;
+    for (uint32_t i = cluster.first; i < cluster.last; ++i) {
+      const Plane& plane = mesh.clusterPlanes[i];
+      const double middle = plane.signedDistance(centre), spread = reach(plane.normal, half);
+      if (middle + spread < -onPlane - margin) behindFaces.push_back(mesh.clusterFaces[i]);
+      else if (!(middle - spread > -onPlane + margin)) out.crossing.push_back(i);
+    }
+  }
+  sumFaceEdges(mesh, behindFaces, net, touched, out.behindAll);
+  return out;
+}
+
+const MeshBoxChain* meshBoxChain(const MeshTopology& mesh, const Vec3& p, const Vec3& n, std::span<const Vec3> light,
+                                 const Plane& lightPlane, const Tolerance& tolerance) {
+  const Vec3 low = mesh.box.vertices.empty() ? Vec3(0.0) : mesh.box.vertices.front();
+  Vec3 boxLow = low, boxHigh = low;
+  for (const Vec3& v : mesh.box.vertices) boxLow = glm::min(boxLow, v), boxHigh = glm::max(boxHigh, v);
+  const double side = glm::length(boxHigh - boxLow) / kMeshBoxDivisions;
+  if (!(side > 0)) return nullptr;
+  std::array<int64_t, 3> cell{};
+  for (int a = 0; a < 3; ++a) {
+    const double k = std::floor(p[a] / side);
+    if (!(std::abs(k) < 0x1p40)) return nullptr;
+    cell[a] = int64_t(k);
+  }
+  // The cell with a length() of room on each side, so that p lies inside it whatever the
+  // rounding of floor(p / side).
+  const double pad = tolerance.length();
+  Vec3 from{0.0}, to{0.0};
+  for (int a = 0; a < 3; ++a) {
+    from[a] = double(cell[a]) * side - pad;
+    to[a] = double(cell[a] + 1) * side + pad;
+    if (!(from[a] <= p[a] && p[a] <= to[a])) return nullptr;
+  }
+  thread_local std::array<MemoEntry, 16> memo;
+  thread_local uint64_t uses = 0;
+  MemoEntry* oldest = &memo[0];
+  for (MemoEntry& entry : memo) {
+    if (entry.serial == mesh.serial && entry.cell == cell && sameBits(&entry.n, &n, sizeof n) &&
+        entry.light.size() == light.size() && sameBits(entry.light.data(), light.data(), light.size_bytes()) &&
+        sameBits(&entry.lightPlane, &lightPlane, sizeof lightPlane) && entry.sceneSize == tolerance.sceneSize) {
+      entry.lastUse = ++uses;
+      return &entry.chain;
+    }
+    if (entry.lastUse < oldest->lastUse) oldest = &entry;
+  }
+  *oldest = MemoEntry{mesh.serial, cell, n, {light.begin(), light.end()}, lightPlane, tolerance.sceneSize, ++uses,
+                      makeMeshBoxChain(mesh, from, to, n, light, lightPlane, tolerance)};
+  return &oldest->chain;
+}
+
+}  // namespace penumbra

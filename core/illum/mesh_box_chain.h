@@ -1,0 +1,54 @@
+// What a mesh's faces do for every point of a small box (issue 35). A point's chain
+// (shadow_chain.h) is the summed boundary of the faces it lies strictly behind, and over a
+// box a few centimetres wide most faces of a model are behind every point of it or behind
+// none: only those whose plane crosses the box differ between its points. So the faces
+// behind all of it are summed once per box (inner edges cancel), and a point of the box adds
+// only the crossing faces it is behind: the same set of faces as the point's own pass over
+// all of them, with work in the crossing faces and the summed edges, not in every face.
+//
+// The chain then holds every blocking face, also those whose projection misses the light
+// (a point's own pass leaves out the clusters outside its cone over the light): each such
+// face's boundary is closed and covers no light point, so the winding over the light, and
+// the visible part, are the same. Used only where that chain is valid for the whole box:
+// every corner of the mesh ahead of the receiver's plane, beyond the light's and short of
+// the box's least height over it by the 1e-3 margin of Backprojection::occludeMesh (a mesh
+// floating over a floor or beside a wall; a receiver on the mesh itself never is).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "core/geom/plane.h"
+#include "core/geom/tolerance.h"
+#include "core/scene/mesh_topology.h"
+
+namespace penumbra {
+
+struct MeshBoxChain {
+  // Every corner of the mesh usable from every point of the box (as above); when false the
+  // rest is empty and a point takes its own pass.
+  bool usable = false;
+  // The faces every point of the box lies more than onPlane behind, summed (sumFaceEdges).
+  std::vector<std::pair<uint32_t, int>> behindAll;
+  // Indices into MeshTopology::clusterFaces / clusterPlanes of the faces whose plane's
+  // onPlane offset crosses the box: each point decides them itself.
+  std::vector<uint32_t> crossing;
+};
+
+// The box holding p, for `mesh` seen from the receiver plane with unit normal n through p
+// and lit from lightPlane: one of a grid of cubes 1/kMeshBoxDivisions of the mesh's box
+// diagonal wide (so the same p always finds the same box, whatever was asked before), or
+// null where the grid does not reach (a degenerate mesh, p too far from the origin for the
+// grid's integers). Memoised per thread (the last few boxes asked); the reference is valid
+// until the next call on the same thread.
+inline constexpr double kMeshBoxDivisions = 16;
+const MeshBoxChain* meshBoxChain(const MeshTopology& mesh, const Vec3& p, const Vec3& n, std::span<const Vec3> light,
+                                 const Plane& lightPlane, const Tolerance& tolerance);
+
+// The same, computed for the box [low, high] (no memo): tests and the function above.
+MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const Vec3& high, const Vec3& n,
+                              std::span<const Vec3> light, const Plane& lightPlane, const Tolerance& tolerance);
+
+}  // namespace penumbra
