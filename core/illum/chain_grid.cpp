@@ -6,11 +6,11 @@
 namespace penumbra {
 
 int ChainGrid::column(double x) const {
-  return std::clamp(int(std::floor((x - low_.x) / cell_.x)), 0, size_ - 1);
+  return std::clamp(int(std::floor((x - low_.x) * perCell_.x)), 0, size_ - 1);
 }
 
 int ChainGrid::row(double y) const {
-  return std::clamp(int(std::floor((y - low_.y) / cell_.y)), 0, size_ - 1);
+  return std::clamp(int(std::floor((y - low_.y) * perCell_.y)), 0, size_ - 1);
 }
 
 void ChainGrid::build(std::span<const ChainEdge> chain, std::span<const uint32_t> edges, const Vec2& low,
@@ -19,6 +19,7 @@ void ChainGrid::build(std::span<const ChainEdge> chain, std::span<const uint32_t
   size_ = std::clamp(int(std::sqrt(double(edges.size()))), 1, 64);
   low_ = low - Vec2(eps);
   cell_ = glm::max(high - low + Vec2(2 * eps), Vec2(1e-300)) / double(size_);
+  perCell_ = 1.0 / cell_;
   if (seen_.size() < chain.size()) seen_.resize(chain.size(), 0);
   struct Span {
     int c0, c1, r0, r1;

@@ -48,6 +48,7 @@ class ChainGrid {
 
   int size_ = 1;  // size_ × size_ cells
   Vec2 low_{0.0}, cell_{1.0};
+  Vec2 perCell_{1.0};  // 1 / cell_: a cell's column and row by multiplying (dividing was ~5 % of a model's build)
   std::vector<uint32_t> starts_, members_;  // cell c: members_[starts_[c], starts_[c + 1])
   std::vector<uint32_t> everywhere_;        // edges visited by every query
   mutable std::vector<uint32_t> seen_;      // per chain edge: the query that last visited it
