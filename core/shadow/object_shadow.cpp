@@ -10,6 +10,7 @@
 #include "core/scene/convex_solid.h"
 #include "core/scene/mesh_topology.h"
 #include "core/shadow/critical_wedge.h"
+#include "core/shadow/mesh_silhouette.h"
 #include "core/shadow/plane_trace.h"
 
 namespace penumbra {
@@ -158,50 +159,6 @@ Polygon2 umbraRegion(const Polygon2& penumbra, const std::vector<std::vector<Sup
   return umbra;
 }
 
-// Whether light point s is off both faces' planes on one side (both strictly front or
-// both strictly back) of a regular edge: then the edge is on no silhouette seen from s.
-bool offSilhouette(const Plane& a, const Plane& b, const Vec3& s, double onPlane) {
-  const double da = a.signedDistance(s), db = b.signedDistance(s);
-  return (da > onPlane && db > onPlane) || (da < -onPlane && db < -onPlane);
-}
-
-// The stretch [from, to] of the light edge pq from whose points regular corner v may be on
-// the mesh's silhouette: not where every face through v has the point more than onPlane()
-// in front (or every one behind). Each face's side changes once along pq, so "all in
-// front" and "all behind" are two disjoint intervals; the stretch is the hull of what they
-// leave. False when they cover pq.
-bool silhouetteStretch(std::span<const Face> faces, const MeshTopology& mesh, uint32_t v, const Vec3& p, const Vec3& q,
-                       double onPlane, double& from, double& to) {
-  double frontLow = 0, frontHigh = 1, backLow = 0, backHigh = 1;  // the two intervals
-  for (uint32_t k = mesh.vertexStarts[v]; k < mesh.vertexStarts[v + 1]; ++k) {
-    const Plane& plane = faces[mesh.vertexFaces[k]].plane;
-    const double dp = plane.signedDistance(p), dq = plane.signedDistance(q);
-    // Where (1 − t) dp + t dq > onPlane, and where it is < −onPlane.
-    auto keep = [&](double a, double b, double& low, double& high) {  // {t : a + t (b − a) > 0}
-      if (a > 0 && b > 0) return;
-      if (!(a > 0) && !(b > 0)) {
-        low = 1, high = 0;
-        return;
-      }
-      const double t = a / (a - b);
-      if (a > 0) high = std::min(high, t);
-      else low = std::max(low, t);
-    };
-    keep(dp - onPlane, dq - onPlane, frontLow, frontHigh);
-    keep(-dp - onPlane, -dq - onPlane, backLow, backHigh);
-  }
-  from = 0, to = 1;
-  // An interval holding an end moves that end past it (the two never touch: a gap of
-  // 2·onPlane lies between them along every face's distance).
-  for (int pass = 0; pass < 2; ++pass) {
-    if (frontLow <= from && from <= frontHigh) from = frontHigh;
-    if (backLow <= from && from <= backHigh) from = backHigh;
-    if (frontLow <= to && to <= frontHigh) to = frontLow;
-    if (backLow <= to && to <= backHigh) to = backLow;
-  }
-  return from < to;
-}
-
 // D0 contact lines: where a face reaching more than onPlane in front of the receiver's
 // plane (distances `ahead` of the welded corners) meets it, the edges of its front part
 // within onPlane of the plane (a face edge on the plane, or the face cut by it). Each goes out as the VE wedge
@@ -252,13 +209,13 @@ void meshSilhouetteWedges(const Polygon3& s, std::span<const Face> faces, const 
   thread_local std::vector<double> ahead;
   ahead.resize(w.vertices.size());
   for (size_t v = 0; v < w.vertices.size(); ++v) ahead[v] = receiver.signedDistance(w.vertices[v]);
+  // The edges and corners that may be on the silhouette, found once per light (not per receiver).
+  const MeshSilhouette& silhouette = memoisedMeshSilhouette(faces, mesh, s, onPlane);
   for (size_t i = 0; i < n; ++i) {
     if (onReceiver(s[i])) continue;  // its rays never come back to the receiver
-    for (uint32_t e = 0; e < w.edges.size(); ++e) {
+    for (const uint32_t e : silhouette.edges[i]) {
       const auto [a, b] = w.edges[e];
       if (!(ahead[a] > onPlane) && !(ahead[b] > onPlane)) continue;
-      const uint32_t* f = mesh.edgeFaces.data() + mesh.edgeStarts[e];
-      if (mesh.regularEdge[e] && offSilhouette(faces[f[0]].plane, faces[f[1]].plane, s[i], onPlane)) continue;
       Vec3 from = w.vertices[a], to = w.vertices[b];
       if (!(ahead[a] > 0)) from += (ahead[a] / (ahead[a] - ahead[b])) * (to - from);
       else if (!(ahead[b] > 0)) to += (ahead[b] / (ahead[b] - ahead[a])) * (from - to);
@@ -270,10 +227,8 @@ void meshSilhouetteWedges(const Polygon3& s, std::span<const Face> faces, const 
   for (size_t i = 0; i < n; ++i) {
     const Vec3 &p = s[i], &q = s[(i + 1) % n];
     if (onReceiver(p) && onReceiver(q)) continue;
-    for (uint32_t v = 0; v < w.vertices.size(); ++v) {
+    for (const auto& [v, from, to] : silhouette.corners[i]) {
       if (!(ahead[v] > onPlane)) continue;
-      double from = 0, to = 1;
-      if (mesh.regularVertex[v] && !silhouetteStretch(faces, mesh, v, p, q, onPlane, from, to)) continue;
       add(edgeVertexWedge({ElementRef::Kind::Edge, uint32_t(i)}, {ElementRef::Kind::Vertex, uint32_t(v)},
                           p + from * (q - p), p + to * (q - p), w.vertices[v], eps));
     }

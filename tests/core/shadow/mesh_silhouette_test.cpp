@@ -1,0 +1,114 @@
+// A mesh's potential silhouette from a light polygon (mesh_silhouette.h), on seeded
+// non-convex, open and inconsistently oriented meshes: what it leaves out is on no
+// silhouette (an edge from its light vertex, a corner from every point of the light edge
+// outside its stretch), and the per-thread memo answers as the silhouette computed alone,
+// whatever was asked before (issue 35).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "core/shadow/mesh_silhouette.h"
+#include "tests/core/illum/random_meshes.h"
+
+namespace penumbra {
+namespace {
+
+// Whether light point x is more than onPlane on one side of every face through corner v.
+bool offEveryFaceAt(const Scene& scene, uint32_t handle, const MeshTopology& mesh, uint32_t v, const Vec3& x,
+                    double onPlane) {
+  const std::span<const Face> faces = scene.facesOfObject(handle);
+  bool front = true, back = true;
+  for (uint32_t k = mesh.vertexStarts[v]; k < mesh.vertexStarts[v + 1]; ++k) {
+    const double d = faces[mesh.vertexFaces[k]].plane.signedDistance(x);
+    front = front && d > onPlane, back = back && d < -onPlane;
+  }
+  return front || back;
+}
+
+bool sameSilhouette(const MeshSilhouette& a, const MeshSilhouette& b) {
+  if (a.edges != b.edges || a.corners.size() != b.corners.size()) return false;
+  for (size_t i = 0; i < a.corners.size(); ++i)
+    if (!std::equal(a.corners[i].begin(), a.corners[i].end(), b.corners[i].begin(), b.corners[i].end(),
+                    [](const auto& x, const auto& y) { return x.vertex == y.vertex && x.from == y.from && x.to == y.to; }))
+      return false;
+  return true;
+}
+
+TEST(MeshSilhouette, WhatItLeavesOutIsOnNoSilhouette) {
+  size_t leftOutCorners = 0, keptCorners = 0, leftOutEdges = 0, checked = 0;
+  for (uint64_t seed = 1; seed <= 3; ++seed)
+    for (const test::NamedMesh& named : test::seededMeshes(seed)) {
+      const Light light = test::ceilingLight(0.3 + 0.2 * double(seed));
+      const Scene scene({light}, {}, {named.mesh});
+      const uint32_t handle = scene.handleOf(0);
+      const MeshTopology& mesh = *scene.meshTopology(handle);
+      const std::span<const Face> faces = scene.facesOfObject(handle);
+      const double onPlane = scene.tolerance().onPlane();
+      const MeshSilhouette silhouette = meshSilhouette(faces, mesh, light.polygon, onPlane);
+      const size_t n = light.polygon.size();
+      std::mt19937_64 rng(seed);
+      std::uniform_real_distribution<double> unit(0, 1);
+      for (size_t i = 0; i < n; ++i) {
+        const Vec3 p = light.polygon[i], q = light.polygon[(i + 1) % n];
+        // An edge left out is regular with both faces' planes on one side of the light vertex.
+        for (uint32_t e = 0; e < mesh.welded.edges.size(); ++e) {
+          if (std::binary_search(silhouette.edges[i].begin(), silhouette.edges[i].end(), e)) continue;
+          ASSERT_TRUE(mesh.regularEdge[e]) << named.name;
+          const uint32_t* f = mesh.edgeFaces.data() + mesh.edgeStarts[e];
+          const double a = faces[f[0]].plane.signedDistance(p), b = faces[f[1]].plane.signedDistance(p);
+          EXPECT_TRUE((a > onPlane && b > onPlane) || (a < -onPlane && b < -onPlane)) << named.name << " edge " << e;
+          ++leftOutEdges;
+        }
+        // A corner is off every face through it from the points of pq outside its stretch
+        // (all of pq for a corner left out).
+        std::vector<double> from(mesh.welded.vertices.size(), 1), to(mesh.welded.vertices.size(), 0);
+        for (const auto& c : silhouette.corners[i]) from[c.vertex] = c.from, to[c.vertex] = c.to, ++keptCorners;
+        for (uint32_t v = 0; v < mesh.welded.vertices.size(); ++v) {
+          leftOutCorners += from[v] > to[v];
+          for (int k = 0; k < 6; ++k) {
+            const double t = unit(rng);
+            if (from[v] <= t && t <= to[v]) continue;
+            EXPECT_TRUE(offEveryFaceAt(scene, handle, mesh, v, p + t * (q - p), onPlane))
+                << named.name << " corner " << v << " at " << t;
+            ++checked;
+          }
+        }
+      }
+    }
+  // Both kinds are exercised: corners left out, kept over a stretch, edges left out.
+  EXPECT_GT(leftOutCorners, 1000u);
+  EXPECT_GT(keptCorners, 1000u);
+  EXPECT_GT(leftOutEdges, 1000u);
+  EXPECT_GT(checked, 10000u);
+}
+
+TEST(MeshSilhouette, TheMemoAnswersAsTheSilhouetteAloneWhateverWasAskedBefore) {
+  struct Asked {
+    size_t scene, light;
+  };
+  std::vector<Scene> scenes;
+  for (const test::NamedMesh& named : test::seededMeshes(4)) scenes.push_back(Scene({test::ceilingLight(0.5)}, {}, {named.mesh}));
+  std::vector<Polygon3> lights;
+  for (double half : {0.3, 0.5, 0.8}) lights.push_back(test::ceilingLight(half).polygon);
+  std::vector<Asked> order;
+  for (size_t s = 0; s < scenes.size(); ++s)
+    for (size_t l = 0; l < lights.size(); ++l) order.push_back({s, l});
+  std::mt19937_64 rng(5);
+  for (int round = 0; round < 3; ++round) {
+    std::shuffle(order.begin(), order.end(), rng);
+    for (const Asked& a : order) {
+      const Scene& scene = scenes[a.scene];
+      const uint32_t handle = scene.handleOf(0);
+      const std::span<const Face> faces = scene.facesOfObject(handle);
+      const MeshTopology& mesh = *scene.meshTopology(handle);
+      const double onPlane = scene.tolerance().onPlane();
+      EXPECT_TRUE(sameSilhouette(memoisedMeshSilhouette(faces, mesh, lights[a.light], onPlane),
+                                 meshSilhouette(faces, mesh, lights[a.light], onPlane)))
+          << "mesh " << a.scene << " light " << a.light << " round " << round;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace penumbra
