@@ -45,8 +45,13 @@ async function refusedDrag(page, base, sceneId) {
   console.log(`     ${refusals.length} refused frames of ${state.editsSent} sent for ${steps} pointer moves`);
   check(refusals.length >= 1 && refusals.length <= 5, `a drag past the edit volume costs a few refused frames, not one per move (${steps} moves)`,
     `${refusals.length} refused, ${state.editsSent} sent`);
-  check(held.every((x, k) => Math.abs(x - server[k]) < 1e-9) && server[0] > 3,
-    'the object stops at its last accepted place (page = server), near the volume\'s edge', `page ${held}, server ${server}`);
+  // Frames are sent one per round trip: how far the last accepted one got depends on how many
+  // went out (on a loaded machine the first round trip can last the whole drag, 2 frames for
+  // 30 moves). Near the volume's edge is asked when enough went to reach it.
+  const reachedEdge = state.editsSent < 5 || server[0] > 3;
+  check(held.every((x, k) => Math.abs(x - server[k]) < 1e-9) && server[0] > 1.7 && reachedEdge,
+    'the object stops at its last accepted place (page = server), past its start, near the volume\'s edge when 5+ frames went',
+    `page ${held}, server ${server}, ${state.editsSent} sent`);
   const refusedErrors = state.errors.filter((e) => /422/.test(e));
   check(state.bannerVisible && refusedErrors.length === 1, 'one banner for the whole drag', JSON.stringify(state.errors));
   const banner = await page.evaluate(() => ({ sentence: document.getElementById('error-text').firstChild.textContent,
