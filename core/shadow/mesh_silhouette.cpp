@@ -49,8 +49,9 @@ bool silhouetteStretch(std::span<const Face> faces, const MeshTopology& mesh, ui
   return from < to;
 }
 
-MeshSilhouette meshSilhouette(std::span<const Face> faces, const MeshTopology& mesh, const Polygon3& s,
-                              double onPlane) {
+MeshSilhouette meshSilhouette(std::span<const Face> faces, const MeshTopology& mesh, const Polygon3& s, double onPlane,
+                              std::span<const double> ahead) {
+  const auto inFront = [&](uint32_t v) { return ahead.empty() || ahead[v] > onPlane; };
   const ConvexSolid& w = mesh.welded;
   const size_t n = s.size();
   MeshSilhouette out;
@@ -58,12 +59,14 @@ MeshSilhouette meshSilhouette(std::span<const Face> faces, const MeshTopology& m
   out.corners.resize(n);
   for (size_t i = 0; i < n; ++i) {
     for (uint32_t e = 0; e < w.edges.size(); ++e) {
+      if (!inFront(w.edges[e].first) && !inFront(w.edges[e].second)) continue;
       const uint32_t* f = mesh.edgeFaces.data() + mesh.edgeStarts[e];
       if (mesh.regularEdge[e] && offSilhouette(faces[f[0]].plane, faces[f[1]].plane, s[i], onPlane)) continue;
       out.edges[i].push_back(e);
     }
     const Vec3 &p = s[i], &q = s[(i + 1) % n];
     for (uint32_t v = 0; v < w.vertices.size(); ++v) {
+      if (!inFront(v)) continue;
       double from = 0, to = 1;
       if (mesh.regularVertex[v] && !silhouetteStretch(faces, mesh, v, p, q, onPlane, from, to)) continue;
       out.corners[i].push_back({v, from, to});

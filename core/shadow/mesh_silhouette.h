@@ -34,11 +34,16 @@ bool offSilhouette(const Plane& a, const Plane& b, const Vec3& s, double onPlane
 bool silhouetteStretch(std::span<const Face> faces, const MeshTopology& mesh, uint32_t v, const Vec3& p, const Vec3& q,
                        double onPlane, double& from, double& to);
 
-// The potential silhouette of the mesh (its world faces `faces`) from light polygon s.
-MeshSilhouette meshSilhouette(std::span<const Face> faces, const MeshTopology& mesh, const Polygon3& s, double onPlane);
+// The potential silhouette of the mesh (its world faces `faces`) from light polygon s. With
+// `ahead` (each welded corner's distance in front of a receiver's plane), only what that
+// receiver can be shadowed by: edges with an end, and corners, more than onPlane in front.
+MeshSilhouette meshSilhouette(std::span<const Face> faces, const MeshTopology& mesh, const Polygon3& s, double onPlane,
+                              std::span<const double> ahead = {});
 
-// The same, kept per thread for the last few (mesh, s, onPlane) asked; valid until the next
-// call on this thread.
+// The same (without `ahead`), kept per thread for the last few (mesh, s, onPlane) asked;
+// valid until the next call on this thread. For a light not clipped by the receiver's plane,
+// the same s for every receiver; a clipped one (a model's face whose plane cuts the light)
+// is its receiver's own and is better computed with `ahead`.
 const MeshSilhouette& memoisedMeshSilhouette(std::span<const Face> faces, const MeshTopology& mesh, const Polygon3& s,
                                              double onPlane);
 

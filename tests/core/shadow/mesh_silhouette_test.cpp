@@ -2,7 +2,8 @@
 // non-convex, open and inconsistently oriented meshes: what it leaves out is on no
 // silhouette (an edge from its light vertex, a corner from every point of the light edge
 // outside its stretch), and the per-thread memo answers as the silhouette computed alone,
-// whatever was asked before (issue 35).
+// whatever was asked before; one receiver's own is the whole one's part in front of it
+// (issue 35).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -81,6 +82,40 @@ TEST(MeshSilhouette, WhatItLeavesOutIsOnNoSilhouette) {
   EXPECT_GT(keptCorners, 1000u);
   EXPECT_GT(leftOutEdges, 1000u);
   EXPECT_GT(checked, 10000u);
+}
+
+// For one receiver (a clipped light is its own): the whole silhouette's part in front of its plane.
+TEST(MeshSilhouette, AReceiversOwnIsTheWholeOnesPartInFrontOfIt) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  size_t kept = 0, dropped = 0;
+  for (const test::NamedMesh& named : test::seededMeshes(2)) {
+    const Light light = test::ceilingLight(0.6);
+    const Scene scene({light}, {}, {named.mesh});
+    const uint32_t handle = scene.handleOf(0);
+    const MeshTopology& mesh = *scene.meshTopology(handle);
+    const std::span<const Face> faces = scene.facesOfObject(handle);
+    const double onPlane = scene.tolerance().onPlane();
+    const MeshSilhouette whole = meshSilhouette(faces, mesh, light.polygon, onPlane);
+    for (int k = 0; k < 10; ++k) {
+      // A plane through the mesh's middle at a random tilt, as one of its own faces' planes.
+      const Plane receiver = Plane::throughPoint(glm::normalize(Vec3(u(rng), u(rng), u(rng))), Vec3(0, 1.3, 0));
+      std::vector<double> ahead;
+      for (const Vec3& v : mesh.welded.vertices) ahead.push_back(receiver.signedDistance(v));
+      const MeshSilhouette own = meshSilhouette(faces, mesh, light.polygon, onPlane, ahead);
+      MeshSilhouette expected = whole;
+      for (size_t i = 0; i < expected.edges.size(); ++i) {
+        std::erase_if(expected.edges[i], [&](uint32_t e) {
+          return !(ahead[mesh.welded.edges[e].first] > onPlane) && !(ahead[mesh.welded.edges[e].second] > onPlane);
+        });
+        std::erase_if(expected.corners[i], [&](const MeshSilhouette::Corner& c) { return !(ahead[c.vertex] > onPlane); });
+        kept += expected.corners[i].size(), dropped += whole.corners[i].size() - expected.corners[i].size();
+      }
+      EXPECT_TRUE(sameSilhouette(own, expected)) << named.name << " plane " << k;
+    }
+  }
+  EXPECT_GT(kept, 100u);
+  EXPECT_GT(dropped, 100u);
 }
 
 TEST(MeshSilhouette, TheMemoAnswersAsTheSilhouetteAloneWhateverWasAskedBefore) {
