@@ -15,10 +15,20 @@
 namespace penumbra {
 namespace {
 
+// One mesh alone under a light, and what meshSilhouette() takes of it.
+struct OneMesh {
+  Scene scene;
+  uint32_t handle() const { return scene.handleOf(0); }
+  const MeshTopology& mesh() const { return *scene.meshTopology(handle()); }
+  std::span<const Face> faces() const { return scene.facesOfObject(handle()); }
+  double onPlane() const { return scene.tolerance().onPlane(); }
+};
+
 // Whether light point x is more than onPlane on one side of every face through corner v.
-bool offEveryFaceAt(const Scene& scene, uint32_t handle, const MeshTopology& mesh, uint32_t v, const Vec3& x,
-                    double onPlane) {
-  const std::span<const Face> faces = scene.facesOfObject(handle);
+bool offEveryFaceAt(const OneMesh& one, uint32_t v, const Vec3& x) {
+  const MeshTopology& mesh = one.mesh();
+  const std::span<const Face> faces = one.faces();
+  const double onPlane = one.onPlane();
   bool front = true, back = true;
   for (uint32_t k = mesh.vertexStarts[v]; k < mesh.vertexStarts[v + 1]; ++k) {
     const double d = faces[mesh.vertexFaces[k]].plane.signedDistance(x);
@@ -41,11 +51,10 @@ TEST(MeshSilhouette, WhatItLeavesOutIsOnNoSilhouette) {
   for (uint64_t seed = 1; seed <= 3; ++seed)
     for (const test::NamedMesh& named : test::seededMeshes(seed)) {
       const Light light = test::ceilingLight(0.3 + 0.2 * double(seed));
-      const Scene scene({light}, {}, {named.mesh});
-      const uint32_t handle = scene.handleOf(0);
-      const MeshTopology& mesh = *scene.meshTopology(handle);
-      const std::span<const Face> faces = scene.facesOfObject(handle);
-      const double onPlane = scene.tolerance().onPlane();
+      const OneMesh one{Scene({light}, {}, {named.mesh})};
+      const MeshTopology& mesh = one.mesh();
+      const std::span<const Face> faces = one.faces();
+      const double onPlane = one.onPlane();
       const MeshSilhouette silhouette = meshSilhouette(faces, mesh, light.polygon, onPlane);
       const size_t n = light.polygon.size();
       std::mt19937_64 rng(seed);
@@ -70,7 +79,7 @@ TEST(MeshSilhouette, WhatItLeavesOutIsOnNoSilhouette) {
           for (int k = 0; k < 6; ++k) {
             const double t = unit(rng);
             if (from[v] <= t && t <= to[v]) continue;
-            EXPECT_TRUE(offEveryFaceAt(scene, handle, mesh, v, p + t * (q - p), onPlane))
+            EXPECT_TRUE(offEveryFaceAt(one, v, p + t * (q - p)))
                 << named.name << " corner " << v << " at " << t;
             ++checked;
           }
@@ -91,11 +100,10 @@ TEST(MeshSilhouette, AReceiversOwnIsTheWholeOnesPartInFrontOfIt) {
   size_t kept = 0, dropped = 0;
   for (const test::NamedMesh& named : test::seededMeshes(2)) {
     const Light light = test::ceilingLight(0.6);
-    const Scene scene({light}, {}, {named.mesh});
-    const uint32_t handle = scene.handleOf(0);
-    const MeshTopology& mesh = *scene.meshTopology(handle);
-    const std::span<const Face> faces = scene.facesOfObject(handle);
-    const double onPlane = scene.tolerance().onPlane();
+    const OneMesh one{Scene({light}, {}, {named.mesh})};
+    const MeshTopology& mesh = one.mesh();
+    const std::span<const Face> faces = one.faces();
+    const double onPlane = one.onPlane();
     const MeshSilhouette whole = meshSilhouette(faces, mesh, light.polygon, onPlane);
     for (int k = 0; k < 10; ++k) {
       // A plane through the mesh's middle at a random tilt, as one of its own faces' planes.
@@ -122,22 +130,21 @@ TEST(MeshSilhouette, TheMemoAnswersAsTheSilhouetteAloneWhateverWasAskedBefore) {
   struct Asked {
     size_t scene, light;
   };
-  std::vector<Scene> scenes;
-  for (const test::NamedMesh& named : test::seededMeshes(4)) scenes.push_back(Scene({test::ceilingLight(0.5)}, {}, {named.mesh}));
+  std::vector<OneMesh> meshes;
+  for (const test::NamedMesh& named : test::seededMeshes(4)) meshes.push_back({Scene({test::ceilingLight(0.5)}, {}, {named.mesh})});
   std::vector<Polygon3> lights;
   for (double half : {0.3, 0.5, 0.8}) lights.push_back(test::ceilingLight(half).polygon);
   std::vector<Asked> order;
-  for (size_t s = 0; s < scenes.size(); ++s)
+  for (size_t s = 0; s < meshes.size(); ++s)
     for (size_t l = 0; l < lights.size(); ++l) order.push_back({s, l});
   std::mt19937_64 rng(5);
   for (int round = 0; round < 3; ++round) {
     std::shuffle(order.begin(), order.end(), rng);
     for (const Asked& a : order) {
-      const Scene& scene = scenes[a.scene];
-      const uint32_t handle = scene.handleOf(0);
-      const std::span<const Face> faces = scene.facesOfObject(handle);
-      const MeshTopology& mesh = *scene.meshTopology(handle);
-      const double onPlane = scene.tolerance().onPlane();
+      const OneMesh& one = meshes[a.scene];
+      const std::span<const Face> faces = one.faces();
+      const MeshTopology& mesh = one.mesh();
+      const double onPlane = one.onPlane();
       EXPECT_TRUE(sameSilhouette(memoisedMeshSilhouette(faces, mesh, lights[a.light], onPlane),
                                  meshSilhouette(faces, mesh, lights[a.light], onPlane)))
           << "mesh " << a.scene << " light " << a.light << " round " << round;
