@@ -108,6 +108,12 @@ void Backprojection::reset(const Scene& scene, size_t light, const Vec3& p, cons
 }
 
 bool Backprojection::occlude(const Face& face) {
+  if (!projectBlocker(face)) return false;
+  subtractShadow(blocker_, groupOf(face.id.object));
+  return true;
+}
+
+bool Backprojection::projectBlocker(const Face& face) const {
   if (!applies_) return false;
   // The single-sided rule: only faces p is strictly behind can block it.
   if (!(face.plane.signedDistance(p_) < -tolerance_.onPlane())) return false;
@@ -123,11 +129,16 @@ bool Backprojection::occlude(const Face& face) {
     beyondP |= h < pHeight_;
   }
   if (!ahead || !beforeLight || !beyondP) return false;
+  // Wholly outside a side of the cone: every part of it is, and that clip leaves nothing
+  // (most faces asked of a point near a model lie beside its cone).
+  const double eps = tolerance_.length();
+  for (const Plane& side : cone_)
+    if (std::all_of(face.polygon.begin(), face.polygon.end(), [&](const Vec3& v) { return side.signedDistance(v) < -eps; }))
+      return false;
 
   // Keep the part between p and the light inside the cone; the cap just short of
   // p's height keeps the projection finite (a blocking face is ≥ onPlane from p).
   // Clipped back and forth between two reused buffers.
-  const double eps = tolerance_.length();
   Polygon3& blocker = blocker_;
   clipFrontInto(face.polygon, lightPlane_, eps, blocker);
   const Plane cap{-lightPlane_.normal, -lightPlane_.offset + pHeight_ - 2 * eps};
@@ -145,7 +156,6 @@ bool Backprojection::occlude(const Face& face) {
   // Central projection from p onto the light's plane: along the ray p→x the
   // height above the light falls linearly from pHeight to 0.
   for (Vec3& x : blocker) x = p_ + (x - p_) * (pHeight_ / (pHeight_ - lightPlane_.signedDistance(x)));
-  subtractShadow(blocker, groupOf(face.id.object));
   return true;
 }
 
@@ -218,6 +228,20 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
     }
     return corner[v];
   };
+  // A face p is behind: in the chain (every corner usable), projected alone (a corner ahead
+  // of p's plane, one beyond the light's and one short of p's height), or blocking nothing.
+  enum class Decision { kChain, kAlone, kNone };
+  auto decide = [&](uint32_t f) {
+    uint8_t all = 0xff, any = 0;
+    for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
+      const uint8_t c = flags(w.corners[k]);
+      all &= c;
+      any |= c;
+    }
+    if (all & kUsable) return Decision::kChain;
+    constexpr uint8_t kMayBlock = kAhead | kBeyondLight | kBeforeP;
+    return (any & kMayBlock) == kMayBlock ? Decision::kAlone : Decision::kNone;
+  };
   const double onPlane = tolerance_.onPlane();
   chainFaces.clear();
   chainClusters.clear();
@@ -227,7 +251,19 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
   if (box && box->usable) {
     for (const uint32_t i : box->crossing)
       if (mesh.clusterPlanes[i].signedDistance(p_) < -onPlane) chainFaces.push_back(mesh.clusterFaces[i]);
-    return appendChain(handle, mesh, chainFaces, {}, box->behindAll);
+    // Special faces as the loop below decides them; one that blocks p on its own sends p to
+    // that loop (every face one by one), which projects it again.
+    bool alone = false;
+    for (const uint32_t i : box->special) {
+      if (!(mesh.clusterPlanes[i].signedDistance(p_) < -onPlane)) continue;
+      const uint32_t f = mesh.clusterFaces[i];
+      const Decision decision = decide(f);
+      if (decision == Decision::kChain) chainFaces.push_back(f);
+      alone = decision == Decision::kAlone && projectBlocker(faces[f]);
+      if (alone) break;
+    }
+    if (!alone) return appendChain(handle, mesh, chainFaces, {}, box->behindAll);
+    chainFaces.clear();
   }
   const std::vector<Plane>& sides = lightCone();
   auto missesCone = [&](const MeshTopology::Cluster& c) {
@@ -263,15 +299,9 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
         chainFaces.push_back(f);
         continue;
       }
-      uint8_t all = 0xff, any = 0;
-      for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
-        const uint8_t c = flags(w.corners[k]);
-        all &= c;
-        any |= c;
-      }
-      if (all & kUsable) chainFaces.push_back(f);
-      else if ((any & (kAhead | kBeyondLight | kBeforeP)) == (kAhead | kBeyondLight | kBeforeP))
-        othersBlock = occlude(faces[f]) || othersBlock;
+      const Decision decision = decide(f);
+      if (decision == Decision::kChain) chainFaces.push_back(f);
+      else if (decision == Decision::kAlone) othersBlock = occlude(faces[f]) || othersBlock;
     }
     // Every face of the cluster in the chain: its precomputed sum stands for them.
     if (chainFaces.size() - before == size_t(cluster.last - cluster.first)) {

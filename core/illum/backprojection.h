@@ -105,6 +105,9 @@ class Backprojection {
   // Lambert's sum about the shading normal over `boundary` clipped to its front half-space.
   double shadedBoundarySum(std::span<const Segment2> boundary) const;
   bool occludeMesh(uint32_t handle, const MeshTopology& mesh, std::span<const Face> faces, const Vec3* towards);
+  // occlude() short of subtracting: the face's part that blocks p, projected onto the light's
+  // plane, into blocker_; false when no part of it blocks p.
+  bool projectBlocker(const Face& face) const;
   // The mesh's chain of the given blocking faces into chain_ (appendShadowChain).
   bool appendChain(uint32_t handle, const MeshTopology& mesh, std::span<const uint32_t> faces,
                    std::span<const uint32_t> clusters, std::span<const std::pair<uint32_t, int>> summedEdges);

@@ -69,19 +69,19 @@ MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const V
   MeshBoxChain out;
   const Vec3 centre = 0.5 * (low + high), half = 0.5 * (high - low);
   const double margin = tolerance.length(), onPlane = tolerance.onPlane();
-  // Every corner ahead of the receiver's plane through any point of the box, beyond the
-  // light's plane, and below 0.999 of the box's least height over it (the margin a point's
-  // own pass asks of each corner: pHeight − h > 1e-3 · pHeight).
+  // A corner is usable from every point of the box when it lies ahead of the receiver's plane
+  // through any point of the box, beyond the light's plane, and below 0.999 of the box's least
+  // height over it (the margin a point's own pass asks of each corner: pHeight − h > 1e-3 ·
+  // pHeight).
   const double receiverTop = glm::dot(n, centre) + reach(n, half);
   const double leastHeight = lightPlane.signedDistance(centre) - reach(lightPlane.normal, half);
-  double highest = -INFINITY;
-  for (const Vec3& v : mesh.welded.vertices) {
-    const double h = lightPlane.signedDistance(v);
-    if (!(glm::dot(n, v) - receiverTop > margin) || !(h > 0)) return out;
-    highest = std::max(highest, h);
+  thread_local std::vector<uint8_t> usableCorner;
+  const std::vector<Vec3>& vertices = mesh.welded.vertices;
+  usableCorner.resize(vertices.size());
+  for (size_t v = 0; v < vertices.size(); ++v) {
+    const double h = lightPlane.signedDistance(vertices[v]);
+    usableCorner[v] = glm::dot(n, vertices[v]) - receiverTop > margin && h > 0 && 0.999 * leastHeight - h > margin;
   }
-  if (!(0.999 * leastHeight - highest > margin)) return out;
-  out.usable = true;
   thread_local std::vector<uint32_t> behindFaces, touched;
   thread_local std::vector<int> net;
   behindFaces.clear();
@@ -90,12 +90,24 @@ MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const V
   for (const MeshTopology::Cluster& cluster : mesh.clusters) {
     if (outsideEveryCone(cluster, corners, light, lightPlane, margin)) continue;
     for (uint32_t i = cluster.first; i < cluster.last; ++i) {
+      const uint32_t f = mesh.clusterFaces[i];
+      bool usable = true;
+      for (uint32_t k = mesh.welded.faceStarts[f]; k < mesh.welded.faceStarts[f + 1] && usable; ++k)
+        usable = usableCorner[mesh.welded.corners[k]];
+      if (!usable) {
+        out.special.push_back(i);
+        continue;
+      }
       const Plane& plane = mesh.clusterPlanes[i];
       const double middle = plane.signedDistance(centre), spread = reach(plane.normal, half);
-      if (middle + spread < -onPlane - margin) behindFaces.push_back(mesh.clusterFaces[i]);
+      if (middle + spread < -onPlane - margin) behindFaces.push_back(f);
       else if (!(middle - spread > -onPlane + margin)) out.crossing.push_back(i);
     }
   }
+  // Many faces a point must decide as its own pass does (a receiver on the mesh, or cutting
+  // through it): the box saves nothing there.
+  if (out.special.size() > mesh.clusterFaces.size() / kMostSpecialShare) return MeshBoxChain{};
+  out.usable = true;
   sumFaceEdges(mesh, behindFaces, net, touched, out.behindAll);
   return out;
 }

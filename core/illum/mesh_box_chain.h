@@ -9,10 +9,13 @@
 // The chain then holds every blocking face, also those whose projection misses the light
 // (a point's own pass leaves out the clusters outside its cone over the light): each such
 // face's boundary is closed and covers no light point, so the winding over the light, and
-// the visible part, are the same. Used only where that chain is valid for the whole box:
-// every corner of the mesh ahead of the receiver's plane, beyond the light's and short of
-// the box's least height over it by the 1e-3 margin of Backprojection::occludeMesh (a mesh
-// floating over a floor or beside a wall; a receiver on the mesh itself never is).
+// the visible part, are the same. A face with a corner that is not usable from every point
+// of the box (ahead of the receiver's plane, beyond the light's and short of the box's least
+// height over it by the 1e-3 margin of Backprojection::occludeMesh) is `special`: each point
+// decides it as its own pass does. Where a special face blocks the point on its own (one
+// touching the floor the model rests on, seen from beside its contact), the point takes its
+// own pass. A box with many special faces (a receiver on the mesh itself, or cutting through
+// it) is not used.
 #pragma once
 
 #include <cstdint>
@@ -27,15 +30,20 @@
 namespace penumbra {
 
 struct MeshBoxChain {
-  // Every corner of the mesh usable from every point of the box (as above); when false the
-  // rest is empty and a point takes its own pass.
+  // The box saves work (few special faces, as above); when false the rest is empty and a
+  // point takes its own pass.
   bool usable = false;
   // The faces every point of the box lies more than onPlane behind, summed (sumFaceEdges).
   std::vector<std::pair<uint32_t, int>> behindAll;
   // Indices into MeshTopology::clusterFaces / clusterPlanes of the faces whose plane's
   // onPlane offset crosses the box: each point decides them itself.
   std::vector<uint32_t> crossing;
+  // Indices as `crossing` of the faces with a corner not usable from every point of the box.
+  std::vector<uint32_t> special;
 };
+
+// A box is used while at most 1/kMostSpecialShare of the mesh's faces are special.
+inline constexpr size_t kMostSpecialShare = 8;
 
 // The box holding p, for `mesh` seen from the receiver plane with unit normal n through p
 // and lit from lightPlane: one of a grid of cubes 1/kMeshBoxDivisions of the mesh's box

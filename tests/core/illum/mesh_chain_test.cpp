@@ -3,9 +3,12 @@
 // open and inconsistently oriented meshes seen from random points (issue 35).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "core/illum/backprojection.h"
+#include "core/illum/mesh_box_chain.h"
 #include "core/reference/exact_irradiance.h"
 #include "core/scene/mesh_topology.h"
 #include "tests/core/illum/random_meshes.h"
@@ -63,6 +66,120 @@ TEST(MeshChain, EqualsFaceByFaceAndReferenceOnSeededMeshes) {
   // The sample must exercise the interesting cases, not only lit points.
   EXPECT_GT(penumbra, checked / 4);
   EXPECT_GT(umbra, 10u);
+}
+
+// The seeded meshes moved down onto the floor (lowest corner on it) or into it (2 cm): floor
+// points take a box's summed chain with the faces touching the floor decided per point
+// (mesh_box_chain.h, `special`), or their own pass where such a face blocks on its own
+// (beside the contact). Both equal the faces one by one and the reference.
+TEST(MeshChain, RestingMeshesEqualFaceByFaceAndReference) {
+  size_t checked = 0, boxWithSpecial = 0, specialAlone = 0, penumbra = 0;
+  for (uint64_t seed = 1; seed <= 4; ++seed)
+    for (test::NamedMesh& c : test::seededMeshes(seed)) {
+      const double sink = seed % 2 ? 0.0 : 0.02;
+      double lowest = INFINITY;
+      for (const Vec3& v : c.mesh.vertices) lowest = std::min(lowest, v.y);
+      for (Vec3& v : c.mesh.vertices) v.y -= lowest + sink;
+      // Under a ceiling light, or lit from a window-like light on a wall: there a floor box
+      // spans distances to the light's plane, and the faces at those distances are usable
+      // from some of its points and not from others.
+      const bool window = seed > 2;
+      Light light = test::ceilingLight(0.5 + 0.1 * double(seed));
+      if (window) light.polygon = {{2, 0.4, -0.5}, {2, 0.4, 0.5}, {2, 1.4, 0.5}, {2, 1.4, -0.5}};
+      const Scene scene({light}, {}, {floorQuad(), c.mesh});
+      const uint32_t handle = scene.handleOf(1);
+      const MeshTopology& mesh = *scene.meshTopology(handle);
+      const ExactReference reference(scene);
+      std::mt19937_64 rng(seed * 6151);
+      std::uniform_real_distribution<double> near(-0.7, 0.7), far(-1.6, 1.6), low(0.0, 0.3), behind(-1.6, -0.2);
+      for (int i = 0; i < 120; ++i) {
+        // Floor points near the mesh and farther, and points on a wall beside it low down,
+        // where a box spans heights that leave the faces between them usable from some of
+        // its points and not from others.
+        const bool wall = i >= 80;
+        const Vec3 p = wall     ? Vec3(-0.62, low(rng), near(rng))
+                       : window ? Vec3(i % 2 ? near(rng) : behind(rng), 0, near(rng))
+                       : i % 2  ? Vec3(near(rng), 0, near(rng))
+                                : Vec3(far(rng), 0, far(rng));
+        const Vec3 n = wall ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+        Backprojection view(scene, 0, p, n);
+        view.occludeObject(handle);
+        const double chain = view.visibleFactor(), full = view.unoccludedFactor();
+        const double faces = visibleOneByOne(scene, handle, p, n);
+        EXPECT_NEAR(chain, faces, 1e-9 * full) << c.name << " seed " << seed << " p " << p.x << "," << p.z;
+        EXPECT_NEAR(chain, reference.visibility(p, n, 0).visibleFactor, 1e-9 * full) << c.name << " seed " << seed;
+        penumbra += view.lightClass() == LightClass::Penumbra;
+        ++checked;
+        const MeshBoxChain* box = meshBoxChain(mesh, p, n, light.polygon, light.plane(), scene.tolerance());
+        if (!box || !box->usable || box->special.empty()) continue;
+        ++boxWithSpecial;
+        // Whether one of the box's special faces blocks p on its own (p then takes its own pass).
+        for (const uint32_t k : box->special) {
+          Backprojection alone(scene, 0, p, n);
+          const Face& face = scene.facesOfObject(handle)[mesh.clusterFaces[k]];
+          bool usable = true;
+          for (const Vec3& v : face.polygon) usable = usable && (wall ? v.x > p.x && v.y > p.y : v.y > 0);
+          if (!usable && alone.occlude(face)) {
+            ++specialAlone;
+            break;
+          }
+        }
+      }
+    }
+  // The sample must reach both ways through the box and the shadows' penumbrae.
+  EXPECT_GT(boxWithSpecial, checked / 4);
+  EXPECT_GT(specialAlone, 5u);
+  EXPECT_LT(specialAlone, boxWithSpecial / 2);
+  EXPECT_GT(penumbra, checked / 5);
+}
+
+// A plate standing near floor points, lit from a window-like light on a wall: the plate's
+// distance to the light's plane lies within a floor box's, so its faces are special there,
+// yet usable from points farther from the light, which it shades (in their chain, or by the
+// point's own pass: either way it must shade them).
+TEST(MeshChain, AFaceSpecialToItsBoxStillShadesThePoints) {
+  Object plates;
+  plates.id = "plates";
+  // Plate A near the points (facing the light, +x; 2 × 2 cells), plate B far off (8 × 8
+  // cells: it sets the box size, and keeps plate A's faces a small share of the mesh's).
+  const auto addPlate = [&](const Vec3& corner, const Vec3& up, const Vec3& across, int cells) {
+    const int first = int(plates.vertices.size());
+    for (int j = 0; j <= cells; ++j)
+      for (int k = 0; k <= cells; ++k) plates.vertices.push_back(corner + (double(j) / cells) * up + (double(k) / cells) * across);
+    for (int j = 0; j < cells; ++j)
+      for (int k = 0; k < cells; ++k) {
+        const int a = first + (cells + 1) * j + k, b = a + 1, c = a + cells + 2, d = a + cells + 1;
+        plates.faces.push_back({a, c, b});
+        plates.faces.push_back({a, d, c});
+      }
+  };
+  addPlate({-0.47, 0.01, -0.2}, {0, 0.29, 0}, {0, 0, 0.4}, 2);
+  addPlate({0.5, 1.0, 0.4}, {0, 0.2, 0}, {0, 0, 0.2}, 8);
+  Light light = test::ceilingLight(0.5);
+  light.polygon = {{2, 0.4, -0.5}, {2, 0.4, 0.5}, {2, 1.4, 0.5}, {2, 1.4, -0.5}};
+  const Scene scene({light}, {}, {floorQuad(), plates});
+  const uint32_t handle = scene.handleOf(1);
+  ASSERT_NE(scene.meshTopology(handle), nullptr);
+  const MeshTopology& mesh = *scene.meshTopology(handle);
+  const ExactReference reference(scene);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> x(-0.56, -0.48), z(-0.15, 0.15);
+  size_t specialInChain = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 p(x(rng), 0, z(rng)), n(0, 1, 0);
+    Backprojection view(scene, 0, p, n);
+    view.occludeObject(handle);
+    const double full = view.unoccludedFactor();
+    EXPECT_NEAR(view.visibleFactor(), visibleOneByOne(scene, handle, p, n), 1e-9 * full) << i;
+    EXPECT_NEAR(view.visibleFactor(), reference.visibility(p, n, 0).visibleFactor, 1e-9 * full) << i;
+    const MeshBoxChain* box = meshBoxChain(mesh, p, n, light.polygon, light.plane(), scene.tolerance());
+    if (box && box->usable && std::any_of(box->special.begin(), box->special.end(), [&](uint32_t k) {
+          return mesh.clusterFaces[k] < 8 && view.visibleFactor() < full * (1 - 1e-6);
+        }))
+      ++specialInChain;
+  }
+  // Points where plate A is special in a usable box and shades them.
+  EXPECT_GT(specialInChain, 20u);
 }
 
 // A mesh and a convex face of another object over one point: the union of both.
