@@ -119,6 +119,12 @@ class VisibleContour {
   // The chain's own boundary stretches (subtractChain): per chain edge inside the light, its
   // stretches outside every convex shadow, and the winding changes along it.
   void collectChainStretches(std::span<const ChainEdge> chain);
+  // What chainCrossings() records along each in-light chain edge (slots_, inside the light) for
+  // the other chain edges, into groupedHits_ by slot; each pair of edges whose boxes meet taken
+  // once (a sweep over x).
+  void chainPairHits(std::span<const ChainEdge> chain);
+  // Chain edge c against slot's edge e: as chainCrossings() with skip = e's index.
+  void pairHit(uint32_t slot, const ChainEdge& e, double nearSide, const ChainEdge& c);
   // Each stretch's winding (on a chain edge: on its right): walked from the origin for the
   // first and the last stretch of a run of segments joined end to start, carried along the
   // run in between.
@@ -168,6 +174,24 @@ class VisibleContour {
   std::vector<int32_t> recordOf_;  // linkRuns(): per chain edge, its index in edgeStretches_ or -1
   std::vector<uint32_t> run_;
   std::vector<Segment2> kept_;
+  // collectChainStretches(): per in-light chain edge (inLight_'s order) its box, its part inside
+  // the light [t0, t1] (inside: not empty), eps along it, and a chain corner exactly on its line;
+  // the crossings and winding steps found along it (a cut: the other edge crosses it; delta: the
+  // winding on its right steps there).
+  struct SlotBox {
+    Vec2 low{0.0}, high{0.0};
+    double t0 = 0, t1 = 1, nearSide = 0;
+    bool inside = false, onLine = false;
+  };
+  struct ChainHit {
+    uint32_t slot = 0;
+    double t = 0;
+    int delta = 0;
+    bool cut = false;
+  };
+  std::vector<SlotBox> slots_;
+  std::vector<uint32_t> sweep_, hitStarts_, next_;
+  std::vector<ChainHit> hits_, groupedHits_;
   // subtractChain(): chain edges running along each other were found; the boundary before the
   // chain; the chain split where they do (splitAtNearEnds()).
   bool alongEachOther_ = false;

@@ -210,33 +210,97 @@ void VisibleContour::subtractChainOnce(std::span<const ChainEdge> chain) {
   }
 }
 
+void VisibleContour::pairHit(uint32_t slot, const ChainEdge& e, double nearSide, const ChainEdge& c) {
+  const Vec2 a = e.from, b = e.to, d = b - a;
+  const double sideFrom = cross2(d, c.from - a), sideTo = cross2(d, c.to - a);
+  if ((sideFrom == 0 && c.from != a && c.from != b) || (sideTo == 0 && c.to != a && c.to != b)) slots_[slot].onLine = true;
+  if ((std::abs(sideFrom) <= nearSide && nearInside(a, b, c.from, sideFrom)) ||
+      (std::abs(sideTo) <= nearSide && nearInside(a, b, c.to, sideTo)))
+    alongEachOther_ = true;
+  const Vec2 f = c.to - c.from;
+  const double denominator = cross2(d, f);
+  if (denominator == 0) return;
+  const double t = cross2(c.from - a, f) / denominator, u = cross2(c.from - a, d) / denominator;
+  if (!(t > 0 && t < 1)) return;
+  const bool cut = u >= 0 && u <= 1, step = (sideFrom > 0) != (sideTo > 0);
+  if (cut || step) hits_.push_back({slot, t, step ? (sideFrom > 0 ? c.count : -c.count) : 0, cut});
+}
+
+void VisibleContour::chainPairHits(std::span<const ChainEdge> chain) {
+  // As chainCrossings() from each in-light edge in turn (the same tests on the same numbers),
+  // but each pair of edges whose boxes meet is found once, by a sweep over x, not by a walk of
+  // the grid from each of them.
+  hits_.clear();
+  sweep_.clear();
+  for (uint32_t slot = 0; slot < slots_.size(); ++slot) sweep_.push_back(slot);
+  std::sort(sweep_.begin(), sweep_.end(), [&](uint32_t x, uint32_t y) { return slots_[x].low.x < slots_[y].low.x; });
+  for (size_t k = 0; k < sweep_.size(); ++k) {
+    const SlotBox& first = slots_[sweep_[k]];
+    for (size_t m = k + 1; m < sweep_.size(); ++m) {
+      const SlotBox& second = slots_[sweep_[m]];
+      if (second.low.x > first.high.x) break;
+      if (boxesApart(first.low, first.high, second.low, second.high, 0)) continue;
+      const ChainEdge &x = chain[inLight_[sweep_[k]]], &y = chain[inLight_[sweep_[m]]];
+      if (first.inside) pairHit(sweep_[k], x, first.nearSide, y);
+      if (second.inside) pairHit(sweep_[m], y, second.nearSide, x);
+    }
+  }
+  // Grouped by slot (the order within a slot does not matter: its cuts and steps are sorted).
+  hitStarts_.assign(slots_.size() + 1, 0);
+  for (const ChainHit& h : hits_) ++hitStarts_[h.slot + 1];
+  for (size_t k = 0; k + 1 < hitStarts_.size(); ++k) hitStarts_[k + 1] += hitStarts_[k];
+  groupedHits_.resize(hits_.size());
+  next_.assign(hitStarts_.begin(), hitStarts_.end() - 1);
+  for (const ChainHit& h : hits_) groupedHits_[next_[h.slot]++] = h;
+}
+
 void VisibleContour::collectChainStretches(std::span<const ChainEdge> chain) {
   edgeStretches_.clear();
   stretches_.clear();
   steps_.clear();
-  for (uint32_t i : inLight_) {
+  slots_.resize(inLight_.size());
+  for (uint32_t slot = 0; slot < inLight_.size(); ++slot) {
+    const ChainEdge& c = chain[inLight_[slot]];
+    SlotBox& box = slots_[slot];
+    box.low = glm::min(c.from, c.to), box.high = glm::max(c.from, c.to);
+    box.t0 = 0, box.t1 = 1;
+    box.inside = insideLines(c.from, c.to, 0, lightLines_, box.t0, box.t1);
+    box.nearSide = eps_ * glm::length(c.to - c.from);
+    box.onLine = false;
+  }
+  chainPairHits(chain);
+  for (uint32_t slot = 0; slot < inLight_.size(); ++slot) {
+    const SlotBox& box = slots_[slot];
+    if (!box.inside) continue;
+    const uint32_t i = inLight_[slot];
     const ChainEdge& c = chain[i];
-    double t0 = 0, t1 = 1;
-    if (!insideLines(c.from, c.to, 0, lightLines_, t0, t1)) continue;
+    const double t0 = box.t0, t1 = box.t1;
     const Vec2 d = c.to - c.from;
     occluded_ |= (t1 - t0) * glm::length(d) > eps_;
     EdgeStretches edge;
     edge.edge = edge.skip = i;
     edge.from = c.from, edge.to = c.to;
     edge.firstStep = uint32_t(steps_.size());
-    // Convex shadows cover parts of it: their intervals become cuts as well.
-    chainCrossings(chain, c.from, c.to, i, &steps_, &edge.walkEach);
+    cuts_.clear();
+    for (uint32_t k = hitStarts_[slot]; k < hitStarts_[slot + 1]; ++k) {
+      const ChainHit& h = groupedHits_[k];
+      if (h.cut) cuts_.push_back(h.t);
+      if (h.delta != 0) steps_.push_back({h.t, h.delta});
+    }
+    std::sort(steps_.begin() + long(edge.firstStep), steps_.end(),
+              [](const WindingStep& x, const WindingStep& y) { return x.t < y.t; });
+    edge.walkEach = box.onLine;
     edge.endStep = uint32_t(steps_.size());
+    // Convex shadows cover parts of it: their intervals become cuts as well.
     covered_.clear();
-    const Vec2 low = glm::min(c.from, c.to), high = glm::max(c.from, c.to);
     for (uint32_t j : active_) {
-      if (boxesApart(low, high, low_[j], high_[j], eps_)) continue;
+      if (boxesApart(box.low, box.high, low_[j], high_[j], eps_)) continue;
       double u0 = 0, u1 = 1;
       if (insideLines(c.from, c.to, firstLine_[j], firstLine_[j + 1], u0, u1))
         covered_.push_back({u0, u1, c.from + u0 * d, c.from + u1 * d});
     }
     for (const Interval& cover : covered_) cuts_.insert(cuts_.end(), {cover.from, cover.to});
-    cuts_.insert(cuts_.end(), {t0, t1});
+    cuts_.insert(cuts_.end(), {0.0, 1.0, t0, t1});
     std::sort(cuts_.begin(), cuts_.end());
     edge.firstStretch = uint32_t(stretches_.size());
     for (size_t k = 0; k + 1 < cuts_.size(); ++k) {
