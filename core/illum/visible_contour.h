@@ -96,12 +96,13 @@ class VisibleContour {
   // Narrows [t0, t1] along a→b to the part inside the convex polygon whose edge lines are
   // lines_[first, last) (strictly: no along-edge convention); false when nothing is left.
   bool insideLines(const Vec2& a, const Vec2& b, size_t first, size_t last, double& t0, double& t1) const;
-  // The parameters along a→b where chain edges (those in inLight_) cross it inside the
-  // light's box, but `skip` (grid_ gives the candidates). With `steps`, also where the
-  // winding on the right of a→b changes strictly inside it (WindingStep), and *onLine set
-  // when a chain edge's end lies exactly on a→b's line (not at a or b).
-  void chainCrossings(std::span<const ChainEdge> chain, const Vec2& a, const Vec2& b, size_t skip,
-                      std::vector<WindingStep>* steps = nullptr, bool* onLine = nullptr);
+  // Into cuts_ (with 0 and 1, sorted): the parameters along a→b, a stretch of the light or a
+  // convex shadow, where chain edges (those in inLight_) cross it inside the light's box
+  // (grid_ gives the candidates); into `steps`, where the winding on the right of a→b changes
+  // strictly inside it (WindingStep); onLine set when a chain edge's end lies exactly on a→b's
+  // line (not at a or b).
+  void chainCrossings(std::span<const ChainEdge> chain, const Vec2& a, const Vec2& b, std::vector<WindingStep>& steps,
+                      bool& onLine);
 
   // origin_: a point of the light that no chain edge passes within eps of (its centre if none does).
   void chooseOrigin(std::span<const ChainEdge> chain);
@@ -123,7 +124,8 @@ class VisibleContour {
   // the other chain edges, into groupedHits_ by slot; each pair of edges whose boxes meet taken
   // once (a sweep over x).
   void chainPairHits(std::span<const ChainEdge> chain);
-  // Chain edge c against slot's edge e: as chainCrossings() with skip = e's index.
+  // Chain edge c against slot's chain edge e (meet(), as chainCrossings() along e): into hits_
+  // and slots_[slot].onLine; alongEachOther_ set where an end of c lies within eps of e's inside.
   void pairHit(uint32_t slot, const ChainEdge& e, double nearSide, const ChainEdge& c);
   // Each stretch's winding (on a chain edge: on its right): walked from the origin for the
   // first and the last stretch of a run of segments joined end to start, carried along the

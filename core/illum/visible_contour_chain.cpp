@@ -8,44 +8,56 @@
 
 namespace penumbra {
 
-void VisibleContour::chainCrossings(std::span<const ChainEdge> chain, const Vec2& a, const Vec2& b, size_t skip,
-                                    std::vector<WindingStep>* steps, bool* onLine) {
+namespace {
+
+// How chain edge c meets segment a→b: where a + t (b − a) = c.from + u (c.to − c.from) (no t
+// when they are parallel), c's ends' sides of a→b's line (cross2(b − a, x − a)), whether c
+// crosses a→b strictly inside it (a cut there), and the winding's step there: c crosses a→b's
+// line, sides half-open as in windingAt (an end on the line counts as right of it), so a chain
+// corner on the line counts once; coming from the left, c's covered (left) side lies ahead.
+struct Meeting {
+  double sideFrom = 0, sideTo = 0, t = 0;
+  bool cut = false;
+  int step = 0;
+  // An end of c exactly on a→b's line but not one of its ends (a corner on it, an edge along
+  // it): whether the winding steps there is what the walk's own half-open rule says.
+  bool cornerOnLine = false;
+};
+
+Meeting meet(const Vec2& a, const Vec2& b, const ChainEdge& c) {
+  Meeting m;
+  const Vec2 d = b - a, e = c.to - c.from;
+  m.sideFrom = cross2(d, c.from - a), m.sideTo = cross2(d, c.to - a);
+  m.cornerOnLine = (m.sideFrom == 0 && c.from != a && c.from != b) || (m.sideTo == 0 && c.to != a && c.to != b);
+  const double denominator = cross2(d, e);
+  if (denominator == 0) return m;  // parallel: no single crossing
+  m.t = cross2(c.from - a, e) / denominator;
+  if (!(m.t > 0 && m.t < 1)) return m;
+  const double u = cross2(c.from - a, d) / denominator;
+  m.cut = u >= 0 && u <= 1;
+  if ((m.sideFrom > 0) != (m.sideTo > 0)) m.step = m.sideFrom > 0 ? c.count : -c.count;
+  return m;
+}
+
+}  // namespace
+
+void VisibleContour::chainCrossings(std::span<const ChainEdge> chain, const Vec2& a, const Vec2& b,
+                                    std::vector<WindingStep>& steps, bool& onLine) {
   cuts_.clear();
-  const size_t firstStep = steps ? steps->size() : 0;
-  const Vec2 d = b - a, low = glm::min(a, b), high = glm::max(a, b);
-  const double nearSide = eps_ * glm::length(d);  // |cross2(d, x − a)| of a point within eps of the line
+  const size_t firstStep = steps.size();
+  const Vec2 low = glm::min(a, b), high = glm::max(a, b);
   grid_.forEachNear(a, b, [&](uint32_t j) {
-    if (j == skip) return;
     const ChainEdge& c = chain[j];
     if (boxesApart(low, high, glm::min(c.from, c.to), glm::max(c.from, c.to), 0)) return;
-    const double sideFrom = cross2(d, c.from - a), sideTo = cross2(d, c.to - a);
-    if (steps) {
-      // An end exactly on a→b's line but not one of its ends (a corner on it, an edge along
-      // it): whether the winding steps there is what the walk's own half-open rule says.
-      if ((sideFrom == 0 && c.from != a && c.from != b) || (sideTo == 0 && c.to != a && c.to != b)) *onLine = true;
-      // Along a chain edge, an end of another within eps of its inside: they run along each
-      // other there (or meet in a T), which the crossings cannot decide (subtractChain).
-      if (skip < chain.size() && ((std::abs(sideFrom) <= nearSide && nearInside(a, b, c.from, sideFrom)) ||
-                                  (std::abs(sideTo) <= nearSide && nearInside(a, b, c.to, sideTo))))
-        alongEachOther_ = true;
-    }
-    // a + t d = c.from + u (c.to − c.from), both parameters strictly inside.
-    const Vec2 e = c.to - c.from;
-    const double denominator = cross2(d, e);
-    if (denominator == 0) return;  // parallel: no single crossing
-    const double t = cross2(c.from - a, e) / denominator, u = cross2(c.from - a, d) / denominator;
-    if (t > 0 && t < 1 && u >= 0 && u <= 1) cuts_.push_back(t);
-    // The winding's step: c crosses a→b's line, sides half-open as in windingAt (an end on
-    // the line counts as right of it), so a chain corner on the line counts once. Coming from
-    // the left, c's covered (left) side lies ahead along a→b.
-    if (steps && t > 0 && t < 1 && (sideFrom > 0) != (sideTo > 0)) steps->push_back({t, sideFrom > 0 ? c.count : -c.count});
+    const Meeting m = meet(a, b, c);
+    onLine |= m.cornerOnLine;
+    if (m.cut) cuts_.push_back(m.t);
+    if (m.step != 0) steps.push_back({m.t, m.step});
   });
   cuts_.push_back(0);
   cuts_.push_back(1);
   std::sort(cuts_.begin(), cuts_.end());
-  if (steps)
-    std::sort(steps->begin() + long(firstStep), steps->end(),
-              [](const WindingStep& x, const WindingStep& y) { return x.t < y.t; });
+  std::sort(steps.begin() + long(firstStep), steps.end(), [](const WindingStep& x, const WindingStep& y) { return x.t < y.t; });
 }
 
 int VisibleContour::windingAt(std::span<const ChainEdge> chain, const Vec2& x, size_t skip) const {
@@ -211,24 +223,19 @@ void VisibleContour::subtractChainOnce(std::span<const ChainEdge> chain) {
 }
 
 void VisibleContour::pairHit(uint32_t slot, const ChainEdge& e, double nearSide, const ChainEdge& c) {
-  const Vec2 a = e.from, b = e.to, d = b - a;
-  const double sideFrom = cross2(d, c.from - a), sideTo = cross2(d, c.to - a);
-  if ((sideFrom == 0 && c.from != a && c.from != b) || (sideTo == 0 && c.to != a && c.to != b)) slots_[slot].onLine = true;
-  if ((std::abs(sideFrom) <= nearSide && nearInside(a, b, c.from, sideFrom)) ||
-      (std::abs(sideTo) <= nearSide && nearInside(a, b, c.to, sideTo)))
+  const Meeting m = meet(e.from, e.to, c);
+  slots_[slot].onLine |= m.cornerOnLine;
+  // An end of c within eps of e's inside: they run along each other there (or meet in a T),
+  // which the crossings cannot decide (subtractChain).
+  if ((std::abs(m.sideFrom) <= nearSide && nearInside(e.from, e.to, c.from, m.sideFrom)) ||
+      (std::abs(m.sideTo) <= nearSide && nearInside(e.from, e.to, c.to, m.sideTo)))
     alongEachOther_ = true;
-  const Vec2 f = c.to - c.from;
-  const double denominator = cross2(d, f);
-  if (denominator == 0) return;
-  const double t = cross2(c.from - a, f) / denominator, u = cross2(c.from - a, d) / denominator;
-  if (!(t > 0 && t < 1)) return;
-  const bool cut = u >= 0 && u <= 1, step = (sideFrom > 0) != (sideTo > 0);
-  if (cut || step) hits_.push_back({slot, t, step ? (sideFrom > 0 ? c.count : -c.count) : 0, cut});
+  if (m.cut || m.step != 0) hits_.push_back({slot, m.t, m.step, m.cut});
 }
 
 void VisibleContour::chainPairHits(std::span<const ChainEdge> chain) {
-  // As chainCrossings() from each in-light edge in turn (the same tests on the same numbers),
-  // but each pair of edges whose boxes meet is found once, by a sweep over x, not by a walk of
+  // As chainCrossings() from each in-light edge in turn (the same tests on the same numbers,
+  // meet()), but each pair of edges whose boxes meet is found once, by a sweep over x, not by a walk of
   // the grid from each of them.
   hits_.clear();
   sweep_.clear();
@@ -325,7 +332,7 @@ void VisibleContour::collectBoundaryStretches(std::span<const ChainEdge> chain) 
     edge.skip = uint32_t(chain.size());
     edge.from = s.from, edge.to = s.to;
     edge.firstStep = uint32_t(steps_.size());
-    chainCrossings(chain, s.from, s.to, chain.size(), &steps_, &edge.walkEach);
+    chainCrossings(chain, s.from, s.to, steps_, edge.walkEach);
     edge.endStep = uint32_t(steps_.size());
     edge.firstStretch = uint32_t(stretches_.size());
     for (size_t k = 0; k + 1 < cuts_.size(); ++k) stretches_.push_back({cuts_[k], cuts_[k + 1], 0});
