@@ -113,6 +113,14 @@ bool Backprojection::occlude(const Face& face) {
   return true;
 }
 
+bool Backprojection::besideLight(const Face& face) {
+  const double eps = tolerance_.length();
+  for (const Plane& side : lightCone())
+    if (std::all_of(face.polygon.begin(), face.polygon.end(), [&](const Vec3& v) { return side.signedDistance(v) < -eps; }))
+      return true;
+  return false;
+}
+
 bool Backprojection::projectBlocker(const Face& face) const {
   if (!applies_) return false;
   // The single-sided rule: only faces p is strictly behind can block it.
@@ -259,7 +267,7 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
       const uint32_t f = mesh.clusterFaces[i];
       const Decision decision = decide(f);
       if (decision == Decision::kChain) chainFaces.push_back(f);
-      alone = decision == Decision::kAlone && projectBlocker(faces[f]);
+      alone = decision == Decision::kAlone && !besideLight(faces[f]) && projectBlocker(faces[f]);
       if (alone) break;
     }
     if (!alone) return appendChain(handle, mesh, chainFaces, {}, box->behindAll);
@@ -301,7 +309,7 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
       }
       const Decision decision = decide(f);
       if (decision == Decision::kChain) chainFaces.push_back(f);
-      else if (decision == Decision::kAlone) othersBlock = occlude(faces[f]) || othersBlock;
+      else if (decision == Decision::kAlone && !besideLight(faces[f])) othersBlock = occlude(faces[f]) || othersBlock;
     }
     // Every face of the cluster in the chain: its precomputed sum stands for them.
     if (chainFaces.size() - before == size_t(cluster.last - cluster.first)) {

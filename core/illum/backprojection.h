@@ -108,6 +108,10 @@ class Backprojection {
   // occlude() short of subtracting: the face's part that blocks p, projected onto the light's
   // plane, into blocker_; false when no part of it blocks p.
   bool projectBlocker(const Face& face) const;
+  // The face lies wholly outside a side of the cone from p over the light's front part (by more
+  // than a length tolerance): its shadow misses the light, whatever projectBlocker() says (its
+  // cone is widened by the light's size, so that it keeps such shadows whole).
+  bool besideLight(const Face& face);
   // The mesh's chain of the given blocking faces into chain_ (appendShadowChain).
   bool appendChain(uint32_t handle, const MeshTopology& mesh, std::span<const uint32_t> faces,
                    std::span<const uint32_t> clusters, std::span<const std::pair<uint32_t, int>> summedEdges);
