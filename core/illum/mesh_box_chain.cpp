@@ -54,6 +54,7 @@ bool sameBits(const void* a, const void* b, size_t size) { return std::memcmp(a,
 struct MemoEntry {
   uint64_t serial = 0;
   std::array<int64_t, 3> cell{};
+  int64_t slab = 0;
   Vec3 n{0.0};
   std::vector<Vec3> light;
   Plane lightPlane;
@@ -65,7 +66,8 @@ struct MemoEntry {
 }  // namespace
 
 MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const Vec3& high, const Vec3& n,
-                              std::span<const Vec3> light, const Plane& lightPlane, const Tolerance& tolerance) {
+                              std::span<const Vec3> light, const Plane& lightPlane, const Tolerance& tolerance,
+                              double highestReceiver) {
   MeshBoxChain out;
   const Vec3 centre = 0.5 * (low + high), half = 0.5 * (high - low);
   const double margin = tolerance.length(), onPlane = tolerance.onPlane();
@@ -73,7 +75,7 @@ MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const V
   // through any point of the box, beyond the light's plane, and below 0.999 of the box's least
   // height over it (the margin a point's own pass asks of each corner: pHeight − h > 1e-3 ·
   // pHeight).
-  const double receiverTop = glm::dot(n, centre) + reach(n, half);
+  const double receiverTop = std::min(glm::dot(n, centre) + reach(n, half), highestReceiver);
   const double leastHeight = lightPlane.signedDistance(centre) - reach(lightPlane.normal, half);
   thread_local std::vector<uint8_t> usableCorner;
   const std::vector<Vec3>& vertices = mesh.welded.vertices;
@@ -134,11 +136,25 @@ const MeshBoxChain* meshBoxChain(const MeshTopology& mesh, const Vec3& p, const 
     to[a] = double(cell[a] + 1) * side + pad;
     if (!(from[a] <= p[a] && p[a] <= to[a])) return nullptr;
   }
+  // The points asked lie on a receiver's plane: the box is only the slab of the cube within a
+  // few length tolerances of n·p (a step of one, so that the points of one plane share it),
+  // flat where n is an axis. A model resting on the floor then has only the corners on the
+  // floor unusable from the box, not all those lower than the cube's top.
+  const double step = tolerance.length(), k = std::floor(glm::dot(n, p) / step);
+  if (!(std::abs(k) < 0x1p50)) return nullptr;
+  const double slabLow = k * step - pad, slabHigh = (k + 1) * step + pad;
+  if (!(slabLow <= glm::dot(n, p) && glm::dot(n, p) <= slabHigh)) return nullptr;
+  for (int a = 0; a < 3; ++a) {
+    if (std::abs(n[a]) != 1) continue;
+    from[a] = n[a] > 0 ? slabLow : -slabHigh;
+    to[a] = n[a] > 0 ? slabHigh : -slabLow;
+  }
+  const int64_t slab = int64_t(k);
   thread_local std::array<MemoEntry, 16> memo;
   thread_local uint64_t uses = 0;
   MemoEntry* oldest = &memo[0];
   for (MemoEntry& entry : memo) {
-    if (entry.serial == mesh.serial && entry.cell == cell && sameBits(&entry.n, &n, sizeof n) &&
+    if (entry.serial == mesh.serial && entry.cell == cell && entry.slab == slab && sameBits(&entry.n, &n, sizeof n) &&
         entry.light.size() == light.size() && sameBits(entry.light.data(), light.data(), light.size_bytes()) &&
         sameBits(&entry.lightPlane, &lightPlane, sizeof lightPlane) && entry.sceneSize == tolerance.sceneSize) {
       entry.lastUse = ++uses;
@@ -146,8 +162,8 @@ const MeshBoxChain* meshBoxChain(const MeshTopology& mesh, const Vec3& p, const 
     }
     if (entry.lastUse < oldest->lastUse) oldest = &entry;
   }
-  *oldest = MemoEntry{mesh.serial, cell, n, {light.begin(), light.end()}, lightPlane, tolerance.sceneSize, ++uses,
-                      makeMeshBoxChain(mesh, from, to, n, light, lightPlane, tolerance)};
+  *oldest = MemoEntry{mesh.serial, cell, slab, n, {light.begin(), light.end()}, lightPlane, tolerance.sceneSize, ++uses,
+                      makeMeshBoxChain(mesh, from, to, n, light, lightPlane, tolerance, slabHigh)};
   return &oldest->chain;
 }
 

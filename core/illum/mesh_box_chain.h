@@ -18,6 +18,7 @@
 // it) is not used.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -47,7 +48,9 @@ inline constexpr size_t kMostSpecialShare = 8;
 
 // The box holding p, for `mesh` seen from the receiver plane with unit normal n through p
 // and lit from lightPlane: one of a grid of cubes 1/kMeshBoxDivisions of the mesh's box
-// diagonal wide (so the same p always finds the same box, whatever was asked before), or
+// diagonal wide, cut to a slab a few length tolerances thick around the receiver's plane
+// (n·x within it; flat where n is an axis) (so the same p always finds the same box, whatever
+// was asked before), or
 // null where the grid does not reach (a degenerate mesh, p too far from the origin for the
 // grid's integers). Memoised per thread (the last few boxes asked); the reference is valid
 // until the next call on the same thread.
@@ -55,8 +58,10 @@ inline constexpr double kMeshBoxDivisions = 16;
 const MeshBoxChain* meshBoxChain(const MeshTopology& mesh, const Vec3& p, const Vec3& n, std::span<const Vec3> light,
                                  const Plane& lightPlane, const Tolerance& tolerance);
 
-// The same, computed for the box [low, high] (no memo): tests and the function above.
+// The same, computed for the box [low, high] (no memo): tests and the function above. The
+// points asked have n·p at most highestReceiver (the receiver's plane through each of them).
 MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const Vec3& high, const Vec3& n,
-                              std::span<const Vec3> light, const Plane& lightPlane, const Tolerance& tolerance);
+                              std::span<const Vec3> light, const Plane& lightPlane, const Tolerance& tolerance,
+                              double highestReceiver = INFINITY);
 
 }  // namespace penumbra

@@ -6,6 +6,8 @@
 // faces a point decides itself (`special`) are checked by value in mesh_chain_test.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <thread>
 
@@ -93,6 +95,40 @@ TEST(MeshBoxChain, EveryPointOfABoxCoversTheLightAsItsOwnFacesDo) {
   EXPECT_GT(covered, compared / 5);
   EXPECT_LT(crossing, faces / 3);
   EXPECT_EQ(usable, 4u * 4u * 27u);
+}
+
+// Floor points under a mesh resting on the floor: their box is a flat slab of its cube, so
+// only the faces at the mesh's foot are special (a corner on the floor, or within the 1e-3 of
+// p's height below 3 m that a point's own pass asks of each corner), not every face lower than
+// the cube's top.
+TEST(MeshBoxChain, AFloorBoxUnderARestingMeshLeavesOnlyItsFootSpecial) {
+  size_t boxes = 0, special = 0;
+  for (uint64_t seed = 1; seed <= 3; ++seed)
+    for (test::NamedMesh& named : test::seededMeshes(seed)) {
+      double lowest = INFINITY;
+      for (const Vec3& v : named.mesh.vertices) lowest = std::min(lowest, v.y);
+      for (Vec3& v : named.mesh.vertices) v.y -= lowest;
+      const Light light = test::ceilingLight(0.5);
+      const Scene scene({light}, {}, {named.mesh});
+      const MeshTopology& mesh = *scene.meshTopology(scene.handleOf(0));
+      const std::span<const Face> faces = scene.facesOfObject(scene.handleOf(0));
+      std::mt19937_64 rng(seed);
+      std::uniform_real_distribution<double> u(-1.2, 1.2);
+      for (int i = 0; i < 40; ++i) {
+        const MeshBoxChain* box =
+            meshBoxChain(mesh, {u(rng), 0, u(rng)}, {0, 1, 0}, light.polygon, light.plane(), scene.tolerance());
+        ASSERT_NE(box, nullptr);
+        ASSERT_TRUE(box->usable) << named.name;
+        ++boxes;
+        for (const uint32_t k : box->special) {
+          const Face& face = faces[mesh.clusterFaces[k]];
+          const bool foot = std::any_of(face.polygon.begin(), face.polygon.end(), [](const Vec3& v) { return v.y < 0.0031; });
+          EXPECT_TRUE(foot) << named.name << " seed " << seed;
+          ++special;
+        }
+      }
+    }
+  EXPECT_GT(special, boxes);  // the foot is there to be decided
 }
 
 TEST(MeshBoxChain, TheMemoAnswersAsTheBoxAloneWhateverWasAskedBefore) {

@@ -92,16 +92,20 @@ TEST(MeshChain, RestingMeshesEqualFaceByFaceAndReference) {
       const ExactReference reference(scene);
       std::mt19937_64 rng(seed * 6151);
       std::uniform_real_distribution<double> near(-0.7, 0.7), far(-1.6, 1.6), low(0.0, 0.3), behind(-1.6, -0.2);
-      for (int i = 0; i < 120; ++i) {
-        // Floor points near the mesh and farther, and points on a wall beside it low down,
-        // where a box spans heights that leave the faces between them usable from some of
-        // its points and not from others.
-        const bool wall = i >= 80;
-        const Vec3 p = wall     ? Vec3(-0.62, low(rng), near(rng))
+      for (int i = 0; i < 150; ++i) {
+        // Floor points near the mesh and farther, points on a wall beside it low down, where a
+        // box spans heights that leave the faces between them usable from some of its points
+        // and not from others, and points of a tilted plane through the mesh's foot (above the
+        // floor), whose box is a slab of a cube, not flat.
+        const bool wall = i >= 80 && i < 120, tilted = i >= 120;
+        const Vec3 tilt = glm::normalize(Vec3(0.15, 1, 0.05));
+        const double x = -0.3 - 0.35 * (near(rng) + 0.7) / 1.4, z = near(rng);  // y > 0.01 on the plane
+        const Vec3 p = tilted   ? Vec3(x, -(tilt.x * x + tilt.z * z) / tilt.y, z)
+                       : wall   ? Vec3(-0.62, low(rng), near(rng))
                        : window ? Vec3(i % 2 ? near(rng) : behind(rng), 0, near(rng))
                        : i % 2  ? Vec3(near(rng), 0, near(rng))
                                 : Vec3(far(rng), 0, far(rng));
-        const Vec3 n = wall ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+        const Vec3 n = tilted ? tilt : wall ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
         Backprojection view(scene, 0, p, n);
         view.occludeObject(handle);
         const double chain = view.visibleFactor(), full = view.unoccludedFactor();
@@ -118,7 +122,7 @@ TEST(MeshChain, RestingMeshesEqualFaceByFaceAndReference) {
           Backprojection alone(scene, 0, p, n);
           const Face& face = scene.facesOfObject(handle)[mesh.clusterFaces[k]];
           bool usable = true;
-          for (const Vec3& v : face.polygon) usable = usable && (wall ? v.x > p.x && v.y > p.y : v.y > 0);
+          for (const Vec3& v : face.polygon) usable = usable && glm::dot(n, v - p) > 0 && (!wall || v.y > p.y);
           if (!usable && alone.occlude(face)) {
             ++specialAlone;
             break;
