@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The model rows of issue 35 (docs/BENCHMARKS.md "Models in the dense room"): for each generated
-model, size and placing, `penumbra build --threads 2 --stats` timed with /usr/bin/time, one run
-each. With a second binary (--before), each row runs both in turn on the same scene file, so
+model, size and placing, `penumbra build --threads 2 --stats`: wall seconds and the process's
+peak memory, one run each. With a second binary (--before), each row runs both in turn on the same scene file, so
 the pair shares the machine's load. With --instructions, each build runs once at one thread under
 callgrind instead and the instructions are printed: they do not depend on the load of a shared
 machine (a ~1,000-triangle model takes ~1.5 min).
@@ -15,15 +15,20 @@ import os
 import re
 import subprocess
 import sys
+import time
 
 
 def timed_build(binary, scene):
-    """Wall seconds, peak MB and the build's own stats at 2 threads."""
-    timing = os.path.join(os.path.dirname(scene), "time.txt")
-    out = subprocess.run(["/usr/bin/time", "-f", "%e %M", "-o", timing, binary, "build", scene, "--out",
-                          os.devnull, "--threads", "2", "--stats"], capture_output=True, text=True, check=True)
-    wall, peak_kb = open(timing).read().split()[-2:]
-    return float(wall), int(peak_kb) // 1024, json.loads(out.stdout)
+    """Wall seconds, peak MB (the child's own, from wait4) and the build's stats at 2 threads."""
+    start = time.monotonic()
+    child = subprocess.Popen([binary, "build", scene, "--out", os.devnull, "--threads", "2", "--stats"],
+                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    stats = child.stdout.read()
+    _, status, usage = os.wait4(child.pid, 0)
+    wall = time.monotonic() - start
+    if os.waitstatus_to_exitcode(status) != 0:
+        sys.exit(f"{binary} build {scene} failed")
+    return wall, usage.ru_maxrss // 1024, json.loads(stats)
 
 
 def instructions(binary, scene):
