@@ -113,12 +113,19 @@ bool Backprojection::occlude(const Face& face) {
   return true;
 }
 
+namespace {
+
+// Every corner of `polygon` more than eps outside one of the inward `sides` (so all of it is).
+bool outsideASide(const Polygon3& polygon, std::span<const Plane> sides, double eps) {
+  return std::any_of(sides.begin(), sides.end(), [&](const Plane& side) {
+    return std::all_of(polygon.begin(), polygon.end(), [&](const Vec3& v) { return side.signedDistance(v) < -eps; });
+  });
+}
+
+}  // namespace
+
 bool Backprojection::besideLight(const Face& face) {
-  const double eps = tolerance_.length();
-  for (const Plane& side : lightCone())
-    if (std::all_of(face.polygon.begin(), face.polygon.end(), [&](const Vec3& v) { return side.signedDistance(v) < -eps; }))
-      return true;
-  return false;
+  return outsideASide(face.polygon, lightCone(), tolerance_.length());
 }
 
 bool Backprojection::projectBlocker(const Face& face) const {
@@ -140,9 +147,7 @@ bool Backprojection::projectBlocker(const Face& face) const {
   // Wholly outside a side of the cone: every part of it is, and that clip leaves nothing
   // (most faces asked of a point near a model lie beside its cone).
   const double eps = tolerance_.length();
-  for (const Plane& side : cone_)
-    if (std::all_of(face.polygon.begin(), face.polygon.end(), [&](const Vec3& v) { return side.signedDistance(v) < -eps; }))
-      return false;
+  if (outsideASide(face.polygon, cone_, eps)) return false;
 
   // Keep the part between p and the light inside the cone; the cap just short of
   // p's height keeps the projection finite (a blocking face is ≥ onPlane from p).

@@ -97,6 +97,9 @@ MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const V
       for (uint32_t k = mesh.welded.faceStarts[f]; k < mesh.welded.faceStarts[f + 1] && usable; ++k)
         usable = usableCorner[mesh.welded.corners[k]];
       if (!usable) {
+        // Many faces a point must decide as its own pass does (a receiver on the mesh, or
+        // cutting through it): the box saves nothing there.
+        if (out.special.size() == mesh.clusterFaces.size() / kMostSpecialShare) return MeshBoxChain{};
         out.special.push_back(i);
         continue;
       }
@@ -106,9 +109,6 @@ MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const V
       else if (!(middle - spread > -onPlane + margin)) out.crossing.push_back(i);
     }
   }
-  // Many faces a point must decide as its own pass does (a receiver on the mesh, or cutting
-  // through it): the box saves nothing there.
-  if (out.special.size() > mesh.clusterFaces.size() / kMostSpecialShare) return MeshBoxChain{};
   out.usable = true;
   sumFaceEdges(mesh, behindFaces, net, touched, out.behindAll);
   return out;

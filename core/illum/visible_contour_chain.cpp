@@ -39,6 +39,11 @@ Meeting meet(const Vec2& a, const Vec2& b, const ChainEdge& c) {
   return m;
 }
 
+// Steps [first, end) of `steps` in order along their segment.
+void sortSteps(std::vector<WindingStep>& steps, size_t first) {
+  std::sort(steps.begin() + long(first), steps.end(), [](const WindingStep& x, const WindingStep& y) { return x.t < y.t; });
+}
+
 }  // namespace
 
 void VisibleContour::chainCrossings(std::span<const ChainEdge> chain, const Vec2& a, const Vec2& b,
@@ -57,7 +62,7 @@ void VisibleContour::chainCrossings(std::span<const ChainEdge> chain, const Vec2
   cuts_.push_back(0);
   cuts_.push_back(1);
   std::sort(cuts_.begin(), cuts_.end());
-  std::sort(steps.begin() + long(firstStep), steps.end(), [](const WindingStep& x, const WindingStep& y) { return x.t < y.t; });
+  sortSteps(steps, firstStep);
 }
 
 int VisibleContour::windingAt(std::span<const ChainEdge> chain, const Vec2& x, size_t skip) const {
@@ -294,8 +299,7 @@ void VisibleContour::collectChainStretches(std::span<const ChainEdge> chain) {
       if (h.cut) cuts_.push_back(h.t);
       if (h.delta != 0) steps_.push_back({h.t, h.delta});
     }
-    std::sort(steps_.begin() + long(edge.firstStep), steps_.end(),
-              [](const WindingStep& x, const WindingStep& y) { return x.t < y.t; });
+    sortSteps(steps_, edge.firstStep);
     edge.walkEach = box.onLine;
     edge.endStep = uint32_t(steps_.size());
     // Convex shadows cover parts of it: their intervals become cuts as well.
