@@ -28,6 +28,7 @@ class ChainGrid {
   // (a superset of those crossing it inside the box).
   template <class Visit>
   void forEachNear(const Vec2& a, const Vec2& b, Visit&& visit) const {
+    if (a == b) return forEachAt(a, visit);
     if (!cellsAlong(a, b)) return;
     if (++stamp_ == 0) std::fill(seen_.begin(), seen_.end(), 0), stamp_ = 1;
     auto once = [&](uint32_t j) {
@@ -38,6 +39,16 @@ class ChainGrid {
     for (uint32_t j : everywhere_) once(j);
     for (uint32_t cell : cells_)
       for (uint32_t k = starts_[cell]; k < starts_[cell + 1]; ++k) once(members_[k]);
+  }
+
+  // forEachNear(x, x): the edges of the one cell x lies in (each once there, no walk).
+  template <class Visit>
+  void forEachAt(const Vec2& x, Visit&& visit) const {
+    const Vec2 high = low_ + cell_ * double(size_);
+    if (!(x.x >= low_.x && x.x <= high.x && x.y >= low_.y && x.y <= high.y)) return;
+    for (uint32_t j : everywhere_) visit(j);
+    const size_t cell = size_t(row(x.y)) * size_t(size_) + size_t(column(x.x));
+    for (uint32_t k = starts_[cell]; k < starts_[cell + 1]; ++k) visit(members_[k]);
   }
 
  private:
