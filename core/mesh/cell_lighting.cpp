@@ -120,6 +120,12 @@ bool CellLighter::onOutline(const Vec2& q) const {
   return false;
 }
 
+bool CellLighter::onLattice(const Vec2& q) const {
+  if (!(spacing_ > 0)) return false;
+  const auto near = [&](double x) { return std::abs(x - std::round(x / spacing_) * spacing_) <= eps_; };
+  return near(q.x) || near(q.y);
+}
+
 MeshChunkKey CellLighter::chunkOf(const Polygon2& piece) const {
   if (!(chunkSide_ > 0)) return MeshChunkKey{};
   const Vec2 middle = centroid(piece);
@@ -215,8 +221,9 @@ void CellLighter::lightsAt(const Vec2& q, const OccluderList& list, const Vec3& 
   // inside the cell, where the exact value is the limit.)
   const bool limit = (corner < polygon.size() || onContact(p)) && glm::length(centre - p) > eps_;
   // Lit from the list alone (no limit from this cell): a neighbour with the same list asks the
-  // same of a point on their common edge.
-  const bool shareable = shared_ && !limit && onOutline(q);
+  // same of a point on their common edge, and so does the cell's piece across a lattice line.
+  // (Which points are kept changes no value: the same q and list give the same bits.)
+  const bool shareable = shared_ && !limit && (onOutline(q) || onLattice(q));
   if (shareable && shared_->find(q, &list, out)) return;
   const size_t first = out.size();
   oneCell_.assign(1, &list);

@@ -56,6 +56,8 @@ class CellLighter {
   bool onContact(const Vec3& p) const;
   // Whether q lies within eps of the gathered cell's outline (where a neighbour may ask too).
   bool onOutline(const Vec2& q) const;
+  // Whether q lies within eps of a lattice line (where the cell's piece on the other side asks too).
+  bool onLattice(const Vec2& q) const;
   // The value from each light of a point of the gathered cell's closure, as seen from the
   // cell (centre: its centroid), appended to output_.ownLights.
   void appendLightsAt(const Vec2& q, const OccluderList& list, const Vec3& centre) {
