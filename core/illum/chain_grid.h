@@ -41,6 +41,7 @@ class ChainGrid {
       for (uint32_t k = starts_[cell]; k < starts_[cell + 1]; ++k) once(members_[k]);
   }
 
+ private:
   // forEachNear(x, x): the edges of the one cell x lies in (each once there, no walk).
   template <class Visit>
   void forEachAt(const Vec2& x, Visit&& visit) const {
@@ -51,7 +52,6 @@ class ChainGrid {
     for (uint32_t k = starts_[cell]; k < starts_[cell + 1]; ++k) visit(members_[k]);
   }
 
- private:
   // The cells segment a→b passes into cells_; false when it misses the grid.
   bool cellsAlong(const Vec2& a, const Vec2& b) const;
   int column(double x) const;
