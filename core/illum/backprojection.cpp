@@ -358,36 +358,49 @@ const std::vector<Plane>& Backprojection::lightCone() {
 bool Backprojection::occludeObject(uint32_t handle, const Vec3* towards) {
   if (!applies_) return false;
   const std::span<const Face> faces = scene_->facesOfObject(handle);
-  if (!scene_->convexSolid(handle))
+  const ConvexSolid* convex = scene_->convexSolid(handle);
+  if (!convex) {
     if (const MeshTopology* mesh = scene_->meshTopology(handle)) return occludeMesh(handle, *mesh, faces, towards);
+    return occludeFaces(faces);
+  }
   // The hull needs the merge's conditions (closed convex, wholly in front of the light, p
   // off every face's plane) and every corner ahead of p's plane, with a height below p's
-  // that keeps the projection within 1000 times the corner's distance.
-  const ConvexSolid* solid = groupOf(handle) != kNoGroup ? scene_->convexSolid(handle) : nullptr;
-  const Plane receiver = Plane::throughPoint(n_, p_);
-  const bool hull = solid && std::all_of(solid->vertices.begin(), solid->vertices.end(), [&](const Vec3& v) {
-    return receiver.signedDistance(v) > 0 && pHeight_ - lightPlane_.signedDistance(v) > 1e-3 * pHeight_;
-  });
-  if (!hull) {
-    bool any = false;
-    for (const Face& face : faces) any = occlude(face) || any;
-    return any;
+  // that keeps the projection within 1000 times the corner's distance. Each corner's height
+  // and each face's side of p are found once here for all three (as mergeableShadows()
+  // finds them; a clutter's evaluation asks this of every box in its list).
+  thread_local std::vector<double> heights;
+  thread_local std::vector<uint8_t> seenBy, faceSide;
+  const ConvexSolid& solid = *convex;
+  const double onPlane = tolerance_.onPlane();
+  bool mergeable = true;
+  heights.resize(solid.vertices.size());
+  for (size_t i = 0; i < solid.vertices.size(); ++i) {
+    heights[i] = lightPlane_.signedDistance(solid.vertices[i]);
+    mergeable = mergeable && heights[i] > tolerance_.length();
   }
+  faceSide.resize(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const double side = faces[f].plane.signedDistance(p_);
+    mergeable = mergeable && std::abs(side) > onPlane;
+    faceSide[f] = side < -onPlane ? 1 : 2;  // 1: p behind the face (it blocks p)
+  }
+  if (!knownGroup(handle)) groups_.push_back({handle, mergeable ? handle : kNoGroup});
+  const Plane receiver = Plane::throughPoint(n_, p_);
+  bool hull = mergeable;
+  for (size_t i = 0; hull && i < solid.vertices.size(); ++i)
+    hull = receiver.signedDistance(solid.vertices[i]) > 0 && pHeight_ - heights[i] > 1e-3 * pHeight_;
+  if (!hull) return occludeFaces(faces);
   // The outline of the projection: corners of a face that blocks p (p behind it) and of
   // one that does not, i.e. on the silhouette seen from p (every face is one or the other).
-  thread_local std::vector<uint8_t> seenBy;
   thread_local std::vector<Vec2> corners, outline;
-  seenBy.assign(solid->vertices.size(), 0);
-  const double onPlane = tolerance_.onPlane();
-  for (size_t f = 0; f < faces.size(); ++f) {
-    const uint8_t bit = faces[f].plane.signedDistance(p_) < -onPlane ? 1 : 2;
-    for (uint32_t k = solid->faceStarts[f]; k < solid->faceStarts[f + 1]; ++k) seenBy[solid->corners[k]] |= bit;
-  }
+  seenBy.assign(solid.vertices.size(), 0);
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (uint32_t k = solid.faceStarts[f]; k < solid.faceStarts[f + 1]; ++k) seenBy[solid.corners[k]] |= faceSide[f];
   corners.clear();
-  for (size_t i = 0; i < solid->vertices.size(); ++i) {
+  for (size_t i = 0; i < solid.vertices.size(); ++i) {
     if (seenBy[i] != 3) continue;
-    const Vec3& v = solid->vertices[i];
-    corners.push_back(frame_.to2D(p_ + (v - p_) * (pHeight_ / (pHeight_ - lightPlane_.signedDistance(v)))));
+    const Vec3& v = solid.vertices[i];
+    corners.push_back(frame_.to2D(p_ + (v - p_) * (pHeight_ / (pHeight_ - heights[i]))));
   }
   convexHullInto(corners, tolerance_.length(), outline);
   if (outline.size() < 3) return false;
@@ -399,6 +412,16 @@ bool Backprojection::occludeId(FaceId id) {
   if (isWholeObject(id)) return occludeObject(id.object);
   const Face* face = findFace(*scene_, id);
   return face && occlude(*face);
+}
+
+bool Backprojection::occludeFaces(std::span<const Face> faces) {
+  bool any = false;
+  for (const Face& face : faces) any = occlude(face) || any;
+  return any;
+}
+
+bool Backprojection::knownGroup(uint32_t object) const {
+  return std::any_of(groups_.begin(), groups_.end(), [&](const auto& known) { return known.first == object; });
 }
 
 uint32_t Backprojection::groupOf(uint32_t object) {

@@ -93,6 +93,9 @@ class Backprojection {
   void subtractShadow2D(std::span<const Vec2> shadow, uint32_t group);
   // The merge group of an object's shadows (its handle, or kNoGroup; shadow_merge.h).
   uint32_t groupOf(uint32_t object);
+  bool knownGroup(uint32_t object) const;  // groupOf() decided already for this point
+  // Each face occluded alone; whether any blocks p.
+  bool occludeFaces(std::span<const Face> faces);
   // The gathered shadows with each object's group merged: the given buffers, or the
   // gathered ones when nothing merges.
   bool mergedShadows(std::vector<Vec2>& points, std::vector<uint32_t>& starts) const;

@@ -3,16 +3,19 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/scene/convex_solid.h"
+
 namespace penumbra {
 
 bool mergeableShadows(const Scene& scene, uint32_t handle, const Plane& lightPlane, const Vec3& p) {
-  if (!scene.isClosedConvex(handle)) return false;
+  const ConvexSolid* solid = scene.convexSolid(handle);
+  if (!solid) return false;
   const double eps = scene.tolerance().length(), onPlane = scene.tolerance().onPlane();
-  for (const Face& face : scene.facesOfObject(handle)) {
+  // The solid's corners are its faces' corners, each once.
+  for (const Vec3& v : solid->vertices)
+    if (!(lightPlane.signedDistance(v) > eps)) return false;
+  for (const Face& face : scene.facesOfObject(handle))
     if (!(std::abs(face.plane.signedDistance(p)) > onPlane)) return false;
-    for (const Vec3& v : face.polygon)
-      if (!(lightPlane.signedDistance(v) > eps)) return false;
-  }
   return true;
 }
 

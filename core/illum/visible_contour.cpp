@@ -97,12 +97,24 @@ void VisibleContour::clipEdgeOfShadow(uint32_t i, size_t edge) {
   const Line& line = lines_[edge];
   occluded_ |= (inside.to - inside.from) * glm::length(line.to - line.from) > eps_;
   const Vec2 sLow = glm::min(line.from, line.to), sHigh = glm::max(line.from, line.to);
+  // Shadow j's part of the edge, if any; a stretch one shadow holds whole leaves nothing
+  // (emitUncovered would emit no gap), so the search stops there. The shadow that held the
+  // last edge whole is asked first: in clutter a shadow's edges often lie in one other.
+  const auto clipBy = [&](uint32_t j, Interval& c) {
+    return j != i && !boxesApart(sLow, sHigh, low_[j], high_[j], eps_) &&
+           clipToPolygon(edge, firstLine_[j], firstLine_[j + 1] - firstLine_[j], j < i, true, c);
+  };
+  const auto holdsWhole = [&](const Interval& c) { return c.from <= inside.from && c.to >= inside.to; };
+  Interval c;
+  if (lastHolder_ < low_.size() && clipBy(lastHolder_, c) && holdsWhole(c)) return;
   covered_.clear();
   for (uint32_t j : active_) {
-    Interval c;
-    if (j == i || boxesApart(sLow, sHigh, low_[j], high_[j], eps_)) continue;
-    if (clipToPolygon(edge, firstLine_[j], firstLine_[j + 1] - firstLine_[j], j < i, true, c))
-      covered_.push_back(c);
+    if (!clipBy(j, c)) continue;
+    if (holdsWhole(c)) {
+      lastHolder_ = j;
+      return;
+    }
+    covered_.push_back(c);
   }
   // The shadow is on the edge's left, the visible part on its right: reversed.
   emitUncovered(inside, true);
@@ -164,6 +176,7 @@ void VisibleContour::compute(std::span<const Vec2> light, std::span<const Vec2> 
     emitUncovered({0, 1, line.from, line.to}, false);
   }
   // Each shadow's edges inside the light, less what the other shadows cover.
+  lastHolder_ = kNoShadow;
   for (uint32_t i : active_)
     for (size_t e = firstLine_[i]; e < firstLine_[i + 1]; ++e) clipEdgeOfShadow(i, e);
 }

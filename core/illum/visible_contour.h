@@ -145,6 +145,8 @@ class VisibleContour {
   std::vector<uint32_t> firstLine_;          // shadow i: lines_[firstLine_[i], firstLine_[i + 1])
   std::vector<Vec2> low_, high_;             // shadows' bounding boxes
   std::vector<uint32_t> active_;             // shadows whose box meets the light's
+  static constexpr uint32_t kNoShadow = 0xffffffffu;
+  uint32_t lastHolder_ = kNoShadow;          // clipEdgeOfShadow(): the shadow that held the last edge whole
   size_t lightLines_ = 0;
   bool occluded_ = false;
   bool allCovered_ = false;                  // one convex shadow holds the whole light

@@ -141,11 +141,13 @@ void Scene::deriveFaces() {
   tolerance_ = Tolerance::forSize(bounds_.diagonal());
   faces_.clear();
   solids_.clear();
+  faceStarts_.assign(1, 0);
   for (size_t o = 0; o < objects_.size(); ++o) {
     try {
       std::vector<Face> faces = facesOf(objects_[o], handles_[o]);
       solids_.push_back(shapeOf(objects_[o], faces, tolerance_));
       for (Face& face : faces) faces_.push_back(std::move(face));
+      faceStarts_.push_back(uint32_t(faces_.size()));
     } catch (const FaceError& error) {
       throw error.atObject(o);
     }
@@ -188,6 +190,7 @@ uint32_t Scene::addObject(Object object) {
   solids_.push_back(std::move(solid));
   // Handles only grow: the new faces sort after every existing one.
   for (Face& face : faces) faces_.push_back(std::move(face));
+  faceStarts_.push_back(uint32_t(faces_.size()));
   return handle;
 }
 
@@ -197,9 +200,10 @@ void Scene::removeObject(uint32_t handle) {
   objects_.erase(objects_.begin() + long(*index));
   handles_.erase(handles_.begin() + long(*index));
   solids_.erase(solids_.begin() + long(*index));
-  faces_.erase(std::remove_if(faces_.begin(), faces_.end(),
-                              [&](const Face& f) { return f.id.object == handle; }),
-               faces_.end());
+  const uint32_t first = faceStarts_[*index], count = faceStarts_[*index + 1] - first;
+  faces_.erase(faces_.begin() + first, faces_.begin() + first + count);
+  faceStarts_.erase(faceStarts_.begin() + long(*index) + 1);
+  for (size_t o = *index + 1; o < faceStarts_.size(); ++o) faceStarts_[o] -= count;
 }
 
 void Scene::setTransform(uint32_t handle, const Transform& transform) {
@@ -208,21 +212,19 @@ void Scene::setTransform(uint32_t handle, const Transform& transform) {
   Object moved = objects_[*index];
   moved.transform = transform;
   std::vector<Face> faces = facesOf(moved, handle);  // checks before changing anything
+  if (faces.size() != faceStarts_[*index + 1] - faceStarts_[*index])
+    throw std::logic_error("Scene::setTransform: a moved object changed its face count");
   // Closed and convex is affine-invariant, but the test is at the scene's tolerance in
   // world space: decided again, as a rebuild of the moved scene would.
   solids_[*index] = shapeOf(moved, faces, tolerance_);
   objects_[*index] = std::move(moved);
-  const auto first = std::lower_bound(faces_.begin(), faces_.end(), FaceId{handle, 0},
-                                      [](const Face& f, const FaceId& id) { return f.id < id; });
-  for (size_t f = 0; f < faces.size(); ++f) first[long(f)] = std::move(faces[f]);
+  for (size_t f = 0; f < faces.size(); ++f) faces_[faceStarts_[*index] + f] = std::move(faces[f]);
 }
 
 std::span<const Face> Scene::facesOfObject(uint32_t handle) const {
-  const auto first = std::lower_bound(faces_.begin(), faces_.end(), handle,
-                                      [](const Face& f, uint32_t h) { return f.id.object < h; });
-  const auto last = std::upper_bound(first, faces_.end(), handle,
-                                     [](uint32_t h, const Face& f) { return h < f.id.object; });
-  return {first, last};
+  const auto index = indexOfHandle(handle);
+  if (!index) return {};
+  return std::span<const Face>(faces_).subspan(faceStarts_[*index], faceStarts_[*index + 1] - faceStarts_[*index]);
 }
 
 const ConvexSolid* Scene::convexSolid(uint32_t handle) const {

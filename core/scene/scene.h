@@ -265,6 +265,9 @@ class Scene {
   std::optional<Camera> camera_;
   std::vector<VolumeObject> volumes_;
   std::vector<Face> faces_;
+  // Parallel to objects_ plus one: object o's faces are faces_[faceStarts_[o], faceStarts_[o + 1]).
+  // Evaluations look an object's faces up once per occluder, so not by searching faces_.
+  std::vector<uint32_t> faceStarts_{0};
   Bounds bounds_;
   Tolerance tolerance_;
 };
