@@ -7,8 +7,8 @@
 // the point lies in), but holding no DM vertex or edge. It prints both meshes' vertices and
 // exact evaluations, and each one's error at random points of the receiver against the exact
 // value there, relative to the local unshadowed level (what the tolerance is relative to).
-// One light's factor is compared (light 0); a scene with contact lines on the receiver (a
-// model resting on it) has value jumps the second mesh does not follow.
+// Scenes with one light only (its factor is compared); a scene with contact lines on the
+// receiver (a model resting on it) has value jumps the second mesh does not follow.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -189,6 +189,8 @@ struct ErrorTally {
 int main(int argc, char** argv) try {
   const Options o = parse(argc, argv);
   const Scene scene = loadScene(o);
+  // The product's mesh sums its lights; the study compares one light's factor.
+  if (scene.lights().size() != 1) throw std::invalid_argument("the study needs a scene with one light");
   EngineSettings settings;
   settings.threads = o.threads;
   const auto start = std::chrono::steady_clock::now();
