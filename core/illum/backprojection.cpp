@@ -376,15 +376,15 @@ bool Backprojection::occludeObject(uint32_t handle, const Vec3* towards) {
   heights.resize(solid.vertices.size());
   for (size_t i = 0; i < solid.vertices.size(); ++i) {
     heights[i] = lightPlane_.signedDistance(solid.vertices[i]);
-    mergeable = mergeable && heights[i] > tolerance_.length();
+    mergeable = mergeable && mergeableCorner(heights[i], tolerance_);
   }
   faceSide.resize(faces.size());
   for (size_t f = 0; f < faces.size(); ++f) {
     const double side = faces[f].plane.signedDistance(p_);
-    mergeable = mergeable && std::abs(side) > onPlane;
+    mergeable = mergeable && mergeableFaceSide(side, tolerance_);
     faceSide[f] = side < -onPlane ? 1 : 2;  // 1: p behind the face (it blocks p)
   }
-  if (!knownGroup(handle)) groups_.push_back({handle, mergeable ? handle : kNoGroup});
+  if (!decidedGroup(handle)) groups_.push_back({handle, mergeable ? handle : kNoGroup});
   const Plane receiver = Plane::throughPoint(n_, p_);
   bool hull = mergeable;
   for (size_t i = 0; hull && i < solid.vertices.size(); ++i)
@@ -420,13 +420,14 @@ bool Backprojection::occludeFaces(std::span<const Face> faces) {
   return any;
 }
 
-bool Backprojection::knownGroup(uint32_t object) const {
-  return std::any_of(groups_.begin(), groups_.end(), [&](const auto& known) { return known.first == object; });
+const uint32_t* Backprojection::decidedGroup(uint32_t object) const {
+  for (const auto& [known, group] : groups_)
+    if (known == object) return &group;
+  return nullptr;
 }
 
 uint32_t Backprojection::groupOf(uint32_t object) {
-  for (const auto& [known, group] : groups_)
-    if (known == object) return group;
+  if (const uint32_t* decided = decidedGroup(object)) return *decided;
   const uint32_t group = mergeableShadows(*scene_, object, lightPlane_, p_) ? object : kNoGroup;
   groups_.push_back({object, group});
   return group;

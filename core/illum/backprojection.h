@@ -93,7 +93,7 @@ class Backprojection {
   void subtractShadow2D(std::span<const Vec2> shadow, uint32_t group);
   // The merge group of an object's shadows (its handle, or kNoGroup; shadow_merge.h).
   uint32_t groupOf(uint32_t object);
-  bool knownGroup(uint32_t object) const;  // groupOf() decided already for this point
+  const uint32_t* decidedGroup(uint32_t object) const;  // groupOf()'s answer for this point, if decided
   // Each face occluded alone; whether any blocks p.
   bool occludeFaces(std::span<const Face> faces);
   // The gathered shadows with each object's group merged: the given buffers, or the

@@ -10,12 +10,11 @@ namespace penumbra {
 bool mergeableShadows(const Scene& scene, uint32_t handle, const Plane& lightPlane, const Vec3& p) {
   const ConvexSolid* solid = scene.convexSolid(handle);
   if (!solid) return false;
-  const double eps = scene.tolerance().length(), onPlane = scene.tolerance().onPlane();
   // The solid's corners are its faces' corners, each once.
   for (const Vec3& v : solid->vertices)
-    if (!(lightPlane.signedDistance(v) > eps)) return false;
+    if (!mergeableCorner(lightPlane.signedDistance(v), scene.tolerance())) return false;
   for (const Face& face : scene.facesOfObject(handle))
-    if (!(std::abs(face.plane.signedDistance(p)) > onPlane)) return false;
+    if (!mergeableFaceSide(face.plane.signedDistance(p), scene.tolerance())) return false;
   return true;
 }
 

@@ -11,6 +11,7 @@
 // boundary kernel (VisibleContour, O(edges × shadows)) then clips.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -26,6 +27,10 @@ namespace penumbra {
 // point inside it), and p is farther than onPlane() from every face's plane (the
 // single-sided rule then decides each face the same way as the solid).
 bool mergeableShadows(const Scene& scene, uint32_t handle, const Plane& lightPlane, const Vec3& p);
+// The rule's two tests, for a caller that has the distances already (Backprojection): a
+// corner's height over the light's plane, and a face's plane's signed distance from p.
+inline bool mergeableCorner(double height, const Tolerance& tolerance) { return height > tolerance.length(); }
+inline bool mergeableFaceSide(double side, const Tolerance& tolerance) { return std::abs(side) > tolerance.onPlane(); }
 
 // The convex hull of `points`, counter-clockwise, into `out` (strict turns only, points
 // within `eps` of the previous hull corner dropped). Fewer than 3 corners: no area.
