@@ -1,6 +1,8 @@
 // `penumbra-display-study (--scene FILE | --model NAME [--triangles N] [--rest]) [--samples N]
 // [--seed S] [--threads T] [--study-tolerance X] [--study-spacing S] [--json OUT]` (docs/BENCHMARKS.md "A display mesh without the DM's vertices"): a
-// design study for issue 35, not a product path. It builds the scene's engine and display mesh,
+// design study for issue 35 (the product now meshes such floors from their squares:
+// core/mesh/lattice_mesh_memo.h; the study varies its tolerance and spacing, with no cap on a
+// square's points). It builds the scene's engine and display mesh,
 // takes the receiver with the most DM vertices (the floor under a model), and meshes that
 // receiver a second way: its lattice squares, refined by the same tests (core/mesh/
 // cell_refinement.h) with the exact value at every point (the occluder list of the DM-tree cell
@@ -249,7 +251,7 @@ int main(int argc, char** argv) try {
               receiver->tree.vertices().size());
   std::printf("%-34s %10s %10s %12s %9s %9s %9s %9s %8s\n", "display mesh", "vertices", "triangles", "evaluations",
               "worst %", ">0.5%", ">1%", ">2%", "missed");
-  std::printf("%-34s %10zu %10zu %12s %9.3f %9zu %9zu %9zu %8zu\n", "DM cells, refined (the product)",
+  std::printf("%-34s %10zu %10zu %12s %9.3f %9zu %9zu %9zu %8zu\n", "the product's mesh",
               display->positions.size(), display->triangles.size(), "-", 100 * currentErrors.worst, currentErrors.over05,
               currentErrors.over1, currentErrors.over2, currentErrors.missing);
   std::printf("%-34s %10zu %10zu %12zu %9.3f %9zu %9zu %9zu %8zu\n", "lattice squares, refined (study)", studyPoints,

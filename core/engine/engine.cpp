@@ -509,7 +509,7 @@ MeshGrid Engine::meshGrid() const {
   refine.tolerance = std::max(0.0, settings_.meshTolerance);
   refine.minEdge = scene_.bounds().diagonal() / settings_.meshRefineMinEdgeDivisions;
   refine.maxPoints = EngineSettings::kRefineMaxPoints;
-  return MeshGrid{meshSpacing(), meshChunkSquares_, refine};
+  return MeshGrid{meshSpacing(), meshChunkSquares_, refine, settings_.meshLatticeAbove};
 }
 
 double Engine::meshSpacing() const {

@@ -53,6 +53,11 @@ struct EngineSettings {
   double meshTolerance = kRecommendedMeshTolerance;
   double meshRefineMinEdgeDivisions = 4096;
   static constexpr uint32_t kRefineMaxPoints = 1024;
+  // Lattice display (core/mesh/lattice_display_rule.h, docs/DESIGN.md): a flat receiver with
+  // no contact whose DM holds more than this many vertices in one lattice square is meshed
+  // from its lattice squares, refined, instead of its DM cells; 0: never.
+  static constexpr uint32_t kDefaultLatticeAbove = 1000;
+  uint32_t meshLatticeAbove = kDefaultLatticeAbove;
   // Test hook (failure injection, tests/server/frame_failure_property_test.cpp): called at
   // named points of apply() ("removed", "added", "relight", "rebuild": its whole-engine
   // fallback) and of a server session's meshing ("meshing"); it may throw to simulate a
@@ -204,6 +209,9 @@ class Engine {
   int meshChunkSquares() const { return meshChunkSquares_; }
   // The lattice, chunks and refinement mesh() uses.
   MeshGrid meshGrid() const;
+  // Whether the last mesh call meshed the receiver from its lattice squares
+  // (EngineSettings::meshLatticeAbove); false if it was never meshed.
+  bool meshedFromLattice(FaceId face) const { return displayMemo_.fromLattice(face); }
 
   // Casts afresh (and lights) the listed receivers' trees when dead slots dominate them:
   // node deletion leaves dead nodes, vertices and cells behind (the tree and its mesh only

@@ -14,29 +14,6 @@
 
 namespace penumbra {
 
-namespace {
-
-Vec2 centroid(const Polygon2& polygon) {
-  Vec2 middle{0.0};
-  for (const Vec2& q : polygon) middle += q;
-  return middle / double(polygon.size());
-}
-
-// Whether the polygon's width (twice its area over its longest side) is below `width`: a
-// sliver of a cell, whose points the mesh builder may merge with its neighbours' (within eps),
-// which would fold triangles refined inside it. It keeps its fan.
-bool narrowerThan(const Polygon2& polygon, double width) {
-  double area = 0, longest = 0;
-  for (size_t i = 0; i < polygon.size(); ++i) {
-    const Vec2& a = polygon[i];
-    const Vec2& b = polygon[(i + 1) % polygon.size()];
-    area += cross2(a, b);
-    longest = std::max(longest, glm::length(b - a));
-  }
-  return !(std::abs(area) > width * longest);
-}
-
-}  // namespace
 
 bool darkLights(const OccluderList& list, std::vector<bool>& dark) {
   std::fill(dark.begin(), dark.end(), false);
@@ -128,7 +105,7 @@ bool CellLighter::onLattice(const Vec2& q) const {
 
 MeshChunkKey CellLighter::chunkOf(const Polygon2& piece) const {
   if (!(chunkSide_ > 0)) return MeshChunkKey{};
-  const Vec2 middle = centroid(piece);
+  const Vec2 middle = vertexAverage(piece);
   return MeshChunkKey{int64_t(std::floor(middle.x / chunkSide_)),
                       int64_t(std::floor(middle.y / chunkSide_))};
 }
@@ -332,7 +309,7 @@ void CellLighter::emit(CellId c, CellMemo& out) {
     const size_t first = output_.points.size() - piece.size();
     const CellFan fan = fanOfConvexCell(piece, eps_);
     if (fan.usesCentre()) {
-      const Vec2 middle = centroid(piece);
+      const Vec2 middle = vertexAverage(piece);
       oneCell_.assign(1, &list);
       addOwn(middle);
       const Vec3 p = source_.frame.to3D(middle);

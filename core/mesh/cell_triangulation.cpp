@@ -1,5 +1,6 @@
 #include "core/mesh/cell_triangulation.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra {
@@ -27,6 +28,23 @@ CellFan fanOfConvexCell(const Polygon2& loop, double eps) {
   for (uint32_t apex = 0; apex < n; ++apex)
     if (corner(apex) && corner((apex + 1) % n) && corner((apex + n - 1) % n)) return CellFan{apex};
   return CellFan{CellFan::kCentre};
+}
+
+Vec2 vertexAverage(const Polygon2& loop) {
+  Vec2 middle{0.0};
+  for (const Vec2& q : loop) middle += q;
+  return middle / double(loop.size());
+}
+
+bool narrowerThan(const Polygon2& polygon, double width) {
+  double area = 0, longest = 0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Vec2& a = polygon[i];
+    const Vec2& b = polygon[(i + 1) % polygon.size()];
+    area += cross2(a, b);
+    longest = std::max(longest, glm::length(b - a));
+  }
+  return !(std::abs(area) > width * longest);
 }
 
 }  // namespace penumbra

@@ -33,4 +33,11 @@ struct CellFan {
 // (the loop's vertex average).
 CellFan fanOfConvexCell(const Polygon2& loop, double eps);
 
+// The loop's vertex average: the centre a fan from kCentre uses.
+Vec2 vertexAverage(const Polygon2& loop);
+// Whether the polygon's width (twice its area over its longest side) is below `width`: a
+// sliver, whose points the mesh builder may merge with its neighbours' (within eps), which
+// would fold triangles refined inside it. It keeps its fan.
+bool narrowerThan(const Polygon2& polygon, double width);
+
 }  // namespace penumbra

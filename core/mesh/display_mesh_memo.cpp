@@ -1,5 +1,7 @@
 #include "core/mesh/display_mesh_memo.h"
 
+#include "core/mesh/lattice_display_rule.h"
+
 namespace penumbra {
 
 void DisplayMeshMemo::update(const Scene& scene, const std::vector<MeshSource>& sources,
@@ -7,13 +9,22 @@ void DisplayMeshMemo::update(const Scene& scene, const std::vector<MeshSource>& 
                              const StepProgress& progress) {
   counters_ = {};
   SharedProgress report(progress, "triangulation", sources.size(), 1);
-  std::vector<ReceiverMeshMemo*> memos;  // created here: the map is not changed in parallel
+  std::vector<ReceiverMemo*> memos;  // created here: the map is not changed in parallel
   for (const MeshSource& source : sources) memos.push_back(&receivers_[source.face]);
   std::vector<MeshMemoCounters> counters(sources.size());
   // Beats from inside a receiver's meshing: the floor of a dense scene is most of it.
   const std::function<void()> beat = progress ? std::function<void()>([&] { report.beat(); }) : nullptr;
   parallel.forEach(sources.size(), [&](size_t k) {
-    memos[k]->update(scene, sources[k], grid, counters[k], parallel, beat);
+    ReceiverMemo& memo = *memos[k];
+    const bool lattice = displaysFromLattice(scene, sources[k], grid);
+    if (lattice != memo.lattice) {
+      memo = ReceiverMemo{};
+      memo.lattice = lattice;
+    }
+    if (lattice)
+      memo.squares.update(scene, sources[k], grid, counters[k], parallel, beat);
+    else
+      memo.cells.update(scene, sources[k], grid, counters[k], parallel, beat);
     report.add(1);
   });
   report.finish();
@@ -26,7 +37,7 @@ Mesh DisplayMeshMemo::assemble(const std::vector<MeshSource>& sources, double to
   out.receivers.reserve(sources.size());
   for (const MeshSource& source : sources) {
     out.receivers.push_back(meshOf(source));
-    out.cappedCells += receivers_.at(source.face).cappedCells();
+    out.cappedCells += receivers_.at(source.face).capped();
   }
   return out;
 }

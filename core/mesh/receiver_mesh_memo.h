@@ -30,11 +30,14 @@ struct MeshMemoCounters {
 };
 
 // The display grid: lattice spacing (0: none), chunk side in lattice squares (0: one chunk),
-// and how far each piece's triangles are refined (core/mesh/cell_refinement.h).
+// how far each piece's triangles are refined (core/mesh/cell_refinement.h), and the DM vertices
+// in one lattice square above which a receiver may be meshed from its squares instead of its
+// cells (lattice_display_rule.h; 0: never).
 struct MeshGrid {
   double spacing = 0;
   int chunkSquares = 0;
   RefineSettings refine;
+  uint32_t latticeAbove = 0;
 };
 
 class ReceiverMeshMemo {

@@ -11,57 +11,18 @@
 #include <random>
 #include <string>
 
-#include "bench/lib/sample_points.h"
 #include "core/engine/engine.h"
-#include "core/raycast/mesh_lookup.h"
-#include "core/reference/exact_irradiance.h"
 #include "scenegen/cubes_scene.h"
 #include "scenegen/model_scene.h"
+#include "tests/core/engine/display_bound.h"
 #include "tests/core/engine/incremental_compare.h"
 
 namespace penumbra {
 namespace {
 
-constexpr size_t kPoints = 400;
-
-struct BoundCheck {
-  size_t points = 0, over = 0;
-  double worst = 0;  // the largest error / (tolerance · local level)
-  std::string first;
-};
-
-// Each point's error against tolerance × (Σ lights radiance · unshadowed factor), per channel;
-// `slack` × that is allowed (the tolerance holds at the refinement's test points, and
-// interpolation between them may exceed it by the curvature left).
-BoundCheck checkBound(const Engine& engine, const Mesh& mesh, double tolerance, double slack, uint64_t seed) {
-  const Scene& scene = engine.scene();
-  const MeshLookup lookup(scene, mesh);
-  const ExactReference reference(scene);
-  std::map<FaceId, uint32_t> faceIndex;
-  for (uint32_t i = 0; i < scene.faces().size(); ++i) faceIndex[scene.faces()[i].id] = i;
-  BoundCheck out;
-  for (const SurfacePoint& point : sampleReceivingPoints(scene, kPoints, seed)) {
-    const Vec3 exact = reference.evaluate(point.position, point.normal).irradiance;
-    const Vec3 interpolated = lookup.irradiance(faceIndex.at(point.face), point.position).value_or(Vec3(0.0));
-    Vec3 level(0.0);
-    for (size_t l = 0; l < scene.lights().size(); ++l)
-      level += scene.lights()[l].radiance * reference.visibility(point.position, point.normal, l).unoccludedFactor;
-    ++out.points;
-    for (int c = 0; c < 3; ++c) {
-      if (!(level[c] > 0)) continue;
-      const double ratio = std::abs(interpolated[c] - exact[c]) / (tolerance * level[c]);
-      out.worst = std::max(out.worst, ratio);
-      if (ratio > slack) {
-        if (out.over++ == 0)
-          out.first = "point (" + std::to_string(point.position.x) + ", " + std::to_string(point.position.y) + ", " +
-                      std::to_string(point.position.z) + "): mesh " + std::to_string(interpolated[c]) + " exact " +
-                      std::to_string(exact[c]) + " level " + std::to_string(level[c]);
-        break;
-      }
-    }
-  }
-  return out;
-}
+using testing::BoundCheck;
+using testing::checkBound;
+using testing::expectSameAsAFreshMesh;
 
 constexpr double kTolerance = EngineSettings::kRecommendedMeshTolerance;
 
@@ -79,18 +40,6 @@ Scene modelScene(uint64_t seed) {
   options.rest = seed % 3 == 0;
   options.seed = seed;
   return makeModelScene(options);
-}
-
-// The engine's kept mesh equals its mesh refined afresh (the memo dropped), bit for bit.
-void expectSameAsAFreshMesh(Engine& engine, const Mesh& kept) {
-  engine.forgetMeshMemo();
-  const Mesh fresh = engine.mesh();
-  ASSERT_EQ(kept.receivers.size(), fresh.receivers.size());
-  for (size_t i = 0; i < kept.receivers.size(); ++i) {
-    EXPECT_EQ(kept.receivers[i].positions, fresh.receivers[i].positions) << "receiver " << i;
-    EXPECT_EQ(kept.receivers[i].irradiance, fresh.receivers[i].irradiance) << "receiver " << i;
-    EXPECT_EQ(kept.receivers[i].triangles, fresh.receivers[i].triangles) << "receiver " << i;
-  }
 }
 
 TEST(DisplayRefinement, RandomPointsWithinTheToleranceOnCubeRooms) {
