@@ -30,9 +30,14 @@ struct BuildStats {
   size_t treeNodes = 0;            // splitting nodes of all DM-trees
   size_t cells = 0;
   size_t vertices = 0;             // DM-tree vertices (before per-side copies)
+  // Of those, the ones of receivers meshed from their lattice squares, whose values are not
+  // computed (Engine::Receiver::fromLattice); the classes and comparisons count the others.
+  size_t latticeVertices = 0;
   size_t litVertices = 0, penumbraVertices = 0, umbraVertices = 0;
-  size_t comparisons = 0;          // source/occluder comparisons, all vertices and lights
-  double comparisonsPerVertex() const { return vertices ? double(comparisons) / double(vertices) : 0; }
+  size_t comparisons = 0;          // source/occluder comparisons, all lit vertices and lights
+  double comparisonsPerVertex() const {
+    return vertices > latticeVertices ? double(comparisons) / double(vertices - latticeVertices) : 0;
+  }
   BuildTimings seconds;
 };
 

@@ -16,6 +16,7 @@
 #include "core/geom/clip.h"
 #include "core/illum/face_lookup.h"
 #include "core/illum/light_sum.h"
+#include "core/mesh/lattice_display_rule.h"
 #include "core/shadow/cast_shadow.h"
 #include "core/shadow/object_shadow.h"
 
@@ -285,6 +286,11 @@ void Engine::countBuild() {
   for (const Receiver& receiver : receivers_) {
     stats_.treeNodes += receiver.tree.internalNodeCount();
     stats_.cells += receiver.tree.cellCount();
+    if (receiver.fromLattice) {  // values not computed (illuminate)
+      stats_.vertices += receiver.tree.vertexCount();
+      stats_.latticeVertices += receiver.tree.vertexCount();
+      continue;
+    }
     for (VertexId v : receiver.tree.vertices()) {
       const VertexIrradiance value = this->value(receiver, v);
       ++stats_.vertices;
@@ -371,7 +377,18 @@ void Engine::growSlots(Receiver& receiver) const {
   receiver.lit.resize(slots, 0);
 }
 
+bool Engine::chooseDisplay(Receiver& receiver) const {
+  const bool lattice =
+      displaysFromLattice(scene_, MeshSource{receiver.face, receiver.frame, receiver.tree, receiver.perLight}, meshGrid());
+  const bool wasLattice = receiver.fromLattice;
+  receiver.fromLattice = lattice;
+  // Values kept from before are not kept up to date while the squares mesh it: dropped.
+  if (lattice && !wasLattice) receiver.lit.assign(receiver.lit.size(), 0);
+  return wasLattice && !lattice;
+}
+
 void Engine::illuminate(Receiver& receiver, const std::function<void()>& beat) const {
+  chooseDisplay(receiver);
   const size_t slots = receiver.tree.mesh().vertexSlots();
   // Headroom for a big receiver only: its first edits then grow its arrays in place instead of
   // moving every value, and the untouched tail of a large array costs no memory until used. A
@@ -382,6 +399,7 @@ void Engine::illuminate(Receiver& receiver, const std::function<void()>& beat) c
   receiver.lit.reserve(capacity);
   receiver.perLight.assign(slots, scene_.lights().size());
   receiver.lit.assign(slots, 0);
+  if (receiver.fromLattice) return;  // its display does not read them (Engine::value computes one)
   // Vertices in parallel (a dense scene's floor holds most of them); each writes its own slots.
   const std::vector<VertexId> vertices = receiver.tree.vertices();
   parallel_.forEach(vertices.size(), [&](size_t i) {
@@ -399,15 +417,17 @@ void Engine::relightVertex(Receiver& receiver, VertexId v) const {
 }
 
 void Engine::computeVertex(Receiver& receiver, VertexId v) const {
+  valuesAt(receiver, v, receiver.perLight[v.index]);
+  receiver.lit[v.index] = 1;
+}
+
+void Engine::valuesAt(const Receiver& receiver, VertexId v, std::span<VertexLight> out) const {
   const DmTree& tree = receiver.tree;
   std::vector<const OccluderList*> lists;
   for (CellId c : tree.cellsAround(v)) lists.push_back(&tree.occluders(c));
   const Vec3 p = receiver.frame.to3D(tree.position(v));
   const Vec3 shading = shadingNormalAt(scene_, receiver.face, receiver.frame.normal, p);
-  const std::span<VertexLight> perLight = receiver.perLight[v.index];
-  for (size_t l = 0; l < perLight.size(); ++l)
-    perLight[l] = illuminateVertex(scene_, l, p, receiver.frame.normal, shading, lists);
-  receiver.lit[v.index] = 1;
+  for (size_t l = 0; l < out.size(); ++l) out[l] = illuminateVertex(scene_, l, p, receiver.frame.normal, shading, lists);
 }
 
 void Engine::compactReceivers(const std::vector<bool>& dropped) {
@@ -433,7 +453,11 @@ std::vector<FaceId> Engine::receiverFaces() const {
 }
 
 VertexIrradiance Engine::value(const Receiver& receiver, VertexId v) const {
-  return sumLights(scene_, receiver.perLight[v.index]);
+  if (v.index < receiver.lit.size() && receiver.lit[v.index]) return sumLights(scene_, receiver.perLight[v.index]);
+  // Not kept (a receiver meshed from its lattice squares): lit now, the same evaluation.
+  std::vector<VertexLight> row(scene_.lights().size());
+  valuesAt(receiver, v, row);
+  return sumLights(scene_, row);
 }
 
 std::vector<MeshSource> Engine::meshSources(const std::vector<FaceId>& only) const {
@@ -446,7 +470,7 @@ std::vector<MeshSource> Engine::meshSources(const std::vector<FaceId>& only) con
   sources.reserve(indices.size());
   for (size_t i : indices) {
     const Receiver& r = receivers_[i];
-    sources.push_back({r.face, r.frame, r.tree, r.perLight});
+    sources.push_back({r.face, r.frame, r.tree, r.perLight, r.fromLattice});
   }
   return sources;
 }
@@ -454,7 +478,7 @@ std::vector<MeshSource> Engine::meshSources(const std::vector<FaceId>& only) con
 std::vector<MeshSource> Engine::meshSources() const {
   std::vector<MeshSource> sources;
   sources.reserve(receivers_.size());
-  for (const Receiver& r : receivers_) sources.push_back({r.face, r.frame, r.tree, r.perLight});
+  for (const Receiver& r : receivers_) sources.push_back({r.face, r.frame, r.tree, r.perLight, r.fromLattice});
   return sources;
 }
 

@@ -153,11 +153,15 @@ class Engine {
     // holds another vertex (slots are append-only, positions fixed) unless the tree is
     // rebuilt afresh, which clears every flag.
     std::vector<uint8_t> lit;
+    // Meshed from its lattice squares (core/mesh/lattice_display_rule.h, chosen when its tree
+    // is lit and after each frame that touches it): its vertices' values are then not computed
+    // or kept (lit stays 0; value() computes one when asked). Flipping back lights them all.
+    bool fromLattice = false;
   };
   const std::vector<Receiver>& receivers() const { return receivers_; }
   std::vector<FaceId> receiverFaces() const;  // the receivers' faces, in receivers() order
   // The value at a vertex of a receiver (of this engine): its lights' values summed with the
-  // scene's radiances.
+  // scene's radiances; on a receiver meshed from its lattice squares, computed on each call.
   VertexIrradiance value(const Receiver& receiver, VertexId v) const;
   const Receiver* receiver(FaceId face) const;
   // The receivers a face has cast a shadow on (paper §3.1: removal starts there).
@@ -249,8 +253,12 @@ class Engine {
   void forgetReceived(FaceId face);
   // Sizes the per-slot arrays to the tree's vertex slots.
   void growSlots(Receiver& receiver) const;
-  // Lights every vertex of a fresh tree (in parallel over vertices); `beat` (may be empty) is
-  // called every kVerticesPerBeat vertices.
+  // Decides whether the receiver is meshed from its lattice squares (Receiver::fromLattice),
+  // dropping its kept values when it becomes so; returns true when it stops being so (its live
+  // vertices then need lighting).
+  bool chooseDisplay(Receiver& receiver) const;
+  // Lights every vertex of a fresh tree (in parallel over vertices), unless chooseDisplay puts
+  // it on its lattice squares; `beat` (may be empty) is called every kVerticesPerBeat vertices.
   void illuminate(Receiver& receiver, const std::function<void()>& beat = {}) const;
   static constexpr size_t kVerticesPerBeat = 64;
   // A receiver's casts beat the "casting" step every this many (its report counts all receivers').
@@ -258,6 +266,8 @@ class Engine {
   void relightVertex(Receiver& receiver, VertexId v) const;
   // relightVertex's value alone: writes v's slots only, touches no cell.
   void computeVertex(Receiver& receiver, VertexId v) const;
+  // Each light's value at v into `out` (one per light), from the lists of the cells around it.
+  void valuesAt(const Receiver& receiver, VertexId v, std::span<VertexLight> out) const;
   // apply()'s phases (paper §3), in order. Each leaves its part of `work` for the next and
   // counts its work in `result`; an exception from any of them makes apply() rebuild.
   // Plans the frame and edits scene_ (apply_frame.cpp).

@@ -19,12 +19,19 @@ void Engine::relightDirty(const FrameWork& work, FrameResult& result) {
     const HalfEdgeMesh& mesh = receiver.tree.mesh();
     const size_t known = work.dirty.valueSlots(face, receiver.perLight.size());
     growSlots(receiver);
+    // A receiver meshed from its lattice squares keeps no values; one that stops being so
+    // has every live vertex lit (the scan below from slot 0).
+    const bool leftLattice = chooseDisplay(receiver);
+    if (receiver.fromLattice) {
+      if (!vertices.empty() || work.dirty.topologyChanged(face)) result.changedReceivers.push_back(face);
+      continue;
+    }
     std::set<VertexId> relight;
     for (VertexId v : vertices)
       if (v.index < mesh.vertexSlots() && mesh.vertex(v).alive) relight.insert(v);
     // Vertex slots are append-only and positions never change, so only slots past `known`
     // can hold an unlit vertex, unless the tree was rebuilt (slots reused).
-    const bool rebuiltTree = work.rebuiltTrees.count(face) || work.rebuild.count(face);
+    const bool rebuiltTree = work.rebuiltTrees.count(face) || work.rebuild.count(face) || leftLattice;
     for (uint32_t i = rebuiltTree ? 0 : uint32_t(std::min(known, mesh.vertexSlots())); i < mesh.vertexSlots(); ++i) {
       const VertexId v(i);
       if (mesh.vertex(v).alive && !receiver.lit[i]) relight.insert(v);

@@ -164,6 +164,8 @@ void Engine::resumRadiance(const std::vector<Vec3>& radianceBefore, FrameResult&
     std::vector<VertexId>& relit = lastRelit_[receiver.face];
     relit.clear();
     const bool sameLights = radianceBefore.size() == receiver.perLight.lightCount();
+    changed.insert(receiver.face);
+    if (receiver.fromLattice) continue;  // no values kept: its squares are summed again
     for (VertexId v : receiver.tree.vertices()) {
       const VertexIrradiance now = value(receiver, v);
       const VertexIrradiance old = sameLights ? sumLights(radianceBefore, receiver.perLight[v.index]) : VertexIrradiance{};
@@ -171,7 +173,6 @@ void Engine::resumRadiance(const std::vector<Vec3>& radianceBefore, FrameResult&
       ++result.verticesRelit;
       if (!sameLights || !sameValue(old, now)) ++result.verticesChanged;
     }
-    changed.insert(receiver.face);
   }
   // No cell is touched: the display memo keeps each light's value and sums the chunks again
   // with the new radiances when it is next brought up to date (mesh_memo.h).

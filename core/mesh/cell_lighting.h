@@ -19,12 +19,15 @@
 
 namespace penumbra {
 
-// What meshing a receiver reads: its tree and its vertices' values (the engine's Receiver).
+// What meshing a receiver reads: its tree and its vertices' values (the engine's Receiver), and
+// whether it is meshed from its lattice squares (then its vertices' values are not read:
+// lattice_display_rule.h decides, the engine keeps the answer).
 struct MeshSource {
   FaceId face;
   const PlaneFrame& frame;
   const DmTree& tree;
-  const PerLightValues& perLight;  // [vertex][light]
+  const PerLightValues& perLight;  // [vertex][light]; unread when fromLattice
+  bool fromLattice = false;
 };
 
 // dark[l]: the list holds an umbra entry of light l (its lights' values leave l out). Returns

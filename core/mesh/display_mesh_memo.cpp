@@ -1,7 +1,5 @@
 #include "core/mesh/display_mesh_memo.h"
 
-#include "core/mesh/lattice_display_rule.h"
-
 namespace penumbra {
 
 void DisplayMeshMemo::update(const Scene& scene, const std::vector<MeshSource>& sources,
@@ -16,7 +14,7 @@ void DisplayMeshMemo::update(const Scene& scene, const std::vector<MeshSource>& 
   const std::function<void()> beat = progress ? std::function<void()>([&] { report.beat(); }) : nullptr;
   parallel.forEach(sources.size(), [&](size_t k) {
     ReceiverMemo& memo = *memos[k];
-    const bool lattice = displaysFromLattice(scene, sources[k], grid);
+    const bool lattice = sources[k].fromLattice;
     if (lattice != memo.lattice) {
       memo = ReceiverMemo{};
       memo.lattice = lattice;

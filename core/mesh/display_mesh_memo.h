@@ -1,7 +1,7 @@
 // The display mesh of every receiver of one engine, kept between mesh calls: per receiving
-// face, a ReceiverMeshMemo (receiver_mesh_memo.h: its cells and chunks) or, where
-// displaysFromLattice says so, a LatticeMeshMemo (its lattice squares), and what the last call
-// did. Owned by one engine, which hands in its receivers as MeshSources; one writer at a
+// face, a ReceiverMeshMemo (receiver_mesh_memo.h: its cells and chunks) or, where the source
+// says so (MeshSource::fromLattice), a LatticeMeshMemo (its lattice squares), and what the last
+// call did. Owned by one engine, which hands in its receivers as MeshSources; one writer at a
 // time, const reads from several threads are safe.
 #pragma once
 

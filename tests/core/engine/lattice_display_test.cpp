@@ -15,6 +15,7 @@
 #include "scenegen/scene_parts.h"
 #include "scenegen/model_scene.h"
 #include "tests/core/engine/display_bound.h"
+#include "tests/core/engine/incremental_compare.h"
 
 namespace penumbra {
 namespace {
@@ -58,6 +59,20 @@ const ReceiverMesh& partOf(const Mesh& mesh, FaceId face) {
   return *it;
 }
 
+// Every seventh vertex of a receiver's display mesh carries the exact value at its point (a
+// vertex repeated per side of a contact line is not: none on a floor meshed from squares).
+void expectMeshVerticesExact(const Scene& scene, const ReceiverMesh& part, const Face& face) {
+  const ExactReference reference(scene);
+  double peak = 0;
+  for (const Vec3& e : part.irradiance) peak = std::max(peak, e.x);
+  size_t off = 0;
+  for (size_t v = 0; v < part.positions.size(); v += 7) {
+    const Vec3 exact = reference.evaluate(part.positions[v], face.plane.normal).irradiance;
+    if (std::abs(exact.x - part.irradiance[v].x) > 1e-9 * peak && off++ < 3)
+      ADD_FAILURE() << "vertex " << v << ": " << part.irradiance[v].x << " vs exact " << exact.x;
+  }
+}
+
 // Under a floating 1,000-triangle teapot the product's own rule (default settings) meshes the
 // floor from its squares; resting on the floor (contact lines), it keeps the floor's cells, as
 // do the model's own faces and a dense room of boxes.
@@ -99,16 +114,7 @@ TEST(LatticeDisplay, FloorsOfFloatingModelsKeepTheToleranceAndExactVertices) {
     ASSERT_TRUE(engine.meshedFromLattice(floor.id));
     const BoundCheck check = checkBound(engine, mesh, kTolerance, kSlack, pointsOnFace(floor, 600, 7 + k));
     EXPECT_EQ(check.over, 0u) << check.first << " (worst " << check.worst << ")";
-    const ReceiverMesh& part = partOf(mesh, floor.id);
-    const ExactReference reference(scene);
-    double peak = 0;
-    for (const Vec3& e : part.irradiance) peak = std::max(peak, e.x);
-    size_t off = 0;
-    for (size_t v = 0; v < part.positions.size(); v += 7) {
-      const Vec3 exact = reference.evaluate(part.positions[v], floor.plane.normal).irradiance;
-      if (std::abs(exact.x - part.irradiance[v].x) > 1e-9 * peak && off++ < 3)
-        ADD_FAILURE() << "vertex " << v << ": " << part.irradiance[v].x << " vs exact " << exact.x;
-    }
+    expectMeshVerticesExact(scene, partOf(mesh, floor.id), floor);
   }
 }
 
@@ -174,6 +180,64 @@ TEST(LatticeDisplay, EditsEqualAFreshMeshAndRadianceLightsNoSquare) {
   const ReceiverMesh &a = partOf(before, floor.id), &b = partOf(after, floor.id);
   ASSERT_EQ(a.positions, b.positions);
   for (size_t v = 0; v < a.irradiance.size(); ++v) EXPECT_NEAR(b.irradiance[v].x, 2 * a.irradiance[v].x, 1e-12 * (1 + a.irradiance[v].x));
+}
+
+// Every DM vertex of the floor carries the exact value, kept or (meshed from squares) computed
+// when asked; at most three failures are reported.
+void expectFloorVerticesExact(const Engine& engine, const Face& floor) {
+  const Engine::Receiver* receiver = engine.receiver(floor.id);
+  ASSERT_NE(receiver, nullptr);
+  const ExactReference reference(engine.scene());
+  const std::vector<VertexId> vertices = receiver->tree.vertices();
+  size_t off = 0;
+  for (size_t i = 0; i < vertices.size(); i += 11) {
+    const Vec3 p = receiver->frame.to3D(receiver->tree.position(vertices[i]));
+    const double exact = reference.evaluate(p, floor.plane.normal).irradiance.x;
+    const double ours = engine.value(*receiver, vertices[i]).irradiance.x;
+    if (std::abs(exact - ours) > 1e-9 * std::max(1.0, exact) && off++ < 3)
+      ADD_FAILURE() << "DM vertex " << vertices[i].index << ": " << ours << " vs exact " << exact;
+  }
+}
+
+// A floor meshed from squares keeps no vertex values (the build counts them) yet answers each
+// exactly; a box set down on it in an incremental frame (contact) gives the floor its cells
+// back, every vertex lit; taking the box away puts it on squares again. After each frame the
+// kept mesh equals a fresh one and the engine equals one built afresh for its scene.
+TEST(LatticeDisplay, FlippingBetweenSquaresAndCellsKeepsValuesExact) {
+  const Scene scene = modelScene(ModelKind::TorusKnot, 400, false, 3);
+  const Face& floor = floorOf(scene);
+  Engine engine(scene, latticeAbove(20));
+  engine.mesh();
+  ASSERT_TRUE(engine.meshedFromLattice(floor.id));
+  EXPECT_GT(engine.stats().latticeVertices, 0u);
+  EXPECT_EQ(engine.stats().latticeVertices, engine.receiver(floor.id)->tree.vertexCount());
+  expectFloorVerticesExact(engine, floor);
+  Edit add;
+  add.op = Edit::Op::Add;
+  add.object.id = "box";
+  add.object.material = scene.objects().back().material;
+  addBox(add.object, Vec3(-2.6, 0, -2.6), Vec3(-2.3, 0.2, -2.3));
+  Edit remove;
+  remove.op = Edit::Op::Remove;
+  remove.id = "box";
+  const std::pair<Edit, bool> steps[] = {{add, false}, {remove, true}};
+  for (const auto& [edit, squares] : steps) {
+    SCOPED_TRACE(squares ? "box removed" : "box added");
+    const FrameResult result = engine.apply(Frame{{edit}});
+    EXPECT_FALSE(result.fullRebuild);
+    const Mesh kept = engine.mesh();
+    EXPECT_EQ(engine.meshedFromLattice(floor.id), squares);
+    expectSameAsAFreshMesh(engine, kept);
+    expectFloorVerticesExact(engine, floor);
+    if (squares) expectMeshVerticesExact(engine.scene(), partOf(kept, floor.id), floor);
+    const BoundCheck bound = checkBound(engine, kept, kTolerance, kSlack, pointsOnFace(floor, 300, 70));
+    EXPECT_EQ(bound.over, 0u) << bound.first << " (worst " << bound.worst << ")";
+    Engine fresh(engine.scene(), latticeAbove(20));
+    fresh.mesh();
+    EXPECT_EQ(fresh.meshedFromLattice(floor.id), squares);
+    const testing::EngineDiff diff = testing::compareEngines(engine, fresh, testing::peakIrradiance(fresh), 100, 9);
+    EXPECT_EQ(diff.errors(), 0u) << diff.firstProblem;
+  }
 }
 
 }  // namespace
