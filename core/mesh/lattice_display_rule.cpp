@@ -67,7 +67,9 @@ bool displaysFromLattice(const Scene& scene, const MeshSource& source, const Mes
   if (grid.latticeAbove == 0 || !(grid.spacing > 0) || !(grid.refine.tolerance > 0)) return false;
   const Face* face = findFace(scene, source.face);
   if (!face || !face->cornerNormals.empty()) return false;
-  return denserThan(source.tree, grid.spacing, grid.latticeAbove) && !touchesPlane(scene, source);
+  const size_t lists = std::max<size_t>(1, source.tree.mesh().distinctOccluderLists());
+  return source.tree.cellCount() > kCellsPerDistinctList * lists &&
+         denserThan(source.tree, grid.spacing, grid.latticeAbove) && !touchesPlane(scene, source);
 }
 
 }  // namespace penumbra

@@ -17,7 +17,14 @@ namespace penumbra {
 //   jump, D0, which only a cell edge follows);
 // - some lattice square holds more than grid.latticeAbove live DM vertices. Under a tessellated
 //   model's shadow a square holds thousands (silhouette lines crossing in the penumbra); in the
-//   dense room of 150 boxes at most 355 (BENCHMARKS.md "Lattice display").
+//   dense room of 150 boxes at most 355 (BENCHMARKS.md "Lattice display");
+// - the cells outnumber the tree's distinct occluder lists more than kCellsPerDistinctList
+//   times. Under a model one list (the whole model) holds all the shadowed cells: its lines
+//   part cells with the same occluders, where the value is smooth and a square's few test
+//   points follow it. Where each few cells have a list of their own (box clutter: the dense
+//   room of 1,500 boxes, 42 cells a list on its floor), each list's region is a feature a
+//   square would have to find: there squares capped at their point limit were up to 12 % off.
+constexpr size_t kCellsPerDistinctList = 1000;
 bool displaysFromLattice(const Scene& scene, const MeshSource& source, const MeshGrid& grid);
 
 }  // namespace penumbra

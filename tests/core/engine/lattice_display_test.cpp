@@ -75,7 +75,8 @@ void expectMeshVerticesExact(const Scene& scene, const ReceiverMesh& part, const
 
 // Under a floating 1,000-triangle teapot the product's own rule (default settings) meshes the
 // floor from its squares; resting on the floor (contact lines), it keeps the floor's cells, as
-// do the model's own faces and a dense room of boxes.
+// do the model's own faces and a dense room of boxes, even with the density bar lowered (its
+// cells have lists of their own).
 TEST(LatticeDisplay, TheRuleTakesFloorsUnderFloatingModelsOnly) {
   {
     const Scene scene = modelScene(ModelKind::Teapot, 1000, false);
@@ -95,9 +96,11 @@ TEST(LatticeDisplay, TheRuleTakesFloorsUnderFloatingModelsOnly) {
   }
   {
     const Scene scene = makeDenseScene(DenseSceneOptions{150, 1});
-    Engine engine(scene, EngineSettings{});
-    engine.mesh();
-    for (const Face& face : scene.faces()) EXPECT_FALSE(engine.meshedFromLattice(face.id));
+    for (const uint32_t above : {EngineSettings::kDefaultLatticeAbove, 20u}) {
+      Engine engine(scene, latticeAbove(above));
+      engine.mesh();
+      for (const Face& face : scene.faces()) EXPECT_FALSE(engine.meshedFromLattice(face.id)) << "bar " << above;
+    }
   }
 }
 
