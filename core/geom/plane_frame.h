@@ -15,6 +15,9 @@ struct PlaneFrame {
   Vec3 v{0, 1, 0};
   Vec3 normal{0, 0, 1};
 
+  // The same frame, bit for bit (a display memo is only valid for the frame it was made in).
+  bool operator==(const PlaneFrame&) const = default;
+
   // A frame on `plane` whose origin is `point` projected onto the plane.
   static PlaneFrame onPlane(const Plane& plane, const Vec3& point) {
     const Vec3 n = plane.normal;

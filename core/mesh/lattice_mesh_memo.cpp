@@ -19,10 +19,6 @@ namespace penumbra {
 
 namespace {
 
-bool sameFrame(const PlaneFrame& a, const PlaneFrame& b) {
-  return a.origin == b.origin && a.u == b.u && a.v == b.v && a.normal == b.normal;
-}
-
 template <class T>
 bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
@@ -154,7 +150,7 @@ void LatticeMeshMemo::update(const Scene& scene, const MeshSource& source, MeshG
                              const Parallel& parallel, const std::function<void()>& beat) {
   grid.refine.tolerance *= kToleranceShare;
   const double eps = scene.tolerance().length();
-  if (!sameFrame(frame_, source.frame) || grid_.spacing != grid.spacing || eps_ != eps ||
+  if (frame_ != source.frame || grid_.spacing != grid.spacing || eps_ != eps ||
       grid_.chunkSquares != grid.chunkSquares || grid_.refine.tolerance != grid.refine.tolerance ||
       grid_.refine.minEdge != grid.refine.minEdge || grid_.refine.maxPoints != grid.refine.maxPoints)
     reset(scene, source, grid);

@@ -10,10 +10,6 @@ namespace penumbra {
 
 namespace {
 
-bool sameFrame(const PlaneFrame& a, const PlaneFrame& b) {
-  return a.origin == b.origin && a.u == b.u && a.v == b.v && a.normal == b.normal;
-}
-
 void shrinkToFit(ReceiverMesh& mesh) {
   mesh.positions.shrink_to_fit();
   mesh.irradiance.shrink_to_fit();
@@ -203,7 +199,7 @@ void ReceiverMeshMemo::update(const Scene& scene, const MeshSource& source, Mesh
                               const Parallel& parallel, const std::function<void()>& beat) {
   // The memo is only valid for the same face frame, lattice, chunks and tolerance.
   const double eps = scene.tolerance().length();
-  if (!sameFrame(frame_, source.frame) || grid_.spacing != grid.spacing || eps_ != eps ||
+  if (frame_ != source.frame || grid_.spacing != grid.spacing || eps_ != eps ||
       grid_.chunkSquares != grid.chunkSquares || grid_.refine.tolerance != grid.refine.tolerance ||
       grid_.refine.minEdge != grid.refine.minEdge || grid_.refine.maxPoints != grid.refine.maxPoints) {
     *this = ReceiverMeshMemo{};

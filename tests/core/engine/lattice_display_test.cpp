@@ -18,6 +18,7 @@
 #include "tests/core/engine/incremental_compare.h"
 
 namespace penumbra {
+namespace lattice_display_test {  // its own names: the unity build joins test files
 namespace {
 
 using testing::BoundCheck;
@@ -244,4 +245,5 @@ TEST(LatticeDisplay, FlippingBetweenSquaresAndCellsKeepsValuesExact) {
 }
 
 }  // namespace
+}  // namespace lattice_display_test
 }  // namespace penumbra
