@@ -23,6 +23,7 @@ struct RefineSettings {
   double tolerance = 0;   // relative to each light's local unshadowed level; 0: no refinement
   double minEdge = 0;     // edges no longer than this are not halved
   uint32_t maxPoints = 0; // a piece's points (its loop, centre and added points) at most
+  bool operator==(const RefineSettings&) const = default;
 };
 
 // A piece's triangulation being refined: points (loop first) with each light's value and

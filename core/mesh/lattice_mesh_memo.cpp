@@ -150,10 +150,7 @@ void LatticeMeshMemo::update(const Scene& scene, const MeshSource& source, MeshG
                              const Parallel& parallel, const std::function<void()>& beat) {
   grid.refine.tolerance *= kToleranceShare;
   const double eps = scene.tolerance().length();
-  if (frame_ != source.frame || grid_.spacing != grid.spacing || eps_ != eps ||
-      grid_.chunkSquares != grid.chunkSquares || grid_.refine.tolerance != grid.refine.tolerance ||
-      grid_.refine.minEdge != grid.refine.minEdge || grid_.refine.maxPoints != grid.refine.maxPoints)
-    reset(scene, source, grid);
+  if (frame_ != source.frame || grid_ != grid || eps_ != eps) reset(scene, source, grid);
   const uint64_t stamp = HalfEdgeMesh::stampNow();
   const std::vector<uint32_t> touched = touchedSquares(source);
   counters.cellsReused += squares_.size() - touched.size();

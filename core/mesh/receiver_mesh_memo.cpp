@@ -199,9 +199,7 @@ void ReceiverMeshMemo::update(const Scene& scene, const MeshSource& source, Mesh
                               const Parallel& parallel, const std::function<void()>& beat) {
   // The memo is only valid for the same face frame, lattice, chunks and tolerance.
   const double eps = scene.tolerance().length();
-  if (frame_ != source.frame || grid_.spacing != grid.spacing || eps_ != eps ||
-      grid_.chunkSquares != grid.chunkSquares || grid_.refine.tolerance != grid.refine.tolerance ||
-      grid_.refine.minEdge != grid.refine.minEdge || grid_.refine.maxPoints != grid.refine.maxPoints) {
+  if (frame_ != source.frame || grid_ != grid || eps_ != eps) {
     *this = ReceiverMeshMemo{};
     frame_ = source.frame;
     grid_ = grid;

@@ -38,6 +38,8 @@ struct MeshGrid {
   int chunkSquares = 0;
   RefineSettings refine;
   uint32_t latticeAbove = 0;
+  // A memo is only valid for the grid it was made with (the engine keeps one grid).
+  bool operator==(const MeshGrid&) const = default;
 };
 
 class ReceiverMeshMemo {
