@@ -120,6 +120,17 @@ std::optional<std::pair<Vec2, Vec2>> wedgeChord(const Wedge& w, const Polygon2& 
   return std::pair{chord->a, chord->b};
 }
 
+bool wedgePlaneMisses(const Wedge& w, const Polygon3& polygon, double eps) {
+  bool allFront = !polygon.empty(), allBack = allFront;
+  for (const Vec3& p : polygon) {
+    const double d = w.plane.signedDistance(p);
+    allFront = allFront && d > 2 * eps;
+    allBack = allBack && d < -2 * eps;
+    if (!allFront && !allBack) return false;
+  }
+  return allFront || allBack;
+}
+
 std::optional<std::pair<double, double>> alongBoundary(const Polygon2& polygon, const Vec2& a,
                                                        const Vec2& b, double eps) {
   const Vec2 d = b - a;

@@ -47,6 +47,13 @@ std::optional<Wedge> edgeVertexWedge(ElementRef lightEdge, ElementRef occluderVe
 std::optional<std::pair<Vec2, Vec2>> wedgeChord(const Wedge& w, const Polygon2& base,
                                                 const PlaneFrame& frame, const Tolerance& tolerance);
 
+// Whether `polygon` (the receiver's outline in 3D, a superset of any `base` given to
+// wedgeChord) lies wholly more than 2·eps on one side of the wedge's plane: then the plane's
+// trace misses base by more than eps in 2D (a 2D distance is the 3D one over the trace's tilt
+// ≤ 1) and wedgeChord would give nullopt. A cheap cull before it: small receivers (a model's
+// own faces) meet few of a mesh's thousands of silhouette wedges.
+bool wedgePlaneMisses(const Wedge& w, const Polygon3& polygon, double eps);
+
 // The parameter interval of a→b running along the boundary of a convex polygon
 // (collinear with some edges within eps), as the hull over those edges.
 std::optional<std::pair<double, double>> alongBoundary(const Polygon2& polygon, const Vec2& a,

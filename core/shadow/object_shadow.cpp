@@ -286,7 +286,7 @@ std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, u
   // Segments: the silhouette surfaces cut by the receiver's plane inside base.
   SegmentCollector segments(receiver2, penumbra, umbra, eps);
   auto add = [&](const std::optional<Wedge>& w, bool contact = false) {
-    if (!w) return;
+    if (!w || wedgePlaneMisses(*w, receiver.polygon, eps)) return;
     const auto chord = wedgeChord(*w, base, frame, tol);
     if (chord && contact)
       segments.addWhole(chord->first, chord->second, SegmentKind::Contact, w->lightElement, w->occluderElement);
