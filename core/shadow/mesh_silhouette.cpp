@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <initializer_list>
 
 namespace penumbra {
 
@@ -49,27 +50,168 @@ bool silhouetteStretch(std::span<const Face> faces, const MeshTopology& mesh, ui
   return from < to;
 }
 
+namespace {
+
+// Whether mesh edge e may be on the silhouette from light point x (every edge that is not
+// regular may), and corner v from some point of light edge pq, with its stretch.
+bool edgeMayBeOn(std::span<const Face> faces, const MeshTopology& mesh, uint32_t e, const Vec3& x, double onPlane) {
+  const uint32_t* f = mesh.edgeFaces.data() + mesh.edgeStarts[e];
+  return !(mesh.regularEdge[e] && offSilhouette(faces[f[0]].plane, faces[f[1]].plane, x, onPlane));
+}
+
+void keepEdges(std::span<const Face> faces, const MeshTopology& mesh, const Vec3& x, double onPlane,
+               std::span<const double> ahead, const std::vector<uint32_t>* among, std::vector<uint32_t>& out) {
+  const ConvexSolid& w = mesh.welded;
+  const auto inFront = [&](uint32_t v) { return ahead.empty() || ahead[v] > onPlane; };
+  auto keep = [&](uint32_t e) {
+    if (!inFront(w.edges[e].first) && !inFront(w.edges[e].second)) return;
+    if (edgeMayBeOn(faces, mesh, e, x, onPlane)) out.push_back(e);
+  };
+  if (among) {  // else every edge
+    for (const uint32_t e : *among) keep(e);
+  } else {
+    for (uint32_t e = 0; e < w.edges.size(); ++e) keep(e);
+  }
+}
+
+void keepCorners(std::span<const Face> faces, const MeshTopology& mesh, const Vec3& p, const Vec3& q, double onPlane,
+                 std::span<const double> ahead, const std::vector<uint32_t>* among,
+                 std::vector<MeshSilhouette::Corner>& out) {
+  auto keep = [&](uint32_t v) {
+    if (!ahead.empty() && !(ahead[v] > onPlane)) return;
+    double from = 0, to = 1;
+    if (mesh.regularVertex[v] && !silhouetteStretch(faces, mesh, v, p, q, onPlane, from, to)) return;
+    out.push_back({v, from, to});
+  };
+  if (among) {  // else every corner
+    for (const uint32_t v : *among) keep(v);
+  } else {
+    for (uint32_t v = 0; v < mesh.welded.vertices.size(); ++v) keep(v);
+  }
+}
+
+}  // namespace
+
 MeshSilhouette meshSilhouette(std::span<const Face> faces, const MeshTopology& mesh, const Polygon3& s, double onPlane,
                               std::span<const double> ahead) {
-  const auto inFront = [&](uint32_t v) { return ahead.empty() || ahead[v] > onPlane; };
-  const ConvexSolid& w = mesh.welded;
   const size_t n = s.size();
   MeshSilhouette out;
   out.edges.resize(n);
   out.corners.resize(n);
   for (size_t i = 0; i < n; ++i) {
+    keepEdges(faces, mesh, s[i], onPlane, ahead, nullptr, out.edges[i]);
+    keepCorners(faces, mesh, s[i], s[(i + 1) % n], onPlane, ahead, nullptr, out.corners[i]);
+  }
+  return out;
+}
+
+namespace {
+
+// Per edge pq of a whole light: the mesh's edges and corners not surely off the silhouette
+// from every point within slack of pq (mesh_silhouette.h, clippedMeshSilhouette), ascending.
+struct Candidates {
+  std::vector<std::vector<uint32_t>> edges, corners;
+};
+
+Candidates candidatesAlong(std::span<const Face> faces, const MeshTopology& mesh, const Polygon3& whole, double onPlane,
+                           double slack) {
+  const double margin = onPlane + 2 * slack;
+  const ConvexSolid& w = mesh.welded;
+  const size_t n = whole.size();
+  Candidates out;
+  out.edges.resize(n);
+  out.corners.resize(n);
+  for (size_t j = 0; j < n; ++j) {
+    const Vec3 &p = whole[j], &q = whole[(j + 1) % n];
+    // Every plane in `planes` with p and q both beyond margin on one side, the same for all.
+    auto oneSide = [&](auto&& planes) {
+      bool front = true, back = true;
+      planes([&](const Plane& plane) {
+        const double dp = plane.signedDistance(p), dq = plane.signedDistance(q);
+        front = front && dp > margin && dq > margin;
+        back = back && dp < -margin && dq < -margin;
+      });
+      return front || back;
+    };
     for (uint32_t e = 0; e < w.edges.size(); ++e) {
-      if (!inFront(w.edges[e].first) && !inFront(w.edges[e].second)) continue;
       const uint32_t* f = mesh.edgeFaces.data() + mesh.edgeStarts[e];
-      if (mesh.regularEdge[e] && offSilhouette(faces[f[0]].plane, faces[f[1]].plane, s[i], onPlane)) continue;
-      out.edges[i].push_back(e);
+      if (mesh.regularEdge[e] && oneSide([&](auto&& at) { at(faces[f[0]].plane), at(faces[f[1]].plane); })) continue;
+      out.edges[j].push_back(e);
     }
-    const Vec3 &p = s[i], &q = s[(i + 1) % n];
     for (uint32_t v = 0; v < w.vertices.size(); ++v) {
-      if (!inFront(v)) continue;
-      double from = 0, to = 1;
-      if (mesh.regularVertex[v] && !silhouetteStretch(faces, mesh, v, p, q, onPlane, from, to)) continue;
-      out.corners[i].push_back({v, from, to});
+      if (mesh.regularVertex[v] && oneSide([&](auto&& at) {
+            for (uint32_t k = mesh.vertexStarts[v]; k < mesh.vertexStarts[v + 1]; ++k) at(faces[mesh.vertexFaces[k]].plane);
+          }))
+        continue;
+      out.corners[j].push_back(v);
+    }
+  }
+  return out;
+}
+
+const Candidates& memoisedCandidates(std::span<const Face> faces, const MeshTopology& mesh, const Polygon3& whole,
+                                     double onPlane, double slack) {
+  struct Entry {
+    uint64_t serial = 0;
+    Polygon3 light;
+    double onPlane = 0, slack = 0;
+    uint64_t lastUse = 0;
+    Candidates candidates;
+  };
+  thread_local std::array<Entry, 4> memo;
+  thread_local uint64_t uses = 0;
+  Entry* oldest = &memo[0];
+  for (Entry& entry : memo) {
+    if (entry.serial == mesh.serial && entry.onPlane == onPlane && entry.slack == slack &&
+        entry.light.size() == whole.size() &&
+        std::memcmp(entry.light.data(), whole.data(), whole.size() * sizeof(Vec3)) == 0) {
+      entry.lastUse = ++uses;
+      return entry.candidates;
+    }
+    if (entry.lastUse < oldest->lastUse) oldest = &entry;
+  }
+  *oldest = Entry{mesh.serial, whole, onPlane, slack, ++uses, candidatesAlong(faces, mesh, whole, onPlane, slack)};
+  return oldest->candidates;
+}
+
+// Whether x lies within slack of segment pq.
+bool nearSegment(const Vec3& p, const Vec3& q, const Vec3& x, double slack) {
+  const Vec3 d = q - p;
+  const double length2 = glm::dot(d, d);
+  const double t = length2 > 0 ? std::clamp(glm::dot(x - p, d) / length2, 0.0, 1.0) : 0.0;
+  return glm::length(p + t * d - x) <= slack;
+}
+
+// The edge of `whole` that every point of `points` lies near, or whole.size() when none does.
+size_t edgeHolding(const Polygon3& whole, std::initializer_list<Vec3> points, double slack) {
+  const size_t n = whole.size();
+  for (size_t j = 0; j < n; ++j)
+    if (std::all_of(points.begin(), points.end(),
+                    [&](const Vec3& x) { return nearSegment(whole[j], whole[(j + 1) % n], x, slack); }))
+      return j;
+  return n;
+}
+
+}  // namespace
+
+MeshSilhouette clippedMeshSilhouette(std::span<const Face> faces, const MeshTopology& mesh, const Polygon3& whole,
+                                     const Polygon3& s, double onPlane, std::span<const double> ahead,
+                                     std::span<const uint8_t> onReceiver, double slack) {
+  const Candidates& candidates = memoisedCandidates(faces, mesh, whole, onPlane, slack);
+  const size_t n = s.size();
+  MeshSilhouette out;
+  out.edges.resize(n);
+  out.corners.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3 &p = s[i], &q = s[(i + 1) % n];
+    if (!onReceiver[i]) {
+      const size_t j = edgeHolding(whole, {p}, slack);
+      keepEdges(faces, mesh, p, onPlane, ahead, j < whole.size() ? &candidates.edges[j] : nullptr, out.edges[i]);
+    }
+    if (!onReceiver[i] || !onReceiver[(i + 1) % n]) {
+      const size_t j = edgeHolding(whole, {p, q}, slack);
+      keepCorners(faces, mesh, p, q, onPlane, ahead, j < whole.size() ? &candidates.corners[j] : nullptr,
+                  out.corners[i]);
     }
   }
   return out;

@@ -47,4 +47,19 @@ MeshSilhouette meshSilhouette(std::span<const Face> faces, const MeshTopology& m
 const MeshSilhouette& memoisedMeshSilhouette(std::span<const Face> faces, const MeshTopology& mesh, const Polygon3& s,
                                              double onPlane);
 
+// A receiver whose plane clips the light (a model's face; s = the clipped part of `whole`)
+// asks the same as meshSilhouette(faces, mesh, s, onPlane, ahead), but only for what it uses:
+// nothing from a light vertex with onReceiver[i] set, nor from a light edge with both ends so
+// (their rays never come back to it; those entries stay empty). Each vertex and edge of s lies
+// on an edge of `whole` (within `slack`, a length tolerance): along a light edge pq, an edge of
+// the mesh whose two faces have p and q both more than onPlane + 2·slack on one side (the same
+// side for all four) is off the silhouette from every point near pq, and so is a corner whose
+// faces all have p and q so (the distances are affine along pq and move by at most slack off
+// it). So only the rest, found once per whole light (memoised per thread), is tested at s's
+// own points, by the same tests on the same numbers: O(candidates), not O(mesh), per receiver.
+// An item of s on no single edge of `whole` is tested against the whole mesh.
+MeshSilhouette clippedMeshSilhouette(std::span<const Face> faces, const MeshTopology& mesh, const Polygon3& whole,
+                                     const Polygon3& s, double onPlane, std::span<const double> ahead,
+                                     std::span<const uint8_t> onReceiver, double slack);
+
 }  // namespace penumbra

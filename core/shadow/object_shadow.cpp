@@ -199,9 +199,10 @@ void addContactLines(const Polygon3& s, std::span<const Face> faces, const MeshT
 // edge pq, corner v) over the stretch of pq from which v may be on the silhouette
 // (silhouetteStretch; all of pq for a corner that is not regular).
 template <class OnReceiver, class Add>
-void meshSilhouetteWedges(const Polygon3& s, bool wholeLight, std::span<const Face> faces, const MeshTopology& mesh,
+void meshSilhouetteWedges(const Polygon3& s, const Polygon3& whole, std::span<const Face> faces, const MeshTopology& mesh,
                           const Plane& receiver, const OnReceiver& onReceiver, const Tolerance& tol, Add&& add) {
   const double eps = tol.length(), onPlane = tol.onPlane();
+  const bool wholeLight = s.size() == whole.size() && std::equal(s.begin(), s.end(), whole.begin());
   const ConvexSolid& w = mesh.welded;
   const size_t n = s.size();
   // Only what lies in front of the receiver's plane can shadow it (a mesh on its own face
@@ -210,10 +211,15 @@ void meshSilhouetteWedges(const Polygon3& s, bool wholeLight, std::span<const Fa
   ahead.resize(w.vertices.size());
   for (size_t v = 0; v < w.vertices.size(); ++v) ahead[v] = receiver.signedDistance(w.vertices[v]);
   // The edges and corners that may be on the silhouette: found once per light (not per
-  // receiver) where the receiver's plane leaves the light whole, else for this receiver alone.
+  // receiver) where the receiver's plane leaves the light whole, else for this receiver alone
+  // among the whole light's candidates (clippedMeshSilhouette).
   thread_local MeshSilhouette own;
+  thread_local std::vector<uint8_t> lightOnReceiver;
+  lightOnReceiver.resize(n);
+  for (size_t i = 0; i < n; ++i) lightOnReceiver[i] = onReceiver(s[i]);
   const MeshSilhouette& silhouette =
-      wholeLight ? memoisedMeshSilhouette(faces, mesh, s, onPlane) : (own = meshSilhouette(faces, mesh, s, onPlane, ahead));
+      wholeLight ? memoisedMeshSilhouette(faces, mesh, s, onPlane)
+                 : (own = clippedMeshSilhouette(faces, mesh, whole, s, onPlane, ahead, lightOnReceiver, eps));
   for (size_t i = 0; i < n; ++i) {
     if (onReceiver(s[i])) continue;  // its rays never come back to the receiver
     for (const uint32_t e : silhouette.edges[i]) {
@@ -296,9 +302,7 @@ std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, u
   const std::span<const Face> faces = scene.facesOfObject(handle);
   const size_t n = s.size();
   if (mesh) {
-    const Polygon3& whole = scene.lights()[light].polygon;
-    const bool wholeLight = s.size() == whole.size() && std::equal(s.begin(), s.end(), whole.begin());
-    meshSilhouetteWedges(s, wholeLight, faces, *mesh, receiver.plane, onReceiver, tol, add);
+    meshSilhouetteWedges(s, scene.lights()[light].polygon, faces, *mesh, receiver.plane, onReceiver, tol, add);
     return finish(light, handle, receiver, segments, std::move(penumbra), std::move(umbra));
   }
   for (size_t i = 0; i < n; ++i) {

@@ -3,12 +3,14 @@
 // silhouette (an edge from its light vertex, a corner from every point of the light edge
 // outside its stretch), and the per-thread memo answers as the silhouette computed alone,
 // whatever was asked before; one receiver's own is the whole one's part in front of it
-// (issue 35).
+// (issue 35), and a light clipped by a receiver's plane gives the same among the whole light's
+// candidates.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <random>
 
+#include "core/geom/clip.h"
 #include "core/shadow/mesh_silhouette.h"
 #include "tests/core/illum/random_meshes.h"
 
@@ -37,12 +39,15 @@ bool offEveryFaceAt(const OneMesh& one, uint32_t v, const Vec3& x) {
   return front || back;
 }
 
+bool sameCorners(const std::vector<MeshSilhouette::Corner>& a, const std::vector<MeshSilhouette::Corner>& b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                    [](const auto& x, const auto& y) { return x.vertex == y.vertex && x.from == y.from && x.to == y.to; });
+}
+
 bool sameSilhouette(const MeshSilhouette& a, const MeshSilhouette& b) {
   if (a.edges != b.edges || a.corners.size() != b.corners.size()) return false;
   for (size_t i = 0; i < a.corners.size(); ++i)
-    if (!std::equal(a.corners[i].begin(), a.corners[i].end(), b.corners[i].begin(), b.corners[i].end(),
-                    [](const auto& x, const auto& y) { return x.vertex == y.vertex && x.from == y.from && x.to == y.to; }))
-      return false;
+    if (!sameCorners(a.corners[i], b.corners[i])) return false;
   return true;
 }
 
@@ -124,6 +129,58 @@ TEST(MeshSilhouette, AReceiversOwnIsTheWholeOnesPartInFrontOfIt) {
   }
   EXPECT_GT(kept, 100u);
   EXPECT_GT(dropped, 100u);
+}
+
+// A light clipped by a receiver's plane (a model's face whose plane cuts it): tested only among
+// the whole light's candidates, it gives what the whole scan gives for every part the receiver
+// uses, bit for bit, and drops most of the mesh from the scan.
+TEST(MeshSilhouette, AClippedLightTestsOnlyTheWholeLightsCandidates) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1, 1);
+  size_t clipped = 0, edges = 0, corners = 0;
+  for (uint64_t seed = 1; seed <= 3; ++seed)
+    for (const test::NamedMesh& named : test::seededMeshes(seed)) {
+      const Light light = test::ceilingLight(0.4 + 0.2 * double(seed));
+      const OneMesh one{Scene({light}, {}, {named.mesh})};
+      const MeshTopology& mesh = one.mesh();
+      const std::span<const Face> faces = one.faces();
+      const double onPlane = one.onPlane(), eps = one.scene.tolerance().length();
+      for (int k = 0; k < 12; ++k) {
+        // A steep plane through a point under the light, cutting it; every fourth through a
+        // light corner.
+        const Vec3 normal = glm::normalize(Vec3(u(rng), 0.3 * u(rng), u(rng)));
+        const Vec3 through = k % 4 == 3 ? light.polygon[k % light.polygon.size()]
+                                        : Vec3(0.5 * u(rng), 1.3 + 0.3 * u(rng), 0.5 * u(rng));
+        const Plane receiver = Plane::throughPoint(normal, through);
+        const Polygon3 s = clipFront(light.polygon, receiver, eps);
+        if (s.size() < 3) continue;
+        ++clipped;
+        std::vector<double> ahead;
+        for (const Vec3& v : mesh.welded.vertices) ahead.push_back(receiver.signedDistance(v));
+        std::vector<uint8_t> on;
+        for (const Vec3& x : s) on.push_back(std::abs(receiver.signedDistance(x)) <= eps);
+        const MeshSilhouette all = meshSilhouette(faces, mesh, s, onPlane, ahead);
+        const MeshSilhouette own = clippedMeshSilhouette(faces, mesh, light.polygon, s, onPlane, ahead, on, eps);
+        const size_t n = s.size();
+        for (size_t i = 0; i < n; ++i) {
+          if (!on[i]) {
+            EXPECT_EQ(own.edges[i], all.edges[i]) << named.name << " plane " << k << " light vertex " << i;
+            edges += all.edges[i].size();
+          } else {
+            EXPECT_TRUE(own.edges[i].empty());
+          }
+          if (!on[i] || !on[(i + 1) % n]) {
+            EXPECT_TRUE(sameCorners(own.corners[i], all.corners[i])) << named.name << " plane " << k << " light edge " << i;
+            corners += all.corners[i].size();
+          } else {
+            EXPECT_TRUE(own.corners[i].empty());
+          }
+        }
+      }
+    }
+  EXPECT_GT(clipped, 100u);
+  EXPECT_GT(edges, 1000u);
+  EXPECT_GT(corners, 300u);
 }
 
 TEST(MeshSilhouette, TheMemoAnswersAsTheSilhouetteAloneWhateverWasAskedBefore) {
