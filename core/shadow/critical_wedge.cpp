@@ -121,9 +121,16 @@ std::optional<std::pair<Vec2, Vec2>> wedgeChord(const Wedge& w, const Polygon2& 
 }
 
 bool wedgePlaneMisses(const Wedge& w, const Polygon3& polygon, double eps) {
+  return wedgePlaneMisses(w.apex, w.d1, w.d2, polygon, eps);
+}
+
+bool wedgePlaneMisses(const Vec3& apex, const Vec3& d1, const Vec3& d2, const Polygon3& polygon, double eps) {
+  const Vec3 normal = glm::cross(d1, d2);
+  const double length = glm::length(normal);
+  if (!(length > 0)) return false;  // no plane: makeWedge refuses it
   bool allFront = !polygon.empty(), allBack = allFront;
   for (const Vec3& p : polygon) {
-    const double d = w.plane.signedDistance(p);
+    const double d = glm::dot(normal, p - apex) / length;
     allFront = allFront && d > 2 * eps;
     allBack = allBack && d < -2 * eps;
     if (!allFront && !allBack) return false;

@@ -53,6 +53,10 @@ std::optional<std::pair<Vec2, Vec2>> wedgeChord(const Wedge& w, const Polygon2& 
 // ≤ 1) and wedgeChord would give nullopt. A cheap cull before it: small receivers (a model's
 // own faces) meet few of a mesh's thousands of silhouette wedges.
 bool wedgePlaneMisses(const Wedge& w, const Polygon3& polygon, double eps);
+// The same for the wedge vertexEdgeWedge / edgeVertexWedge would make from (apex, d1, d2)
+// (s, a − s, b − s / v, v − p, v − q), before it is made: most of a mesh's silhouette wedges
+// miss a small receiver, and each made wedge is a copy of some 200 bytes.
+bool wedgePlaneMisses(const Vec3& apex, const Vec3& d1, const Vec3& d2, const Polygon3& polygon, double eps);
 
 // The parameter interval of a→b running along the boundary of a convex polygon
 // (collinear with some edges within eps), as the hull over those edges.

@@ -200,7 +200,8 @@ void addContactLines(const Polygon3& s, std::span<const Face> faces, const MeshT
 // (silhouetteStretch; all of pq for a corner that is not regular).
 template <class OnReceiver, class Add>
 void meshSilhouetteWedges(const Polygon3& s, const Polygon3& whole, std::span<const Face> faces, const MeshTopology& mesh,
-                          const Plane& receiver, const OnReceiver& onReceiver, const Tolerance& tol, Add&& add) {
+                          const Face& receiverFace, const OnReceiver& onReceiver, const Tolerance& tol, Add&& add) {
+  const Plane& receiver = receiverFace.plane;
   const double eps = tol.length(), onPlane = tol.onPlane();
   const bool wholeLight = s.size() == whole.size() && std::equal(s.begin(), s.end(), whole.begin());
   const ConvexSolid& w = mesh.welded;
@@ -228,6 +229,7 @@ void meshSilhouetteWedges(const Polygon3& s, const Polygon3& whole, std::span<co
       Vec3 from = w.vertices[a], to = w.vertices[b];
       if (!(ahead[a] > 0)) from += (ahead[a] / (ahead[a] - ahead[b])) * (to - from);
       else if (!(ahead[b] > 0)) to += (ahead[b] / (ahead[b] - ahead[a])) * (from - to);
+      if (wedgePlaneMisses(s[i], from - s[i], to - s[i], receiverFace.polygon, eps)) continue;
       add(vertexEdgeWedge({ElementRef::Kind::Vertex, uint32_t(i)}, {ElementRef::Kind::Edge, uint32_t(e)}, s[i], from,
                           to, eps));
     }
@@ -238,8 +240,10 @@ void meshSilhouetteWedges(const Polygon3& s, const Polygon3& whole, std::span<co
     if (onReceiver(p) && onReceiver(q)) continue;
     for (const auto& [v, from, to] : silhouette.corners[i]) {
       if (!(ahead[v] > onPlane)) continue;
-      add(edgeVertexWedge({ElementRef::Kind::Edge, uint32_t(i)}, {ElementRef::Kind::Vertex, uint32_t(v)},
-                          p + from * (q - p), p + to * (q - p), w.vertices[v], eps));
+      const Vec3 start = p + from * (q - p), end = p + to * (q - p), &corner = w.vertices[v];
+      if (wedgePlaneMisses(corner, corner - start, corner - end, receiverFace.polygon, eps)) continue;
+      add(edgeVertexWedge({ElementRef::Kind::Edge, uint32_t(i)}, {ElementRef::Kind::Vertex, uint32_t(v)}, start, end,
+                          corner, eps));
     }
   }
 }
@@ -302,7 +306,7 @@ std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, u
   const std::span<const Face> faces = scene.facesOfObject(handle);
   const size_t n = s.size();
   if (mesh) {
-    meshSilhouetteWedges(s, scene.lights()[light].polygon, faces, *mesh, receiver.plane, onReceiver, tol, add);
+    meshSilhouetteWedges(s, scene.lights()[light].polygon, faces, *mesh, receiver, onReceiver, tol, add);
     return finish(light, handle, receiver, segments, std::move(penumbra), std::move(umbra));
   }
   for (size_t i = 0; i < n; ++i) {
