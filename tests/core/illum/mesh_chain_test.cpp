@@ -68,6 +68,42 @@ TEST(MeshChain, EqualsFaceByFaceAndReferenceOnSeededMeshes) {
   EXPECT_GT(umbra, 10u);
 }
 
+// Points on the mesh's own faces (a face's own normal, off its corners and edges): nearby
+// faces rise in front of p's plane and reach past p's height, so most points mix the chain
+// with faces the chain cannot hold. Chain and faces one by one and the reference agree.
+TEST(MeshChain, PointsOnTheMeshesOwnFacesEqualFaceByFaceAndReference) {
+  size_t penumbra = 0, checked = 0;
+  for (uint64_t seed = 1; seed <= 4; ++seed)
+    for (test::NamedMesh& c : test::seededMeshes(seed)) {
+      const Scene scene({test::ceilingLight(0.5 + 0.1 * double(seed))}, {}, {floorQuad(), c.mesh});
+      const uint32_t handle = scene.handleOf(1);
+      const std::span<const Face> faces = scene.facesOfObject(handle);
+      const ExactReference reference(scene);
+      std::mt19937_64 rng(seed * 104729);
+      std::uniform_real_distribution<double> u(0.05, 1.0);
+      for (int i = 0; i < 120; ++i) {
+        const Face& face = faces[rng() % faces.size()];
+        // A point inside the face: a convex combination of three of its corners, off the edges.
+        double a = u(rng), b = u(rng), w = u(rng);
+        const double sum = a + b + w;
+        a /= sum, b /= sum, w /= sum;
+        const size_t k = face.polygon.size();
+        const Vec3 p = a * face.polygon[0] + b * face.polygon[k / 2] + w * face.polygon[k - 1];
+        const Vec3 n = face.plane.normal;
+        Backprojection view(scene, 0, p, n);
+        view.occludeObject(handle);
+        const double chain = view.visibleFactor(), full = view.unoccludedFactor();
+        const double oneByOne = visibleOneByOne(scene, handle, p, n);
+        const LightVisibility truth = reference.visibility(p, n, 0);
+        EXPECT_NEAR(chain, oneByOne, 1e-9 * full) << c.name << " seed " << seed << " point " << i;
+        EXPECT_NEAR(chain, truth.visibleFactor, 1e-9 * full) << c.name << " seed " << seed << " point " << i;
+        penumbra += view.lightClass() == LightClass::Penumbra;
+        ++checked;
+      }
+    }
+  EXPECT_GT(penumbra, checked / 8);
+}
+
 // The seeded meshes moved down onto the floor (lowest corner on it) or into it (2 cm): floor
 // points take a box's summed chain with the faces touching the floor decided per point
 // (mesh_box_chain.h, `special`), or their own pass where such a face blocks on its own
