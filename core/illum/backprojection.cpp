@@ -219,15 +219,16 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
                                  const Vec3* towards) {
   // Faces whose corners all lie ahead of p's plane and between p and the light (1e-3 of
   // p's height short of it) project with one orientation: they go into the chain. Where
-  // another face (near p's height, or reaching behind p's plane) blocks p, every face is
-  // projected one by one instead: its shadow would share edges with the chain's, and only
-  // the convex contour decides edges along each other consistently. Faces in clusters
+  // another face (near p's height, or reaching behind p's plane) blocks p, it is projected
+  // one by one, and so is every chain face joined to it through faces sharing a corner: its
+  // shadow would otherwise share edges or corners with the chain's, and only the convex
+  // contour decides edges along each other consistently (splitOffAlone). Faces in clusters
   // outside the cone from p over the light block nothing and are not looked at.
   const Plane receiver = Plane::throughPoint(n_, p_);
   const ConvexSolid& w = mesh.welded;
   enum : uint8_t { kUsable = 1, kAhead = 2, kBeyondLight = 4, kBeforeP = 8 };
   thread_local std::vector<uint8_t> corner;  // kUsable, kAhead, kBeyondLight, kBeforeP
-  thread_local std::vector<uint32_t> cornerStamp, chainFaces, chainClusters;
+  thread_local std::vector<uint32_t> cornerStamp, chainFaces, chainClusters, aloneFaces;
   thread_local uint32_t stamp = 0;
   if (cornerStamp.size() < w.vertices.size()) cornerStamp.resize(w.vertices.size(), 0), corner.resize(w.vertices.size());
   if (++stamp == 0) std::fill(cornerStamp.begin(), cornerStamp.end(), 0), stamp = 1;
@@ -265,7 +266,7 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
     for (const uint32_t i : box->crossing)
       if (mesh.clusterPlanes[i].signedDistance(p_) < -onPlane) chainFaces.push_back(mesh.clusterFaces[i]);
     // Special faces as the loop below decides them; one that blocks p on its own sends p to
-    // that loop (every face one by one), which projects it again.
+    // that loop (it and the faces joined to it one by one), which projects it again.
     bool alone = false;
     for (const uint32_t i : box->special) {
       if (!(mesh.clusterPlanes[i].signedDistance(p_) < -onPlane)) continue;
@@ -295,7 +296,8 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
   // Faces whose plane holds p count only as limits (with `towards`); the rest go one by
   // one, but for those with no corner ahead of p's plane, past the light's or short of p's
   // height, which cannot block (occlude() would say so).
-  bool othersBlock = false;
+  bool approachBlocks = false;
+  aloneFaces.clear();
   for (size_t c = 0; c < mesh.clusters.size(); ++c) {
     const MeshTopology::Cluster& cluster = mesh.clusters[c];
     if (missesCone(cluster)) continue;
@@ -305,7 +307,7 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
       const uint32_t f = mesh.clusterFaces[i];
       const double distance = mesh.clusterPlanes[i].signedDistance(p_);
       if (!(distance < -onPlane)) {
-        if (towards && !(distance > onPlane)) othersBlock = occludeApproaching(faces[f], *towards) || othersBlock;
+        if (towards && !(distance > onPlane)) approachBlocks = occludeApproaching(faces[f], *towards) || approachBlocks;
         continue;
       }
       if (usable) {
@@ -314,7 +316,7 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
       }
       const Decision decision = decide(f);
       if (decision == Decision::kChain) chainFaces.push_back(f);
-      else if (decision == Decision::kAlone && !besideLight(faces[f])) othersBlock = occlude(faces[f]) || othersBlock;
+      else if (decision == Decision::kAlone && !besideLight(faces[f]) && occlude(faces[f])) aloneFaces.push_back(f);
     }
     // Every face of the cluster in the chain: its precomputed sum stands for them.
     if (chainFaces.size() - before == size_t(cluster.last - cluster.first)) {
@@ -322,13 +324,60 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
       chainClusters.push_back(uint32_t(c));
     }
   }
-  if (othersBlock) {
+  if (approachBlocks) {
     for (uint32_t c : chainClusters)
       for (uint32_t i = mesh.clusters[c].first; i < mesh.clusters[c].last; ++i) occlude(faces[mesh.clusterFaces[i]]);
     for (uint32_t f : chainFaces) occlude(faces[f]);
     return true;
   }
-  return appendChain(handle, mesh, chainFaces, chainClusters, {});
+  if (aloneFaces.empty()) return appendChain(handle, mesh, chainFaces, chainClusters, {});
+  splitOffAlone(mesh, faces, chainFaces, chainClusters, aloneFaces);
+  appendChain(handle, mesh, chainFaces, chainClusters, {});
+  return true;
+}
+
+void Backprojection::splitOffAlone(const MeshTopology& mesh, std::span<const Face> faces,
+                                   std::vector<uint32_t>& chainFaces, std::vector<uint32_t>& chainClusters,
+                                   std::vector<uint32_t>& alone) {
+  // The faces projected alone (already subtracted) and every chain face joined to them through
+  // chain or alone faces sharing a corner: those go one by one too, so no chain edge or corner
+  // is also a corner of a convex shadow (the contour decides edges along each other only
+  // between convex shadows). The rest stays one chain, as a mesh's chain beside other objects'
+  // shadows.
+  thread_local std::vector<uint32_t> state;  // per face: stamp·4 + 1 chain, + 2 alone
+  thread_local uint32_t stamp = 0;
+  if (state.size() < faces.size()) state.assign(faces.size(), 0);
+  if (++stamp >= (1u << 29)) std::fill(state.begin(), state.end(), 0), stamp = 1;
+  const uint32_t chain = stamp * 4 + 1, inAlone = stamp * 4 + 2;
+  for (uint32_t f : chainFaces) state[f] = chain;
+  for (uint32_t c : chainClusters)
+    for (uint32_t i = mesh.clusters[c].first; i < mesh.clusters[c].last; ++i) state[mesh.clusterFaces[i]] = chain;
+  for (uint32_t f : alone) state[f] = inAlone;
+  const ConvexSolid& w = mesh.welded;
+  for (size_t next = 0; next < alone.size(); ++next) {
+    const uint32_t f = alone[next];
+    for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
+      const uint32_t v = w.corners[k];
+      for (uint32_t j = mesh.vertexStarts[v]; j < mesh.vertexStarts[v + 1]; ++j) {
+        const uint32_t g = mesh.vertexFaces[j];
+        if (state[g] != chain) continue;
+        state[g] = inAlone;
+        occlude(faces[g]);
+        alone.push_back(g);
+      }
+    }
+  }
+  std::erase_if(chainFaces, [&](uint32_t f) { return state[f] == inAlone; });
+  // A cluster with a face gone alone is no longer whole: its other faces join the chain's list.
+  std::erase_if(chainClusters, [&](uint32_t c) {
+    const auto& cluster = mesh.clusters[c];
+    const bool broken = std::any_of(mesh.clusterFaces.begin() + cluster.first, mesh.clusterFaces.begin() + cluster.last,
+                                    [&](uint32_t f) { return state[f] == inAlone; });
+    if (broken)
+      for (uint32_t i = cluster.first; i < cluster.last; ++i)
+        if (state[mesh.clusterFaces[i]] != inAlone) chainFaces.push_back(mesh.clusterFaces[i]);
+    return broken;
+  });
 }
 
 bool Backprojection::appendChain(uint32_t handle, const MeshTopology& mesh, std::span<const uint32_t> faces,

@@ -57,8 +57,10 @@ class Backprojection {
   bool occludeObject(uint32_t handle, const Vec3* towards = nullptr);
   // Any other object with a mesh (Scene::meshTopology): the projections of its blocking
   // faces whose corners all lie ahead of p's plane and between p and the light (1e-3 of
-  // p's height short of it) as one chain (shadow_chain.h), unless one of the others
-  // blocks p: then every face one by one, as occlude().
+  // p's height short of it) as one chain (shadow_chain.h). A blocking face the chain cannot
+  // hold goes one by one, as occlude(), and so does every chain face joined to it through
+  // faces sharing a corner (splitOffAlone); with `towards`, a face whose plane holds p that
+  // blocks as p is approached sends every face one by one.
   //
   // occlude() for a face's id, occludeObject() for a wholeObject() id; ids not in the
   // scene are ignored.
@@ -108,6 +110,12 @@ class Backprojection {
   // Lambert's sum about the shading normal over `boundary` clipped to its front half-space.
   double shadedBoundarySum(std::span<const Segment2> boundary) const;
   bool occludeMesh(uint32_t handle, const MeshTopology& mesh, std::span<const Face> faces, const Vec3* towards);
+  // occludeMesh's faces that block p one by one (`alone`, already subtracted): each chain face
+  // joined to them through chain or alone faces sharing a corner is subtracted one by one too
+  // and leaves the chain (chainFaces, chainClusters: a cluster losing a face is listed face by
+  // face); `alone` grows by those.
+  void splitOffAlone(const MeshTopology& mesh, std::span<const Face> faces, std::vector<uint32_t>& chainFaces,
+                     std::vector<uint32_t>& chainClusters, std::vector<uint32_t>& alone);
   // occlude() short of subtracting: the face's part that blocks p, projected onto the light's
   // plane, into blocker_; false when no part of it blocks p.
   bool projectBlocker(const Face& face) const;
