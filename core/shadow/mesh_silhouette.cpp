@@ -52,6 +52,34 @@ bool silhouetteStretch(std::span<const Face> faces, const MeshTopology& mesh, ui
 
 namespace {
 
+// What make() gives for (mesh, light polygon, onPlane, slack), kept per thread and per caller
+// for the last four asked (the light compared bit for bit); valid until the next call.
+template <class Value, class Make>
+const Value& memoisedPerLight(const MeshTopology& mesh, const Polygon3& light, double onPlane, double slack,
+                              Make&& make) {
+  struct Entry {
+    uint64_t serial = 0;
+    Polygon3 light;
+    double onPlane = 0, slack = 0;
+    uint64_t lastUse = 0;
+    Value value;
+  };
+  thread_local std::array<Entry, 4> memo;
+  thread_local uint64_t uses = 0;
+  Entry* oldest = &memo[0];
+  for (Entry& entry : memo) {
+    if (entry.serial == mesh.serial && entry.onPlane == onPlane && entry.slack == slack &&
+        entry.light.size() == light.size() &&
+        std::memcmp(entry.light.data(), light.data(), light.size() * sizeof(Vec3)) == 0) {
+      entry.lastUse = ++uses;
+      return entry.value;
+    }
+    if (entry.lastUse < oldest->lastUse) oldest = &entry;
+  }
+  *oldest = Entry{mesh.serial, light, onPlane, slack, ++uses, make()};
+  return oldest->value;
+}
+
 // Whether mesh edge e may be on the silhouette from light point x (every edge that is not
 // regular may), and corner v from some point of light edge pq, with its stretch.
 bool edgeMayBeOn(std::span<const Face> faces, const MeshTopology& mesh, uint32_t e, const Vec3& x, double onPlane) {
@@ -151,27 +179,8 @@ Candidates candidatesAlong(std::span<const Face> faces, const MeshTopology& mesh
 
 const Candidates& memoisedCandidates(std::span<const Face> faces, const MeshTopology& mesh, const Polygon3& whole,
                                      double onPlane, double slack) {
-  struct Entry {
-    uint64_t serial = 0;
-    Polygon3 light;
-    double onPlane = 0, slack = 0;
-    uint64_t lastUse = 0;
-    Candidates candidates;
-  };
-  thread_local std::array<Entry, 4> memo;
-  thread_local uint64_t uses = 0;
-  Entry* oldest = &memo[0];
-  for (Entry& entry : memo) {
-    if (entry.serial == mesh.serial && entry.onPlane == onPlane && entry.slack == slack &&
-        entry.light.size() == whole.size() &&
-        std::memcmp(entry.light.data(), whole.data(), whole.size() * sizeof(Vec3)) == 0) {
-      entry.lastUse = ++uses;
-      return entry.candidates;
-    }
-    if (entry.lastUse < oldest->lastUse) oldest = &entry;
-  }
-  *oldest = Entry{mesh.serial, whole, onPlane, slack, ++uses, candidatesAlong(faces, mesh, whole, onPlane, slack)};
-  return oldest->candidates;
+  return memoisedPerLight<Candidates>(mesh, whole, onPlane, slack,
+                                      [&] { return candidatesAlong(faces, mesh, whole, onPlane, slack); });
 }
 
 // Whether x lies within slack of segment pq.
@@ -219,26 +228,7 @@ MeshSilhouette clippedMeshSilhouette(std::span<const Face> faces, const MeshTopo
 
 const MeshSilhouette& memoisedMeshSilhouette(std::span<const Face> faces, const MeshTopology& mesh, const Polygon3& s,
                                              double onPlane) {
-  struct Entry {
-    uint64_t serial = 0;
-    Polygon3 light;
-    double onPlane = 0;
-    uint64_t lastUse = 0;
-    MeshSilhouette silhouette;
-  };
-  thread_local std::array<Entry, 4> memo;
-  thread_local uint64_t uses = 0;
-  Entry* oldest = &memo[0];
-  for (Entry& entry : memo) {
-    if (entry.serial == mesh.serial && entry.onPlane == onPlane && entry.light.size() == s.size() &&
-        std::memcmp(entry.light.data(), s.data(), s.size() * sizeof(Vec3)) == 0) {
-      entry.lastUse = ++uses;
-      return entry.silhouette;
-    }
-    if (entry.lastUse < oldest->lastUse) oldest = &entry;
-  }
-  *oldest = Entry{mesh.serial, s, onPlane, ++uses, meshSilhouette(faces, mesh, s, onPlane)};
-  return oldest->silhouette;
+  return memoisedPerLight<MeshSilhouette>(mesh, s, onPlane, 0.0, [&] { return meshSilhouette(faces, mesh, s, onPlane); });
 }
 
 }  // namespace penumbra
