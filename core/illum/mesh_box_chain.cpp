@@ -21,28 +21,40 @@ std::array<Vec3, 8> boxCorners(const Vec3& low, const Vec3& high) {
   return corners;
 }
 
-// Whether the cluster's ball (with a margin) lies outside the cone from every point of the
-// box over the light (all of it in front of the light): for some light edge a→b, the plane
-// through it and p has the ball on its outer side for every p of the box. With m(p) =
-// (b − a) × (p − a), inward up to one sign that p's side of the light fixes, the ball is out
-// when s·m(p)·(c − a) + r·|m(p)| < 0: linear plus convex in p, so largest at a corner of the
-// box, where it is tested.
-bool outsideEveryCone(const MeshTopology::Cluster& cluster, const std::array<Vec3, 8>& box,
-                      std::span<const Vec3> light, const Plane& lightPlane, double margin) {
-  if (light.size() < 3) return false;
+// A light edge a→b with the sign s that turns m(p) = (b − a) × (p − a) inward for p in
+// front of the light: the light's centre is inside, so m(p)·(inner − a) has one sign over the
+// front half-space. Found once per box, not once per cluster.
+struct LightEdgeSide {
+  Vec3 a, edge;
+  double s;
+};
+
+std::vector<LightEdgeSide> lightEdgeSides(std::span<const Vec3> light, const Plane& lightPlane) {
+  std::vector<LightEdgeSide> sides;
+  if (light.size() < 3) return sides;
   Vec3 inner{0.0};
   for (const Vec3& v : light) inner += v;
   inner /= double(light.size());
-  const double r = cluster.radius + margin;
   for (size_t i = 0; i < light.size(); ++i) {
     const Vec3 a = light[i], edge = light[(i + 1) % light.size()] - a;
-    // The sign that turns m(p) inward for p in front of the light: the light's centre is
-    // inside, (b − a) × (p − a) · (inner − a) has one sign over the front half-space.
     const Vec3 front = a + lightPlane.normal;  // a point in front of the light
-    const double s = glm::dot(glm::cross(edge, front - a), inner - a) < 0 ? -1.0 : 1.0;
+    sides.push_back({a, edge, glm::dot(glm::cross(edge, front - a), inner - a) < 0 ? -1.0 : 1.0});
+  }
+  return sides;
+}
+
+// Whether the cluster's ball (with a margin) lies outside the cone from every point of the
+// box over the light (all of it in front of the light): for some light edge a→b, the plane
+// through it and p has the ball on its outer side for every p of the box. The ball is out
+// when s·m(p)·(c − a) + r·|m(p)| < 0: linear plus convex in p, so largest at a corner of the
+// box, where it is tested.
+bool outsideEveryCone(const MeshTopology::Cluster& cluster, const std::array<Vec3, 8>& box,
+                      std::span<const LightEdgeSide> sides, double margin) {
+  const double r = cluster.radius + margin;
+  for (const LightEdgeSide& side : sides) {
     const bool out = std::all_of(box.begin(), box.end(), [&](const Vec3& p) {
-      const Vec3 m = glm::cross(edge, p - a);
-      return s * glm::dot(m, cluster.centre - a) + r * glm::length(m) < 0;
+      const Vec3 m = glm::cross(side.edge, p - side.a);
+      return side.s * glm::dot(m, cluster.centre - side.a) + r * glm::length(m) < 0;
     });
     if (out) return true;
   }
@@ -77,26 +89,37 @@ MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const V
   // pHeight).
   const double receiverTop = std::min(glm::dot(n, centre) + reach(n, half), highestReceiver);
   const double leastHeight = lightPlane.signedDistance(centre) - reach(lightPlane.normal, half);
+  // Corners are judged when a face of a cluster in the cone asks (stamped per call): a box
+  // is asked once per receiver plane, and a pass over every corner and edge of a big mesh per
+  // receiver of that mesh would make a model's self-casting quadratic.
   thread_local std::vector<uint8_t> usableCorner;
+  thread_local std::vector<uint32_t> cornerStamp;
+  thread_local uint32_t stamp = 0;
   const std::vector<Vec3>& vertices = mesh.welded.vertices;
-  usableCorner.resize(vertices.size());
-  for (size_t v = 0; v < vertices.size(); ++v) {
-    const double h = lightPlane.signedDistance(vertices[v]);
-    usableCorner[v] = glm::dot(n, vertices[v]) - receiverTop > margin && h > 0 && 0.999 * leastHeight - h > margin;
-  }
+  if (cornerStamp.size() < vertices.size()) cornerStamp.resize(vertices.size(), 0), usableCorner.resize(vertices.size());
+  if (++stamp == 0) std::fill(cornerStamp.begin(), cornerStamp.end(), 0), stamp = 1;
+  auto usable = [&](uint32_t v) {
+    if (cornerStamp[v] != stamp) {
+      const double h = lightPlane.signedDistance(vertices[v]);
+      usableCorner[v] = glm::dot(n, vertices[v]) - receiverTop > margin && h > 0 && 0.999 * leastHeight - h > margin;
+      cornerStamp[v] = stamp;
+    }
+    return usableCorner[v] != 0;
+  };
   thread_local std::vector<uint32_t> behindFaces, touched;
-  thread_local std::vector<int> net;
+  thread_local std::vector<int> net;  // all zero between calls (sumFaceEdges clears what it sets)
   behindFaces.clear();
-  net.assign(mesh.welded.edges.size(), 0);
+  if (net.size() < mesh.welded.edges.size()) net.resize(mesh.welded.edges.size(), 0);
   const auto corners = boxCorners(low, high);
+  const std::vector<LightEdgeSide> sides = lightEdgeSides(light, lightPlane);
   for (const MeshTopology::Cluster& cluster : mesh.clusters) {
-    if (outsideEveryCone(cluster, corners, light, lightPlane, margin)) continue;
+    if (outsideEveryCone(cluster, corners, sides, margin)) continue;
     for (uint32_t i = cluster.first; i < cluster.last; ++i) {
       const uint32_t f = mesh.clusterFaces[i];
-      bool usable = true;
-      for (uint32_t k = mesh.welded.faceStarts[f]; k < mesh.welded.faceStarts[f + 1] && usable; ++k)
-        usable = usableCorner[mesh.welded.corners[k]];
-      if (!usable) {
+      bool allUsable = true;
+      for (uint32_t k = mesh.welded.faceStarts[f]; k < mesh.welded.faceStarts[f + 1] && allUsable; ++k)
+        allUsable = usable(mesh.welded.corners[k]);
+      if (!allUsable) {
         // Many faces a point must decide as its own pass does (a receiver on the mesh, or
         // cutting through it): the box saves nothing there.
         if (out.special.size() == mesh.clusterFaces.size() / kMostSpecialShare) return MeshBoxChain{};
