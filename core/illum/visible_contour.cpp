@@ -96,7 +96,9 @@ void VisibleContour::clipEdgeOfShadow(uint32_t i, size_t edge) {
   // shadow's corner sits at the light's (an open boundary is a wrong integral).
   const Line& line = lines_[edge];
   occluded_ |= (inside.to - inside.from) * glm::length(line.to - line.from) > eps_;
-  const Vec2 sLow = glm::min(line.from, line.to), sHigh = glm::max(line.from, line.to);
+  // Only the stretch inside the light is emitted: a shadow whose box misses that stretch's
+  // box covers nothing of it (a shadow edge crossing the light often runs far beyond it).
+  const Vec2 sLow = glm::min(inside.fromPoint, inside.toPoint), sHigh = glm::max(inside.fromPoint, inside.toPoint);
   // Shadow j's part of the edge, if any; a stretch one shadow holds whole leaves nothing
   // (emitUncovered would emit no gap), so the search stops there. The shadow that held the
   // last edge whole is asked first: in clutter a shadow's edges often lie in one other.
