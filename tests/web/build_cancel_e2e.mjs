@@ -61,10 +61,12 @@ async function buildAndCancel(browser, url, base, knotFile, cancelSeconds) {
   // Its entry follows the builds event stream: it changes, and no list is asked for meanwhile.
   otherLists.count = 0;
   const entry = () => other.evaluate(() => document.querySelector('#scene-list li[data-state="building"]')?.textContent || '');
-  // Sampled until its stage or fraction moves (a long receiver can hold one for seconds), at most 5 s.
+  // Sampled until its stage or fraction moves, at most 15 s: illumination counts receivers, and the
+  // floor under the knot, one receiver, held 'illumination 87 %' for over 6 s once the knot's own
+  // faces lit faster (CI, 2026-12-02).
   const progressOf = (e) => e.replace(/ · \d+\.\d s(Cancel)?$/, '');
   const entries = [await entry()];
-  for (let i = 0; i < 25 && (entries.length < 2 || new Set([item, ...entries].map(progressOf)).size < 2); ++i) {
+  for (let i = 0; i < 75 && (entries.length < 2 || new Set([item, ...entries].map(progressOf)).size < 2); ++i) {
     await sleep(200);
     entries.push(await entry());
   }
@@ -103,9 +105,9 @@ async function watchTheOverlay(page, how) {
   check(seconds.length >= 9 && new Set(seconds).size >= 9 && seconds.every((s, i) => i === 0 || s >= seconds[i - 1]),
     `the overlay shows the build's stage with a seconds counter that moves${how}`, JSON.stringify(texts.slice(0, 4)));
   // The fraction moves with the build's receivers, and one long receiver (the floor) can hold it
-  // for seconds: sampled on until it moves, at most 5 s more.
+  // for seconds: sampled on until it moves, at most 15 s more (as the other tab's entry below).
   const fractionsOf = () => new Set(texts.map((t) => t.match(building)).filter((m) => m && m[2] !== undefined).map((m) => `${m[1]} ${m[2]}`));
-  for (let i = 0; i < 25 && fractionsOf().size < 2; ++i) {
+  for (let i = 0; i < 75 && fractionsOf().size < 2; ++i) {
     await sleep(200);
     texts.push(await page.evaluate(overlayText));
   }
