@@ -133,7 +133,12 @@ MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const V
     }
   }
   out.usable = true;
-  sumFaceEdges(mesh, behindFaces, net, touched, out.behindAll);
+  try {
+    sumFaceEdges(mesh, behindFaces, net, touched, out.behindAll);
+  } catch (...) {  // an allocation failed midway: the next call on this thread needs net all zero
+    std::fill(net.begin(), net.end(), 0);
+    throw;
+  }
   return out;
 }
 

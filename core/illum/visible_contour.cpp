@@ -96,8 +96,9 @@ void VisibleContour::clipEdgeOfShadow(uint32_t i, size_t edge) {
   // shadow's corner sits at the light's (an open boundary is a wrong integral).
   const Line& line = lines_[edge];
   occluded_ |= (inside.to - inside.from) * glm::length(line.to - line.from) > eps_;
-  // Only the stretch inside the light is emitted: a shadow whose box misses that stretch's
-  // box covers nothing of it (a shadow edge crossing the light often runs far beyond it).
+  // Only the stretch inside the light is emitted, so shadows are culled by that stretch's box
+  // (the same eps box test as before, on less: a shadow edge crossing the light often runs far
+  // beyond it).
   const Vec2 sLow = glm::min(inside.fromPoint, inside.toPoint), sHigh = glm::max(inside.fromPoint, inside.toPoint);
   // Shadow j's part of the edge, if any; a stretch one shadow holds whole leaves nothing
   // (emitUncovered would emit no gap), so the search stops there. The shadow that held the
