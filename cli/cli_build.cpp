@@ -86,14 +86,9 @@ int runBuild(const Args& args) {
   settings.meshTolerance = meshToleranceOption(args);
   const Scene scene = protocol::loadSceneFile(scenePath);
 
-  ProgressBar casting("casting"), illumination("illumination");
-  Engine engine(scene, settings, [&](const char* step, size_t done, size_t total) {
-    const std::string name = step;  // the bars show these two; "ordering" is brief
-    if (name == "casting" || name == "illumination")
-      (name == "casting" ? casting : illumination).update(done, total);
-  });
-  casting.finish();
-  illumination.finish();
+  BuildBars bars;
+  Engine engine(scene, settings, bars.progress());
+  bars.finish();
   ProgressBar triangulation("triangulation");
   const Mesh mesh = engine.mesh([&](const char*, size_t done, size_t total) { triangulation.update(done, total); });
   triangulation.finish();

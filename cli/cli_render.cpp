@@ -86,16 +86,11 @@ int runRender(const Args& args) {
   if (const auto meshPath = args.option("mesh")) {
     mesh = protocol::loadMeshFile(*meshPath, scene);
   } else if (!settings.reference) {
-    ProgressBar casting("casting"), illumination("illumination");
+    BuildBars bars;
     EngineSettings engineSettings;
     engineSettings.meshTolerance = meshToleranceOption(args);
-    engine = std::make_unique<Engine>(scene, engineSettings, [&](const char* step, size_t done, size_t total) {
-      const std::string name = step;  // the bars show these two; "ordering" is brief
-      if (name == "casting" || name == "illumination")
-        (name == "casting" ? casting : illumination).update(done, total);
-    });
-    casting.finish();
-    illumination.finish();
+    engine = std::make_unique<Engine>(scene, engineSettings, bars.progress());
+    bars.finish();
     mesh = engine->mesh();
     settings.occluders = dmOccluderLists(*engine);
   }

@@ -259,12 +259,11 @@ int runReplay(const Args& args) {
   const Scene scene = protocol::loadSceneFile(report.scene);
   const std::vector<protocol::ScriptFrame> frames = checkedScript(scene, report.script);
 
-  ProgressBar building("building");
+  BuildBars building;
   const auto buildStart = Clock::now();
   options.settings.threads = args.intOption("threads", 0, 0, 1024);
   options.settings.meshTolerance = meshToleranceOption(args);
-  Engine engine(scene, options.settings,
-                [&](const char*, size_t done, size_t total) { building.update(done, total); });
+  Engine engine(scene, options.settings, building.progress());
   report.buildSeconds = secondsSince(buildStart);
   building.finish();
   std::printf("built %zu faces, %zu receivers in %.3f s; replaying %zu frames%s\n",

@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 
 namespace penumbra::cli {
 
@@ -13,7 +15,7 @@ ProgressBar::~ProgressBar() { finish(); }
 
 void ProgressBar::update(size_t done, size_t total) {
   total_ = total;
-  const int percent = total ? int(100 * done / total) : 100;
+  const int percent = total ? int(100 * std::min(done, total) / total) : 0;  // a total may grow
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   if (terminal_) {
@@ -23,7 +25,7 @@ void ProgressBar::update(size_t done, size_t total) {
     std::fprintf(stderr, "\r%s [%.*s%*s] %3d%% %zu/%zu %.1fs", label_.c_str(), filled,
                  "##############################", width - filled, "", percent, done, total, seconds);
   } else {
-    if (percent / 10 == lastShown_) return;
+    if (percent / 10 <= lastShown_) return;  // a log shows tenths rising, not a grown total's dips
     lastShown_ = percent / 10;
     std::fprintf(stderr, "%s: %d%% (%zu/%zu) %.1fs\n", label_.c_str(), percent, done, total, seconds);
   }
@@ -34,6 +36,18 @@ void ProgressBar::finish() {
   if (finished_) return;
   finished_ = true;
   if (terminal_ && lastShown_ >= 0) std::fprintf(stderr, "\n");
+}
+
+StepProgress BuildBars::progress() {
+  return [this](const char* step, size_t done, size_t total) {
+    if (std::strcmp(step, "casting") == 0) casting_.update(done, total);
+    if (std::strcmp(step, "illumination") == 0) illumination_.update(done, total);
+  };
+}
+
+void BuildBars::finish() {
+  casting_.finish();
+  illumination_.finish();
 }
 
 }  // namespace penumbra::cli

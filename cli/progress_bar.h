@@ -5,6 +5,8 @@
 #include <chrono>
 #include <string>
 
+#include "core/util/shared_progress.h"
+
 namespace penumbra::cli {
 
 class ProgressBar {
@@ -21,6 +23,17 @@ class ProgressBar {
   int lastShown_ = -1;  // percent (terminal) or tenth (log) last printed
   std::chrono::steady_clock::time_point start_;
   size_t total_ = 0;
+};
+
+// An engine build's progress as two bars, its long steps "casting" and "illumination" (they
+// run at once); the brief ones (ordering, cube, receivers) are not shown.
+class BuildBars {
+ public:
+  StepProgress progress();
+  void finish();
+
+ private:
+  ProgressBar casting_{"casting"}, illumination_{"illumination"};
 };
 
 }  // namespace penumbra::cli

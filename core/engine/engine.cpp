@@ -1,6 +1,7 @@
 #include "core/engine/engine.h"
 
 #include <algorithm>
+#include <atomic>
 #include <mutex>
 #include <cmath>
 #include <limits>
@@ -189,12 +190,16 @@ void Engine::build(const EngineProgress& progress) {
 
   // One DM-tree per receiving face.
   const auto start = Clock::now();
+  SharedProgress receiverReport(progress, "receivers", scene_.faces().size(),
+                                std::max<size_t>(1, scene_.faces().size() / 100));
   for (const Face& face : scene_.faces()) {
+    receiverReport.add(1);
     if (!scene_.receivesLight(face)) continue;
     receiverIndex_[face.id] = receivers_.size();
     receivers_.push_back(makeReceiver(face));
     budget_.change({}, usageOf(receivers_.back().tree, scene_.lights().size()));
   }
+  receiverReport.finish();
   stats_.receivers = receivers_.size();
   // Cast every pair, then illuminate every vertex (§2.3, §2.4), receiver by receiver.
   castAndIlluminateAll(start, progress);
@@ -218,12 +223,15 @@ void Engine::buildOrdersAndCubes(const EngineProgress& progress) {
   // Shadow overlap cubes (§2.2).
   start = Clock::now();
   cubes_.resize(lightCount);
+  SharedProgress cubeReport(progress, "cube", lightCount, 1);
   parallel_.forEach(lightCount, [&](size_t l) {
     OverlapCubeSettings cubeSettings;
     cubeSettings.grid = settings_.overlapGrid > 0 ? settings_.overlapGrid
                                                   : overlapGridFor(scene_, l, settings_.closedObjectsAsOne);
     cubes_[l] = std::make_unique<OverlapCube>(scene_, l, cubeSettings);
+    cubeReport.add(1);
   });
+  cubeReport.finish();
   for (const auto& cube : cubes_) stats_.tiles += cube->tileCount();
   stats_.seconds.cube = secondsSince(start);
 }
@@ -241,7 +249,9 @@ void Engine::castAndIlluminateAll(Clock::time_point start, const EngineProgress&
   // Reported per cast (about 256 reports in all): one receiver, the floor, may take most casts.
   SharedProgress castReport(progress, "casting", stats_.castAttempts,
                             std::max<size_t>(1, stats_.castAttempts / 256), &progressMutex);
-  SharedProgress lightReport(progress, "illumination", receivers_.size(), 1, &progressMutex);
+  // Counts vertices lit, of those of the receivers cast so far: its total grows while casting
+  // runs. One receiver, the floor under a model, may hold most of them.
+  SharedProgress lightReport(progress, "illumination", 0, kVerticesPerBeat, &progressMutex);
   std::vector<double> castSeconds(receivers_.size()), lightSeconds(receivers_.size());
   parallel_.forEach(receivers_.size(), [&](size_t r) {
     const auto castStart = Clock::now();
@@ -255,9 +265,8 @@ void Engine::castAndIlluminateAll(Clock::time_point start, const EngineProgress&
     std::vector<ReceiverCast>().swap(casts[r]);
     const auto lightStart = Clock::now();
     castSeconds[r] = std::chrono::duration<double>(lightStart - castStart).count();
-    illuminate(receivers_[r], [&] { lightReport.beat(); });
+    illuminate(receivers_[r], &lightReport);
     lightSeconds[r] = secondsSince(lightStart);
-    lightReport.add(1);
   });
   castReport.finish();
   lightReport.finish();
@@ -387,7 +396,7 @@ bool Engine::chooseDisplay(Receiver& receiver) const {
   return wasLattice && !lattice;
 }
 
-void Engine::illuminate(Receiver& receiver, const std::function<void()>& beat) const {
+void Engine::illuminate(Receiver& receiver, SharedProgress* report) const {
   chooseDisplay(receiver);
   const size_t slots = receiver.tree.mesh().vertexSlots();
   // Headroom for a big receiver only: its first edits then grow its arrays in place instead of
@@ -402,10 +411,13 @@ void Engine::illuminate(Receiver& receiver, const std::function<void()>& beat) c
   if (receiver.fromLattice) return;  // its display does not read them (Engine::value computes one)
   // Vertices in parallel (a dense scene's floor holds most of them); each writes its own slots.
   const std::vector<VertexId> vertices = receiver.tree.vertices();
+  if (report) report->grow(vertices.size());
+  std::atomic<size_t> lit{0};
   parallel_.forEach(vertices.size(), [&](size_t i) {
     computeVertex(receiver, vertices[i]);
-    if (beat && i % kVerticesPerBeat == 0) beat();
+    if (report && (lit.fetch_add(1) + 1) % kVerticesPerBeat == 0) report->add(kVerticesPerBeat);
   }, 16);
+  if (report) report->add(vertices.size() % kVerticesPerBeat);
   // Every cell is new, so its corner values changed: the memo's test is the stamp.
   for (VertexId v : vertices)
     for (CellId c : receiver.tree.cellsAround(v)) receiver.tree.touch(c);

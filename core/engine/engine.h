@@ -90,6 +90,8 @@ using EngineProgress = StepProgress;
 
 class Engine {
  public:
+  // The build's "illumination" step counts vertices lit, reported every this many.
+  static constexpr size_t kVerticesPerBeat = 64;
   // Throws ResourceLimitError as soon as the build passes one of settings.limits.
   explicit Engine(Scene scene, EngineSettings settings = {}, const EngineProgress& progress = {});
 
@@ -258,9 +260,9 @@ class Engine {
   // vertices then need lighting).
   bool chooseDisplay(Receiver& receiver) const;
   // Lights every vertex of a fresh tree (in parallel over vertices), unless chooseDisplay puts
-  // it on its lattice squares; `beat` (may be empty) is called every kVerticesPerBeat vertices.
-  void illuminate(Receiver& receiver, const std::function<void()>& beat = {}) const;
-  static constexpr size_t kVerticesPerBeat = 64;
+  // it on its lattice squares. `report` (may be null) grows by the vertices to light and counts
+  // them every kVerticesPerBeat, so a receiver of many vertices moves the fraction.
+  void illuminate(Receiver& receiver, SharedProgress* report = nullptr) const;
   // A receiver's casts beat the "casting" step every this many (its report counts all receivers').
   static constexpr size_t kCastsPerBeat = 16;
   void relightVertex(Receiver& receiver, VertexId v) const;

@@ -1,6 +1,7 @@
 // A long step's progress, counted from several threads and reported to one callback as
 // (step name, done, total). The callback runs on one thread at a time, with `done` rising;
-// add() and beat() may be called from any thread.
+// add(), grow() and beat() may be called from any thread. A step whose size is found as it runs
+// (the vertices to light, known receiver by receiver) grows its total.
 #pragma once
 
 #include <atomic>
@@ -33,6 +34,8 @@ class SharedProgress {
     std::lock_guard lock(mutex_);
     if (done > reported_) progress_(step_, reported_ = done, total_);
   }
+  // `items` more to do: reported with the next count.
+  void grow(size_t items) { total_ += items; }
   // The same count again, from inside one long item (a big receiver's vertices), so the callback
   // sees the work go on (and may throw to end it).
   void beat() {
@@ -44,11 +47,13 @@ class SharedProgress {
     std::lock_guard lock(mutex_);
     if (progress_) progress_(step_, total_, total_);
   }
+  size_t total() const { return total_; }
 
  private:
   const StepProgress& progress_;
   const char* step_;
-  size_t total_, every_;
+  std::atomic<size_t> total_;
+  size_t every_;
   std::atomic<size_t> done_{0};
   std::mutex own_;
   std::mutex& mutex_;
