@@ -3,6 +3,7 @@
 // Changed only through insert/removeOccluder by its owner (the engine); not thread-safe.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <utility>
 #include <vector>
@@ -93,7 +94,12 @@ class DmTree {
   // else covers it (paper §2.4, why occluders come front to back). Only umbras that hide
   // the light at every point of their closure cull (SingleShadow::cullsBehind). The
   // shadow is still recorded, so removing the umbra can give the culled region back.
-  InsertResult insert(const SingleShadow& shadow);
+  // `beat` (may be empty) is called as a large shadow goes in (buildSingleTree's beats, then
+  // every kCellsPerBeat cells it is merged into or splits it makes): a model's shadow on the
+  // floor takes seconds.
+  // It may throw to abandon the build: the tree is then only fit to be dropped.
+  InsertResult insert(const SingleShadow& shadow, const std::function<void()>& beat = {});
+  static constexpr size_t kCellsPerBeat = 64;
   void setUmbraCulling(bool on) { umbraCulling_ = on; }
 
   // Removes every trace of one occluder: its occluder-list entries (visiting only the
@@ -175,6 +181,7 @@ class DmTree {
   struct Generator {
     uint32_t light;
     FaceId occluder;
+    const std::function<void()>* beat = nullptr;  // insert()'s, every kCellsPerBeat splits
   };
 
   NodeId addNode(NodeId parent, CellId cell);

@@ -91,7 +91,8 @@ std::vector<KeptSegment> SingleTree::segments() const {
   return out;
 }
 
-SingleTree buildSingleTree(const SingleShadow& shadow, const Tolerance& tolerance) {
+SingleTree buildSingleTree(const SingleShadow& shadow, const Tolerance& tolerance,
+                           const std::function<void()>& beat) {
   const double eps = tolerance.length();
   SingleTree tree;
   tree.penumbra = withoutShortEdges(shadow.penumbra, eps);
@@ -127,9 +128,12 @@ SingleTree buildSingleTree(const SingleShadow& shadow, const Tolerance& toleranc
   attach(last);
   // Internal (EV/VE) and contact segments lie behind every penumbra node.
   const int start = firstUmbra >= 0 ? firstUmbra : last;
-  for (const CriticalSegment& s : shadow.segments)
+  for (size_t i = 0; i < shadow.segments.size(); ++i) {
+    const CriticalSegment& s = shadow.segments[i];
     if (s.kind == SegmentKind::Internal || s.kind == SegmentKind::Contact)
       filterDown(tree, start, s.a, s.b, s, eps);
+    if (beat && i % kSegmentsPerBeat == kSegmentsPerBeat - 1) beat();
+  }
   return tree;
 }
 

@@ -3,6 +3,7 @@
 // the first umbra node. Built once per SingleShadow; plain data, thread-safe to read.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "core/dmtree/half_edge_mesh.h"
@@ -41,7 +42,11 @@ struct SingleTree {
   std::vector<KeptSegment> segments() const;
 };
 
-SingleTree buildSingleTree(const SingleShadow& shadow, const Tolerance& tolerance);
+// `beat` (may be empty) is called every kSegmentsPerBeat internal segments filtered in: a model's
+// shadow on the floor carries ten thousand (seconds); it may throw to abandon the build.
+SingleTree buildSingleTree(const SingleShadow& shadow, const Tolerance& tolerance,
+                           const std::function<void()>& beat = {});
+constexpr size_t kSegmentsPerBeat = 256;
 
 // A shadow region as the tree merges it: without edges of length <= eps (empty if no
 // positive area is left).

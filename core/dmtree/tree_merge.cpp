@@ -89,6 +89,7 @@ void DmTree::partition(CellId c, const SingleTree& tree, int s, const Generator&
                                                 lo > chordLo + eps || hi < chordHi - eps);
   result.newVertices.insert(result.newVertices.end(), cut.newVertices.begin(), cut.newVertices.end());
   ++result.nodesAdded;
+  if (gen.beat && *gen.beat && result.nodesAdded % kCellsPerBeat == 0) (*gen.beat)();
   partition(cut.front, tree, sn.front, gen, pieces, result);
   partition(cut.back, tree, sn.back, gen, pieces, result);
 }
@@ -103,7 +104,7 @@ bool DmTree::inUmbraOf(CellId c, uint32_t light) const {
   return false;
 }
 
-InsertResult DmTree::insert(const SingleShadow& shadow) {
+InsertResult DmTree::insert(const SingleShadow& shadow, const std::function<void()>& beat) {
   // Check first, then change.
   const OccluderKey key{shadow.light, shadow.occluder};
   if (inserted_.count(key)) throw std::invalid_argument("DM-tree: occluder already inserted for this light");
@@ -115,7 +116,7 @@ InsertResult DmTree::insert(const SingleShadow& shadow) {
       if (!std::isfinite(p.x) || !std::isfinite(p.y)) throw std::invalid_argument("DM-tree: non-finite region");
 
   InsertResult result;
-  const SingleTree tree = buildSingleTree(shadow, tolerance_);
+  const SingleTree tree = buildSingleTree(shadow, tolerance_, beat);
   if (tree.root < 0) return result;
 
   // The total-tree leaves the penumbra overlaps with positive area.
@@ -123,8 +124,10 @@ InsertResult DmTree::insert(const SingleShadow& shadow) {
   collectCells(root_, tree.penumbra, targets);
   record(key, shadow);
 
-  const Generator gen{shadow.light, shadow.occluder};
-  for (CellId target : targets) {
+  const Generator gen{shadow.light, shadow.occluder, &beat};
+  for (size_t t = 0; t < targets.size(); ++t) {
+    const CellId target = targets[t];
+    if (beat && t % kCellsPerBeat == kCellsPerBeat - 1) beat();
     if (umbraCulling_ && inUmbraOf(target, shadow.light)) {
       inserted_[key].culled = true;
       continue;

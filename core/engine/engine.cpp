@@ -253,11 +253,13 @@ void Engine::castAndIlluminateAll(Clock::time_point start, const EngineProgress&
   // runs. One receiver, the floor under a model, may hold most of them.
   SharedProgress lightReport(progress, "illumination", 0, kVerticesPerBeat, &progressMutex);
   std::vector<double> castSeconds(receivers_.size()), lightSeconds(receivers_.size());
+  const std::function<void()> castBeat = progress ? std::function<void()>([&] { castReport.beat(); }) : nullptr;
   parallel_.forEach(receivers_.size(), [&](size_t r) {
     const auto castStart = Clock::now();
     for (size_t i = 0; i < casts[r].size(); ++i) {
       const ReceiverCast& cast = casts[r][i];
-      if (castInto(cast.light, cast.occluder, receivers_[r])) shadowedBy[r].push_back(cast.occluder);
+      // A beat from inside one cast too: a model's shadow on the floor is one cast of seconds.
+      if (castInto(cast.light, cast.occluder, receivers_[r], castBeat)) shadowedBy[r].push_back(cast.occluder);
       castReport.add(1);
       if (i % kCastsPerBeat == kCastsPerBeat - 1) castReport.beat();  // the floor takes most casts
     }
@@ -323,7 +325,8 @@ Engine::Receiver Engine::makeReceiver(const Face& face) const {
   return receiver;
 }
 
-std::optional<InsertResult> Engine::castInto(size_t light, FaceId occluder, Receiver& receiver) {
+std::optional<InsertResult> Engine::castInto(size_t light, FaceId occluder, Receiver& receiver,
+                                             const std::function<void()>& beat) {
   const Face* face = findFace(scene_, receiver.face);
   if (!face) throw std::logic_error("Engine: receiver without a scene face");
   std::optional<SingleShadow> shadow;
@@ -336,7 +339,7 @@ std::optional<InsertResult> Engine::castInto(size_t light, FaceId occluder, Rece
   }
   if (!shadow) return std::nullopt;
   const TreeUsage before = usageOf(receiver.tree, scene_.lights().size());
-  InsertResult inserted = receiver.tree.insert(*shadow);
+  InsertResult inserted = receiver.tree.insert(*shadow, beat);
   budget_.change(before, usageOf(receiver.tree, scene_.lights().size()));
   return inserted;
 }
@@ -545,7 +548,8 @@ MeshGrid Engine::meshGrid() const {
   refine.tolerance = std::max(0.0, settings_.meshTolerance);
   refine.minEdge = scene_.bounds().diagonal() / settings_.meshRefineMinEdgeDivisions;
   refine.maxPoints = EngineSettings::kRefineMaxPoints;
-  return MeshGrid{meshSpacing(), meshChunkSquares_, refine, settings_.meshLatticeAbove};
+  const double latticeTolerance = refine.tolerance > 0 ? refine.tolerance : EngineSettings::kRecommendedMeshTolerance;
+  return MeshGrid{meshSpacing(), meshChunkSquares_, refine, settings_.meshLatticeAbove, latticeTolerance};
 }
 
 double Engine::meshSpacing() const {

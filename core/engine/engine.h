@@ -243,7 +243,8 @@ class Engine {
   std::optional<InsertResult> castPair(size_t light, FaceId occluder, Receiver& receiver);
   // The same without recording: touches `receiver` (and the thread-safe budget) only, so
   // receivers may cast in parallel.
-  std::optional<InsertResult> castInto(size_t light, FaceId occluder, Receiver& receiver);
+  std::optional<InsertResult> castInto(size_t light, FaceId occluder, Receiver& receiver,
+                                       const std::function<void()>& beat = {});
   // The build's steps (§2.1–2.4); each fills its part of stats_.
   void buildOrdersAndCubes(const EngineProgress& progress);
   void castAndIlluminateAll(std::chrono::steady_clock::time_point start, const EngineProgress& progress);

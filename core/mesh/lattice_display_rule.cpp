@@ -64,7 +64,7 @@ bool touchesPlane(const Scene& scene, const MeshSource& source) {
 }  // namespace
 
 bool displaysFromLattice(const Scene& scene, const MeshSource& source, const MeshGrid& grid) {
-  if (grid.latticeAbove == 0 || !(grid.spacing > 0) || !(grid.refine.tolerance > 0)) return false;
+  if (grid.latticeAbove == 0 || !(grid.spacing > 0) || !(grid.latticeTolerance > 0)) return false;
   const Face* face = findFace(scene, source.face);
   if (!face || !face->cornerNormals.empty()) return false;
   const size_t lists = std::max<size_t>(1, source.tree.mesh().distinctOccluderLists());

@@ -11,7 +11,8 @@
 namespace penumbra {
 
 // True when all of these hold:
-// - the grid has a lattice, a refinement tolerance and grid.latticeAbove > 0;
+// - the grid has a lattice, a lattice tolerance and grid.latticeAbove > 0 (the squares are
+//   refined even where the cells are not: MeshGrid::latticeTolerance);
 // - the face is flat-shaded (no corner normals: a cell's piece interpolates those);
 // - nothing in any cell's list touches or crosses the face's plane (a contact line is a value
 //   jump, D0, which only a cell edge follows);

@@ -148,7 +148,7 @@ std::vector<uint32_t> LatticeMeshMemo::touchedSquares(const MeshSource& source) 
 
 void LatticeMeshMemo::update(const Scene& scene, const MeshSource& source, MeshGrid grid, MeshMemoCounters& counters,
                              const Parallel& parallel, const std::function<void()>& beat) {
-  grid.refine.tolerance *= kToleranceShare;
+  grid.refine.tolerance = grid.latticeTolerance * kToleranceShare;
   const double eps = scene.tolerance().length();
   if (frame_ != source.frame || grid_ != grid || eps_ != eps) reset(scene, source, grid);
   const uint64_t stamp = HalfEdgeMesh::stampNow();

@@ -32,12 +32,15 @@ struct MeshMemoCounters {
 // The display grid: lattice spacing (0: none), chunk side in lattice squares (0: one chunk),
 // how far each piece's triangles are refined (core/mesh/cell_refinement.h), and the DM vertices
 // in one lattice square above which a receiver may be meshed from its squares instead of its
-// cells (lattice_display_rule.h; 0: never).
+// cells (lattice_display_rule.h; 0: never), with the tolerance those squares are refined to.
 struct MeshGrid {
   double spacing = 0;
   int chunkSquares = 0;
   RefineSettings refine;
   uint32_t latticeAbove = 0;
+  // refine.tolerance, or where the cells are not refined (0) the engine's recommended one: an
+  // unrefined square would be far coarser than the DM cells it replaces (0: no lattice display).
+  double latticeTolerance = 0;
   // A memo is only valid for the grid it was made with (the engine keeps one grid).
   bool operator==(const MeshGrid&) const = default;
 };
