@@ -109,9 +109,14 @@ int runBuild(const Args& args) {
   if (args.flag("stats")) {
     std::printf("%s\n", statsJson(engine.scene(), stats, mesh).dump(2).c_str());
   } else {
-    std::printf("wrote %s: %zu receivers, %zu vertices, %zu triangles, interpolation within %g of the local "
-                "unshadowed light (%zu cells capped) (%.3f s)\n", out->c_str(), mesh.receivers.size(),
-                mesh.vertexCount(), mesh.triangleCount(), mesh.tolerance, mesh.cappedCells, stats.seconds.total());
+    char bound[128];  // tolerance 0 claims no bound (cells not refined)
+    if (mesh.tolerance > 0)
+      std::snprintf(bound, sizeof bound, "interpolation within %g of the local unshadowed light (%zu cells capped)",
+                    mesh.tolerance, mesh.cappedCells);
+    else
+      std::snprintf(bound, sizeof bound, "cells not refined (no interpolation bound)");
+    std::printf("wrote %s: %zu receivers, %zu vertices, %zu triangles, %s (%.3f s)\n", out->c_str(),
+                mesh.receivers.size(), mesh.vertexCount(), mesh.triangleCount(), bound, stats.seconds.total());
   }
   return 0;
 }
