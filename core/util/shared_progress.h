@@ -36,8 +36,8 @@ class SharedProgress {
   }
   // `items` more to do: reported with the next count.
   void grow(size_t items) { total_ += items; }
-  // The same count again, from inside one long item (a big receiver's vertices), so the callback
-  // sees the work go on (and may throw to end it).
+  // The same count again, from inside one long item (a model's shadow merged into the floor, a
+  // big receiver's meshing), so the callback sees the work go on (and may throw to end it).
   void beat() {
     if (!progress_) return;
     std::lock_guard lock(mutex_);
@@ -47,7 +47,6 @@ class SharedProgress {
     std::lock_guard lock(mutex_);
     if (progress_) progress_(step_, total_, total_);
   }
-  size_t total() const { return total_; }
 
  private:
   const StepProgress& progress_;
