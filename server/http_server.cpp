@@ -229,6 +229,10 @@ void HttpServer::stop() {
 
 bool HttpServer::isRunning() const { return http_->is_running(); }
 
+size_t HttpServer::connectionsFrom(const std::string& address) const {
+  return static_cast<const ConnectionServer&>(*http_).connectionsFrom(address);
+}
+
 void HttpServer::registerStaticFiles() {
   namespace fs = std::filesystem;
   if (options_.staticDir.empty()) return;

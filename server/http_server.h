@@ -185,6 +185,8 @@ class HttpServer {
   const ServerOptions& options() const { return options_; }
   // The threads applying edit batches (a test may hold their heavy lane with work of its own).
   EditWorkers& editWorkers() { return editWorkers_; }
+  // Connections from `address` holding a slot of its cap now (ConnectionServer).
+  size_t connectionsFrom(const std::string& address) const;
 
  private:
   // One per resource, each in its own file (scene_routes.cpp, edit_routes.cpp, ...).
