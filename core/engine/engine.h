@@ -173,7 +173,7 @@ class Engine {
   // EngineSettings::meshSpacing). Vertices repeat once per side where the value
   // jumps (contact edges, cells in a light's umbra), so no triangle interpolates
   // across a value discontinuity and umbra cells stay dark. Records its time in stats().
-  Mesh mesh(const EngineProgress& progress = {});  // progress: step "triangulation", per receiver
+  Mesh mesh(const EngineProgress& progress = {});  // progress: step "triangulation", per cell
   // The same for the listed receivers only (in Scene::faces() order, each once;
   // faces that are not receivers are skipped). Equals the matching part of mesh().
   Mesh mesh(const std::vector<FaceId>& only);
@@ -204,7 +204,7 @@ class Engine {
   // each once, non-receivers skipped). A receiver's mesh(only) entry is its chunks'
   // meshes concatenated; a chunk this call did not assemble again is the same object
   // the previous call returned, so a caller can tell what changed without comparing.
-  // progress: step "triangulation", per receiver.
+  // progress: step "triangulation", per cell (DisplayMeshMemo::update).
   std::vector<ReceiverChunks> meshChunks(const std::vector<FaceId>& only, const EngineProgress& progress = {});
   // Drops the memo: the next mesh call lights every cell afresh.
   void forgetMeshMemo() { displayMemo_.clear(); }

@@ -6,24 +6,29 @@ void DisplayMeshMemo::update(const Scene& scene, const std::vector<MeshSource>& 
                              const MeshGrid& grid, const Parallel& parallel,
                              const StepProgress& progress) {
   counters_ = {};
-  SharedProgress report(progress, "triangulation", sources.size(), 1);
   std::vector<ReceiverMemo*> memos;  // created here: the map is not changed in parallel
-  for (const MeshSource& source : sources) memos.push_back(&receivers_[source.face]);
+  // Counted in cells (squares for a receiver meshed from its lattice), all known before any is
+  // lit: one receiver, the floor of a dense room or under a model, may hold most of them.
+  size_t units = 0;
+  for (const MeshSource& source : sources) {
+    ReceiverMemo& memo = receivers_[source.face];
+    if (source.fromLattice != memo.lattice) {
+      memo = ReceiverMemo{};
+      memo.lattice = source.fromLattice;
+    }
+    units += memo.lattice ? memo.squares.units(scene, source, grid) : ReceiverMeshMemo::units(source);
+    memos.push_back(&memo);
+  }
+  SharedProgress report(progress, "triangulation", units, ReceiverMeshMemo::kCellsPerReport);
   std::vector<MeshMemoCounters> counters(sources.size());
-  // Beats from inside a receiver's meshing: the floor of a dense scene is most of it.
-  const std::function<void()> beat = progress ? std::function<void()>([&] { report.beat(); }) : nullptr;
+  const MeshProgress counted =
+      progress ? MeshProgress([&](size_t done) { done ? report.add(done) : report.beat(); }) : nullptr;
   parallel.forEach(sources.size(), [&](size_t k) {
     ReceiverMemo& memo = *memos[k];
-    const bool lattice = sources[k].fromLattice;
-    if (lattice != memo.lattice) {
-      memo = ReceiverMemo{};
-      memo.lattice = lattice;
-    }
-    if (lattice)
-      memo.squares.update(scene, sources[k], grid, counters[k], parallel, beat);
+    if (memo.lattice)
+      memo.squares.update(scene, sources[k], grid, counters[k], parallel, counted);
     else
-      memo.cells.update(scene, sources[k], grid, counters[k], parallel, beat);
-    report.add(1);
+      memo.cells.update(scene, sources[k], grid, counters[k], parallel, counted);
   });
   report.finish();
   for (const MeshMemoCounters& c : counters) counters_ += c;

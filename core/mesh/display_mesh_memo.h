@@ -23,8 +23,9 @@ class DisplayMeshMemo {
  public:
   // Brings the listed receivers' memos up to date with their sources (each face once), on
   // `parallel`'s threads: receivers in parallel, and each one's cells. The counters of this call
-  // replace the last call's (summed in `sources` order). progress: step "triangulation", per
-  // receiver. Each receiver's memo kind is chosen afresh (the other kind's memo is dropped).
+  // replace the last call's (summed in `sources` order). progress: step "triangulation", counting
+  // the receivers' cells (lattice squares where meshed from the lattice). Each receiver's memo
+  // kind is chosen afresh (the other kind's memo is dropped).
   void update(const Scene& scene, const std::vector<MeshSource>& sources, const MeshGrid& grid,
               const Parallel& parallel, const StepProgress& progress = {});
   // The up-to-date memos of `sources` as one Mesh, in that order: each receiver's chunks

@@ -146,14 +146,20 @@ std::vector<uint32_t> LatticeMeshMemo::touchedSquares(const MeshSource& source) 
   return out;
 }
 
-void LatticeMeshMemo::update(const Scene& scene, const MeshSource& source, MeshGrid grid, MeshMemoCounters& counters,
-                             const Parallel& parallel, const std::function<void()>& beat) {
+size_t LatticeMeshMemo::units(const Scene& scene, const MeshSource& source, MeshGrid grid) {
   grid.refine.tolerance = grid.latticeTolerance * kToleranceShare;
   const double eps = scene.tolerance().length();
   if (frame_ != source.frame || grid_ != grid || eps_ != eps) reset(scene, source, grid);
+  return squares_.size();
+}
+
+void LatticeMeshMemo::update(const Scene& scene, const MeshSource& source, MeshGrid grid, MeshMemoCounters& counters,
+                             const Parallel& parallel, const MeshProgress& progress) {
+  units(scene, source, grid);  // the memo fits these arguments from here on
   const uint64_t stamp = HalfEdgeMesh::stampNow();
   const std::vector<uint32_t> touched = touchedSquares(source);
   counters.cellsReused += squares_.size() - touched.size();
+  if (progress) progress(squares_.size() - touched.size());  // nothing to light there
 
   // Touched squares lit on the threads, each into its own slot; kept where nothing changed.
   std::vector<Square> results(touched.size());
@@ -162,7 +168,7 @@ void LatticeMeshMemo::update(const Scene& scene, const MeshSource& source, MeshG
   parallel.forEach((touched.size() + kBlock - 1) / kBlock, [&](size_t block) {
     SquareLighter lighter(scene, source, grid_.refine, grid_.spacing, shared);
     for (size_t k = block * kBlock; k < std::min(touched.size(), (block + 1) * kBlock); ++k) {
-      if (beat) beat();
+      if (progress) progress(1);
       lighter.light(outlines_[touched[k]], results[k]);
     }
   });
@@ -190,7 +196,7 @@ void LatticeMeshMemo::update(const Scene& scene, const MeshSource& source, MeshG
   const std::vector<MeshChunkKey> keys(dirty.begin(), dirty.end());
   std::vector<ReceiverMesh> meshes(keys.size());
   parallel.forEach(keys.size(), [&](size_t k) {
-    if (beat) beat();
+    if (progress) progress(0);
     assembleChunk(scene, source, keys[k], meshes[k]);
   });
   for (size_t k = 0; k < keys.size(); ++k) {

@@ -36,9 +36,13 @@ class LatticeMeshMemo {
   // `counters` (squares count as cells). Squares holding a part of a cell touched since the
   // last call are lit again; one whose points, values and triangles come out the same keeps its
   // chunks. Chunks are assembled from their squares in square order, so the result is bit for
-  // bit what a fresh memo gives. `beat` (may be empty) as ReceiverMeshMemo::update.
+  // bit what a fresh memo gives. `progress` (may be empty) counts the squares (units(): the
+  // untouched at once, the rest as they are lit) and beats per chunk assembled.
   void update(const Scene& scene, const MeshSource& source, MeshGrid grid, MeshMemoCounters& counters,
-              const Parallel& parallel, const std::function<void()>& beat = {});
+              const Parallel& parallel, const MeshProgress& progress = {});
+  // The squares the next update() with these arguments counts: it splits the face by the lattice
+  // now where the memo does not fit them yet (update() then keeps that).
+  size_t units(const Scene& scene, const MeshSource& source, MeshGrid grid);
   const std::map<MeshChunkKey, std::shared_ptr<const ReceiverMesh>>& chunks() const { return chunks_; }
   // Squares whose refinement stopped at its point cap short of the tolerance.
   size_t cappedSquares() const;

@@ -23,9 +23,9 @@ void shrinkToFit(ReceiverMesh& mesh) {
 class MeshMemoUpdate {
  public:
   MeshMemoUpdate(ReceiverMeshMemo& memo, const Scene& scene, const MeshSource& source, MeshMemoCounters& counters,
-                 const std::function<void()>& beat)
+                 const MeshProgress& progress)
       : memo_(memo), scene_(scene), source_(source), counters_(counters), halfEdges_(source.tree.mesh()),
-        eps_(scene.tolerance().length()), chunkSide_(memo.grid_.spacing * memo.grid_.chunkSquares), beat_(beat) {}
+        eps_(scene.tolerance().length()), chunkSide_(memo.grid_.spacing * memo.grid_.chunkSquares), progress_(progress) {}
 
   void run(const Parallel& parallel) {
     const uint64_t stamp = HalfEdgeMesh::stampNow();
@@ -34,6 +34,7 @@ class MeshMemoUpdate {
     std::vector<uint32_t> touched;
     for (uint32_t index = 0; index < halfEdges_.cellSlots(); ++index)
       if (needsLight(index)) touched.push_back(index);
+    if (progress_) progress_(halfEdges_.cellSlots() - touched.size());  // nothing to light there
     lightCells(touched, parallel);
     memo_.stamp_ = stamp;
     // Cells keep each light's value; chunks hold their sum: a new radiance changes them all.
@@ -98,7 +99,8 @@ class MeshMemoUpdate {
     parallel.forEach((touched.size() + kBlock - 1) / kBlock, [&](size_t block) {
       CellLighter lighter(scene_, source_, spacing, chunkSide_, memo_.grid_.refine, &shared);
       for (size_t k = block * kBlock; k < std::min(touched.size(), (block + 1) * kBlock); ++k) {
-        if (beat_ && k % ReceiverMeshMemo::kCellsPerBeat == 0) beat_();
+        if (progress_ && k % ReceiverMeshMemo::kCellsPerReport == 0)
+          progress_(std::min(ReceiverMeshMemo::kCellsPerReport, touched.size() - k));
         const CellId c(touched[k]);
         const uint64_t fingerprint = lighter.gather(c);
         const CellMemo& slot = memo_.cells_[touched[k]];
@@ -125,7 +127,7 @@ class MeshMemoUpdate {
     const std::vector<MeshChunkKey> keys(dirty_.begin(), dirty_.end());
     std::vector<ReceiverMesh> meshes(keys.size());
     parallel.forEach(keys.size(), [&](size_t k) {
-      if (beat_) beat_();
+      if (progress_) progress_(0);
       assembleChunk(keys[k], meshes[k]);
       shrinkToFit(meshes[k]);  // kept until the chunk changes: growth's spare room was ~20 % of it
     });
@@ -191,12 +193,12 @@ class MeshMemoUpdate {
   MeshMemoCounters& counters_;
   const HalfEdgeMesh& halfEdges_;
   const double eps_, chunkSide_;  // chunkSide_ 0: one chunk
-  const std::function<void()>& beat_;
+  const MeshProgress& progress_;
   std::set<MeshChunkKey> dirty_;
 };
 
 void ReceiverMeshMemo::update(const Scene& scene, const MeshSource& source, MeshGrid grid, MeshMemoCounters& counters,
-                              const Parallel& parallel, const std::function<void()>& beat) {
+                              const Parallel& parallel, const MeshProgress& progress) {
   // The memo is only valid for the same face frame, lattice, chunks and tolerance.
   const double eps = scene.tolerance().length();
   if (frame_ != source.frame || grid_ != grid || eps_ != eps) {
@@ -205,7 +207,7 @@ void ReceiverMeshMemo::update(const Scene& scene, const MeshSource& source, Mesh
     grid_ = grid;
     eps_ = eps;
   }
-  MeshMemoUpdate(*this, scene, source, counters, beat).run(parallel);
+  MeshMemoUpdate(*this, scene, source, counters, progress).run(parallel);
 }
 
 size_t ReceiverMeshMemo::cappedCells() const {

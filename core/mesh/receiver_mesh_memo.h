@@ -29,6 +29,11 @@ struct MeshMemoCounters {
   }
 };
 
+// How a memo's update reports as it goes, from any of its threads: `units` more cells (a lattice
+// memo's squares) done, or 0 for "still at work" (a chunk being assembled). It may throw to end
+// the update: the memo is then only fit to be dropped. Empty: no reports.
+using MeshProgress = std::function<void(size_t units)>;
+
 // The display grid: lattice spacing (0: none), chunk side in lattice squares (0: one chunk),
 // how far each piece's triangles are refined (core/mesh/cell_refinement.h), and the DM vertices
 // in one lattice square above which a receiver may be meshed from its squares instead of its
@@ -53,12 +58,13 @@ class ReceiverMeshMemo {
   // the value jumps (contact edges, cells in a light's umbra). A changed chunk is assembled again
   // from its cells' pieces in cell order, so it is bit for bit what a fresh memo gives.
   // Cells are lit on `parallel`'s threads, each into its own slot: the same bytes on any count.
-  // `beat` (may be empty) is called every kCellsPerBeat cells lit and per chunk assembled, from
-  // any of those threads, so a caller sees a large receiver's meshing go on (and may throw from
-  // it to end the update: the memo is then only fit to be dropped).
+  // `progress` (may be empty) counts the tree's cell slots (units(): the dead and the untouched
+  // at once, the rest as they are lit, kCellsPerReport at a time) and beats per chunk assembled,
+  // so a caller sees a large receiver's meshing move (the floor of a dense room is most of it).
   void update(const Scene& scene, const MeshSource& source, MeshGrid grid, MeshMemoCounters& counters,
-              const Parallel& parallel, const std::function<void()>& beat = {});
-  static constexpr size_t kCellsPerBeat = 16;
+              const Parallel& parallel, const MeshProgress& progress = {});
+  static size_t units(const MeshSource& source) { return source.tree.mesh().cellSlots(); }
+  static constexpr size_t kCellsPerReport = 16;
   // The non-empty chunks' meshes, in key order; an unchanged chunk keeps its object.
   const std::map<MeshChunkKey, std::shared_ptr<const ReceiverMesh>>& chunks() const { return chunks_; }
   // Live cells whose refinement stopped at its point cap short of the tolerance.
