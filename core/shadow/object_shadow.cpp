@@ -159,22 +159,42 @@ Polygon2 umbraRegion(const Polygon2& penumbra, const std::vector<std::vector<Sup
   return umbra;
 }
 
+// The faces (indices into the mesh's faces, ascending) of the clusters whose ball comes within
+// `reach` of the box around `polygon`.
+void nearFaces(const MeshTopology& mesh, const Polygon3& polygon, double reach, std::vector<uint32_t>& out) {
+  Vec3 low(INFINITY), high(-INFINITY);
+  for (const Vec3& p : polygon) low = glm::min(low, p), high = glm::max(high, p);
+  out.clear();
+  for (const MeshTopology::Cluster& cluster : mesh.clusters) {
+    const Vec3 outside = glm::max(low - cluster.centre, glm::max(cluster.centre - high, Vec3(0.0)));
+    const double within = cluster.radius + reach;
+    if (glm::dot(outside, outside) > within * within) continue;
+    out.insert(out.end(), mesh.clusterFaces.begin() + cluster.first, mesh.clusterFaces.begin() + cluster.last);
+  }
+  std::sort(out.begin(), out.end());
+}
+
 // D0 contact lines: where a face reaching more than onPlane in front of the receiver's
 // plane (distances `ahead` of the welded corners) meets it, the edges of its front part
 // within onPlane of the plane (a face edge on the plane, or the face cut by it). Each goes out as the VE wedge
 // of the first light vertex off the plane over that edge, whose chord is the edge itself
 // (as castShadow emits a face's contact edges). Faces lying in the plane cast nothing.
+// Only faces near the receiver are looked at (nearFaces): on a model's own faces the plane cuts
+// the model along its whole section, and a pass over every face for each face was quadratic.
 template <class OnReceiver, class AddContact>
-void addContactLines(const Polygon3& s, std::span<const Face> faces, const MeshTopology& mesh, const Plane& receiver,
-                     const std::vector<double>& ahead, const OnReceiver& onReceiver, const Tolerance& tol,
-                     AddContact&& add) {
+void addContactLines(const Polygon3& s, std::span<const Face> faces, const MeshTopology& mesh,
+                     const Face& receiverFace, const std::vector<double>& ahead, const OnReceiver& onReceiver,
+                     const Tolerance& tol, double contactReach, AddContact&& add) {
+  const Plane& receiver = receiverFace.plane;
   const double eps = tol.length(), onPlane = tol.onPlane();
   const auto light = std::find_if_not(s.begin(), s.end(), onReceiver);
   if (light == s.end()) return;
   const ElementRef lightVertex{ElementRef::Kind::Vertex, uint32_t(light - s.begin())};
   const ConvexSolid& w = mesh.welded;
   thread_local Polygon3 front;
-  for (uint32_t f = 0; f < faces.size(); ++f) {
+  thread_local std::vector<uint32_t> near;
+  nearFaces(mesh, receiverFace.polygon, contactReach * tol.sceneSize, near);
+  for (const uint32_t f : near) {
     bool anyAhead = false, anyTouching = false;
     for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
       anyAhead = anyAhead || ahead[w.corners[k]] > onPlane;
@@ -200,7 +220,8 @@ void addContactLines(const Polygon3& s, std::span<const Face> faces, const MeshT
 // (silhouetteStretch; all of pq for a corner that is not regular).
 template <class OnReceiver, class Add>
 void meshSilhouetteWedges(const Polygon3& s, const Polygon3& whole, std::span<const Face> faces, const MeshTopology& mesh,
-                          const Face& receiverFace, const OnReceiver& onReceiver, const Tolerance& tol, Add&& add) {
+                          const Face& receiverFace, const OnReceiver& onReceiver, const Tolerance& tol,
+                          double contactReach, Add&& add) {
   const Plane& receiver = receiverFace.plane;
   const double eps = tol.length(), onPlane = tol.onPlane();
   const bool wholeLight = s.size() == whole.size() && std::equal(s.begin(), s.end(), whole.begin());
@@ -234,7 +255,7 @@ void meshSilhouetteWedges(const Polygon3& s, const Polygon3& whole, std::span<co
                           to, eps));
     }
   }
-  addContactLines(s, faces, mesh, receiver, ahead, onReceiver, tol, add);
+  addContactLines(s, faces, mesh, receiverFace, ahead, onReceiver, tol, contactReach, add);
   for (size_t i = 0; i < n; ++i) {
     const Vec3 &p = s[i], &q = s[(i + 1) % n];
     if (onReceiver(p) && onReceiver(q)) continue;
@@ -263,7 +284,7 @@ SingleShadow finish(size_t light, uint32_t handle, const Face& receiver, Segment
 }  // namespace
 
 std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, uint32_t handle,
-                                             const Face& receiver, const PlaneFrame& frame) {
+                                             const Face& receiver, const PlaneFrame& frame, double contactReach) {
   const Tolerance tol = scene.tolerance();
   const double eps = tol.length();
   const Plane lightPlane = scene.lights().at(light).plane();
@@ -306,7 +327,7 @@ std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, u
   const std::span<const Face> faces = scene.facesOfObject(handle);
   const size_t n = s.size();
   if (mesh) {
-    meshSilhouetteWedges(s, scene.lights()[light].polygon, faces, *mesh, receiver, onReceiver, tol, add);
+    meshSilhouetteWedges(s, scene.lights()[light].polygon, faces, *mesh, receiver, onReceiver, tol, contactReach, add);
     return finish(light, handle, receiver, segments, std::move(penumbra), std::move(umbra));
   }
   for (size_t i = 0; i < n; ++i) {

@@ -76,7 +76,15 @@ FaceId castingOccluder(const Scene& scene, size_t light, FaceId face, const Face
 // hold), in `frame`, with occluder wholeObject(handle); nullopt when it shadows nothing of
 // the receiver. Element refs: light vertices and edges of the clipped light; the object's
 // unique vertices (Kind::Vertex, sorted by position) and edges (Kind::Edge, by vertex pair).
+// A mesh's contact lines (where it meets the receiver's plane: resting on a floor, or its own
+// section on its own faces) are looked for among the faces within `contactReach` · the scene's
+// size of the receiver (kContactReach; a pass over every face for each receiver was quadratic):
+// a contact edge's chord is the edge itself up to its onPlane offset from the plane, so a face
+// farther off adds nothing unless a light vertex lies within ~1e-4 (relative) of the receiver's
+// plane. Infinity looks at every face (tests/core/shadow/contact_reach_test.cpp compares).
+constexpr double kContactReach = 0.01;
 std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, uint32_t handle,
-                                             const Face& receiver, const PlaneFrame& frame);
+                                             const Face& receiver, const PlaneFrame& frame,
+                                             double contactReach = kContactReach);
 
 }  // namespace penumbra
