@@ -46,6 +46,9 @@ bool precedes(const PlanarFragment& a, const Prepared& pa, const PlanarFragment&
   const double eps = tolerance.length();
   if (pa.litFrom.empty() || !pa.volume) return false;
   if (!anyVertexBehind(b.polygon, a.plane, eps)) return false;
+  // The coarse test below would say so; no allocation: the test runs for every pair of offending
+  // fragments (a scanned model's thousands of side faces), and most pairs end here.
+  if (pa.volume->outsideABound(b.polygon)) return false;
   // Rays must leave light points in front of b too.
   const Polygon3 lit = clipFront(pa.litFrom, b.plane, eps);
   if (lit.empty()) return false;

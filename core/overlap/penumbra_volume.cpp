@@ -102,6 +102,13 @@ std::optional<PenumbraVolume> penumbraVolume(const Polygon3& face, const Plane& 
   return volume;
 }
 
+bool PenumbraVolume::outsideABound(const Polygon3& polygon) const {
+  for (const Plane& bound : bounds)
+    if (std::all_of(polygon.begin(), polygon.end(), [&](const Vec3& p) { return bound.signedDistance(p) > 0; }))
+      return true;
+  return false;
+}
+
 Polygon3 PenumbraVolume::clipInside(const Polygon3& polygon, double eps) const {
   Polygon3 inside = polygon;
   for (const Plane& bound : bounds) {

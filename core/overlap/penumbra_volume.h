@@ -32,6 +32,10 @@ struct PenumbraVolume {
   // The part of a convex polygon inside the volume; empty if it has no positive
   // area (vertices within eps of a bound count as on it).
   Polygon3 clipInside(const Polygon3& polygon, double eps) const;
+  // Every vertex of `polygon` at a positive distance outside one bound: every part of it is
+  // then more than any eps (≥ 0, far above rounding) outside that bound, so clipInside is empty.
+  // A quick reject with no allocation for tests asked of many pairs (the front-to-back order's).
+  bool outsideABound(const Polygon3& polygon) const;
   // Throws std::logic_error unless there is at least P's plane and every normal
   // is finite and unit.
   void validate() const;

@@ -167,6 +167,43 @@ TEST(PenumbraVolume, MatchesConeMembershipOnRandomPolygons) {
   EXPECT_GT(tally.outside, 1000);
 }
 
+// The quick reject never rejects what clipInside keeps: on seeded random volumes (offending and
+// not) and polygons, near them and touching their bounds within a few eps, outsideABound implies an
+// empty clipInside at the tolerance's eps and at 0; and it does reject most far polygons.
+TEST(PenumbraVolume, OutsideABoundOnlyRejectsWhatClipInsideEmpties) {
+  std::mt19937_64 rng(77);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Tolerance tol = Tolerance::forSize(6.0);
+  int rejected = 0, kept = 0, nearBound = 0;
+  for (int k = 0; k < 300; ++k) {
+    const Polygon3 light = randomPolygon(rng, 1.0);
+    const Polygon3 face = randomPolygon(rng, 1.5);
+    const std::optional<Plane> plane = planeOf(face);
+    if (!plane) continue;
+    const auto volume = penumbraVolume(face, *plane, light, tol, VolumeMargin::Tight);
+    if (!volume) continue;
+    for (int t = 0; t < 40; ++t) {
+      Polygon3 polygon = randomPolygon(rng, 1.5);
+      if (t % 4 == 0) {  // moved so one corner sits on a bound, within a few eps
+        const Plane& bound = volume->bounds[size_t(rng() % volume->bounds.size())];
+        const double shift = bound.signedDistance(polygon[0]) - 3 * tol.length() * u(rng);
+        for (Vec3& p : polygon) p -= shift * bound.normal;
+        ++nearBound;
+      }
+      if (!volume->outsideABound(polygon)) {
+        ++kept;
+        continue;
+      }
+      ++rejected;
+      EXPECT_TRUE(volume->clipInside(polygon, tol.length()).empty()) << "volume " << k << " polygon " << t;
+      EXPECT_TRUE(volume->clipInside(polygon, 0.0).empty()) << "volume " << k << " polygon " << t;
+    }
+  }
+  EXPECT_GT(rejected, 2000);
+  EXPECT_GT(kept, 1000);
+  EXPECT_GT(nearBound, 1000);
+}
+
 TEST(PenumbraVolume, MatchesConeMembershipOnSceneFaces) {
   std::mt19937_64 rng(7);
   Tally tally;
