@@ -1,7 +1,10 @@
 #include "core/illum/visible_contour.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+
+#include "core/geom/fingerprint.h"
 
 namespace penumbra {
 
@@ -110,6 +113,7 @@ void VisibleContour::clipEdgeOfShadow(uint32_t i, size_t edge) {
   const auto holdsWhole = [&](const Interval& c) { return c.from <= inside.from && c.to >= inside.to; };
   Interval c;
   if (lastHolder_ < low_.size() && clipBy(lastHolder_, c) && holdsWhole(c)) return;
+  if (const uint32_t twin = twinShadow(edge); twin != kNoShadow && clipBy(twin, c) && holdsWhole(c)) return;
   covered_.clear();
   for (uint32_t j : active_) {
     if (!clipBy(j, c)) continue;
@@ -179,9 +183,49 @@ void VisibleContour::compute(std::span<const Vec2> light, std::span<const Vec2> 
     emitUncovered({0, 1, line.from, line.to}, false);
   }
   // Each shadow's edges inside the light, less what the other shadows cover.
+  indexTwins();
   lastHolder_ = kNoShadow;
   for (uint32_t i : active_)
     for (size_t e = firstLine_[i]; e < firstLine_[i + 1]; ++e) clipEdgeOfShadow(i, e);
+}
+
+namespace {
+
+// The exact ends of a directed edge, -0 read as +0 (== holds them equal).
+uint64_t edgeKey(const Vec2& from, const Vec2& to) {
+  Fingerprint key;
+  for (double x : {from.x, from.y, to.x, to.y}) key.add(x + 0.0);
+  return key.value();
+}
+
+}  // namespace
+
+void VisibleContour::indexTwins() {
+  twins_.clear();
+  if (active_.size() < kTwinIndexFrom) return;
+  size_t edges = 0;
+  for (uint32_t i : active_) edges += firstLine_[i + 1] - firstLine_[i];
+  twins_.assign(std::bit_ceil(2 * edges), Twin{});
+  const size_t mask = twins_.size() - 1;
+  for (uint32_t i : active_)
+    for (uint32_t k = firstLine_[i]; k < firstLine_[i + 1]; ++k) {
+      const Line& line = lines_[k];
+      if (line.from == line.to) continue;
+      size_t slot = edgeKey(line.from, line.to) & mask;
+      while (twins_[slot].shadow != kNoShadow) slot = (slot + 1) & mask;
+      twins_[slot] = {k, i};
+    }
+}
+
+uint32_t VisibleContour::twinShadow(size_t edge) const {
+  if (twins_.empty()) return kNoShadow;
+  const Line& line = lines_[edge];
+  const size_t mask = twins_.size() - 1;
+  for (size_t slot = edgeKey(line.to, line.from) & mask; twins_[slot].shadow != kNoShadow; slot = (slot + 1) & mask) {
+    const Line& other = lines_[twins_[slot].line];
+    if (other.from == line.to && other.to == line.from) return twins_[slot].shadow;
+  }
+  return kNoShadow;
 }
 
 double VisibleContour::area() const {

@@ -88,6 +88,14 @@ class VisibleContour {
   void emitUncovered(Interval within, bool reversed);
   void addLines(std::span<const Vec2> polygon);
   void clipEdgeOfShadow(uint32_t i, size_t edge);
+  // The active shadows' edges by their exact ends, into twins_ (left empty below
+  // kTwinIndexFrom shadows). Adjacent faces of a mesh project their shared edge to the same
+  // two points, in opposite directions, and the shadow across it usually holds it whole: a
+  // point on a model's own faces gathers a hundred such shadows, and the scan in active_
+  // order met the one across after most of the others.
+  void indexTwins();
+  // The shadow with an edge from `edge`'s end to its start (exactly), or kNoShadow.
+  uint32_t twinShadow(size_t edge) const;
   // The chain's winding number at x (leaving out chain edge `skip`; for x on that edge,
   // the value on its right): the winding at the light's centroid (counted once per
   // subtractChain) plus the signed crossings of the segment from there to x, which lies in
@@ -147,6 +155,11 @@ class VisibleContour {
   std::vector<uint32_t> active_;             // shadows whose box meets the light's
   static constexpr uint32_t kNoShadow = 0xffffffffu;
   uint32_t lastHolder_ = kNoShadow;          // clipEdgeOfShadow(): the shadow that held the last edge whole
+  static constexpr size_t kTwinIndexFrom = 8;
+  struct Twin {
+    uint32_t line = 0, shadow = kNoShadow;
+  };
+  std::vector<Twin> twins_;                  // indexTwins(): open addressing, edgeKey() of the ends
   size_t lightLines_ = 0;
   bool occluded_ = false;
   bool allCovered_ = false;                  // one convex shadow holds the whole light

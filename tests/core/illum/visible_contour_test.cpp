@@ -136,6 +136,73 @@ TEST(VisibleContour, AgreesWithConvexPieces) {
   EXPECT_GT(partial, 200u);
 }
 
+// A tessellated patch as a mesh's faces project: triangles of a jittered grid over a rectangle,
+// each interior edge shared exactly (reversed) by the two triangles beside it, given in a seeded
+// shuffled order, with holes where cells are left out. What is left is the light less the cells
+// kept, summed cell by cell (sharing nothing with the contour). Every shared edge is held whole
+// by the triangle across it (the twin index, indexTwins) or, past the patch's edges, kept.
+TEST(VisibleContour, TessellatedPatchLeavesTheLightLessItsCells) {
+  const Polygon2 light{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  constexpr int kSide = 12;  // cells of 0.1 over [0.35, 1.55] x [-0.45, 0.75]
+  size_t withHoles = 0;
+  for (uint64_t seed = 1; seed <= 60; ++seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> jitter(-0.03, 0.03), unit(0, 1);
+    // Corners on the patch's border stay on it (only slide along it), so the cells tile the rectangle.
+    std::vector<Vec2> corner((kSide + 1) * (kSide + 1));
+    for (int y = 0; y <= kSide; ++y)
+      for (int x = 0; x <= kSide; ++x) {
+        const bool edgeX = x == 0 || x == kSide, edgeY = y == 0 || y == kSide;
+        corner[size_t(y * (kSide + 1) + x)] = {0.35 + 0.1 * x + (edgeX ? 0.0 : jitter(rng)),
+                                               -0.45 + 0.1 * y + (edgeY ? 0.0 : jitter(rng))};
+      }
+    const auto at = [&](int x, int y) { return corner[size_t(y * (kSide + 1) + x)]; };
+    std::vector<Polygon2> triangles;
+    std::vector<Polygon2> kept;  // the cells' triangles kept, for the expected area
+    for (int y = 0; y < kSide; ++y)
+      for (int x = 0; x < kSide; ++x) {
+        if (seed % 2 == 0 && unit(rng) < 0.15) continue;  // a hole
+        const Vec2 a = at(x, y), b = at(x + 1, y), c = at(x + 1, y + 1), d = at(x, y + 1);
+        triangles.push_back({a, b, c});
+        triangles.push_back({a, c, d});
+      }
+    withHoles += triangles.size() < size_t(2 * kSide * kSide);
+    std::shuffle(triangles.begin(), triangles.end(), rng);
+    Flat flat;
+    VisibleRegion region;
+    region.reset(light);
+    for (const Polygon2& t : triangles) {
+      flat.add(t);
+      region.subtract(t, 1e-12);
+    }
+    VisibleContour contour;
+    contour.compute(light, flat.points, flat.starts, 1e-12);
+    // The light less each kept triangle's part inside it (they tile without overlap).
+    double expected = 1.0;
+    for (const Polygon2& t : triangles) {
+      Polygon2 inside = t;
+      for (size_t k = 0; k < light.size() && inside.size() >= 3; ++k) {
+        inside = clipLeftOf(inside, light[k], light[(k + 1) % light.size()], 0.0);
+      }
+      if (inside.size() >= 3) expected -= signedArea(inside);
+    }
+    EXPECT_NEAR(contour.area(), expected, 1e-12) << "seed " << seed;
+    EXPECT_LE(widestGap(contour), 1e-14) << "seed " << seed;
+    double pieces = 0;
+    for (size_t i = 0; i < region.pieceCount(); ++i) pieces += signedArea(region.piece(i));
+    EXPECT_NEAR(contour.area(), pieces, 1e-10) << "seed " << seed;
+    const Vec3 p{0.5, 0.5, 0.3}, n{0, 0, -1};
+    double factor = 0;
+    for (size_t i = 0; i < region.pieceCount(); ++i) {
+      Polygon3 piece;
+      for (const Vec2& q : region.piece(i)) piece.push_back(lifted(q));
+      factor += lambertIntegral(p, n, piece);
+    }
+    EXPECT_NEAR(contourFactor(contour, p, n), factor, 1e-9) << "seed " << seed;
+  }
+  EXPECT_GT(withHoles, 25u);
+}
+
 TEST(VisibleContour, TwoHalvesSharingAnEdgeLeaveNothing) {
   const Polygon2 light{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   Flat flat;
