@@ -298,9 +298,8 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
   // height, which cannot block (occlude() would say so).
   bool approachBlocks = false;
   aloneFaces.clear();
-  for (size_t c = 0; c < mesh.clusters.size(); ++c) {
+  mesh.forEachClusterMeeting(missesCone, [&](uint32_t c) {
     const MeshTopology::Cluster& cluster = mesh.clusters[c];
-    if (missesCone(cluster)) continue;
     const bool usable = wholeUsable(cluster);
     const size_t before = chainFaces.size();
     for (uint32_t i = cluster.first; i < cluster.last; ++i) {
@@ -321,9 +320,10 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
     // Every face of the cluster in the chain: its precomputed sum stands for them.
     if (chainFaces.size() - before == size_t(cluster.last - cluster.first)) {
       chainFaces.resize(before);
-      chainClusters.push_back(uint32_t(c));
+      chainClusters.push_back(c);
     }
-  }
+    return true;
+  });
   if (approachBlocks) {
     for (uint32_t c : chainClusters)
       for (uint32_t i = mesh.clusters[c].first; i < mesh.clusters[c].last; ++i) occlude(faces[mesh.clusterFaces[i]]);

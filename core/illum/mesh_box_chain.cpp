@@ -112,8 +112,10 @@ MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const V
   if (net.size() < mesh.welded.edges.size()) net.resize(mesh.welded.edges.size(), 0);
   const auto corners = boxCorners(low, high);
   const std::vector<LightEdgeSide> sides = lightEdgeSides(light, lightPlane);
-  for (const MeshTopology::Cluster& cluster : mesh.clusters) {
-    if (outsideEveryCone(cluster, corners, sides, margin)) continue;
+  bool tooMany = false;
+  const auto outside = [&](const MeshTopology::Cluster& ball) { return outsideEveryCone(ball, corners, sides, margin); };
+  mesh.forEachClusterMeeting(outside, [&](uint32_t c) {
+    const MeshTopology::Cluster& cluster = mesh.clusters[c];
     for (uint32_t i = cluster.first; i < cluster.last; ++i) {
       const uint32_t f = mesh.clusterFaces[i];
       bool allUsable = true;
@@ -122,7 +124,7 @@ MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const V
       if (!allUsable) {
         // Many faces a point must decide as its own pass does (a receiver on the mesh, or
         // cutting through it): the box saves nothing there.
-        if (out.special.size() == mesh.clusterFaces.size() / kMostSpecialShare) return MeshBoxChain{};
+        if (out.special.size() == mesh.clusterFaces.size() / kMostSpecialShare) return !(tooMany = true);
         out.special.push_back(i);
         continue;
       }
@@ -131,7 +133,9 @@ MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const V
       if (middle + spread < -onPlane - margin) behindFaces.push_back(f);
       else if (!(middle - spread > -onPlane + margin)) out.crossing.push_back(i);
     }
-  }
+    return true;
+  });
+  if (tooMany) return MeshBoxChain{};
   out.usable = true;
   try {
     sumFaceEdges(mesh, behindFaces, net, touched, out.behindAll);

@@ -45,11 +45,31 @@ void sumClusterChains(MeshTopology& mesh) {
   }
 }
 
+// A ball holding balls a and b: around the middle of their box, its radius padded by 1e-7 of
+// its size and place so that no rounding in a test of a ball inside it against a plane or a
+// box (forEachClusterMeeting) can keep the inner ball while rejecting this one.
+MeshTopology::Cluster ballAround(const MeshTopology::Cluster& a, const MeshTopology::Cluster& b) {
+  MeshTopology::Cluster ball;
+  const Vec3 low = glm::min(a.centre - a.radius, b.centre - b.radius);
+  const Vec3 high = glm::max(a.centre + a.radius, b.centre + b.radius);
+  ball.centre = 0.5 * (low + high);
+  const double radius =
+      std::max(glm::length(a.centre - ball.centre) + a.radius, glm::length(b.centre - ball.centre) + b.radius);
+  ball.radius = radius + 1e-7 * (radius + glm::length(ball.centre));
+  ball.first = a.first;
+  ball.last = b.last;
+  return ball;
+}
+
 // Splits faces order[begin, end) at the median of their centres along the longest side
-// of the centres' box until at most kClusterFaces are left, each then a cluster.
+// of the centres' box until at most kClusterFaces are left, each then a cluster; the splits'
+// tree into mesh.clusterTree, in preorder.
 void splitIntoClusters(std::vector<uint32_t>& order, size_t begin, size_t end, const std::vector<Vec3>& centres,
                        MeshTopology& mesh) {
   const ConvexSolid& w = mesh.welded;
+  const size_t node = mesh.clusterTree.size();
+  const uint32_t firstCluster = uint32_t(mesh.clusters.size());
+  mesh.clusterTree.emplace_back();
   if (end - begin <= MeshTopology::kClusterFaces) {
     MeshTopology::Cluster cluster;
     cluster.first = uint32_t(begin), cluster.last = uint32_t(end);
@@ -64,6 +84,7 @@ void splitIntoClusters(std::vector<uint32_t>& order, size_t begin, size_t end, c
       for (uint32_t k = w.faceStarts[order[i]]; k < w.faceStarts[order[i] + 1]; ++k)
         cluster.radius = std::max(cluster.radius, glm::length(w.vertices[w.corners[k]] - cluster.centre));
     mesh.clusters.push_back(cluster);
+    mesh.clusterTree[node] = {cluster, firstCluster, firstCluster + 1, uint32_t(node + 1)};
     return;
   }
   Vec3 low(INFINITY), high(-INFINITY);
@@ -77,7 +98,10 @@ void splitIntoClusters(std::vector<uint32_t>& order, size_t begin, size_t end, c
   std::nth_element(order.begin() + long(begin), order.begin() + long(middle), order.begin() + long(end),
                    [&](uint32_t a, uint32_t b) { return centres[a][axis] < centres[b][axis]; });
   splitIntoClusters(order, begin, middle, centres, mesh);
+  const size_t right = mesh.clusterTree.size();
   splitIntoClusters(order, middle, end, centres, mesh);
+  mesh.clusterTree[node] = {ballAround(mesh.clusterTree[node + 1].ball, mesh.clusterTree[right].ball), firstCluster,
+                            uint32_t(mesh.clusters.size()), uint32_t(mesh.clusterTree.size())};
 }
 
 }  // namespace

@@ -45,6 +45,18 @@ struct MeshTopology {
   };
   static constexpr size_t kClusterFaces = 32;
   std::vector<Cluster> clusters;
+  // The clusters' balls as the tree of the median splits that made them, in preorder: node i's
+  // ball holds the balls of clusters [firstCluster, endCluster) (ball.first, ball.last: their
+  // faces, as a cluster's), its first child is node i + 1 and `skip` the node after its
+  // subtree. A leaf is one cluster with that cluster's own ball. A pass over the clusters a
+  // point's cone meets skips a subtree whose ball misses it (forEachClusterMeeting), instead
+  // of testing every cluster: on a model's own 70 k faces each point tested 2,000 balls to
+  // keep ~20.
+  struct ClusterNode {
+    Cluster ball;
+    uint32_t firstCluster = 0, endCluster = 0, skip = 0;
+  };
+  std::vector<ClusterNode> clusterTree;
   std::vector<uint32_t> clusterFaces;
   // clusterPlanes[i]: the plane of face clusterFaces[i], copied in cluster order so a
   // point's pass over the faces its cone meets reads them in a row (the faces themselves
@@ -64,6 +76,24 @@ struct MeshTopology {
 
   // From the object's world faces (Scene::facesOfObject order) and the scene's onPlane().
   static MeshTopology of(std::span<const Face> faces, double onPlane);
+
+  // visit(c) for each cluster c whose ball `misses` does not reject, in ascending order, while
+  // visit returns true. `misses(const Cluster&)` must reject every ball inside a ball it rejects
+  // (the ball lies beyond a plane, or farther than a distance from a box, by its radius): then
+  // the clusters visited are exactly those a pass over every cluster keeps. A node's ball is
+  // padded well past the rounding of such a test (clusterTree).
+  template <class Misses, class Visit>
+  void forEachClusterMeeting(const Misses& misses, const Visit& visit) const {
+    for (size_t i = 0; i < clusterTree.size();) {
+      const ClusterNode& node = clusterTree[i];
+      if (misses(node.ball)) {
+        i = node.skip;
+        continue;
+      }
+      if (node.endCluster - node.firstCluster == 1 && !visit(node.firstCluster)) return;
+      ++i;
+    }
+  }
 };
 
 // Adds face f's edges to their net direction counts (+1 run from edge.first to .second, −1

@@ -165,12 +165,15 @@ void nearFaces(const MeshTopology& mesh, const Polygon3& polygon, double reach, 
   Vec3 low(INFINITY), high(-INFINITY);
   for (const Vec3& p : polygon) low = glm::min(low, p), high = glm::max(high, p);
   out.clear();
-  for (const MeshTopology::Cluster& cluster : mesh.clusters) {
-    const Vec3 outside = glm::max(low - cluster.centre, glm::max(cluster.centre - high, Vec3(0.0)));
-    const double within = cluster.radius + reach;
-    if (glm::dot(outside, outside) > within * within) continue;
-    out.insert(out.end(), mesh.clusterFaces.begin() + cluster.first, mesh.clusterFaces.begin() + cluster.last);
-  }
+  const auto away = [&](const MeshTopology::Cluster& ball) {
+    const Vec3 outside = glm::max(low - ball.centre, glm::max(ball.centre - high, Vec3(0.0)));
+    const double within = ball.radius + reach;
+    return glm::dot(outside, outside) > within * within;
+  };
+  mesh.forEachClusterMeeting(away, [&](uint32_t c) {
+    out.insert(out.end(), mesh.clusterFaces.begin() + mesh.clusters[c].first, mesh.clusterFaces.begin() + mesh.clusters[c].last);
+    return true;
+  });
   std::sort(out.begin(), out.end());
 }
 
