@@ -169,6 +169,9 @@ MeshTopology MeshTopology::of(std::span<const Face> faces, double onPlane) {
   mesh.clusterFaces.resize(faces.size());
   for (size_t f = 0; f < faces.size(); ++f) mesh.clusterFaces[f] = uint32_t(f);
   if (!faces.empty()) splitIntoClusters(mesh.clusterFaces, 0, faces.size(), centres, mesh);
+  mesh.faceCluster.assign(faces.size(), 0);
+  for (uint32_t c = 0; c < mesh.clusters.size(); ++c)
+    for (uint32_t i = mesh.clusters[c].first; i < mesh.clusters[c].last; ++i) mesh.faceCluster[mesh.clusterFaces[i]] = c;
   mesh.clusterPlanes.reserve(faces.size());
   for (uint32_t f : mesh.clusterFaces) mesh.clusterPlanes.push_back(faces[f].plane);
   sumClusterChains(mesh);

@@ -57,6 +57,8 @@ struct MeshTopology {
     uint32_t firstCluster = 0, endCluster = 0, skip = 0;
   };
   std::vector<ClusterNode> clusterTree;
+  // The cluster holding each face.
+  std::vector<uint32_t> faceCluster;
   std::vector<uint32_t> clusterFaces;
   // clusterPlanes[i]: the plane of face clusterFaces[i], copied in cluster order so a
   // point's pass over the faces its cone meets reads them in a row (the faces themselves

@@ -88,10 +88,12 @@ bool edgeMayBeOn(std::span<const Face> faces, const MeshTopology& mesh, uint32_t
 }
 
 void keepEdges(std::span<const Face> faces, const MeshTopology& mesh, const Vec3& x, double onPlane,
-               std::span<const double> ahead, const std::vector<uint32_t>* among, std::vector<uint32_t>& out) {
+               std::span<const double> ahead, const std::vector<uint32_t>* among, std::vector<uint32_t>& out,
+               ClusterSet near = {}) {
   const ConvexSolid& w = mesh.welded;
   const auto inFront = [&](uint32_t v) { return ahead.empty() || ahead[v] > onPlane; };
   auto keep = [&](uint32_t e) {
+    if (!near.hasEdge(mesh, e)) return;
     if (!inFront(w.edges[e].first) && !inFront(w.edges[e].second)) return;
     if (edgeMayBeOn(faces, mesh, e, x, onPlane)) out.push_back(e);
   };
@@ -104,8 +106,9 @@ void keepEdges(std::span<const Face> faces, const MeshTopology& mesh, const Vec3
 
 void keepCorners(std::span<const Face> faces, const MeshTopology& mesh, const Vec3& p, const Vec3& q, double onPlane,
                  std::span<const double> ahead, const std::vector<uint32_t>* among,
-                 std::vector<MeshSilhouette::Corner>& out) {
+                 std::vector<MeshSilhouette::Corner>& out, ClusterSet near = {}) {
   auto keep = [&](uint32_t v) {
+    if (!near.hasCorner(mesh, v)) return;
     if (!ahead.empty() && !(ahead[v] > onPlane)) return;
     double from = 0, to = 1;
     if (mesh.regularVertex[v] && !silhouetteStretch(faces, mesh, v, p, q, onPlane, from, to)) return;
@@ -205,7 +208,7 @@ size_t edgeHolding(const Polygon3& whole, std::initializer_list<Vec3> points, do
 
 MeshSilhouette clippedMeshSilhouette(std::span<const Face> faces, const MeshTopology& mesh, const Polygon3& whole,
                                      const Polygon3& s, double onPlane, std::span<const double> ahead,
-                                     std::span<const uint8_t> onReceiver, double slack) {
+                                     std::span<const uint8_t> onReceiver, double slack, ClusterSet near) {
   const Candidates& candidates = memoisedCandidates(faces, mesh, whole, onPlane, slack);
   const size_t n = s.size();
   MeshSilhouette out;
@@ -215,12 +218,12 @@ MeshSilhouette clippedMeshSilhouette(std::span<const Face> faces, const MeshTopo
     const Vec3 &p = s[i], &q = s[(i + 1) % n];
     if (!onReceiver[i]) {
       const size_t j = edgeHolding(whole, {p}, slack);
-      keepEdges(faces, mesh, p, onPlane, ahead, j < whole.size() ? &candidates.edges[j] : nullptr, out.edges[i]);
+      keepEdges(faces, mesh, p, onPlane, ahead, j < whole.size() ? &candidates.edges[j] : nullptr, out.edges[i], near);
     }
     if (!onReceiver[i] || !onReceiver[(i + 1) % n]) {
       const size_t j = edgeHolding(whole, {p, q}, slack);
       keepCorners(faces, mesh, p, q, onPlane, ahead, j < whole.size() ? &candidates.corners[j] : nullptr,
-                  out.corners[i]);
+                  out.corners[i], near);
     }
   }
   return out;

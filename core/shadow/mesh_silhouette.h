@@ -16,6 +16,22 @@
 
 namespace penumbra {
 
+// A set of a mesh's clusters (MeshTopology::clusters): c is in it when stamps[c] == stamp; with
+// no stamps, every cluster. An edge counts as in it when its first face's cluster is, a corner
+// when its first face's is (each lies in that cluster's ball).
+struct ClusterSet {
+  std::span<const uint32_t> stamps;
+  uint32_t stamp = 0;
+  bool has(uint32_t cluster) const { return stamps.empty() || stamps[cluster] == stamp; }
+  bool hasEdge(const MeshTopology& mesh, uint32_t e) const {
+    return stamps.empty() || has(mesh.faceCluster[mesh.edgeFaces[mesh.edgeStarts[e]]]);
+  }
+  bool hasCorner(const MeshTopology& mesh, uint32_t v) const {
+    return stamps.empty() || mesh.vertexStarts[v] == mesh.vertexStarts[v + 1] ||
+           has(mesh.faceCluster[mesh.vertexFaces[mesh.vertexStarts[v]]]);
+  }
+};
+
 struct MeshSilhouette {
   struct Corner {
     uint32_t vertex = 0;     // a welded corner of the mesh
@@ -57,9 +73,11 @@ const MeshSilhouette& memoisedMeshSilhouette(std::span<const Face> faces, const 
 // faces all have p and q so (the distances are affine along pq and move by at most slack off
 // it). So only the rest, found once per whole light (memoised per thread), is tested at s's
 // own points, by the same tests on the same numbers: O(candidates), not O(mesh), per receiver.
-// An item of s on no single edge of `whole` is tested against the whole mesh.
+// An item of s on no single edge of `whole` is tested against the whole mesh. Only items in
+// `near` are kept (the receiver's shaft: the rest cannot shadow it, object_shadow.cpp), and
+// only they are tested.
 MeshSilhouette clippedMeshSilhouette(std::span<const Face> faces, const MeshTopology& mesh, const Polygon3& whole,
                                      const Polygon3& s, double onPlane, std::span<const double> ahead,
-                                     std::span<const uint8_t> onReceiver, double slack);
+                                     std::span<const uint8_t> onReceiver, double slack, ClusterSet near = {});
 
 }  // namespace penumbra

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/geom/clip.h"
+#include "core/geom/shaft.h"
 #include "core/scene/convex_solid.h"
 #include "core/scene/mesh_topology.h"
 #include "core/shadow/critical_wedge.h"
@@ -217,6 +218,31 @@ void addContactLines(const Polygon3& s, std::span<const Face> faces, const MeshT
   }
 }
 
+// Well outside the shaft: by this many length tolerances (shaftBetween keeps sides within one).
+constexpr double kShaftMargin = 64;
+
+// The clusters whose ball meets the shaft between light part s and the receiver (more than
+// kShaftMargin length tolerances outside it, a ball is left out). A VE wedge from s_i over an
+// edge reaches the receiver at s_i + t (x − s_i), t ≥ 1, x on the edge, and an EV wedge at
+// q + t (v − q) with q on an edge of s: such a point at distance δ outside a side of the shaft
+// (s_i, q inside it) has x or v more than δ outside it, so an edge or corner more than the
+// margin outside gives no chord on the receiver. Valid until the next call on this thread.
+ClusterSet clustersInShaft(const MeshTopology& mesh, const Polygon3& s, const Polygon3& receiver, double eps) {
+  thread_local std::vector<uint32_t> stamps;
+  thread_local uint32_t stamp = 0;
+  if (stamps.size() < mesh.clusters.size()) stamps.resize(mesh.clusters.size(), 0);
+  if (++stamp == 0) std::fill(stamps.begin(), stamps.end(), 0), stamp = 1;
+  const Shaft shaft = shaftBetween(s, receiver, eps);
+  const double margin = kShaftMargin * eps;
+  mesh.forEachClusterMeeting(
+      [&](const MeshTopology::Cluster& ball) { return shaft.ballOutside(ball.centre, ball.radius, margin); },
+      [&](uint32_t c) {
+        stamps[c] = stamp;
+        return true;
+      });
+  return {std::span<const uint32_t>(stamps.data(), mesh.clusters.size()), stamp};
+}
+
 // The VE and EV surfaces of a mesh's potential silhouette (object_shadow.h, any mesh): VE
 // (light vertex i, edge e) unless e is regular and off the silhouette from s_i; EV (light
 // edge pq, corner v) over the stretch of pq from which v may be on the silhouette
@@ -242,12 +268,14 @@ void meshSilhouetteWedges(const Polygon3& s, const Polygon3& whole, std::span<co
   thread_local std::vector<uint8_t> lightOnReceiver;
   lightOnReceiver.resize(n);
   for (size_t i = 0; i < n; ++i) lightOnReceiver[i] = onReceiver(s[i]);
+  const ClusterSet near = std::isinf(contactReach) ? ClusterSet{} : clustersInShaft(mesh, s, receiverFace.polygon, eps);
   const MeshSilhouette& silhouette =
       wholeLight ? memoisedMeshSilhouette(faces, mesh, s, onPlane)
-                 : (own = clippedMeshSilhouette(faces, mesh, whole, s, onPlane, ahead, lightOnReceiver, eps));
+                 : (own = clippedMeshSilhouette(faces, mesh, whole, s, onPlane, ahead, lightOnReceiver, eps, near));
   for (size_t i = 0; i < n; ++i) {
     if (onReceiver(s[i])) continue;  // its rays never come back to the receiver
     for (const uint32_t e : silhouette.edges[i]) {
+      if (!near.hasEdge(mesh, e)) continue;
       const auto [a, b] = w.edges[e];
       if (!(ahead[a] > onPlane) && !(ahead[b] > onPlane)) continue;
       Vec3 from = w.vertices[a], to = w.vertices[b];
@@ -263,7 +291,7 @@ void meshSilhouetteWedges(const Polygon3& s, const Polygon3& whole, std::span<co
     const Vec3 &p = s[i], &q = s[(i + 1) % n];
     if (onReceiver(p) && onReceiver(q)) continue;
     for (const auto& [v, from, to] : silhouette.corners[i]) {
-      if (!(ahead[v] > onPlane)) continue;
+      if (!near.hasCorner(mesh, v) || !(ahead[v] > onPlane)) continue;
       const Vec3 start = p + from * (q - p), end = p + to * (q - p), &corner = w.vertices[v];
       if (wedgePlaneMisses(corner, corner - start, corner - end, receiverFace.polygon, eps)) continue;
       add(edgeVertexWedge({ElementRef::Kind::Edge, uint32_t(i)}, {ElementRef::Kind::Vertex, uint32_t(v)}, start, end,

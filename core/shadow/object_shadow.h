@@ -81,7 +81,10 @@ FaceId castingOccluder(const Scene& scene, size_t light, FaceId face, const Face
 // size of the receiver (kContactReach; a pass over every face for each receiver was quadratic):
 // a contact edge's chord is the edge itself up to its onPlane offset from the plane, so a face
 // farther off adds nothing unless a light vertex lies within ~1e-4 (relative) of the receiver's
-// plane. Infinity looks at every face (tests/core/shadow/contact_reach_test.cpp compares).
+// plane. The silhouette's edges and corners are looked at only where they lie in the shaft
+// between the light and the receiver (their hull, core/geom/shaft.h; object_shadow.cpp says
+// why nothing outside it reaches the receiver). Infinity looks at every face and every
+// silhouette item (tests/core/shadow/contact_reach_test.cpp compares).
 constexpr double kContactReach = 0.01;
 std::optional<SingleShadow> castObjectShadow(const Scene& scene, size_t light, uint32_t handle,
                                              const Face& receiver, const PlaneFrame& frame,

@@ -3,7 +3,8 @@
 // oriented meshes, cast on each of their own faces (the plane cuts the mesh along its whole
 // section), on a floor they pierce and on planes through them, from a ceiling light and from a
 // low light beside them (its corners near many faces' planes), the shadow is bit for bit the one
-// that looks at every face.
+// that looks at every face. The same comparison checks that the silhouette items left out as
+// outside the receiver's shaft (core/geom/shaft.h) add nothing: infinity looks at all of them.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -76,6 +77,39 @@ TEST(ContactReach, NearFacesGiveTheShadowOfEveryFace) {
   }
   EXPECT_GT(receivers, 2000u);
   EXPECT_GT(contacts, 200u) << "few contact lines: the check would not see a reach too short";
+}
+
+// Finely tessellated meshes (clusters of a few centimetres, so a shaft that left out too much
+// would drop items near its sides): cast on every fifth of their own faces, on a floor and on
+// planes through them, the shadow with the silhouette cut to the receiver's shaft is bit for
+// bit the one with every item.
+TEST(ContactReach, ShaftOfAFineMeshKeepsEverySilhouetteItemThatCasts) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> u(-1, 1);
+  size_t receivers = 0, segments = 0;
+  const std::vector<Object> meshes = {test::bumpySphere("m", {0.1, 1.2, -0.05}, 0.5, 40, 0.1, 3),
+                                      test::torus("m", {0.0, 1.3, 0.1}, 0.45, 0.15, 96, 24, 0.7)};
+  for (const Object& mesh : meshes) {
+    std::vector<Object> objects = {mesh, quad("floor", {0.1, 0.0, 0.0}, {0, 1, 0}, 3.0)};
+    for (int k = 0; k < 3; ++k)
+      objects.push_back(quad("cut" + std::to_string(k), {0.05 * u(rng), 1.25, 0.05 * u(rng)},
+                             {u(rng), u(rng), u(rng)}, 1.5));
+    const Scene scene({test::ceilingLight(0.6)}, {}, objects);
+    const uint32_t handle = scene.handleOf(0);
+    size_t index = 0;
+    for (const Face& receiver : scene.faces()) {
+      if (receiver.id.object == handle && index++ % 5 != 0) continue;
+      if (!castsAsOneOccluder(scene, 0, handle, receiver)) continue;
+      const PlaneFrame frame = PlaneFrame::onPlane(receiver.plane, receiver.polygon[0]);
+      const auto near = castObjectShadow(scene, 0, handle, receiver, frame);
+      const auto every = castObjectShadow(scene, 0, handle, receiver, frame, INFINITY);
+      ++receivers;
+      segments += every ? every->segments.size() : 0;
+      EXPECT_TRUE(sameShadow(near, every)) << "receiver " << receiver.id.object << "/" << receiver.id.face;
+    }
+  }
+  EXPECT_GT(receivers, 1000u);
+  EXPECT_GT(segments, 20000u);
 }
 
 }  // namespace
