@@ -22,6 +22,7 @@ namespace penumbra {
 struct ClusterSet {
   std::span<const uint32_t> stamps;
   uint32_t stamp = 0;
+  std::span<const uint32_t> list;  // with stamps: the clusters in it, ascending
   bool has(uint32_t cluster) const { return stamps.empty() || stamps[cluster] == stamp; }
   bool hasEdge(const MeshTopology& mesh, uint32_t e) const {
     return stamps.empty() || has(mesh.faceCluster[mesh.edgeFaces[mesh.edgeStarts[e]]]);

@@ -187,7 +187,7 @@ void nearFaces(const MeshTopology& mesh, const Polygon3& polygon, double reach, 
 // the model along its whole section, and a pass over every face for each face was quadratic.
 template <class OnReceiver, class AddContact>
 void addContactLines(const Polygon3& s, std::span<const Face> faces, const MeshTopology& mesh,
-                     const Face& receiverFace, const std::vector<double>& ahead, const OnReceiver& onReceiver,
+                     const Face& receiverFace, const OnReceiver& onReceiver,
                      const Tolerance& tol, double contactReach, AddContact&& add) {
   const Plane& receiver = receiverFace.plane;
   const double eps = tol.length(), onPlane = tol.onPlane();
@@ -201,8 +201,9 @@ void addContactLines(const Polygon3& s, std::span<const Face> faces, const MeshT
   for (const uint32_t f : near) {
     bool anyAhead = false, anyTouching = false;
     for (uint32_t k = w.faceStarts[f]; k < w.faceStarts[f + 1]; ++k) {
-      anyAhead = anyAhead || ahead[w.corners[k]] > onPlane;
-      anyTouching = anyTouching || !(ahead[w.corners[k]] > onPlane);
+      const double ahead = receiver.signedDistance(w.vertices[w.corners[k]]);
+      anyAhead = anyAhead || ahead > onPlane;
+      anyTouching = anyTouching || !(ahead > onPlane);
     }
     if (!anyAhead || !anyTouching) continue;
     clipFrontInto(faces[f].polygon, receiver, eps, front);
@@ -228,19 +229,21 @@ constexpr double kShaftMargin = 64;
 // (s_i, q inside it) has x or v more than δ outside it, so an edge or corner more than the
 // margin outside gives no chord on the receiver. Valid until the next call on this thread.
 ClusterSet clustersInShaft(const MeshTopology& mesh, const Polygon3& s, const Polygon3& receiver, double eps) {
-  thread_local std::vector<uint32_t> stamps;
+  thread_local std::vector<uint32_t> stamps, list;
   thread_local uint32_t stamp = 0;
   if (stamps.size() < mesh.clusters.size()) stamps.resize(mesh.clusters.size(), 0);
   if (++stamp == 0) std::fill(stamps.begin(), stamps.end(), 0), stamp = 1;
   const Shaft shaft = shaftBetween(s, receiver, eps);
   const double margin = kShaftMargin * eps;
+  list.clear();
   mesh.forEachClusterMeeting(
       [&](const MeshTopology::Cluster& ball) { return shaft.ballOutside(ball.centre, ball.radius, margin); },
       [&](uint32_t c) {
         stamps[c] = stamp;
+        list.push_back(c);
         return true;
       });
-  return {std::span<const uint32_t>(stamps.data(), mesh.clusters.size()), stamp};
+  return {std::span<const uint32_t>(stamps.data(), mesh.clusters.size()), stamp, list};
 }
 
 // The VE and EV surfaces of a mesh's potential silhouette (object_shadow.h, any mesh): VE
@@ -258,9 +261,21 @@ void meshSilhouetteWedges(const Polygon3& s, const Polygon3& whole, std::span<co
   const size_t n = s.size();
   // Only what lies in front of the receiver's plane can shadow it (a mesh on its own face
   // reaches behind it): an edge is cut there, a corner not in front is left out.
+  const ClusterSet near = std::isinf(contactReach) ? ClusterSet{} : clustersInShaft(mesh, s, receiverFace.polygon, eps);
+  // Read only for the edges and corners in `near`: each lies on a face of a cluster in it, whose
+  // corners are the ones found (on a model's own faces a pass over every corner per face was
+  // quadratic).
   thread_local std::vector<double> ahead;
   ahead.resize(w.vertices.size());
-  for (size_t v = 0; v < w.vertices.size(); ++v) ahead[v] = receiver.signedDistance(w.vertices[v]);
+  const auto findAhead = [&](uint32_t c) {
+    for (uint32_t i = mesh.clusters[c].first; i < mesh.clusters[c].last; ++i)
+      for (uint32_t k = w.faceStarts[mesh.clusterFaces[i]]; k < w.faceStarts[mesh.clusterFaces[i] + 1]; ++k)
+        ahead[w.corners[k]] = receiver.signedDistance(w.vertices[w.corners[k]]);
+  };
+  if (near.stamps.empty())
+    for (size_t v = 0; v < w.vertices.size(); ++v) ahead[v] = receiver.signedDistance(w.vertices[v]);
+  else
+    for (const uint32_t c : near.list) findAhead(c);
   // The edges and corners that may be on the silhouette: found once per light (not per
   // receiver) where the receiver's plane leaves the light whole, else for this receiver alone
   // among the whole light's candidates (clippedMeshSilhouette).
@@ -268,7 +283,6 @@ void meshSilhouetteWedges(const Polygon3& s, const Polygon3& whole, std::span<co
   thread_local std::vector<uint8_t> lightOnReceiver;
   lightOnReceiver.resize(n);
   for (size_t i = 0; i < n; ++i) lightOnReceiver[i] = onReceiver(s[i]);
-  const ClusterSet near = std::isinf(contactReach) ? ClusterSet{} : clustersInShaft(mesh, s, receiverFace.polygon, eps);
   const MeshSilhouette& silhouette =
       wholeLight ? memoisedMeshSilhouette(faces, mesh, s, onPlane)
                  : (own = clippedMeshSilhouette(faces, mesh, whole, s, onPlane, ahead, lightOnReceiver, eps, near));
@@ -286,7 +300,7 @@ void meshSilhouetteWedges(const Polygon3& s, const Polygon3& whole, std::span<co
                           to, eps));
     }
   }
-  addContactLines(s, faces, mesh, receiverFace, ahead, onReceiver, tol, contactReach, add);
+  addContactLines(s, faces, mesh, receiverFace, onReceiver, tol, contactReach, add);
   for (size_t i = 0; i < n; ++i) {
     const Vec3 &p = s[i], &q = s[(i + 1) % n];
     if (onReceiver(p) && onReceiver(q)) continue;
