@@ -341,9 +341,11 @@ void Backprojection::splitOffAlone(const MeshTopology& mesh, std::span<const Fac
                                    std::vector<uint32_t>& alone) {
   // The faces projected alone (already subtracted) and every chain face joined to them through
   // chain or alone faces sharing a corner: those go one by one too, so no chain edge or corner
-  // is also a corner of a convex shadow (the contour decides edges along each other only
-  // between convex shadows). The rest stays one chain, as a mesh's chain beside other objects'
-  // shadows.
+  // inside the light is also a corner of a convex shadow (the contour decides edges along each
+  // other only between convex shadows). A face wholly beside the light (besideLight: its
+  // projection lies outside it) stops the spread: what it shares projects outside the light,
+  // where neither the contour nor the chain's winding is looked at. The rest stays one chain,
+  // as a mesh's chain beside other objects' shadows.
   thread_local std::vector<uint32_t> state;  // per face: stamp·4 + 1 chain, + 2 alone
   thread_local uint32_t stamp = 0;
   if (state.size() < faces.size()) state.assign(faces.size(), 0);
@@ -360,7 +362,9 @@ void Backprojection::splitOffAlone(const MeshTopology& mesh, std::span<const Fac
       const uint32_t v = w.corners[k];
       for (uint32_t j = mesh.vertexStarts[v]; j < mesh.vertexStarts[v + 1]; ++j) {
         const uint32_t g = mesh.vertexFaces[j];
-        if (state[g] != chain) continue;
+        // A face wholly beside the light shares only what projects outside it with the faces
+        // around it: no chain edge or corner inside the light meets a convex shadow's there.
+        if (state[g] != chain || besideLight(faces[g])) continue;
         state[g] = inAlone;
         occlude(faces[g]);
         alone.push_back(g);
