@@ -43,6 +43,7 @@ void Backprojection::reset(const Scene& scene, size_t light, const Vec3& p, cons
   chain_.clear();
   chainObjects_.clear();
   resolved_ = occluded_ = anyVisible_ = false;
+  meshFacesAlone_ = false;
   visibleFactor_ = 0;
   comparisons_ = 0;
 
@@ -325,12 +326,14 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
     return true;
   });
   if (approachBlocks) {
+    meshFacesAlone_ = true;
     for (uint32_t c : chainClusters)
       for (uint32_t i = mesh.clusters[c].first; i < mesh.clusters[c].last; ++i) occlude(faces[mesh.clusterFaces[i]]);
     for (uint32_t f : chainFaces) occlude(faces[f]);
     return true;
   }
   if (aloneFaces.empty()) return appendChain(handle, mesh, chainFaces, chainClusters, {});
+  meshFacesAlone_ = true;
   splitOffAlone(mesh, faces, chainFaces, chainClusters, aloneFaces);
   appendChain(handle, mesh, chainFaces, chainClusters, {});
   return true;
@@ -523,9 +526,9 @@ void Backprojection::resolve() const {
   thread_local std::vector<Vec2> mergedPoints;
   thread_local std::vector<uint32_t> mergedStarts;
   if (mergedShadows(mergedPoints, mergedStarts))
-    contour.compute(front2_, mergedPoints, mergedStarts, cutEps());
+    contour.compute(front2_, mergedPoints, mergedStarts, cutEps(), meshFacesAlone_);
   else
-    contour.compute(front2_, shadowPoints_, shadowStarts_, cutEps());
+    contour.compute(front2_, shadowPoints_, shadowStarts_, cutEps(), meshFacesAlone_);
   if (chainObjects_.size() > 1) {
     thread_local std::vector<ChainEdge> merged;
     merged = chain_;

@@ -149,6 +149,7 @@ class Backprojection {
   std::vector<std::pair<uint32_t, uint32_t>> groups_;  // (object, group) decided so far
   std::vector<ChainEdge> chain_;        // meshes' shadows as one chain, in the frame
   std::vector<uint32_t> chainObjects_;  // the meshes in chain_
+  bool meshFacesAlone_ = false;         // a mesh's faces went one by one: its shadows share edges
   // Resolved state (filled lazily by resolve(); one thread owns the object).
   mutable bool resolved_ = false;
   mutable bool occluded_ = false, anyVisible_ = false;

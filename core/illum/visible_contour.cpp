@@ -128,7 +128,7 @@ void VisibleContour::clipEdgeOfShadow(uint32_t i, size_t edge) {
 }
 
 void VisibleContour::compute(std::span<const Vec2> light, std::span<const Vec2> points,
-                             std::span<const uint32_t> starts, double eps) {
+                             std::span<const uint32_t> starts, double eps, bool sharedEdges) {
   boundary_.clear();
   occluded_ = allCovered_ = false;
   eps_ = eps;
@@ -183,7 +183,7 @@ void VisibleContour::compute(std::span<const Vec2> light, std::span<const Vec2> 
     emitUncovered({0, 1, line.from, line.to}, false);
   }
   // Each shadow's edges inside the light, less what the other shadows cover.
-  indexTwins();
+  indexTwins(sharedEdges);
   lastHolder_ = kNoShadow;
   for (uint32_t i : active_)
     for (size_t e = firstLine_[i]; e < firstLine_[i + 1]; ++e) clipEdgeOfShadow(i, e);
@@ -200,9 +200,9 @@ uint64_t edgeKey(const Vec2& from, const Vec2& to) {
 
 }  // namespace
 
-void VisibleContour::indexTwins() {
+void VisibleContour::indexTwins(bool sharedEdges) {
   twins_.clear();
-  if (active_.size() < kTwinIndexFrom) return;
+  if (!sharedEdges || active_.size() < kTwinIndexFrom) return;
   size_t edges = 0;
   for (uint32_t i : active_) edges += firstLine_[i + 1] - firstLine_[i];
   twins_.assign(std::bit_ceil(2 * edges), Twin{});

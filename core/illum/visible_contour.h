@@ -35,8 +35,11 @@ class VisibleContour {
   // polygon's edge (adjacent faces seen from p) is decided by the edges' directions:
   // against each other the two shadows join (interior of the union), along each
   // other the lower index keeps the edge, so a shared boundary counts once.
+  // With `sharedEdges` (many shadows are a mesh's faces, which share edges), each shadow edge is
+  // first offered to the shadow across it (indexTwins); elsewhere that index costs more than it
+  // saves (dense clutter of boxes: +30 % of the build).
   void compute(std::span<const Vec2> light, std::span<const Vec2> points,
-               std::span<const uint32_t> starts, double eps);
+               std::span<const uint32_t> starts, double eps, bool sharedEdges = false);
 
   // After compute(): also subtracts the shadows of meshes given as one chain
   // (shadow_chain.h; covered where its winding number is positive). Light and shadow
@@ -89,11 +92,11 @@ class VisibleContour {
   void addLines(std::span<const Vec2> polygon);
   void clipEdgeOfShadow(uint32_t i, size_t edge);
   // The active shadows' edges by their exact ends, into twins_ (left empty below
-  // kTwinIndexFrom shadows). Adjacent faces of a mesh project their shared edge to the same
+  // kTwinIndexFrom shadows, or without sharedEdges). Adjacent faces of a mesh project their shared edge to the same
   // two points, in opposite directions, and the shadow across it usually holds it whole: a
   // point on a model's own faces gathers a hundred such shadows, and the scan in active_
   // order met the one across after most of the others.
-  void indexTwins();
+  void indexTwins(bool sharedEdges);
   // The shadow with an edge from `edge`'s end to its start (exactly), or kNoShadow.
   uint32_t twinShadow(size_t edge) const;
   // The chain's winding number at x (leaving out chain edge `skip`; for x on that edge,

@@ -58,6 +58,13 @@ double widestGap(const VisibleContour& contour) {
   return widest;
 }
 
+bool sameBoundary(const VisibleContour& a, const VisibleContour& b) {
+  if (a.boundary().size() != b.boundary().size()) return false;
+  for (size_t i = 0; i < a.boundary().size(); ++i)
+    if (a.boundary()[i].from != b.boundary()[i].from || a.boundary()[i].to != b.boundary()[i].to) return false;
+  return true;
+}
+
 struct Flat {
   std::vector<Vec2> points;
   std::vector<uint32_t> starts{0};
@@ -110,7 +117,10 @@ TEST(VisibleContour, AgreesWithConvexPieces) {
       bound += eps * perimeter(shadow);
     }
     VisibleContour contour;
-    contour.compute(light, flat.points, flat.starts, eps);
+    contour.compute(light, flat.points, flat.starts, eps, true);
+    VisibleContour unindexed;  // the twin index (sharedEdges) changes no bit of the boundary
+    unindexed.compute(light, flat.points, flat.starts, eps);
+    ASSERT_TRUE(sameBoundary(contour, unindexed)) << "trial " << trial;
 
     double pieces = 0;
     for (size_t i = 0; i < region.pieceCount(); ++i) pieces += signedArea(region.piece(i));
@@ -176,7 +186,10 @@ TEST(VisibleContour, TessellatedPatchLeavesTheLightLessItsCells) {
       region.subtract(t, 1e-12);
     }
     VisibleContour contour;
-    contour.compute(light, flat.points, flat.starts, 1e-12);
+    contour.compute(light, flat.points, flat.starts, 1e-12, true);
+    VisibleContour unindexed;
+    unindexed.compute(light, flat.points, flat.starts, 1e-12);
+    ASSERT_TRUE(sameBoundary(contour, unindexed)) << "seed " << seed;
     // The light less each kept triangle's part inside it (they tile without overlap).
     double expected = 1.0;
     for (const Polygon2& t : triangles) {
