@@ -124,7 +124,10 @@ MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const V
       if (!allUsable) {
         // Many faces a point must decide as its own pass does (a receiver on the mesh, or
         // cutting through it): the box saves nothing there.
-        if (out.special.size() == mesh.clusterFaces.size() / kMostSpecialShare) return !(tooMany = true);
+        if (out.special.size() == mesh.clusterFaces.size() / kMostSpecialShare) {
+          tooMany = true;
+          return false;
+        }
         out.special.push_back(i);
         continue;
       }

@@ -92,10 +92,10 @@ class VisibleContour {
   void addLines(std::span<const Vec2> polygon);
   void clipEdgeOfShadow(uint32_t i, size_t edge);
   // The active shadows' edges by their exact ends, into twins_ (left empty below
-  // kTwinIndexFrom shadows, or without sharedEdges). Adjacent faces of a mesh project their shared edge to the same
-  // two points, in opposite directions, and the shadow across it usually holds it whole: a
-  // point on a model's own faces gathers a hundred such shadows, and the scan in active_
-  // order met the one across after most of the others.
+  // kTwinIndexFrom shadows, or without sharedEdges). Adjacent faces of a mesh project their
+  // shared edge to the same two points, in opposite directions, and the shadow across it
+  // usually holds it whole: a point on a model's own faces gathers a hundred such shadows, and
+  // the scan in active_ order met the one across after most of the others.
   void indexTwins(bool sharedEdges);
   // The shadow with an edge from `edge`'s end to its start (exactly), or kNoShadow.
   uint32_t twinShadow(size_t edge) const;

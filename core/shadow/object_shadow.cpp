@@ -172,7 +172,8 @@ void nearFaces(const MeshTopology& mesh, const Polygon3& polygon, double reach, 
     return glm::dot(outside, outside) > within * within;
   };
   mesh.forEachClusterMeeting(away, [&](uint32_t c) {
-    out.insert(out.end(), mesh.clusterFaces.begin() + mesh.clusters[c].first, mesh.clusterFaces.begin() + mesh.clusters[c].last);
+    const MeshTopology::Cluster& cluster = mesh.clusters[c];
+    out.insert(out.end(), mesh.clusterFaces.begin() + cluster.first, mesh.clusterFaces.begin() + cluster.last);
     return true;
   });
   std::sort(out.begin(), out.end());
