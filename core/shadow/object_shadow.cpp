@@ -260,23 +260,19 @@ void meshSilhouetteWedges(const Polygon3& s, const Polygon3& whole, std::span<co
   const bool wholeLight = s.size() == whole.size() && std::equal(s.begin(), s.end(), whole.begin());
   const ConvexSolid& w = mesh.welded;
   const size_t n = s.size();
-  // Only what lies in front of the receiver's plane can shadow it (a mesh on its own face
-  // reaches behind it): an edge is cut there, a corner not in front is left out.
   const ClusterSet near = std::isinf(contactReach) ? ClusterSet{} : clustersInShaft(mesh, s, receiverFace.polygon, eps);
-  // Read only for the edges and corners in `near`: each lies on a face of a cluster in it, whose
-  // corners are the ones found (on a model's own faces a pass over every corner per face was
-  // quadratic).
+  // Only what lies in front of the receiver's plane can shadow it (a mesh on its own face
+  // reaches behind it): an edge is cut there, a corner not in front is left out. The distances
+  // are read only for the edges and corners in `near`, each on a face of a cluster in it, so
+  // only those clusters' corners are found (a pass over every corner per face was quadratic).
   thread_local std::vector<double> ahead;
   ahead.resize(w.vertices.size());
-  const auto findAhead = [&](uint32_t c) {
+  if (near.stamps.empty())
+    for (size_t v = 0; v < w.vertices.size(); ++v) ahead[v] = receiver.signedDistance(w.vertices[v]);
+  for (const uint32_t c : near.list)
     for (uint32_t i = mesh.clusters[c].first; i < mesh.clusters[c].last; ++i)
       for (uint32_t k = w.faceStarts[mesh.clusterFaces[i]]; k < w.faceStarts[mesh.clusterFaces[i] + 1]; ++k)
         ahead[w.corners[k]] = receiver.signedDistance(w.vertices[w.corners[k]]);
-  };
-  if (near.stamps.empty())
-    for (size_t v = 0; v < w.vertices.size(); ++v) ahead[v] = receiver.signedDistance(w.vertices[v]);
-  else
-    for (const uint32_t c : near.list) findAhead(c);
   // The edges and corners that may be on the silhouette: found once per light (not per
   // receiver) where the receiver's plane leaves the light whole, else for this receiver alone
   // among the whole light's candidates (clippedMeshSilhouette).
