@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/geom/clip.h"
+#include "core/util/stamped_set.h"
 #include "core/illum/face_lookup.h"
 #include "core/illum/lambert.h"
 #include "core/illum/mesh_box_chain.h"
@@ -228,20 +229,16 @@ bool Backprojection::occludeMesh(uint32_t handle, const MeshTopology& mesh, std:
   const Plane receiver = Plane::throughPoint(n_, p_);
   const ConvexSolid& w = mesh.welded;
   enum : uint8_t { kUsable = 1, kAhead = 2, kBeyondLight = 4, kBeforeP = 8 };
-  thread_local std::vector<uint8_t> corner;  // kUsable, kAhead, kBeyondLight, kBeforeP
-  thread_local std::vector<uint32_t> cornerStamp, chainFaces, chainClusters, aloneFaces;
-  thread_local uint32_t stamp = 0;
-  if (cornerStamp.size() < w.vertices.size()) cornerStamp.resize(w.vertices.size(), 0), corner.resize(w.vertices.size());
-  if (++stamp == 0) std::fill(cornerStamp.begin(), cornerStamp.end(), 0), stamp = 1;
+  thread_local StampedMemo<uint8_t> corner;  // kUsable, kAhead, kBeyondLight, kBeforeP
+  thread_local std::vector<uint32_t> chainFaces, chainClusters, aloneFaces;
+  corner.clear(w.vertices.size());
   auto flags = [&](uint32_t v) {
-    if (cornerStamp[v] != stamp) {
+    return corner.value(v, [&](uint32_t) {
       const double h = lightPlane_.signedDistance(w.vertices[v]);
       const bool ahead = receiver.signedDistance(w.vertices[v]) > 0;
-      corner[v] = uint8_t((ahead && h > 0 && pHeight_ - h > 1e-3 * pHeight_ ? kUsable : 0) | (ahead ? kAhead : 0) |
-                          (h > 0 ? kBeyondLight : 0) | (h < pHeight_ ? kBeforeP : 0));
-      cornerStamp[v] = stamp;
-    }
-    return corner[v];
+      return uint8_t((ahead && h > 0 && pHeight_ - h > 1e-3 * pHeight_ ? kUsable : 0) | (ahead ? kAhead : 0) |
+                     (h > 0 ? kBeyondLight : 0) | (h < pHeight_ ? kBeforeP : 0));
+    });
   };
   // A face p is behind: in the chain (every corner usable), projected alone (a corner ahead
   // of p's plane, one beyond the light's and one short of p's height), or blocking nothing.
@@ -349,15 +346,12 @@ void Backprojection::splitOffAlone(const MeshTopology& mesh, std::span<const Fac
   // projection lies outside it) stops the spread: what it shares projects outside the light,
   // where neither the contour nor the chain's winding is looked at. The rest stays one chain,
   // as a mesh's chain beside other objects' shadows.
-  thread_local std::vector<uint32_t> state;  // per face: stamp·4 + 1 chain, + 2 alone
-  thread_local uint32_t stamp = 0;
-  if (state.size() < faces.size()) state.assign(faces.size(), 0);
-  if (++stamp >= (1u << 29)) std::fill(state.begin(), state.end(), 0), stamp = 1;
-  const uint32_t chain = stamp * 4 + 1, inAlone = stamp * 4 + 2;
-  for (uint32_t f : chainFaces) state[f] = chain;
+  thread_local StampedSet inChain, inAlone;  // a face in both: alone
+  inChain.clear(faces.size()), inAlone.clear(faces.size());
+  for (uint32_t f : chainFaces) inChain.insert(f);
   for (uint32_t c : chainClusters)
-    for (uint32_t i = mesh.clusters[c].first; i < mesh.clusters[c].last; ++i) state[mesh.clusterFaces[i]] = chain;
-  for (uint32_t f : alone) state[f] = inAlone;
+    for (uint32_t i = mesh.clusters[c].first; i < mesh.clusters[c].last; ++i) inChain.insert(mesh.clusterFaces[i]);
+  for (uint32_t f : alone) inAlone.insert(f);
   const ConvexSolid& w = mesh.welded;
   for (size_t next = 0; next < alone.size(); ++next) {
     const uint32_t f = alone[next];
@@ -367,22 +361,22 @@ void Backprojection::splitOffAlone(const MeshTopology& mesh, std::span<const Fac
         const uint32_t g = mesh.vertexFaces[j];
         // A face wholly beside the light shares only what projects outside it with the faces
         // around it: no chain edge or corner inside the light meets a convex shadow's there.
-        if (state[g] != chain || besideLight(faces[g])) continue;
-        state[g] = inAlone;
+        if (!inChain.contains(g) || inAlone.contains(g) || besideLight(faces[g])) continue;
+        inAlone.insert(g);
         occlude(faces[g]);
         alone.push_back(g);
       }
     }
   }
-  std::erase_if(chainFaces, [&](uint32_t f) { return state[f] == inAlone; });
+  std::erase_if(chainFaces, [&](uint32_t f) { return inAlone.contains(f); });
   // A cluster with a face gone alone is no longer whole: its other faces join the chain's list.
   std::erase_if(chainClusters, [&](uint32_t c) {
     const auto& cluster = mesh.clusters[c];
     const bool broken = std::any_of(mesh.clusterFaces.begin() + cluster.first, mesh.clusterFaces.begin() + cluster.last,
-                                    [&](uint32_t f) { return state[f] == inAlone; });
+                                    [&](uint32_t f) { return inAlone.contains(f); });
     if (broken)
       for (uint32_t i = cluster.first; i < cluster.last; ++i)
-        if (state[mesh.clusterFaces[i]] != inAlone) chainFaces.push_back(mesh.clusterFaces[i]);
+        if (!inAlone.contains(mesh.clusterFaces[i])) chainFaces.push_back(mesh.clusterFaces[i]);
     return broken;
   });
 }

@@ -20,7 +20,7 @@ void ChainGrid::build(std::span<const ChainEdge> chain, std::span<const uint32_t
   low_ = low - Vec2(eps);
   cell_ = glm::max(high - low + Vec2(2 * eps), Vec2(1e-300)) / double(size_);
   perCell_ = 1.0 / cell_;
-  if (seen_.size() < chain.size()) seen_.resize(chain.size(), 0);
+  chainSize_ = chain.size();
   struct Span {
     int c0, c1, r0, r1;
   };

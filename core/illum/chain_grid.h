@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/geom/convex2d.h"
+#include "core/util/stamped_set.h"
 #include "core/illum/shadow_chain.h"
 
 namespace penumbra {
@@ -30,11 +31,9 @@ class ChainGrid {
   void forEachNear(const Vec2& a, const Vec2& b, Visit&& visit) const {
     if (a == b) return forEachAt(a, visit);
     if (!cellsAlong(a, b)) return;
-    if (++stamp_ == 0) std::fill(seen_.begin(), seen_.end(), 0), stamp_ = 1;
+    seen_.clear(chainSize_);
     auto once = [&](uint32_t j) {
-      if (seen_[j] == stamp_) return;
-      seen_[j] = stamp_;
-      visit(j);
+      if (seen_.tryInsert(j)) visit(j);
     };
     for (uint32_t j : everywhere_) once(j);
     for (uint32_t cell : cells_)
@@ -62,8 +61,8 @@ class ChainGrid {
   Vec2 perCell_{1.0};  // 1 / cell_: a cell's column and row by multiplying (dividing was ~5 % of a model's build)
   std::vector<uint32_t> starts_, members_;  // cell c: members_[starts_[c], starts_[c + 1])
   std::vector<uint32_t> everywhere_;        // edges visited by every query
-  mutable std::vector<uint32_t> seen_;      // per chain edge: the query that last visited it
-  mutable uint32_t stamp_ = 0;
+  size_t chainSize_ = 0;
+  mutable StampedSet seen_;  // the chain edges this query visited
   mutable std::vector<uint32_t> cells_;
 };
 

@@ -1,5 +1,7 @@
 #include "core/illum/mesh_box_chain.h"
 
+#include "core/util/stamped_set.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -92,19 +94,14 @@ MeshBoxChain makeMeshBoxChain(const MeshTopology& mesh, const Vec3& low, const V
   // Corners are judged when a face of a cluster in the cone asks (stamped per call): a box
   // is asked once per receiver plane, and a pass over every corner and edge of a big mesh per
   // receiver of that mesh would make a model's self-casting quadratic.
-  thread_local std::vector<uint8_t> usableCorner;
-  thread_local std::vector<uint32_t> cornerStamp;
-  thread_local uint32_t stamp = 0;
+  thread_local StampedMemo<uint8_t> usableCorner;
   const std::vector<Vec3>& vertices = mesh.welded.vertices;
-  if (cornerStamp.size() < vertices.size()) cornerStamp.resize(vertices.size(), 0), usableCorner.resize(vertices.size());
-  if (++stamp == 0) std::fill(cornerStamp.begin(), cornerStamp.end(), 0), stamp = 1;
+  usableCorner.clear(vertices.size());
   auto usable = [&](uint32_t v) {
-    if (cornerStamp[v] != stamp) {
+    return usableCorner.value(v, [&](uint32_t) -> uint8_t {
       const double h = lightPlane.signedDistance(vertices[v]);
-      usableCorner[v] = glm::dot(n, vertices[v]) - receiverTop > margin && h > 0 && 0.999 * leastHeight - h > margin;
-      cornerStamp[v] = stamp;
-    }
-    return usableCorner[v] != 0;
+      return glm::dot(n, vertices[v]) - receiverTop > margin && h > 0 && 0.999 * leastHeight - h > margin;
+    }) != 0;
   };
   thread_local std::vector<uint32_t> behindFaces, touched;
   thread_local std::vector<int> net;  // all zero between calls (sumFaceEdges clears what it sets)

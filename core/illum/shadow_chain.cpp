@@ -1,5 +1,7 @@
 #include "core/illum/shadow_chain.h"
 
+#include "core/util/stamped_set.h"
+
 #include <algorithm>
 #include <cstdlib>
 
@@ -11,15 +13,13 @@ bool appendShadowChain(const MeshTopology& mesh, std::span<const uint32_t> chain
                        const Plane& lightPlane, double pHeight, const PlaneFrame& frame, double minArea,
                        std::vector<ChainEdge>& out) {
   const ConvexSolid& w = mesh.welded;
-  // Kept between calls: net all 0 (each touched edge is reset below), a corner projected
-  // in this call iff its stamp is this call's: no per-call pass over the whole mesh.
+  // Kept between calls: net all 0 (each touched edge is reset below), each corner projected
+  // once per call (a round of the memo): no per-call pass over the whole mesh.
   thread_local std::vector<int> net;
-  thread_local std::vector<uint32_t> touched, projectedStamp;
-  thread_local std::vector<Vec2> projected;
-  thread_local uint32_t stamp = 0;
+  thread_local std::vector<uint32_t> touched;
+  thread_local StampedMemo<Vec2> projected;
   if (net.size() < w.edges.size()) net.resize(w.edges.size(), 0);
-  if (projected.size() < w.vertices.size()) projected.resize(w.vertices.size()), projectedStamp.resize(w.vertices.size(), 0);
-  if (++stamp == 0) std::fill(projectedStamp.begin(), projectedStamp.end(), 0), stamp = 1;
+  projected.clear(w.vertices.size());
   touched.clear();
   for (const auto& [e, count] : summedEdges) {
     if (net[e] == 0) touched.push_back(e);
@@ -34,12 +34,10 @@ bool appendShadowChain(const MeshTopology& mesh, std::span<const uint32_t> chain
   }
   for (const uint32_t f : chainFaces) addFaceEdges(mesh, f, net, touched);
   auto project = [&](uint32_t v) -> const Vec2& {
-    if (projectedStamp[v] != stamp) {
+    return projected.value(v, [&](uint32_t) {
       const Vec3& x = w.vertices[v];
-      projected[v] = frame.to2D(p + (x - p) * (pHeight / (pHeight - lightPlane.signedDistance(x))));
-      projectedStamp[v] = stamp;
-    }
-    return projected[v];
+      return frame.to2D(p + (x - p) * (pHeight / (pHeight - lightPlane.signedDistance(x))));
+    });
   };
   const size_t first = out.size();
   double area2 = 0;  // twice the signed area of the projected blocking faces, summed

@@ -8,6 +8,7 @@
 
 #include "core/geom/clip.h"
 #include "core/geom/shaft.h"
+#include "core/util/stamped_set.h"
 #include "core/scene/convex_solid.h"
 #include "core/scene/mesh_topology.h"
 #include "core/shadow/critical_wedge.h"
@@ -230,21 +231,20 @@ constexpr double kShaftMargin = 64;
 // (s_i, q inside it) has x or v more than δ outside it, so an edge or corner more than the
 // margin outside gives no chord on the receiver. Valid until the next call on this thread.
 ClusterSet clustersInShaft(const MeshTopology& mesh, const Polygon3& s, const Polygon3& receiver, double eps) {
-  thread_local std::vector<uint32_t> stamps, list;
-  thread_local uint32_t stamp = 0;
-  if (stamps.size() < mesh.clusters.size()) stamps.resize(mesh.clusters.size(), 0);
-  if (++stamp == 0) std::fill(stamps.begin(), stamps.end(), 0), stamp = 1;
+  thread_local StampedSet inShaft;
+  thread_local std::vector<uint32_t> list;
+  inShaft.clear(mesh.clusters.size());
   const Shaft shaft = shaftBetween(s, receiver, eps);
   const double margin = kShaftMargin * eps;
   list.clear();
   mesh.forEachClusterMeeting(
       [&](const MeshTopology::Cluster& ball) { return shaft.ballOutside(ball.centre, ball.radius, margin); },
       [&](uint32_t c) {
-        stamps[c] = stamp;
+        inShaft.insert(c);
         list.push_back(c);
         return true;
       });
-  return {std::span<const uint32_t>(stamps.data(), mesh.clusters.size()), stamp, list};
+  return {inShaft.stamps(mesh.clusters.size()), inShaft.stamp(), list};
 }
 
 // The VE and EV surfaces of a mesh's potential silhouette (object_shadow.h, any mesh): VE
