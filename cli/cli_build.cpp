@@ -45,13 +45,17 @@ nlohmann::json meshByObject(const Scene& scene, const Mesh& mesh) {
   return out;
 }
 
-// The build stats (protocol/build_stats_json.h) with the written mesh and this process's peak.
-nlohmann::json statsJson(const Scene& scene, const BuildStats& s, const Mesh& mesh) {
+// The build stats (protocol/build_stats_json.h) with the written mesh, its refinement's test
+// points (meshing: the engine's last display-mesh update) and this process's peak.
+nlohmann::json statsJson(const Scene& scene, const BuildStats& s, const Mesh& mesh, const MeshMemoCounters& meshing) {
   nlohmann::json out = protocol::buildStatsToJson(s);
   out["mesh"] = {{"vertices", mesh.vertexCount()},
                  {"triangles", mesh.triangleCount()},
                  {"tolerance", mesh.tolerance},
                  {"capped_cells", mesh.cappedCells},
+                 // Where triangulation's time goes: each test point is an exact value.
+                 {"test_points", meshing.testPoints},
+                 {"test_points_kept", meshing.testPointsKept},
                  {"by_object", meshByObject(scene, mesh)}};
   out["peak_memory_mib"] = peakMemoryMiB();
   return out;
@@ -107,7 +111,7 @@ int runBuild(const Args& args) {
 
   const BuildStats& stats = engine.stats();
   if (args.flag("stats")) {
-    std::printf("%s\n", statsJson(engine.scene(), stats, mesh).dump(2).c_str());
+    std::printf("%s\n", statsJson(engine.scene(), stats, mesh, engine.lastMeshCounters()).dump(2).c_str());
   } else {
     char bound[128];  // tolerance 0 claims no bound (cells not refined)
     if (mesh.tolerance > 0)

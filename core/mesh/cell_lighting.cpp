@@ -255,6 +255,8 @@ CellFan CellLighter::refine(const Polygon2& piece, size_t first, CellFan fan, co
       r, settings, [&](const Vec2& q, std::vector<VertexLight>& values) { lightsAt(q, list, centre, values); },
       [&](const Vec2& q, std::vector<double>& levels) { levelsAt(q, levels); });
   output_.capped |= r.capped;
+  testPoints_ += r.asked;
+  testPointsKept_ += r.points.size() - before;
   if (!added) return fan;
   for (size_t i = before; i < r.points.size(); ++i) {
     const Vec2 q = r.points[i];

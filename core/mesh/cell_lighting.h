@@ -51,6 +51,9 @@ class CellLighter {
   // fingerprint (see CellMemo for what it keeps). Vertices repeat once per side where the value jumps (contact edges,
   // cells in a light's umbra) through the values handed in.
   void emit(CellId c, CellMemo& out);
+  // Refinement's test points of every emit() so far: values asked, points kept.
+  size_t testPoints() const { return testPoints_; }
+  size_t testPointsKept() const { return testPointsKept_; }
 
  private:
   // Appends the faces of the receiver's own mesh that meet its corners to listFaces_.
@@ -101,7 +104,8 @@ class CellLighter {
   const double eps_, spacing_, chunkSide_;
   const RefineSettings refine_;
   SharedPointValues* shared_;
-  PieceRefinement refinement_;  // reused from piece to piece
+  PieceRefinement refinement_;
+  size_t testPoints_ = 0, testPointsKept_ = 0;  // reused from piece to piece
   Inputs inputs_;
   uint64_t fingerprint_ = 0;
   std::vector<bool> dark_;

@@ -81,6 +81,7 @@ class Refiner {
   // Appends the exact values at q; returns its index.
   uint32_t addPoint(const Vec2& q) {
     const size_t before = piece_.values.size();
+    ++piece_.asked;
     evaluate_(q, piece_.values);
     if (piece_.values.size() != before + piece_.lights) throw std::logic_error("refinePiece: a value per light");
     piece_.points.push_back(q);
@@ -253,6 +254,7 @@ class Refiner {
 
 bool refinePiece(PieceRefinement& piece, const RefineSettings& settings, const PointEvaluator& evaluate,
                  const LevelEvaluator& level) {
+  piece.asked = 0;
   if (!(settings.tolerance > 0) || piece.triangles.empty()) return false;
   if (piece.values.size() != piece.points.size() * piece.lights) throw std::invalid_argument("refinePiece: values");
   piece.levels.assign(piece.values.size(), std::nan(""));

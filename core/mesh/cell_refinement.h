@@ -35,6 +35,7 @@ struct PieceRefinement {
   std::vector<double> levels;       // points × lights; NaN: not known yet (asked when needed)
   std::vector<std::array<uint32_t, 3>> triangles;
   bool capped = false;  // maxPoints stopped a refinement the tolerance asked for
+  size_t asked = 0;     // points whose values refinePiece asked of the evaluator (kept or not)
 };
 
 // The exact per-light values at a point of the piece as its cell sees it, appended to `values`.

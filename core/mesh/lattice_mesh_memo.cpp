@@ -34,6 +34,9 @@ class SquareLighter {
       : scene_(scene), source_(source), refine_(refine), spacing_(spacing), eps_(scene.tolerance().length()),
         shared_(shared) {}
 
+  // Refinement's test points of every light() so far.
+  const MeshMemoCounters& counted() const { return counted_; }
+
   void light(const Polygon2& outline, LatticeMeshMemo::Square& out) {
     PieceRefinement& r = refinement_;
     r.lights = source_.perLight.lightCount();
@@ -45,10 +48,13 @@ class SquareLighter {
     for (const Vec2& q : r.points) valuesAt(q, r.values);
     const uint32_t loop = uint32_t(outline.size());
     for (uint32_t t = 0; t < fan.triangleCount(loop); ++t) r.triangles.push_back(fan.triangle(loop, t));
-    if (refine_.tolerance > 0 && !narrowerThan(outline, refine_.minEdge))
+    if (refine_.tolerance > 0 && !narrowerThan(outline, refine_.minEdge)) {
+      const size_t before = r.points.size();
       refinePiece(
           r, refine_, [&](const Vec2& q, std::vector<VertexLight>& values) { valuesAt(q, values); },
           [&](const Vec2& q, std::vector<double>& levels) { levelsAt(q, levels); });
+      counted_.testPoints += r.asked, counted_.testPointsKept += r.points.size() - before;
+    }
     out.points = r.points;
     out.lights = r.values;
     out.triangles = r.triangles;
@@ -87,6 +93,7 @@ class SquareLighter {
   SharedPointValues& shared_;
   PieceRefinement refinement_;
   std::vector<const OccluderList*> oneCell_;
+  MeshMemoCounters counted_;  // refinement's test points only
 };
 
 }  // namespace
@@ -165,13 +172,16 @@ void LatticeMeshMemo::update(const Scene& scene, const MeshSource& source, MeshG
   std::vector<Square> results(touched.size());
   SharedPointValues shared(source.perLight.lightCount());
   constexpr size_t kBlock = 16;
-  parallel.forEach((touched.size() + kBlock - 1) / kBlock, [&](size_t block) {
+  std::vector<MeshMemoCounters> blocks((touched.size() + kBlock - 1) / kBlock);
+  parallel.forEach(blocks.size(), [&](size_t block) {
     SquareLighter lighter(scene, source, grid_.refine, grid_.spacing, shared);
     for (size_t k = block * kBlock; k < std::min(touched.size(), (block + 1) * kBlock); ++k) {
       if (progress) progress(1);
       lighter.light(outlines_[touched[k]], results[k]);
     }
+    blocks[block] = lighter.counted();
   });
+  for (const MeshMemoCounters& b : blocks) counters += b;
   std::set<MeshChunkKey> dirty;
   for (size_t k = 0; k < touched.size(); ++k) {
     Square& slot = squares_[touched[k]];

@@ -96,7 +96,8 @@ class MeshMemoUpdate {
     std::vector<CellMemo> results(touched.size());
     const double spacing = memo_.grid_.spacing;
     SharedPointValues shared(source_.perLight.lightCount());
-    parallel.forEach((touched.size() + kBlock - 1) / kBlock, [&](size_t block) {
+    std::vector<MeshMemoCounters> blocks((touched.size() + kBlock - 1) / kBlock);
+    parallel.forEach(blocks.size(), [&](size_t block) {
       CellLighter lighter(scene_, source_, spacing, chunkSide_, memo_.grid_.refine, &shared);
       for (size_t k = block * kBlock; k < std::min(touched.size(), (block + 1) * kBlock); ++k) {
         if (progress_ && k % ReceiverMeshMemo::kCellsPerReport == 0)
@@ -107,7 +108,9 @@ class MeshMemoUpdate {
         if (slot.valid() && slot.inputs() == fingerprint) continue;  // results[k] stays invalid: kept
         lighter.emit(c, results[k]);
       }
+      blocks[block].testPoints = lighter.testPoints(), blocks[block].testPointsKept = lighter.testPointsKept();
     });
+    for (const MeshMemoCounters& b : blocks) counters_ += b;
     for (size_t k = 0; k < touched.size(); ++k) {
       if (!results[k].valid()) {
         ++counters_.cellsReused;

@@ -22,9 +22,13 @@ namespace penumbra {
 struct MeshMemoCounters {
   size_t cellsReused = 0, cellsLit = 0;
   size_t chunksMeshed = 0, chunksKept = 0;
+  // Refinement's test points (cell_refinement.h): values asked, and the points kept (a test
+  // failed there). Most of a refined mesh's time is the asked values.
+  size_t testPoints = 0, testPointsKept = 0;
   MeshMemoCounters& operator+=(const MeshMemoCounters& o) {
     cellsReused += o.cellsReused, cellsLit += o.cellsLit;
     chunksMeshed += o.chunksMeshed, chunksKept += o.chunksKept;
+    testPoints += o.testPoints, testPointsKept += o.testPointsKept;
     return *this;
   }
 };

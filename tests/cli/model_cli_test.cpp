@@ -37,7 +37,8 @@ TEST(ModelCli, GenerateWritesAValidSceneAndSaysWhatItWrote) {
   std::filesystem::remove(scene);
 }
 
-// `build --stats` says where the display triangles go: per scene object, summing to the mesh's.
+// `build --stats` says where the display triangles go: per scene object, summing to the mesh's;
+// and how many test points refinement asked and kept.
 TEST(ModelCli, BuildStatsSplitTheDisplayMeshByObject) {
   const std::string scene = tempPath("knot.scene.json"), mesh = tempPath("knot.mesh.json");
   auto [status, text] = runCaptured("generate --model torus-knot --triangles 300 --rest --out " + scene);
@@ -62,6 +63,19 @@ TEST(ModelCli, BuildStatsSplitTheDisplayMeshByObject) {
   EXPECT_EQ(byObject["floor"]["receivers"], 1);  // one face
   EXPECT_GT(byObject["torus_knot"]["receivers"].get<size_t>(), 10u);  // each lit face of the knot
   EXPECT_EQ(receivers, byObject["torus_knot"]["receivers"].get<size_t>() + 6);  // and the room's six
+  // Refinement's test points: most pass (not kept); the kept ones are display vertices.
+  const size_t asked = out.at("mesh").at("test_points"), kept = out.at("mesh").at("test_points_kept");
+  EXPECT_GT(kept, 0u);
+  EXPECT_LT(kept, asked);
+  EXPECT_LT(kept, out.at("mesh").at("vertices").get<size_t>());
+  // Unrefined (the bare fans): no test point.
+  ASSERT_EQ(std::system((kBinary + " build " + scene + " --out " + mesh + " --threads 1 --mesh-tolerance 0 --stats >" +
+                         stats + " 2>/dev/null").c_str()),
+            0);
+  std::ifstream fans(stats);
+  const nlohmann::json bare = nlohmann::json::parse(fans);
+  EXPECT_EQ(bare.at("mesh").at("test_points"), 0);
+  EXPECT_EQ(bare.at("mesh").at("test_points_kept"), 0);
   for (const std::string& path : {scene, mesh, stats}) std::filesystem::remove(path);
 }
 
