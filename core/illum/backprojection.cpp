@@ -35,6 +35,7 @@ void Backprojection::reset(const Scene& scene, size_t light, const Vec3& p, cons
   applies_ = false;
   front_.clear();
   cone_.clear();
+  coneMade_ = false;
   lightCone_.clear();
   front2_.clear();
   shadowPoints_.clear();
@@ -75,7 +76,12 @@ void Backprojection::reset(const Scene& scene, size_t light, const Vec3& p, cons
   for (const Vec3& q : front_) front2_.push_back(frame_.to2D(q));
   if (signedArea(front2_) < 0) std::reverse(front2_.begin(), front2_.end());  // counter-clockwise
   shadowStarts_.push_back(0);
+}
 
+const std::vector<Plane>& Backprojection::clipCone() const {
+  if (coneMade_ || front_.size() < 3) return cone_;
+  coneMade_ = true;
+  const Vec3& p = p_;
   // Side planes of the cone from p over the front part with every edge moved out,
   // in the light's plane, by the front part's own size. The cone only keeps the
   // projections finite; the exact trim is the 2D subtraction against the light.
@@ -107,6 +113,7 @@ void Backprojection::reset(const Scene& scene, size_t light, const Vec3& p, cons
     const Vec3 unit = (glm::dot(normal, inner - p) < 0 ? -normal : normal) / length;
     cone_.push_back(Plane::throughPoint(unit, p));
   }
+  return cone_;
 }
 
 bool Backprojection::occlude(const Face& face) {
@@ -149,7 +156,8 @@ bool Backprojection::projectBlocker(const Face& face) const {
   // Wholly outside a side of the cone: every part of it is, and that clip leaves nothing
   // (most faces asked of a point near a model lie beside its cone).
   const double eps = tolerance_.length();
-  if (outsideASide(face.polygon, cone_, eps)) return false;
+  const std::vector<Plane>& cone = clipCone();
+  if (outsideASide(face.polygon, cone, eps)) return false;
 
   // Keep the part between p and the light inside the cone; the cap just short of
   // p's height keeps the projection finite (a blocking face is ≥ onPlane from p).
@@ -161,7 +169,7 @@ bool Backprojection::projectBlocker(const Face& face) const {
     clipFrontInto(blocker, cap, eps, scratch_);
     std::swap(blocker, scratch_);
   }
-  for (const Plane& side : cone_) {
+  for (const Plane& side : cone) {
     if (blocker.size() < 3) break;
     clipFrontInto(blocker, side, eps, scratch_);
     std::swap(blocker, scratch_);

@@ -128,6 +128,9 @@ class Backprojection {
                    std::span<const uint32_t> clusters, std::span<const std::pair<uint32_t, int>> summedEdges);
   // Inward side planes of the cone from p over front_ (no margin), made on first use.
   const std::vector<Plane>& lightCone();
+  // cone_, made on first use: only a face projected one by one is clipped by it (a closed
+  // convex object's hull and a refinement point's level need none).
+  const std::vector<Plane>& clipCone() const;
 
   const Scene* scene_ = nullptr;
   Tolerance tolerance_;
@@ -140,7 +143,8 @@ class Backprojection {
   bool applies_ = false;
   Polygon3 front_;              // the light clipped to p's front half-space
   PlaneFrame frame_;            // 2D frame on the light's plane (set even when !applies_)
-  std::vector<Plane> cone_;     // inward side planes of a cone from p over front_ plus a margin
+  mutable std::vector<Plane> cone_;  // inward side planes of a cone from p over front_ plus a margin
+  mutable bool coneMade_ = false;    // cone_ made for this p (clipCone())
   std::vector<Plane> lightCone_;  // lightCone(), empty until asked for
   Polygon2 front2_;             // front_ in the frame, CCW
   std::vector<Vec2> shadowPoints_;      // gathered shadows in the frame, flat, CCW
