@@ -547,20 +547,22 @@ void Backprojection::resolve() const {
     visibleFactor_ = unoccludedFactor();
     return;
   }
-  // Lambert's sum over the boundary of what is left, oriented as the light is in
-  // the frame (counter-clockwise): the light's own sum gives the sign.
+  // Lambert's sum over the boundary of what is left, oriented as the light is in the frame
+  // (counter-clockwise). The frame's normal is the light plane's (PlaneFrame: u × v = normal)
+  // and p lies in front of that plane, so seen from p that boundary turns clockwise about the
+  // direction the front part lies in (n's side): the sum is the integral negated. (Until
+  // 2026-12 the light's own sum was computed at every point for this sign; it was negative at
+  // every point of the bundled and generated scenes.)
   // With a shading normal the orientation still comes from n: the front part lies wholly in
   // front of n's plane, not of the shading normal's.
-  double sum = 0, lightSum = 0;
+  double sum = 0;
   if (smooth_) {
     sum = shadedBoundarySum(contour.boundary());
   } else {
     for (const Segment2& s : contour.boundary())
       sum += lambertEdgeTerm(p_, n_, frame_.to3D(s.from), frame_.to3D(s.to));
   }
-  for (size_t i = 0; i < front2_.size(); ++i)
-    lightSum += lambertEdgeTerm(p_, n_, frame_.to3D(front2_[i]), frame_.to3D(front2_[(i + 1) % front2_.size()]));
-  visibleFactor_ = std::max(0.0, 0.5 * (lightSum < 0 ? -sum : sum));
+  visibleFactor_ = std::max(0.0, -0.5 * sum);
 }
 
 void Backprojection::resolvePieces(VisibleRegion& region) const {
