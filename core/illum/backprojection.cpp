@@ -5,7 +5,6 @@
 #include <cstring>
 
 #include "core/geom/clip.h"
-#include "core/util/stamped_set.h"
 #include "core/illum/face_lookup.h"
 #include "core/illum/lambert.h"
 #include "core/illum/mesh_box_chain.h"
@@ -13,6 +12,7 @@
 #include "core/illum/visible_contour.h"
 #include "core/scene/convex_solid.h"
 #include "core/scene/mesh_topology.h"
+#include "core/util/stamped_set.h"
 
 namespace penumbra {
 
@@ -81,7 +81,7 @@ void Backprojection::reset(const Scene& scene, size_t light, const Vec3& p, cons
 const std::vector<Plane>& Backprojection::clipCone() const {
   if (coneMade_ || front_.size() < 3) return cone_;
   coneMade_ = true;
-  const Vec3& p = p_;
+  const Vec3& p = p_;  // the apex
   // Side planes of the cone from p over the front part with every edge moved out,
   // in the light's plane, by the front part's own size. The cone only keeps the
   // projections finite; the exact trim is the 2D subtraction against the light.

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "core/geom/convex2d.h"
-#include "core/util/stamped_set.h"
 #include "core/illum/shadow_chain.h"
+#include "core/util/stamped_set.h"
 
 namespace penumbra {
 
